@@ -1,0 +1,169 @@
+//! Finite-difference checks shared by the element tests: first derivatives
+//! against central differences of the value, second derivatives against
+//! central differences of the first derivatives.
+
+use super::{ElementType, FormEval, Order};
+
+/// A small seeded generator (xorshift64*) so the sweeps are repeatable
+/// without a dependency.
+pub(crate) struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Rng {
+        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        let r = self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11;
+        lo + (hi - lo) * (r as f64 / (1u64 << 53) as f64)
+    }
+}
+
+fn eval(ty: ElementType, form: usize, x: &[f64], order: Order) -> FormEval {
+    let mut out = FormEval::default();
+    // A fresh branch: the principal value, as at a model's first evaluation.
+    let mut branch = f64::NAN;
+    ty.eval(form, x, &mut branch, order, &mut out).expect("element evaluation failed");
+    out
+}
+
+/// Checks every form parameter of `ty` at `x`; panics with a description of
+/// the worst entry when a derivative is off by more than `tol` relative to
+/// the scale of the derivatives.
+pub(crate) fn check_derivatives(ty: ElementType, x: &[f64], tol: f64) {
+    let n = ty.n_coords();
+    for form in 0..ty.form_names().len() {
+        let mut centre_branch = f64::NAN;
+        let mut centre = FormEval::default();
+        ty.eval(form, x, &mut centre_branch, Order::Second, &mut centre).unwrap();
+        let order0 = eval(ty, form, x, Order::Value);
+        assert_eq!(order0.value, centre.value, "{} value depends on the order asked", ty.name());
+        let h = 1e-5 * (1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.abs())));
+        let scale1 = 1.0 + centre.grad[..n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale2 = 1.0 + centre.hess[..n].iter().flat_map(|r| r[..n].iter()).fold(0.0f64, |m, v| m.max(v.abs()));
+        for k in 0..n {
+            let mut xp = x.to_vec();
+            let mut xm = x.to_vec();
+            xp[k] += h;
+            xm[k] -= h;
+            // Evaluate on the centre's branch so the value is continuous.
+            let (mut bp, mut bm) = (centre_branch, centre_branch);
+            let (mut ep, mut em) = (FormEval::default(), FormEval::default());
+            ty.eval(form, &xp, &mut bp, Order::First, &mut ep).unwrap();
+            ty.eval(form, &xm, &mut bm, Order::First, &mut em).unwrap();
+            let fd1 = (ep.value - em.value) / (2.0 * h);
+            let err1 = (fd1 - centre.grad[k]).abs() / scale1;
+            assert!(
+                err1 < tol,
+                "{} {} d/dx{}: analytic {} vs fd {} at {:?}",
+                ty.name(),
+                ty.form_names()[form],
+                k,
+                centre.grad[k],
+                fd1,
+                x
+            );
+            for l in 0..n {
+                let fd2 = (ep.grad[l] - em.grad[l]) / (2.0 * h);
+                let err2 = (fd2 - centre.hess[k][l]).abs() / scale2;
+                assert!(
+                    err2 < tol,
+                    "{} {} d2/dx{}dx{}: analytic {} vs fd {} at {:?}",
+                    ty.name(),
+                    ty.form_names()[form],
+                    k,
+                    l,
+                    centre.hess[k][l],
+                    fd2,
+                    x
+                );
+                let asym = (centre.hess[k][l] - centre.hess[l][k]).abs() / scale2;
+                assert!(asym < 1e-14, "{} Hessian not symmetric", ty.name());
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Random configurations: co-ordinates in [-2, 2], angle co-ordinates
+    /// over several revolutions. Points that must not coincide are kept at
+    /// least 0.2 apart so the check measures the derivatives, not the
+    /// conditioning.
+    fn sweep(ty: ElementType, seed: u64, valid: impl Fn(&[f64]) -> bool) {
+        let mut rng = Rng::new(seed);
+        let mut checked = 0;
+        while checked < 500 {
+            let x: Vec<f64> = (0..ty.n_coords()).map(|_| rng.uniform(-2.0, 2.0)).collect();
+            if !valid(&x) {
+                continue;
+            }
+            check_derivatives(ty, &x, 2e-6);
+            checked += 1;
+        }
+    }
+
+    fn apart(x: &[f64], p: usize, q: usize) -> bool {
+        (x[q] - x[p]).hypot(x[q + 1] - x[p + 1]) > 0.2
+    }
+
+    #[test]
+    fn bin_derivatives_match_finite_differences() {
+        sweep(ElementType::Bin, 1, |x| apart(x, 0, 2));
+    }
+
+    #[test]
+    fn hlf_derivatives_match_finite_differences() {
+        sweep(ElementType::Hlf, 2, |_| true);
+    }
+
+    #[test]
+    fn tr1_derivatives_match_finite_differences() {
+        sweep(ElementType::Tr1, 3, |_| true);
+    }
+
+    #[test]
+    fn tr1_is_defined_when_r_coincides_with_p() {
+        check_derivatives(ElementType::Tr1, &[0.3, -0.2, 1.1, 0.3, -0.2], 2e-6);
+    }
+
+    #[test]
+    fn tr2_derivatives_match_finite_differences() {
+        sweep(ElementType::Tr2, 4, |x| apart(x, 0, 2));
+    }
+
+    #[test]
+    fn crd_derivatives_match_finite_differences() {
+        sweep(ElementType::Crd, 5, |_| true);
+    }
+
+    #[test]
+    fn every_catalogue_type_is_swept() {
+        // Guards against adding a type without a derivative sweep above.
+        assert_eq!(ElementType::ALL.len(), 5);
+    }
+
+    #[test]
+    fn bin_reports_coincident_points() {
+        let mut out = FormEval::default();
+        let mut b = f64::NAN;
+        let r = ElementType::Bin.eval(0, &[1.0, 2.0, 1.0, 2.0], &mut b, Order::First, &mut out);
+        assert!(matches!(r, Err(crate::error::ElementError::CoincidentPoints)));
+    }
+
+    #[test]
+    fn angle_is_tracked_across_the_branch_cut() {
+        let mut out = FormEval::default();
+        let mut b = f64::NAN;
+        ElementType::Bin.eval(1, &[0.0, 0.0, -1.0, 0.1], &mut b, Order::Value, &mut out).unwrap();
+        assert!(out.value > 3.0);
+        // Just below the negative x axis: principal value near -pi, tracked near +pi.
+        ElementType::Bin.eval(1, &[0.0, 0.0, -1.0, -0.1], &mut b, Order::Value, &mut out).unwrap();
+        assert!((out.value - (std::f64::consts::PI + 0.1f64.atan())).abs() < 1e-12);
+    }
+}

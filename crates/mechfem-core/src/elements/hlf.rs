@@ -1,0 +1,27 @@
+//! Half beam: a point and an orientation carried as a co-ordinate
+//! (theory, section 5.4.3). Used for wheels and as an angular reference.
+
+use super::local::zero_hess;
+use super::{Element, FormEval, Order};
+use crate::error::ElementError;
+
+/// Half beam `HLF`: co-ordinates `xP yP beta`, form parameter `ANGV = beta`.
+pub struct Hlf;
+
+impl Element for Hlf {
+    const NAME: &'static str = "HLF";
+    const COORDS: &'static [&'static str] = &["xP", "yP", "beta"];
+    const FORMS: &'static [&'static str] = &["ANGV"];
+
+    fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
+        // The angle is a co-ordinate: never wrapped.
+        out.value = x[2];
+        if order >= Order::First {
+            out.grad[..3].copy_from_slice(&[0.0, 0.0, 1.0]);
+        }
+        if order >= Order::Second {
+            zero_hess(3, out);
+        }
+        Ok(())
+    }
+}

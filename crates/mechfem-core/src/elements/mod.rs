@@ -1,0 +1,168 @@
+//! The element catalogue.
+//!
+//! An element is a group of co-ordinates plus the form parameters that are
+//! functions of them (theory, section 5.4). Elements hold no data of their own:
+//! lengths, radii and transmission ratios are co-ordinates or prescribed form
+//! parameters, so an element instance in a model is just its type and the
+//! indices of its co-ordinates.
+//!
+//! Each type lives in its own file and implements [`Element`]; [`ElementType`]
+//! gathers them for dispatch. Adding a type is one file plus one line in each
+//! `match` of this module.
+
+mod bin;
+mod crd;
+mod hlf;
+mod local;
+mod tr1;
+mod tr2;
+
+pub use bin::Bin;
+pub use crd::Crd;
+pub use hlf::Hlf;
+pub use tr1::Tr1;
+pub use tr2::Tr2;
+
+use crate::error::ElementError;
+
+/// The largest number of co-ordinates any element type has.
+pub const MAX_COORDS: usize = 8;
+
+/// How far an evaluation goes: the value only, also the first derivatives
+/// (a row of D), or also the second derivatives (a matrix D_kl).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Order {
+    /// Value only (order zero).
+    Value = 0,
+    /// Value and gradient.
+    First = 1,
+    /// Value, gradient and Hessian.
+    Second = 2,
+}
+
+/// One form parameter evaluated at an element's co-ordinates, in the
+/// element's own co-ordinate order.
+///
+/// Only the first `n` entries of `grad` and the leading `n x n` block of `hess`
+/// are meaningful, `n` being the element's number of co-ordinates; an
+/// evaluation writes every one of them up to the order it was asked for.
+#[derive(Debug, Clone, Copy)]
+pub struct FormEval {
+    /// Value of the form parameter.
+    pub value: f64,
+    /// First derivatives with respect to the element's co-ordinates.
+    pub grad: [f64; MAX_COORDS],
+    /// Second derivatives (symmetric).
+    pub hess: [[f64; MAX_COORDS]; MAX_COORDS],
+}
+
+impl Default for FormEval {
+    fn default() -> Self {
+        FormEval { value: 0.0, grad: [0.0; MAX_COORDS], hess: [[0.0; MAX_COORDS]; MAX_COORDS] }
+    }
+}
+
+/// Behaviour shared by every element type.
+///
+/// `branch` is the element's angle memory: an element whose form parameters
+/// depend on an `atan2` angle picks the value `2*pi*k` away from the principal
+/// one that lies closest to `*branch`, and stores it back. A NaN branch means
+/// "first evaluation": the principal value in (-pi, pi] is taken. This is how
+/// a crank turned through many revolutions reports a continuous angle.
+pub trait Element {
+    /// Three-character name used in decks.
+    const NAME: &'static str;
+    /// Names of the co-ordinates, in deck order.
+    const COORDS: &'static [&'static str];
+    /// Four-character names of the form parameters.
+    const FORMS: &'static [&'static str];
+
+    /// Evaluates form parameter `form` (an index into `FORMS`) at the
+    /// element's co-ordinates `x` up to `order`.
+    fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError>;
+}
+
+/// Every element type of the catalogue (`elements.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ElementType {
+    /// Binary (truss) element `BIN`.
+    Bin,
+    /// Half beam `HLF`: a point and an angle co-ordinate.
+    Hlf,
+    /// Ternary-1 `TR1`: half beam plus point R in its local frame.
+    Tr1,
+    /// Ternary-2 `TR2`: binary plus point R in the frame along P->Q.
+    Tr2,
+    /// Single co-ordinate `CRD`.
+    Crd,
+}
+
+macro_rules! dispatch {
+    ($ty:expr, $t:ident => $body:expr) => {
+        match $ty {
+            ElementType::Bin => { type $t = Bin; $body }
+            ElementType::Hlf => { type $t = Hlf; $body }
+            ElementType::Tr1 => { type $t = Tr1; $body }
+            ElementType::Tr2 => { type $t = Tr2; $body }
+            ElementType::Crd => { type $t = Crd; $body }
+        }
+    };
+}
+
+impl ElementType {
+    /// Every type, in catalogue order.
+    pub const ALL: [ElementType; 5] =
+        [ElementType::Bin, ElementType::Hlf, ElementType::Tr1, ElementType::Tr2, ElementType::Crd];
+
+    /// The type with this deck name (case-insensitive), if any.
+    pub fn from_name(name: &str) -> Option<ElementType> {
+        Self::ALL.into_iter().find(|t| t.name().eq_ignore_ascii_case(name))
+    }
+
+    /// Three-character deck name.
+    pub fn name(self) -> &'static str {
+        dispatch!(self, T => T::NAME)
+    }
+
+    /// Co-ordinate names in deck order.
+    pub fn coord_names(self) -> &'static [&'static str] {
+        dispatch!(self, T => T::COORDS)
+    }
+
+    /// Number of co-ordinates.
+    pub fn n_coords(self) -> usize {
+        self.coord_names().len()
+    }
+
+    /// Form-parameter names.
+    pub fn form_names(self) -> &'static [&'static str] {
+        dispatch!(self, T => T::FORMS)
+    }
+
+    /// Index of the form parameter with this name (case-insensitive).
+    pub fn form_index(self, name: &str) -> Option<usize> {
+        self.form_names().iter().position(|f| f.eq_ignore_ascii_case(name))
+    }
+
+    /// Evaluates form parameter `form` of this type; see [`Element::eval`].
+    #[inline]
+    pub fn eval(self, form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
+        dispatch!(self, T => T::eval(form, x, branch, order, out))
+    }
+}
+
+/// `atan2(dy, dx)` moved by a multiple of 2*pi to lie closest to `*branch`
+/// (principal value when the branch is NaN); the branch is updated.
+#[inline]
+pub(crate) fn tracked_atan2(dy: f64, dx: f64, branch: &mut f64) -> f64 {
+    let mut beta = dy.atan2(dx);
+    if branch.is_finite() {
+        let k = ((*branch - beta) / std::f64::consts::TAU).round();
+        beta += k * std::f64::consts::TAU;
+    }
+    *branch = beta;
+    beta
+}
+
+#[cfg(test)]
+pub(crate) mod fd;

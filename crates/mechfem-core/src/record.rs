@@ -1,0 +1,140 @@
+//! What can be recorded at every position: the quantities of the deck's
+//! buffer table, named with 0-based indices.
+
+/// A form parameter named by its destination.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FormRef {
+    /// Prescribed row r (0-based; deck destination r+1).
+    Prescribed(usize),
+    /// Dependent form parameter d (0-based; deck destination -(d+1)).
+    Dependent(usize),
+}
+
+/// One recordable quantity (one buffer of the deck).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Quantity {
+    /// Value of input j (BUFINP).
+    Input(usize),
+    /// Time (BUFTIME).
+    Time,
+    /// Co-ordinate i (BUFX0).
+    X0(usize),
+    /// d x_i / d input_j (BUFKX1).
+    Kx1 {
+        /// Co-ordinate.
+        coord: usize,
+        /// Input.
+        j: usize,
+    },
+    /// d2 x_i / d input_j d input_m (BUFKX2).
+    Kx2 {
+        /// Co-ordinate.
+        coord: usize,
+        /// First input.
+        j: usize,
+        /// Second input.
+        m: usize,
+    },
+    /// Velocity of co-ordinate i (BUFVX).
+    Vx(usize),
+    /// Acceleration of co-ordinate i (BUFAX).
+    Ax(usize),
+    /// Form parameter value (BUFE0).
+    E0(FormRef),
+    /// d eps / d input_j (BUFKE1).
+    Ke1(FormRef, usize),
+    /// d2 eps / d input_j d input_m (BUFKE2).
+    Ke2(FormRef, usize, usize),
+    /// Velocity of a form parameter (BUFVE).
+    Ve(FormRef),
+    /// Acceleration of a form parameter (BUFAE).
+    Ae(FormRef),
+    /// det(D^c) (BUFDET).
+    Det,
+}
+
+use crate::motion::{Observer, PositionView};
+
+impl Quantity {
+    /// The quantity's value at a position.
+    pub fn value(&self, v: &PositionView<'_>) -> f64 {
+        let (mech, kin) = (v.mech, v.kin);
+        let (qd, qdd) = (v.input_vel, v.input_acc);
+        // A prescribed row's derivatives are those of an identity: 1 for its
+        // own input, 0 otherwise; constant rows do not move at all.
+        let input_of = |r: usize| (0..mech.n_dof()).find(|&j| mech.input_row(j) == r);
+        match *self {
+            Quantity::Input(j) => v.input(j),
+            Quantity::Time => v.time,
+            Quantity::X0(i) => v.state.x[i],
+            Quantity::Kx1 { coord, j } => kin.dx(mech, coord, j),
+            Quantity::Kx2 { coord, j, m } => kin.d2x(mech, coord, j, m),
+            Quantity::Vx(i) => kin.velocity(mech, i, qd),
+            Quantity::Ax(i) => kin.acceleration(mech, i, qd, qdd),
+            Quantity::E0(FormRef::Prescribed(r)) => kin.row_value(r),
+            Quantity::E0(FormRef::Dependent(d)) => kin.dep(d),
+            Quantity::Ke1(FormRef::Prescribed(r), j) => f64::from(u8::from(input_of(r) == Some(j))),
+            Quantity::Ke1(FormRef::Dependent(d), j) => kin.dep1(d, j),
+            Quantity::Ke2(FormRef::Prescribed(_), _, _) => 0.0,
+            Quantity::Ke2(FormRef::Dependent(d), j, m) => kin.dep2(d, j, m),
+            Quantity::Ve(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, |j| qd[j]),
+            Quantity::Ve(FormRef::Dependent(d)) => kin.dep_velocity(d, qd),
+            Quantity::Ae(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, |j| qdd[j]),
+            Quantity::Ae(FormRef::Dependent(d)) => kin.dep_acceleration(d, qd, qdd),
+            Quantity::Det => kin.det(),
+        }
+    }
+}
+
+/// An [`Observer`] that keeps chosen quantities, and optionally every
+/// co-ordinate, for every position.
+#[derive(Debug, Clone, Default)]
+pub struct Recorder {
+    quantities: Vec<Quantity>,
+    keep_coords: bool,
+    /// Row-major: one row of `quantities.len()` values per position.
+    data: Vec<f64>,
+    /// Row-major: one row of N co-ordinates per position (when kept).
+    coords: Vec<f64>,
+    positions: usize,
+}
+
+impl Recorder {
+    /// Records `quantities`, and all co-ordinates when `keep_coords`.
+    pub fn new(quantities: Vec<Quantity>, keep_coords: bool) -> Recorder {
+        Recorder { quantities, keep_coords, ..Recorder::default() }
+    }
+    /// The recorded quantities, in column order.
+    pub fn quantities(&self) -> &[Quantity] {
+        &self.quantities
+    }
+    /// Number of positions recorded.
+    pub fn positions(&self) -> usize {
+        self.positions
+    }
+    /// Values, row-major (positions x quantities).
+    pub fn data(&self) -> &[f64] {
+        &self.data
+    }
+    /// One column: quantity `q` over all positions.
+    pub fn column(&self, q: usize) -> Vec<f64> {
+        let w = self.quantities.len();
+        (0..self.positions).map(|k| self.data[k * w + q]).collect()
+    }
+    /// Co-ordinates, row-major (positions x N); empty unless kept.
+    pub fn coords(&self) -> &[f64] {
+        &self.coords
+    }
+}
+
+impl Observer for Recorder {
+    fn position(&mut self, view: &PositionView<'_>) {
+        for q in &self.quantities {
+            self.data.push(q.value(view));
+        }
+        if self.keep_coords {
+            self.coords.extend_from_slice(&view.state.x);
+        }
+        self.positions += 1;
+    }
+}

@@ -1,0 +1,149 @@
+//! Position analysis by Newton-Raphson (theory section 5.3.4, fig. 5.3.6):
+//! correction of the moving co-ordinates until every kinematic deformation
+//! eps(x) - eps^p is below the tolerance, and the adjustment of a rough
+//! initial position to the prescribed values.
+
+use super::assemble::{eval_rows, fill_dc};
+use super::transfer::Kinematics;
+use super::Params;
+use crate::elements::Order;
+use crate::error::SolveError;
+use crate::model::{Mechanism, State};
+
+/// How a Newton correction went.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct NewtonInfo {
+    /// Iterations (factorisations) made.
+    pub iterations: usize,
+    /// Largest deformation before the first iteration.
+    pub initial: f64,
+    /// Largest deformation at the end.
+    pub residual: f64,
+}
+
+/// Deformations of all prescribed rows into `kin.rhs` (with D^c assembled
+/// into `kin.lu` when `with_dc`); returns (largest |deformation|, whether
+/// every row is within its tolerance).
+fn deformations(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, tol: f64, with_dc: bool) -> Result<(f64, bool), SolveError> {
+    let order = if with_dc { Order::First } else { Order::Value };
+    eval_rows(mech, &mech.prescribed, &state.x, &mut state.branch, order, &mut kin.cache, &mut kin.row_values)?;
+    if with_dc {
+        fill_dc(mech, &kin.cache, &mut kin.lu);
+    }
+    let (mut largest, mut ok) = (0.0f64, true);
+    for i in 0..mech.n_prescribed() {
+        let r = kin.row_values[i] - state.target[i];
+        kin.rhs[i] = r;
+        largest = largest.max(r.abs());
+        // A row whose value is so large that tol is below its resolution
+        // is held to 16 ulp of the value instead.
+        ok &= r.abs() <= tol.max(16.0 * f64::EPSILON * state.target[i].abs());
+    }
+    Ok((largest, ok))
+}
+
+/// Newton correction at fixed prescribed values (eqs. 5.18, 5.19): repeats
+/// D^c dx = -(eps(x) - eps^p) until every deformation is within
+/// `params.tol`. Uses `kin` as workspace; its transfer functions are stale
+/// afterwards.
+pub fn correct(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, params: &Params) -> Result<NewtonInfo, SolveError> {
+    let mut info = NewtonInfo::default();
+    let mut previous = f64::INFINITY;
+    let mut growing = 0;
+    loop {
+        let (largest, ok) = deformations(mech, state, kin, params.tol, true)?;
+        if info.iterations == 0 {
+            info.initial = largest;
+        }
+        info.residual = largest;
+        if ok {
+            return Ok(info);
+        }
+        if !largest.is_finite() {
+            return Err(SolveError::NonFinite);
+        }
+        // Newton near a solution shrinks the deformations fast; three
+        // growing iterations in a row mean it is heading elsewhere.
+        growing = if largest > previous { growing + 1 } else { 0 };
+        if info.iterations >= params.max_iter || growing >= 3 {
+            return Err(SolveError::NoConvergence { iterations: info.iterations, residual: largest });
+        }
+        previous = largest;
+        kin.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
+        kin.lu.solve(&mut kin.rhs, &mut kin.work);
+        for (c, &i) in mech.moving_coords().iter().enumerate() {
+            state.x[i] -= kin.rhs[c];
+        }
+        info.iterations += 1;
+    }
+}
+
+/// What the adjustment of the initial position did.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct AdjustInfo {
+    /// Newton iterations in all.
+    pub iterations: usize,
+    /// Deformation of every prescribed row at the given co-ordinates
+    /// (value there minus prescribed value).
+    pub initial_deformations: Vec<f64>,
+    /// Largest deformation at the end.
+    pub residual: f64,
+    /// Continuation stages used (1 when plain Newton converged).
+    pub stages: usize,
+}
+
+/// Adjusts the moving co-ordinates to the prescribed values in
+/// `state.target` (section 5.3.4, remark 2). Plain Newton is tried first;
+/// when it fails, the prescribed values are moved from the values at the
+/// given co-ordinates to the targets in stages, halving a stage that fails.
+pub fn adjust(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, params: &Params) -> Result<AdjustInfo, SolveError> {
+    let target = state.target.clone();
+    let start = state.clone();
+    let mut from = vec![0.0; target.len()];
+    for (r, v) in from.iter_mut().enumerate() {
+        *v = state.clone().prescribed_value(mech, r)?;
+    }
+    let mut info = AdjustInfo {
+        initial_deformations: from.iter().zip(&target).map(|(a, b)| a - b).collect(),
+        ..AdjustInfo::default()
+    };
+    let first_error = match correct(mech, state, kin, params) {
+        Ok(n) => {
+            info.iterations = n.iterations;
+            info.residual = n.residual;
+            info.stages = 1;
+            return Ok(info);
+        }
+        Err(e) => e,
+    };
+    // Continuation in lambda from 0 (given co-ordinates) to 1 (targets).
+    *state = start;
+    let (mut lambda, mut h) = (0.0f64, 0.25f64);
+    let min_h = 0.5f64.powi(params.max_halvings as i32 + 2);
+    while lambda < 1.0 {
+        let next = (lambda + h).min(1.0);
+        let saved = (state.x.clone(), state.branch.clone());
+        for r in 0..target.len() {
+            state.target[r] = from[r] + next * (target[r] - from[r]);
+        }
+        match correct(mech, state, kin, params) {
+            Ok(n) => {
+                info.iterations += n.iterations;
+                info.residual = n.residual;
+                info.stages += 1;
+                lambda = next;
+                h *= 2.0;
+            }
+            Err(_) => {
+                state.x = saved.0;
+                state.branch = saved.1;
+                h *= 0.5;
+                if h < min_h {
+                    state.target = target;
+                    return Err(first_error);
+                }
+            }
+        }
+    }
+    Ok(info)
+}
