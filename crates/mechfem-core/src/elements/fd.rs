@@ -143,9 +143,68 @@ mod tests {
     }
 
     #[test]
+    fn gr1_derivatives_match_finite_differences() {
+        sweep(ElementType::Gr1, 6, |_| true);
+    }
+
+    #[test]
+    fn gr2_derivatives_match_finite_differences() {
+        sweep(ElementType::Gr2, 7, |x| x[3].abs() > 0.2 && x[4].abs() > 0.2);
+    }
+
+    #[test]
+    fn rk1_derivatives_match_finite_differences() {
+        sweep(ElementType::Rk1, 8, |_| true);
+    }
+
+    #[test]
+    fn rk2_derivatives_match_finite_differences() {
+        sweep(ElementType::Rk2, 9, |x| apart(x, 0, 2));
+    }
+
+    /// Belt with a span: the centre distance exceeds |R_P - R_Q| by a margin.
+    fn belt_ok(x: &[f64], margin: f64) -> bool {
+        let l = (x[3] - x[0]).hypot(x[4] - x[1]);
+        l > 0.2 && l > (x[6] - x[7]).abs() * (1.0 + margin) + 0.05
+    }
+
+    #[test]
+    fn blt_derivatives_match_finite_differences() {
+        sweep(ElementType::Blt, 10, |x| belt_ok(x, 0.05));
+    }
+
+    #[test]
+    fn blt_derivatives_hold_near_the_limit_of_its_span() {
+        // l* / l down to about 0.03: the second derivatives grow like 1/l*.
+        for (k, eps) in [1e-1, 1e-2, 1e-3].into_iter().enumerate() {
+            let (rp, rq) = (1.3, -0.4 + 0.1 * k as f64);
+            let l = (rp - rq) * (1.0 + eps);
+            let x = [0.2, -0.1, 0.7, 0.2 + l * 0.6, -0.1 + l * 0.8, -2.0, rp, rq];
+            check_derivatives(ElementType::Blt, &x, 5e-5);
+        }
+    }
+
+    #[test]
+    fn blt_without_span_is_an_error() {
+        let mut out = FormEval::default();
+        let mut b = f64::NAN;
+        let x = [0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 1.0, 0.3];
+        let r = ElementType::Blt.eval(2, &x, &mut b, Order::Value, &mut out);
+        assert!(matches!(r, Err(crate::error::ElementError::NoBeltSpan { .. })));
+    }
+
+    #[test]
+    fn gr2_with_zero_radius_is_an_error() {
+        let mut out = FormEval::default();
+        let mut b = f64::NAN;
+        let r = ElementType::Gr2.eval(0, &[0.0, 0.0, 0.0, 1.0, 0.0], &mut b, Order::Value, &mut out);
+        assert!(matches!(r, Err(crate::error::ElementError::ZeroRadius)));
+    }
+
+    #[test]
     fn every_catalogue_type_is_swept() {
         // Guards against adding a type without a derivative sweep above.
-        assert_eq!(ElementType::ALL.len(), 5);
+        assert_eq!(ElementType::ALL.len(), 10);
     }
 
     #[test]

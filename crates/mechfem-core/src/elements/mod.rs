@@ -11,15 +11,25 @@
 //! `match` of this module.
 
 mod bin;
+mod blt;
 mod crd;
+mod gr1;
+mod gr2;
 mod hlf;
 mod local;
+mod rk1;
+mod rk2;
 mod tr1;
 mod tr2;
 
 pub use bin::Bin;
+pub use blt::Blt;
 pub use crd::Crd;
+pub use gr1::Gr1;
+pub use gr2::Gr2;
 pub use hlf::Hlf;
+pub use rk1::Rk1;
+pub use rk2::Rk2;
 pub use tr1::Tr1;
 pub use tr2::Tr2;
 
@@ -93,6 +103,16 @@ pub enum ElementType {
     Tr1,
     /// Ternary-2 `TR2`: binary plus point R in the frame along P->Q.
     Tr2,
+    /// Gear pair `GR1`, transmission ratio as a co-ordinate.
+    Gr1,
+    /// Gear pair `GR2`, radii as co-ordinates.
+    Gr2,
+    /// Pinion and rack `RK1` on a ternary-1 frame.
+    Rk1,
+    /// Pinion and rack `RK2` on a ternary-2 frame.
+    Rk2,
+    /// Belt over two wheels `BLT`.
+    Blt,
     /// Single co-ordinate `CRD`.
     Crd,
 }
@@ -104,6 +124,11 @@ macro_rules! dispatch {
             ElementType::Hlf => { type $t = Hlf; $body }
             ElementType::Tr1 => { type $t = Tr1; $body }
             ElementType::Tr2 => { type $t = Tr2; $body }
+            ElementType::Gr1 => { type $t = Gr1; $body }
+            ElementType::Gr2 => { type $t = Gr2; $body }
+            ElementType::Rk1 => { type $t = Rk1; $body }
+            ElementType::Rk2 => { type $t = Rk2; $body }
+            ElementType::Blt => { type $t = Blt; $body }
             ElementType::Crd => { type $t = Crd; $body }
         }
     };
@@ -111,8 +136,18 @@ macro_rules! dispatch {
 
 impl ElementType {
     /// Every type, in catalogue order.
-    pub const ALL: [ElementType; 5] =
-        [ElementType::Bin, ElementType::Hlf, ElementType::Tr1, ElementType::Tr2, ElementType::Crd];
+    pub const ALL: [ElementType; 10] = [
+        ElementType::Bin,
+        ElementType::Hlf,
+        ElementType::Tr1,
+        ElementType::Tr2,
+        ElementType::Gr1,
+        ElementType::Gr2,
+        ElementType::Rk1,
+        ElementType::Rk2,
+        ElementType::Blt,
+        ElementType::Crd,
+    ];
 
     /// The type with this deck name (case-insensitive), if any.
     pub fn from_name(name: &str) -> Option<ElementType> {
