@@ -147,7 +147,14 @@ impl Mechanism {
 
     /// Evaluates one single form parameter at the state's co-ordinates.
     #[inline]
-    pub(crate) fn eval_term(&self, t: &Term, x: &[f64], branch: &mut [f64], order: Order, out: &mut FormEval) -> Result<(), SolveError> {
+    pub(crate) fn eval_term(
+        &self,
+        t: &Term,
+        x: &[f64],
+        branch: &mut [f64],
+        order: Order,
+        out: &mut FormEval,
+    ) -> Result<(), SolveError> {
         let e = &self.elements[t.element];
         let n = e.ty.n_coords();
         let mut xe = [0.0; MAX_COORDS];
@@ -292,7 +299,9 @@ impl MechanismBuilder {
                 return Err(ModelError::EmptyRow { row });
             }
             for t in terms {
-                let e = elements.get(t.element).ok_or(ModelError::UnknownElement { element: t.element, n_elements: elements.len() })?;
+                let e = elements
+                    .get(t.element)
+                    .ok_or(ModelError::UnknownElement { element: t.element, n_elements: elements.len() })?;
                 if t.form >= e.ty.form_names().len() {
                     return Err(ModelError::UnknownForm { element: t.element, ty: e.ty.name(), form: t.form });
                 }
@@ -319,7 +328,8 @@ impl MechanismBuilder {
             return Err(ModelError::NotSquare { n_rows: prescribed.len(), n_moving: moving_coords.len() });
         }
         let mech = Mechanism { moving: self.moving, column, moving_coords, elements, prescribed, dependent, n_dof };
-        let mut state = State { x: self.x, target: vec![0.0; mech.n_prescribed()], branch: vec![f64::NAN; mech.elements.len()] };
+        let mut state =
+            State { x: self.x, target: vec![0.0; mech.n_prescribed()], branch: vec![f64::NAN; mech.elements.len()] };
         // Every element must be evaluable at the start (no coinciding points).
         let mut out = FormEval::default();
         for (element, e) in mech.elements.iter().enumerate() {

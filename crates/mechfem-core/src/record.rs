@@ -56,13 +56,36 @@ pub enum Quantity {
 use crate::motion::{Observer, PositionView};
 
 impl Quantity {
-    /// The quantity's value at a position.
+    /// Whether the quantity is made from transfer functions (and so does
+    /// not exist at a limit position).
+    pub fn needs_transfer(&self) -> bool {
+        matches!(
+            self,
+            Quantity::Kx1 { .. }
+                | Quantity::Kx2 { .. }
+                | Quantity::Vx(_)
+                | Quantity::Ax(_)
+                | Quantity::Ke1(FormRef::Dependent(_), _)
+                | Quantity::Ke2(FormRef::Dependent(_), _, _)
+                | Quantity::Ve(FormRef::Dependent(_))
+                | Quantity::Ae(FormRef::Dependent(_))
+        )
+    }
+
+    /// The quantity's value at a position: NaN for a quantity that
+    /// [needs transfer functions](Self::needs_transfer) at a position where
+    /// D^c is singular (a limit position, reported as such by the run).
     pub fn value(&self, v: &PositionView<'_>) -> f64 {
         let (mech, kin) = (v.mech, v.kin);
         let (qd, qdd) = (v.input_vel, v.input_acc);
         // A prescribed row's derivatives are those of an identity: 1 for its
         // own input, 0 otherwise; constant rows do not move at all.
         let input_of = |r: usize| (0..mech.n_dof()).find(|&j| mech.input_row(j) == r);
+        // At a limit position D^c has no inverse: transfer functions, and
+        // the velocities and accelerations made from them, do not exist.
+        if kin.order().is_none() && self.needs_transfer() {
+            return f64::NAN;
+        }
         match *self {
             Quantity::Input(j) => v.input(j),
             Quantity::Time => v.time,

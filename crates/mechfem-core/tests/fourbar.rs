@@ -2,7 +2,10 @@
 //! closed-form solution of the loop a e^{i theta} + b e^{i delta} = d + c e^{i gamma}
 //! and its first and second derivatives, over several crank revolutions.
 
-use mechfem_core::{run, ElementType, Mechanism, MechanismBuilder, Motion, InputMotion, Params, Quantity, Recorder, State, Term, FormRef};
+use mechfem_core::{
+    run, ElementType, FormRef, InputMotion, Mechanism, MechanismBuilder, Motion, Params, Quantity, Recorder, State,
+    Term,
+};
 use std::f64::consts::PI;
 
 const A: f64 = 1.0; // crank A0A
@@ -68,7 +71,8 @@ fn model(theta0: f64, rough: f64) -> (Mechanism, State) {
     let e = exact(theta0);
     let mut b = MechanismBuilder::new();
     let f = [b.fixed(0.0), b.fixed(0.0), b.fixed(D), b.fixed(0.0)];
-    let m: Vec<usize> = [e.a, e.b, e.c].iter().flat_map(|p| [p[0] + rough, p[1] - rough]).map(|v| b.moving(v)).collect();
+    let m: Vec<usize> =
+        [e.a, e.b, e.c].iter().flat_map(|p| [p[0] + rough, p[1] - rough]).map(|v| b.moving(v)).collect();
     let crank = b.element(ElementType::Bin, &[f[0], f[1], m[0], m[1]]);
     let coupler = b.element(ElementType::Tr2, &[m[0], m[1], m[2], m[3], m[4], m[5]]);
     let rocker = b.element(ElementType::Bin, &[f[2], f[3], m[2], m[3]]);
@@ -94,7 +98,12 @@ fn quantities() -> Vec<Quantity> {
         q.push(Quantity::Vx(i));
         q.push(Quantity::Ax(i));
     }
-    q.extend([Quantity::E0(FormRef::Dependent(0)), Quantity::Ke1(FormRef::Dependent(0), 0), Quantity::Ke2(FormRef::Dependent(0), 0, 0), Quantity::Det]);
+    q.extend([
+        Quantity::E0(FormRef::Dependent(0)),
+        Quantity::Ke1(FormRef::Dependent(0), 0),
+        Quantity::Ke2(FormRef::Dependent(0), 0, 0),
+        Quantity::Det,
+    ]);
     q
 }
 

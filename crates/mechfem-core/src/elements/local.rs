@@ -41,7 +41,15 @@ impl Polar {
 /// co-ordinates sit at local indices `ip, ip+1` and Q's at `iq, iq+1`.
 /// Entries of other co-ordinates are zeroed for the first `n`.
 #[inline]
-pub(crate) fn spread_pq(g: [f64; 2], h: [[f64; 2]; 2], ip: usize, iq: usize, n: usize, order: Order, out: &mut FormEval) {
+pub(crate) fn spread_pq(
+    g: [f64; 2],
+    h: [[f64; 2]; 2],
+    ip: usize,
+    iq: usize,
+    n: usize,
+    order: Order,
+    out: &mut FormEval,
+) {
     if order >= Order::First {
         out.grad[..n].fill(0.0);
         for a in 0..2 {

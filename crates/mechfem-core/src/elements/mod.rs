@@ -120,16 +120,46 @@ pub enum ElementType {
 macro_rules! dispatch {
     ($ty:expr, $t:ident => $body:expr) => {
         match $ty {
-            ElementType::Bin => { type $t = Bin; $body }
-            ElementType::Hlf => { type $t = Hlf; $body }
-            ElementType::Tr1 => { type $t = Tr1; $body }
-            ElementType::Tr2 => { type $t = Tr2; $body }
-            ElementType::Gr1 => { type $t = Gr1; $body }
-            ElementType::Gr2 => { type $t = Gr2; $body }
-            ElementType::Rk1 => { type $t = Rk1; $body }
-            ElementType::Rk2 => { type $t = Rk2; $body }
-            ElementType::Blt => { type $t = Blt; $body }
-            ElementType::Crd => { type $t = Crd; $body }
+            ElementType::Bin => {
+                type $t = Bin;
+                $body
+            }
+            ElementType::Hlf => {
+                type $t = Hlf;
+                $body
+            }
+            ElementType::Tr1 => {
+                type $t = Tr1;
+                $body
+            }
+            ElementType::Tr2 => {
+                type $t = Tr2;
+                $body
+            }
+            ElementType::Gr1 => {
+                type $t = Gr1;
+                $body
+            }
+            ElementType::Gr2 => {
+                type $t = Gr2;
+                $body
+            }
+            ElementType::Rk1 => {
+                type $t = Rk1;
+                $body
+            }
+            ElementType::Rk2 => {
+                type $t = Rk2;
+                $body
+            }
+            ElementType::Blt => {
+                type $t = Blt;
+                $body
+            }
+            ElementType::Crd => {
+                type $t = Crd;
+                $body
+            }
         }
     };
 }
@@ -181,7 +211,14 @@ impl ElementType {
 
     /// Evaluates form parameter `form` of this type; see [`Element::eval`].
     #[inline]
-    pub fn eval(self, form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
+    pub fn eval(
+        self,
+        form: usize,
+        x: &[f64],
+        branch: &mut f64,
+        order: Order,
+        out: &mut FormEval,
+    ) -> Result<(), ElementError> {
         dispatch!(self, T => T::eval(form, x, branch, order, out))
     }
 }

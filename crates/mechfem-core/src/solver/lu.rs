@@ -39,6 +39,13 @@ impl Lu {
     pub fn add(&mut self, i: usize, j: usize, v: f64) {
         self.a[i * self.n + j] += v;
     }
+    /// Replaces row i by the unit row e_col (the row of a single-co-ordinate
+    /// element, used for the temporary input of free motion).
+    pub fn set_unit_row(&mut self, i: usize, col: usize) {
+        let n = self.n;
+        self.a[i * n..(i + 1) * n].fill(0.0);
+        self.a[i * n + col] = 1.0;
+    }
     /// Entry (i, j) of the matrix (before factorisation) or of the factors.
     pub fn get(&self, i: usize, j: usize) -> f64 {
         self.a[i * self.n + j]

@@ -1,14 +1,16 @@
 //! Position analysis and transfer functions, split by verb:
-//! [`lu`] factorises D^c, [`assemble`] builds D^c, deformations and the
+//! [`lu`] factorises D^c, [`mobility`] explains a singular one, [`assemble`] builds D^c, deformations and the
 //! second-order products element by element, [`newton`] finds positions,
 //! [`transfer`] computes first- and second-order transfer functions.
 
 pub mod assemble;
 pub mod lu;
+pub mod mobility;
 pub mod newton;
 pub mod transfer;
 
-pub use newton::{adjust, correct, AdjustInfo, NewtonInfo};
+pub use mobility::{diagnose, Mobility};
+pub use newton::{adjust, correct, correct_with, AdjustInfo, NewtonInfo, TempInput};
 pub use transfer::{Kinematics, TransferOrder};
 
 /// Tuning knobs of the position analysis.

@@ -21,18 +21,39 @@ pub struct NewtonInfo {
     pub residual: f64,
 }
 
+/// A temporary input (theory section 5.5.3): prescribed row `row` is
+/// replaced by the single co-ordinate in column `col`, held at `value`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TempInput {
+    /// The prescribed row it replaces (the original input's row).
+    pub row: usize,
+    /// Column of D^c (moving co-ordinate) that becomes the input.
+    pub col: usize,
+    /// The value that co-ordinate is held at.
+    pub value: f64,
+}
+
 /// Deformations of all prescribed rows into `kin.rhs` (with D^c assembled
-/// into `kin.lu` when `with_dc`); returns (largest |deformation|, whether
-/// every row is within its tolerance).
-fn deformations(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, tol: f64, with_dc: bool) -> Result<(f64, bool), SolveError> {
-    let order = if with_dc { Order::First } else { Order::Value };
-    eval_rows(mech, &mech.prescribed, &state.x, &mut state.branch, order, &mut kin.cache, &mut kin.row_values)?;
-    if with_dc {
-        fill_dc(mech, &kin.cache, &mut kin.lu);
-    }
+/// into `kin.lu`); returns (largest |deformation|, whether every row is
+/// within its tolerance).
+fn deformations(
+    mech: &Mechanism,
+    state: &mut State,
+    kin: &mut Kinematics,
+    tol: f64,
+    temp: Option<TempInput>,
+) -> Result<(f64, bool), SolveError> {
+    eval_rows(mech, &mech.prescribed, &state.x, &mut state.branch, Order::First, &mut kin.cache, &mut kin.row_values)?;
+    fill_dc(mech, &kin.cache, &mut kin.lu);
     let (mut largest, mut ok) = (0.0f64, true);
     for i in 0..mech.n_prescribed() {
-        let r = kin.row_values[i] - state.target[i];
+        let r = match temp {
+            Some(t) if t.row == i => {
+                kin.lu.set_unit_row(i, t.col);
+                state.x[mech.moving_coords()[t.col]] - t.value
+            }
+            _ => kin.row_values[i] - state.target[i],
+        };
         kin.rhs[i] = r;
         largest = largest.max(r.abs());
         // A row whose value is so large that tol is below its resolution
@@ -46,12 +67,28 @@ fn deformations(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, tol: 
 /// D^c dx = -(eps(x) - eps^p) until every deformation is within
 /// `params.tol`. Uses `kin` as workspace; its transfer functions are stale
 /// afterwards.
-pub fn correct(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, params: &Params) -> Result<NewtonInfo, SolveError> {
+pub fn correct(
+    mech: &Mechanism,
+    state: &mut State,
+    kin: &mut Kinematics,
+    params: &Params,
+) -> Result<NewtonInfo, SolveError> {
+    correct_with(mech, state, kin, params, None)
+}
+
+/// [`correct`] with one row replaced by a temporary input.
+pub fn correct_with(
+    mech: &Mechanism,
+    state: &mut State,
+    kin: &mut Kinematics,
+    params: &Params,
+    temp: Option<TempInput>,
+) -> Result<NewtonInfo, SolveError> {
     let mut info = NewtonInfo::default();
     let mut previous = f64::INFINITY;
     let mut growing = 0;
     loop {
-        let (largest, ok) = deformations(mech, state, kin, params.tol, true)?;
+        let (largest, ok) = deformations(mech, state, kin, params.tol, temp)?;
         if info.iterations == 0 {
             info.initial = largest;
         }
@@ -96,7 +133,12 @@ pub struct AdjustInfo {
 /// `state.target` (section 5.3.4, remark 2). Plain Newton is tried first;
 /// when it fails, the prescribed values are moved from the values at the
 /// given co-ordinates to the targets in stages, halving a stage that fails.
-pub fn adjust(mech: &Mechanism, state: &mut State, kin: &mut Kinematics, params: &Params) -> Result<AdjustInfo, SolveError> {
+pub fn adjust(
+    mech: &Mechanism,
+    state: &mut State,
+    kin: &mut Kinematics,
+    params: &Params,
+) -> Result<AdjustInfo, SolveError> {
     let target = state.target.clone();
     let start = state.clone();
     let mut from = vec![0.0; target.len()];

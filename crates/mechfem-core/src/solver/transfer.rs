@@ -87,11 +87,32 @@ impl Kinematics {
         self.order = None;
         let n = self.n;
         let eval_order = if order == TransferOrder::Second { Order::Second } else { Order::First };
-        eval_rows(mech, &mech.prescribed, &state.x, &mut state.branch, eval_order, &mut self.cache, &mut self.row_values)?;
+        eval_rows(
+            mech,
+            &mech.prescribed,
+            &state.x,
+            &mut state.branch,
+            eval_order,
+            &mut self.cache,
+            &mut self.row_values,
+        )?;
         fill_dc(mech, &self.cache, &mut self.lu);
-        let factored = self.lu.factor();
-        self.det = if factored.is_ok() { self.lu.det() } else { 0.0 };
-        factored.map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
+        if let Err(s) = self.lu.factor() {
+            // A limit position: no transfer functions, but the values of the
+            // dependent form parameters are still known.
+            self.det = 0.0;
+            eval_rows(
+                mech,
+                &mech.dependent,
+                &state.x,
+                &mut state.branch,
+                Order::Value,
+                &mut self.dep_cache,
+                &mut self.dep,
+            )?;
+            return Err(SolveError::Singular { column: s.column, pivot: s.pivot });
+        }
+        self.det = self.lu.det();
         // eq. 5.16a: column j of F^cm is (D^c)^-1 e_{input row j}.
         for j in 0..self.n_dof {
             let col = &mut self.x1[j * n..(j + 1) * n];
@@ -138,8 +159,9 @@ impl Kinematics {
                     for m in j..nd {
                         let p = self.pair[j * nd + m];
                         let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
-                        self.dep2[d * n_pairs + p] = grad_dot(mech, rows, &self.dep_cache, d, &self.x2[p * n..(p + 1) * n])
-                            + hess_product(mech, rows, &self.dep_cache, d, a, b);
+                        self.dep2[d * n_pairs + p] =
+                            grad_dot(mech, rows, &self.dep_cache, d, &self.x2[p * n..(p + 1) * n])
+                                + hess_product(mech, rows, &self.dep_cache, d, a, b);
                     }
                 }
             }
