@@ -127,7 +127,8 @@ pub struct RunReport {
 /// another assembly branch), is halved, up to `params.max_halvings` times.
 /// When even the smallest step fails the run stops; the report says where
 /// and why, and locates the limit position the input ran into. Every
-/// position computed so far has been observed.
+/// position computed so far has been observed, and the state is left at the
+/// last of them.
 ///
 /// Free motion ([`InputMotion::Free`]) follows the mechanism through the
 /// limit positions of its input instead.
@@ -229,6 +230,9 @@ fn run_driven(
         match stepper.step(mech, state, kin, s.values(k - 1), s.values(k)) {
             Ok(halved) => report.subdivided_steps += usize::from(halved),
             Err(error) => {
+                // The stepper may have got part of the way: go back to the
+                // last position observed, the one the report names.
+                state.clone_from(&previous);
                 let towards = (0..nd).map(|j| s.values(k)[j] - s.values(k - 1)[j]).sum::<f64>().signum();
                 let limit = limits::locate_input_limit(mech, state, 0, towards, step_len / 16.0, params, k - 1);
                 report.stop = Some(Stop {

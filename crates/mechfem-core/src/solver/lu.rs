@@ -73,7 +73,8 @@ impl Lu {
                 }
             }
             let floor = (n as f64) * f64::EPSILON * self.scale[k];
-            if !(best > floor) {
+            // A NaN pivot compares as unordered and counts as zero too.
+            if best.partial_cmp(&floor) != Some(std::cmp::Ordering::Greater) {
                 return Err(SingularPivot { column: k, pivot: self.a[p * n + k] });
             }
             if p != k {
