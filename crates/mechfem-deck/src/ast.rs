@@ -1,0 +1,301 @@
+//! The typed deck: what a deck says, line by line, before any
+//! cross-reference is checked.
+//!
+//! Every item keeps its line and the spans of its arguments, so that
+//! [`crate::compile`] can point at the exact word when something does not
+//! fit. Numbers that name things (co-ordinates, rows, DOFs, buffers) are kept
+//! as the user wrote them, 1-based and signed.
+
+use std::path::{Path, PathBuf};
+
+use mechfem_core::ElementType;
+
+use crate::diagnostic::{Diagnostic, DiagnosticKind, Span, Spanned};
+use crate::keywords::Keyword;
+
+/// A parsed deck.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Deck {
+    /// The file the deck was read from, as the caller named it.
+    pub path: PathBuf,
+    /// The mode of the first line (always [`Mode::KinAna`] in a parsed deck:
+    /// other modes are refused).
+    pub mode: Spanned<Mode>,
+    /// The TOPOLOGY block.
+    pub topology: Topology,
+    /// The GEOMETRY block.
+    pub geometry: Geometry,
+    /// The MOVEMENT block, if given.
+    pub movement: Option<Movement>,
+    /// The STORAGE block, if given.
+    pub storage: Option<Storage>,
+    /// The raw lines of the file, for diagnostics.
+    pub(crate) source: Vec<String>,
+}
+
+impl Deck {
+    /// The text of line `line` (1-based), or "" when there is no such line.
+    pub fn line_text(&self, line: usize) -> &str {
+        line.checked_sub(1).and_then(|k| self.source.get(k)).map_or("", String::as_str)
+    }
+
+    /// A diagnostic pointing at `span` of this deck.
+    pub(crate) fn error(&self, kind: DiagnosticKind, span: Span, message: impl Into<String>) -> Box<Diagnostic> {
+        diagnostic_at(&self.path, &self.source, kind, span, message)
+    }
+}
+
+/// A diagnostic pointing at `span` of a file whose lines are `source`.
+pub(crate) fn diagnostic_at(
+    path: &Path,
+    source: &[String],
+    kind: DiagnosticKind,
+    span: Span,
+    message: impl Into<String>,
+) -> Box<Diagnostic> {
+    let text = span.line.checked_sub(1).and_then(|k| source.get(k)).cloned().unwrap_or_default();
+    Box::new(Diagnostic {
+        kind,
+        path: path.to_path_buf(),
+        line: span.line,
+        columns: span.start..span.end.max(span.start),
+        text,
+        message: message.into(),
+        hint: None,
+    })
+}
+
+/// The modes of the classic program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Mode {
+    /// `KIN ANA`: kinematic analysis.
+    KinAna,
+    /// `KIN OPT`: kinematic optimisation (not supported).
+    KinOpt,
+    /// `DYN ANA`: dynamic analysis (not supported).
+    DynAna,
+    /// `DYN SIM`: dynamic simulation (not supported).
+    DynSim,
+}
+
+impl Mode {
+    /// The mode line, e.g. `KIN ANA`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::KinAna => "KIN ANA",
+            Mode::KinOpt => "KIN OPT",
+            Mode::DynAna => "DYN ANA",
+            Mode::DynSim => "DYN SIM",
+        }
+    }
+
+    /// What the mode does, in words.
+    pub fn description(self) -> &'static str {
+        match self {
+            Mode::KinAna => "kinematic analysis",
+            Mode::KinOpt => "kinematic optimisation",
+            Mode::DynAna => "dynamic analysis",
+            Mode::DynSim => "dynamic simulation",
+        }
+    }
+}
+
+/// The TOPOLOGY block.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Topology {
+    /// Line of the header.
+    pub line: usize,
+    /// `ELEM` lines, in order.
+    pub elements: Vec<ElemDef>,
+    /// `FORM` lines, in order.
+    pub forms: Vec<FormDef>,
+    /// `NRDOF n`, if given.
+    pub nrdof: Option<Spanned<i64>>,
+}
+
+/// `ELEM k TYPE c1 c2 ...`
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElemDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Element number k (1, 2, ... in sequence).
+    pub number: Spanned<i64>,
+    /// Element type.
+    pub ty: Spanned<ElementType>,
+    /// Co-ordinate numbers in the type's order.
+    pub coords: Vec<Spanned<i64>>,
+}
+
+/// `FORM s NAME k dest [f]`
+#[derive(Debug, Clone, PartialEq)]
+pub struct FormDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Sequence number s (kept for reporting only).
+    pub seq: Spanned<i64>,
+    /// Form-parameter name, upper case.
+    pub name: Spanned<String>,
+    /// Element number k.
+    pub element: Spanned<i64>,
+    /// Destination: `r > 0` prescribed row, `-k` dependent form parameter (never 0).
+    pub dest: Spanned<i64>,
+    /// Factor f, if given (1.0 otherwise).
+    pub factor: Option<Spanned<f64>>,
+}
+
+impl FormDef {
+    /// The factor, 1.0 when none was given.
+    pub fn factor(&self) -> f64 {
+        self.factor.as_ref().map_or(1.0, |f| f.value)
+    }
+}
+
+/// The GEOMETRY block.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Geometry {
+    /// Line of the header.
+    pub line: usize,
+    /// `XFIX` and `XMOV` lines, in order.
+    pub coords: Vec<CoordDef>,
+    /// `PARA` lines, in order.
+    pub paras: Vec<ParaDef>,
+}
+
+/// `XFIX i value` or `XMOV i value`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoordDef {
+    /// Line of the declaration.
+    pub line: usize,
+    /// True for XMOV.
+    pub moving: bool,
+    /// Co-ordinate number i.
+    pub index: Spanned<i64>,
+    /// Value (initial estimate for a moving co-ordinate).
+    pub value: Spanned<f64>,
+}
+
+/// `PARA row value`
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParaDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Prescribed row.
+    pub row: Spanned<i64>,
+    /// Prescribed value.
+    pub value: Spanned<f64>,
+}
+
+/// The MOVEMENT block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Movement {
+    /// Line of the header.
+    pub line: usize,
+    /// `TSTEPE n [dt]` (the parser makes sure it is there and first).
+    pub tstepe: Tstepe,
+    /// `MOV_...` lines, in order.
+    pub motions: Vec<MotionDef>,
+    /// `ACCURACY tol`, if given (tol > 0).
+    pub accuracy: Option<Spanned<f64>>,
+    /// `MAXITER m`, if given (m >= 1).
+    pub maxiter: Option<Spanned<i64>>,
+}
+
+/// `TSTEPE n [dt]`
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tstepe {
+    /// Line of the keyword.
+    pub line: usize,
+    /// Number of steps n (at least 1).
+    pub steps: Spanned<i64>,
+    /// Time per step (positive), if given.
+    pub dt: Option<Spanned<f64>>,
+}
+
+/// One `MOV_...` line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MotionDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// The keyword's own span (the line's first word, or where it is repeated).
+    pub keyword: Spanned<Keyword>,
+    /// Degree of freedom j.
+    pub dof: Spanned<i64>,
+    /// What the input does.
+    pub kind: MotionKind,
+}
+
+/// The four kinds of input motion.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MotionKind {
+    /// `MOV_RELE j delta`
+    Relative(Spanned<f64>),
+    /// `MOV_ABSE j end`
+    Absolute(Spanned<f64>),
+    /// `MOV_FUNC j file` (file relative to the deck's folder).
+    Function(Spanned<String>),
+    /// `MOV_FREE j ds`
+    Free(Spanned<f64>),
+}
+
+/// The STORAGE block.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Storage {
+    /// Line of the header.
+    pub line: usize,
+    /// `BUF...` lines, in order.
+    pub buffers: Vec<BufDef>,
+    /// `PRINTBUF` lines.
+    pub printbuf: Vec<BufList>,
+    /// `SAVEDATA` lines.
+    pub savedata: Vec<BufList>,
+    /// `ANIMATE name`, if given.
+    pub animate: Option<Spanned<String>>,
+    /// `BEGINPIC` ... `ENDPIC` pictures.
+    pub pictures: Vec<PictureDef>,
+}
+
+/// One `BUF...` line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BufDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// Which `BUF...` keyword.
+    pub keyword: Spanned<Keyword>,
+    /// The arguments before the buffer number (co-ordinate, row, DOFs).
+    pub args: Vec<Spanned<i64>>,
+    /// Buffer number (positive, at most `u32::MAX`).
+    pub number: Spanned<i64>,
+}
+
+/// A list of buffer numbers (`PRINTBUF`, `SAVEDATA`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BufList {
+    /// Line of the keyword.
+    pub line: usize,
+    /// Buffer numbers (may be empty for PRINTBUF: all buffers).
+    pub buffers: Vec<Spanned<i64>>,
+}
+
+/// `BEGINPIC [title]` ... `ENDPIC`
+#[derive(Debug, Clone, PartialEq)]
+pub struct PictureDef {
+    /// Line of BEGINPIC.
+    pub line: usize,
+    /// Title (the rest of the BEGINPIC line, may be empty).
+    pub title: String,
+    /// The plots, in order.
+    pub items: Vec<PlotDef>,
+}
+
+/// `PLOTFUNC bx by`, `PLOTCURV bx by` or `PLOTHODO ix iy`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlotDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// Which keyword.
+    pub keyword: Spanned<Keyword>,
+    /// First argument (bx or ix).
+    pub a: Spanned<i64>,
+    /// Second argument (by or iy).
+    pub b: Spanned<i64>,
+}

@@ -1,0 +1,134 @@
+//! MOVEMENT to a core [`Motion`] and solver [`Params`]; MOV_FUNC files.
+
+use std::io::ErrorKind;
+use std::path::Path;
+
+use mechfem_core::{InputMotion, Motion, Params};
+
+use crate::args::Source;
+use crate::ast::{Deck, MotionDef, MotionKind};
+use crate::diagnostic::{dof_hint, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
+use crate::lexer::lex_line;
+
+pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Option<Motion>, Params), Box<Diagnostic>> {
+    let mut params = Params::default();
+    let Some(mv) = &deck.movement else { return Ok((None, params)) };
+    if let Some(tol) = &mv.accuracy {
+        params.tol = tol.value;
+    }
+    if let Some(m) = &mv.maxiter {
+        params.max_iter = usize::try_from(m.value).unwrap_or(usize::MAX);
+    }
+    let steps = usize::try_from(mv.tstepe.steps.value).unwrap_or(1);
+    let dt = mv.tstepe.dt.as_ref().map_or(1.0, |dt| dt.value);
+
+    let mut per_dof: Vec<Option<&MotionDef>> = vec![None; n_dof];
+    for m in &mv.motions {
+        let kw = m.keyword.value;
+        let j = m.dof.value;
+        let Some(slot) = usize::try_from(j - 1).ok().and_then(|k| per_dof.get_mut(k)) else {
+            return Err(deck
+                .error(DiagnosticKind::UnknownDof, m.dof.span, format!("{kw} for DOF {j}, but NRDOF is {n_dof}"))
+                .with_hint(dof_hint(n_dof)));
+        };
+        if let Some(first) = slot {
+            return Err(deck
+                .error(
+                    DiagnosticKind::DuplicateMotion,
+                    m.dof.span,
+                    format!("DOF {j} is given a second motion ({} at line {})", first.keyword.value, first.line),
+                )
+                .with_hint("give each DOF exactly one MOV_ keyword"));
+        }
+        if matches!(m.kind, MotionKind::Free(_)) && n_dof != 1 {
+            return Err(deck
+                .error(
+                    DiagnosticKind::FreeMotionDof,
+                    m.keyword.span,
+                    format!("MOV_FREE needs a mechanism with one degree of freedom, this one has NRDOF {n_dof}"),
+                )
+                .with_hint("drive each DOF with MOV_RELE, MOV_ABSE or MOV_FUNC"));
+        }
+        *slot = Some(m);
+    }
+    let mut inputs = Vec::with_capacity(n_dof);
+    for (k, m) in per_dof.iter().enumerate() {
+        let j = k + 1;
+        let Some(m) = m else {
+            let width = deck.line_text(mv.line).trim_end().chars().count();
+            return Err(deck
+                .error(DiagnosticKind::MissingMotion, Span::new(mv.line, 0, width), format!("DOF {j} has no motion"))
+                .with_hint(format!(
+                    "every DOF needs one motion: add one of `MOV_RELE {j} delta`, `MOV_ABSE {j} end`, `MOV_FUNC {j} file`, `MOV_FREE {j} ds`"
+                )));
+        };
+        inputs.push(match &m.kind {
+            MotionKind::Relative(d) => InputMotion::Relative { delta: d.value },
+            MotionKind::Absolute(e) => InputMotion::Absolute { end: e.value },
+            MotionKind::Free(ds) => InputMotion::Free { ds: ds.value },
+            MotionKind::Function(file) => InputMotion::Table { rows: table(deck, file, deck_dir, steps + 1)? },
+        });
+    }
+    Ok((Some(Motion { steps, dt, inputs }), params))
+}
+
+/// Reads a MOV_FUNC file: one row `t value [velocity [acceleration]]` per
+/// position. Blank lines and comments (`;` or `#`) are skipped; numbers
+/// may be separated by blanks, tabs or commas and use Fortran's format.
+fn table(
+    deck: &Deck,
+    file: &Spanned<String>,
+    deck_dir: &Path,
+    expected: usize,
+) -> Result<Vec<[f64; 4]>, Box<Diagnostic>> {
+    let path = deck_dir.join(&file.value);
+    let bytes = std::fs::read(&path).map_err(|e| {
+        let why = match e.kind() {
+            ErrorKind::NotFound => "it does not exist".to_string(),
+            ErrorKind::PermissionDenied => "permission denied".to_string(),
+            _ => e.to_string(),
+        };
+        deck.error(
+            DiagnosticKind::MotionFile,
+            file.span,
+            format!("cannot read the MOV_FUNC file `{}`: {why}", file.value),
+        )
+        .with_hint(format!("the file name is relative to the deck's folder; looked for {}", path.display()))
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let raw: Vec<String> = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
+    let src = Source { path: &path, lines: &raw };
+    let mut rows = Vec::new();
+    for (k, line) in raw.iter().enumerate() {
+        let cleaned: String =
+            line.split('#').next().unwrap_or("").chars().map(|c| if c == ',' { ' ' } else { c }).collect();
+        let Some(words) = lex_line(k + 1, &cleaned) else { continue };
+        let n = words.words.len();
+        if !(2..=4).contains(&n) {
+            let surplus = (n > 4).then_some(4);
+            let message = format!("a row of a MOV_FUNC file holds 2 to 4 numbers, this one has {n}");
+            return Err(src
+                .count_error(&words, &words.words, surplus, message)
+                .with_hint("write one row per position: t value [velocity [acceleration]]"));
+        }
+        let mut row = [0.0; 4];
+        const NAMES: [&str; 4] = ["the time", "the input value", "the velocity", "the acceleration"];
+        for (slot, (w, what)) in row.iter_mut().zip(words.words.iter().zip(NAMES)) {
+            *slot = src.real(w, what)?.value;
+        }
+        rows.push(row);
+    }
+    if rows.len() != expected {
+        let steps = expected - 1;
+        return Err(deck
+            .error(
+                DiagnosticKind::MotionFile,
+                file.span,
+                format!("the MOV_FUNC file `{}` has {} rows, expected {expected}", file.value, rows.len()),
+            )
+            .with_hint(format!(
+                "TSTEPE {steps} makes {expected} positions: give one row `t value [velocity [acceleration]]` for each"
+            )));
+    }
+    Ok(rows)
+}

@@ -1,0 +1,131 @@
+//! What a deck compiles to: the core model and motion, plus what the
+//! outputs and the print file's echo of the model need.
+//!
+//! Fields that feed the computation ([`Buffer::quantity`],
+//! [`PlotItem::Hodograph`]) use the core's 0-based indices; fields meant
+//! for echoing the model ([`ElementInfo`], [`RowInfo`]) keep the deck's
+//! 1-based numbers.
+
+use mechfem_core::{ElementType, Mechanism, Motion, Params, Quantity, State};
+
+/// A compiled deck, ready to run.
+#[derive(Debug, Clone)]
+pub struct Compiled {
+    /// The model (immutable).
+    pub mechanism: Mechanism,
+    /// The initial state: XFIX/XMOV values, and prescribed values from PARA
+    /// (rows without PARA hold their value at the given co-ordinates).
+    pub state: State,
+    /// The input motion; `None` without a MOVEMENT block (position 1 only).
+    pub motion: Option<Motion>,
+    /// Solver settings (ACCURACY, MAXITER; defaults otherwise).
+    pub params: Params,
+    /// Buffer definitions, in deck order.
+    pub buffers: Vec<Buffer>,
+    /// Buffers to tabulate in the print file: `None` without PRINTBUF,
+    /// `Some(empty)` for all buffers.
+    pub printbuf: Option<Vec<u32>>,
+    /// Buffers to write to the data set, in order (empty: no data set).
+    pub savedata: Vec<u32>,
+    /// Name of the animation file (without extension), if any.
+    pub animate: Option<String>,
+    /// Pictures, in deck order.
+    pub pictures: Vec<Picture>,
+    /// The elements as the deck declares them.
+    pub elements: Vec<ElementInfo>,
+    /// The prescribed rows 1..n_p (rows of D^c), as the deck builds them.
+    pub prescribed: Vec<RowInfo>,
+    /// The dependent form parameters 1..n_d.
+    pub dependent: Vec<RowInfo>,
+}
+
+/// One output buffer: one value per position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Buffer {
+    /// The buffer number chosen in the deck.
+    pub number: u32,
+    /// What it records (0-based indices).
+    pub quantity: Quantity,
+    /// Line of the `BUF...` keyword.
+    pub line: usize,
+}
+
+/// One picture (`BEGINPIC` ... `ENDPIC`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Picture {
+    /// Title (may be empty).
+    pub title: String,
+    /// Line of BEGINPIC.
+    pub line: usize,
+    /// What is drawn, in deck order.
+    pub items: Vec<PlotItem>,
+}
+
+/// One item of a picture.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlotItem {
+    /// `PLOTFUNC bx by`: buffer `y` against buffer `x`.
+    Function {
+        /// Buffer on the horizontal axis.
+        x: u32,
+        /// Buffer on the vertical axis.
+        y: u32,
+    },
+    /// `PLOTCURV bx by`: a curve with equal axis scales.
+    Curve {
+        /// Buffer on the horizontal axis.
+        x: u32,
+        /// Buffer on the vertical axis.
+        y: u32,
+    },
+    /// `PLOTHODO ix iy`: path and velocity hodograph of the point with
+    /// co-ordinates `x`, `y` (0-based co-ordinate indices), mechanism drawn in.
+    Hodograph {
+        /// Co-ordinate index of the point's x.
+        x: usize,
+        /// Co-ordinate index of the point's y.
+        y: usize,
+    },
+}
+
+/// An element as the deck declares it (deck numbering).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ElementInfo {
+    /// Element number k (1-based).
+    pub number: usize,
+    /// Element type.
+    pub ty: ElementType,
+    /// Co-ordinate numbers (1-based) in the type's order.
+    pub coords: Vec<usize>,
+    /// Line of the ELEM keyword.
+    pub line: usize,
+}
+
+/// A prescribed row or dependent form parameter and the FORM lines that
+/// make it (deck numbering).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RowInfo {
+    /// Destination: `r > 0` for prescribed row r, `-k` for dependent form parameter k.
+    pub dest: i64,
+    /// The single form parameters combined into it (eq. 5.33).
+    pub terms: Vec<TermInfo>,
+    /// The value PARA prescribes, if any.
+    pub para: Option<f64>,
+    /// The DOF (1-based) whose input this row is, if it is one.
+    pub input: Option<usize>,
+}
+
+/// One single form parameter of a row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TermInfo {
+    /// The FORM line's sequence number s.
+    pub seq: i64,
+    /// Element number (1-based).
+    pub element: usize,
+    /// Form-parameter name, e.g. `LENL`.
+    pub name: &'static str,
+    /// Factor f.
+    pub factor: f64,
+    /// Line of the FORM keyword.
+    pub line: usize,
+}

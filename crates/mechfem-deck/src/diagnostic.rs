@@ -1,0 +1,304 @@
+//! Diagnostics: what is wrong with a deck, where, and how to fix it.
+//!
+//! A [`Diagnostic`] renders like the messages of rustc and ruff: the message,
+//! the file and position, the offending line with a caret under the word,
+//! and a hint.
+
+use std::fmt;
+use std::ops::Range;
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// A position in a deck: a line and a range of characters on it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    /// Line number, 1-based (0: the file as a whole).
+    pub line: usize,
+    /// First character, 0-based (characters, not bytes).
+    pub start: usize,
+    /// One past the last character.
+    pub end: usize,
+}
+
+impl Span {
+    /// A span covering characters `start..end` of `line`.
+    pub fn new(line: usize, start: usize, end: usize) -> Span {
+        Span { line, start, end }
+    }
+
+    /// A span that covers both `self` and `other` (same line assumed).
+    pub fn to(self, other: Span) -> Span {
+        Span { line: self.line, start: self.start.min(other.start), end: self.end.max(other.end) }
+    }
+}
+
+/// A value read from the deck, with the place it was read from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spanned<T> {
+    /// The value.
+    pub value: T,
+    /// Where it stands in the deck.
+    pub span: Span,
+}
+
+impl<T> Spanned<T> {
+    /// Wraps a value with its span.
+    pub fn new(value: T, span: Span) -> Self {
+        Spanned { value, span }
+    }
+}
+
+/// What kind of mistake a [`Diagnostic`] reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DiagnosticKind {
+    /// The deck or a file it names cannot be read.
+    Io,
+    /// The first line is not a mode line.
+    MissingMode,
+    /// A mode the program knows but does not run yet (KIN OPT, DYN ANA, DYN SIM).
+    UnsupportedMode,
+    /// A mode line that names no known mode.
+    UnknownMode,
+    /// A word in keyword position that is no keyword.
+    UnknownKeyword,
+    /// A line starting with a number, with no earlier keyword in its block to repeat.
+    NothingToRepeat,
+    /// A keyword outside the block it belongs to.
+    WrongBlock,
+    /// A block header given twice.
+    DuplicateBlock,
+    /// A required block (TOPOLOGY, GEOMETRY) is missing.
+    MissingBlock,
+    /// Too few or too many arguments.
+    ArgumentCount,
+    /// An argument that should be a number is not one (also NaN, inf).
+    NotANumber,
+    /// An argument that should be a whole number is not one.
+    NotAWholeNumber,
+    /// A number too large to represent.
+    NumberOutOfRange,
+    /// A value outside its allowed range (steps < 1, dt <= 0, ...).
+    BadValue,
+    /// An element type name that is not in the catalogue.
+    UnknownElementType,
+    /// An element type of the catalogue that is not implemented yet.
+    UnsupportedElementType,
+    /// Elements not numbered 1, 2, 3, ... in sequence.
+    ElementSequence,
+    /// A keyword that may appear once is given again (NRDOF, TSTEPE, ...).
+    DuplicateKeyword,
+    /// TSTEPE is not the first keyword of the MOVEMENT block.
+    TstepeNotFirst,
+    /// The MOVEMENT block has no TSTEPE.
+    MissingTstepe,
+    /// BEGINPIC without ENDPIC, ENDPIC without BEGINPIC, PLOT* outside a picture, ...
+    PictureStructure,
+    /// A co-ordinate number outside 1..N.
+    CoordinateOutOfRange,
+    /// A co-ordinate declared twice (XFIX and XMOV, or twice the same).
+    CoordinateDeclaredTwice,
+    /// A co-ordinate used by an element but never declared.
+    CoordinateNotDeclared,
+    /// A gap in the co-ordinate numbers 1..N.
+    CoordinateMissing,
+    /// A declared co-ordinate that no element uses.
+    CoordinateUnused,
+    /// FORM refers to an element that does not exist.
+    UnknownElement,
+    /// A form-parameter name that the element type does not have.
+    UnknownFormName,
+    /// A FORM destination of 0.
+    ZeroDestination,
+    /// Prescribed rows not 1..n_p without gaps.
+    RowGap,
+    /// Dependent form parameters not 1..n_d without gaps.
+    DependentGap,
+    /// NRDOF missing.
+    MissingNrdof,
+    /// NRDOF larger than the number of prescribed rows.
+    NrdofTooLarge,
+    /// The number of prescribed rows differs from the number of moving co-ordinates.
+    NotSquare,
+    /// PARA, BUF... for a row or dependent form parameter that does not exist.
+    UnknownRow,
+    /// PARA given twice for the same row.
+    DuplicatePara,
+    /// A DOF number outside 1..NRDOF.
+    UnknownDof,
+    /// A DOF given two motions.
+    DuplicateMotion,
+    /// A DOF without a motion.
+    MissingMotion,
+    /// MOV_FREE in a mechanism with more than one DOF.
+    FreeMotionDof,
+    /// A MOV_FUNC file with the wrong number of rows or a bad row.
+    MotionFile,
+    /// A buffer number defined twice.
+    DuplicateBuffer,
+    /// PRINTBUF, SAVEDATA or PLOT* naming a buffer that is not defined.
+    UnknownBuffer,
+    /// The core refused the model (for example coinciding points of a binary).
+    Model,
+}
+
+/// One mistake in a deck, with the place it was found and a hint.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub struct Diagnostic {
+    /// What kind of mistake.
+    pub kind: DiagnosticKind,
+    /// The file, as the caller named it.
+    pub path: PathBuf,
+    /// Line number, 1-based; 0 when the mistake concerns the file as a whole.
+    pub line: usize,
+    /// Characters of the line that are at fault (0-based, end exclusive).
+    pub columns: Range<usize>,
+    /// The text of the line (without its line break).
+    pub text: String,
+    /// What is wrong.
+    pub message: String,
+    /// How to fix it.
+    pub hint: Option<String>,
+}
+
+impl Diagnostic {
+    /// A diagnostic about the whole file (no line).
+    pub fn file(kind: DiagnosticKind, path: impl Into<PathBuf>, message: impl Into<String>) -> Diagnostic {
+        Diagnostic {
+            kind,
+            path: path.into(),
+            line: 0,
+            columns: 0..0,
+            text: String::new(),
+            message: message.into(),
+            hint: None,
+        }
+    }
+
+    /// Adds a hint.
+    pub fn with_hint(mut self, hint: impl Into<String>) -> Diagnostic {
+        self.hint = Some(hint.into());
+        self
+    }
+}
+
+/// Adds a hint to a boxed diagnostic (the form used inside this crate, to
+/// keep `Result`s small).
+pub(crate) trait Hint {
+    /// Adds a hint.
+    fn with_hint(self, hint: impl Into<String>) -> Self;
+}
+
+impl Hint for Box<Diagnostic> {
+    fn with_hint(mut self, hint: impl Into<String>) -> Self {
+        self.hint = Some(hint.into());
+        self
+    }
+}
+
+/// Width of a character on screen: tabs are shown as four blanks.
+fn width(c: char) -> usize {
+    if c == '\t' {
+        4
+    } else {
+        1
+    }
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "error: {}", self.message)?;
+        if self.line == 0 {
+            write!(f, " --> {}", self.path.display())?;
+            if let Some(hint) = &self.hint {
+                write!(f, "\n  = hint: {hint}")?;
+            }
+            return Ok(());
+        }
+        let number = self.line.to_string();
+        let pad = " ".repeat(number.len());
+        writeln!(f, "{pad}--> {}:{}:{}", self.path.display(), self.line, self.columns.start + 1)?;
+        writeln!(f, "{pad} |")?;
+        let shown: String =
+            self.text.chars().map(|c| if c == '\t' { "    ".to_string() } else { c.to_string() }).collect();
+        writeln!(f, "{number} | {}", shown.trim_end())?;
+        let lead: usize = self.text.chars().take(self.columns.start).map(width).sum();
+        let marked: usize = self.text.chars().skip(self.columns.start).take(self.columns.len()).map(width).sum();
+        write!(f, "{pad} | {}{}", " ".repeat(lead), "^".repeat(marked.max(1)))?;
+        if let Some(hint) = &self.hint {
+            write!(f, "\n{pad} = hint: {hint}")?;
+        }
+        Ok(())
+    }
+}
+
+/// One or more diagnostics; what the public functions of this crate return
+/// on failure. Displays them one after another, separated by blank lines.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub struct Diagnostics(pub Vec<Diagnostic>);
+
+impl Diagnostics {
+    /// The diagnostics, in the order of the deck.
+    pub fn iter(&self) -> std::slice::Iter<'_, Diagnostic> {
+        self.0.iter()
+    }
+}
+
+impl From<Box<Diagnostic>> for Diagnostics {
+    fn from(d: Box<Diagnostic>) -> Self {
+        Diagnostics(vec![*d])
+    }
+}
+
+impl From<Diagnostic> for Diagnostics {
+    fn from(d: Diagnostic) -> Self {
+        Diagnostics(vec![d])
+    }
+}
+
+impl<'a> IntoIterator for &'a Diagnostics {
+    type Item = &'a Diagnostic;
+    type IntoIter = std::slice::Iter<'a, Diagnostic>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.0.iter()
+    }
+}
+
+impl fmt::Display for Diagnostics {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (k, d) in self.0.iter().enumerate() {
+            if k > 0 {
+                write!(f, "\n\n")?;
+            }
+            write!(f, "{d}")?;
+        }
+        Ok(())
+    }
+}
+
+/// "1 row", "2 rows", "no rows".
+pub(crate) fn count(n: usize, singular: &str, plural: &str) -> String {
+    match n {
+        0 => format!("no {plural}"),
+        1 => format!("1 {singular}"),
+        _ => format!("{n} {plural}"),
+    }
+}
+
+/// The numbers 1..n in words: "none", "1", "1..n"; `sign` -1 gives "-1..-n".
+pub(crate) fn numbered(n: usize, sign: i64) -> String {
+    let minus = if sign < 0 { "-" } else { "" };
+    match n {
+        0 => "none".to_string(),
+        1 => format!("{minus}1"),
+        _ => format!("{minus}1..{minus}{n}"),
+    }
+}
+
+/// Which degrees of freedom exist, as a hint.
+pub(crate) fn dof_hint(n: usize) -> String {
+    match n {
+        1 => "the mechanism has one degree of freedom, DOF 1".to_string(),
+        _ => format!("the degrees of freedom are numbered 1..{n}"),
+    }
+}

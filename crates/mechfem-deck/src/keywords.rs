@@ -1,0 +1,206 @@
+//! The keyword table: every keyword, the block it belongs to, its arguments.
+
+use std::fmt;
+
+/// A block of the deck, opened by its header line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Block {
+    /// Elements, form parameters, degrees of freedom.
+    Topology,
+    /// Initial co-ordinates and prescribed values.
+    Geometry,
+    /// Input motion and solver settings.
+    Movement,
+    /// Output buffers and what to do with them.
+    Storage,
+}
+
+impl Block {
+    /// Every block, in the order of a deck.
+    pub const ALL: [Block; 4] = [Block::Topology, Block::Geometry, Block::Movement, Block::Storage];
+
+    /// The header word.
+    pub fn name(self) -> &'static str {
+        match self {
+            Block::Topology => "TOPOLOGY",
+            Block::Geometry => "GEOMETRY",
+            Block::Movement => "MOVEMENT",
+            Block::Storage => "STORAGE",
+        }
+    }
+
+    /// The block whose header is `word` (case-insensitive).
+    pub fn from_name(word: &str) -> Option<Block> {
+        Block::ALL.into_iter().find(|b| b.name().eq_ignore_ascii_case(word))
+    }
+}
+
+impl fmt::Display for Block {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+macro_rules! keywords {
+    ($($variant:ident $name:literal $block:ident $min:literal $max:expr, $usage:literal;)*) => {
+        /// A keyword of a block.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum Keyword {
+            $(#[doc = concat!("`", $name, " ", $usage, "`")] $variant,)*
+        }
+
+        impl Keyword {
+            /// Every keyword, in the order of the deck reference.
+            pub const ALL: &'static [Keyword] = &[$(Keyword::$variant,)*];
+
+            /// The keyword as written in decks.
+            pub fn name(self) -> &'static str {
+                match self { $(Keyword::$variant => $name,)* }
+            }
+
+            /// The block the keyword belongs to.
+            pub fn block(self) -> Block {
+                match self { $(Keyword::$variant => Block::$block,)* }
+            }
+
+            /// Its arguments, as in the deck reference (`s NAME k dest [f]`).
+            pub fn usage(self) -> &'static str {
+                match self { $(Keyword::$variant => $usage,)* }
+            }
+
+            /// Least and largest number of arguments (`None`: no limit).
+            /// ELEM's count depends on the element type.
+            pub(crate) fn arity(self) -> (usize, Option<usize>) {
+                match self { $(Keyword::$variant => ($min, $max),)* }
+            }
+        }
+    };
+}
+
+keywords! {
+    Elem "ELEM" Topology 2 None, "k TYPE c1 c2 ...";
+    Form "FORM" Topology 4 Some(5), "s NAME k dest [f]";
+    Nrdof "NRDOF" Topology 1 Some(1), "n";
+    Xfix "XFIX" Geometry 2 Some(2), "i value";
+    Xmov "XMOV" Geometry 2 Some(2), "i value";
+    Para "PARA" Geometry 2 Some(2), "row value";
+    Tstepe "TSTEPE" Movement 1 Some(2), "n [dt]";
+    MovRele "MOV_RELE" Movement 2 Some(2), "j delta";
+    MovAbse "MOV_ABSE" Movement 2 Some(2), "j end";
+    MovFunc "MOV_FUNC" Movement 2 Some(2), "j file";
+    MovFree "MOV_FREE" Movement 2 Some(2), "j ds";
+    Accuracy "ACCURACY" Movement 1 Some(1), "tol";
+    Maxiter "MAXITER" Movement 1 Some(1), "m";
+    BufInp "BUFINP" Storage 2 Some(2), "j b";
+    BufTime "BUFTIME" Storage 1 Some(1), "b";
+    BufX0 "BUFX0" Storage 2 Some(2), "i b";
+    BufKx1 "BUFKX1" Storage 3 Some(3), "i j b";
+    BufKx2 "BUFKX2" Storage 3 Some(4), "i j [m] b";
+    BufVx "BUFVX" Storage 2 Some(2), "i b";
+    BufAx "BUFAX" Storage 2 Some(2), "i b";
+    BufE0 "BUFE0" Storage 2 Some(2), "r b";
+    BufKe1 "BUFKE1" Storage 3 Some(3), "r j b";
+    BufKe2 "BUFKE2" Storage 3 Some(4), "r j [m] b";
+    BufVe "BUFVE" Storage 2 Some(2), "r b";
+    BufAe "BUFAE" Storage 2 Some(2), "r b";
+    BufDet "BUFDET" Storage 1 Some(1), "b";
+    PrintBuf "PRINTBUF" Storage 0 None, "[b ...]";
+    SaveData "SAVEDATA" Storage 1 None, "b ...";
+    Animate "ANIMATE" Storage 1 Some(1), "name";
+    BeginPic "BEGINPIC" Storage 0 None, "[title]";
+    EndPic "ENDPIC" Storage 0 Some(0), "";
+    PlotFunc "PLOTFUNC" Storage 2 Some(2), "bx by";
+    PlotCurv "PLOTCURV" Storage 2 Some(2), "bx by";
+    PlotHodo "PLOTHODO" Storage 2 Some(2), "ix iy";
+}
+
+impl Keyword {
+    /// The keyword spelled `word` (case-insensitive).
+    pub fn from_name(word: &str) -> Option<Keyword> {
+        Keyword::ALL.iter().copied().find(|k| k.name().eq_ignore_ascii_case(word))
+    }
+
+    /// The keywords of one block, in reference order.
+    pub fn of_block(block: Block) -> impl Iterator<Item = Keyword> {
+        Keyword::ALL.iter().copied().filter(move |k| k.block() == block)
+    }
+
+    /// The full usage line, `FORM s NAME k dest [f]`.
+    pub fn synopsis(self) -> String {
+        if self.usage().is_empty() {
+            self.name().to_string()
+        } else {
+            format!("{} {}", self.name(), self.usage())
+        }
+    }
+
+    /// How many arguments it takes, in words: "2", "3 or 4", "at least 1".
+    pub(crate) fn arity_text(self) -> String {
+        match self.arity() {
+            (0, Some(0)) => "no".to_string(),
+            (a, Some(b)) if a == b => a.to_string(),
+            (a, Some(b)) if b == a + 1 => format!("{a} or {b}"),
+            (a, Some(b)) => format!("{a} to {b}"),
+            (a, None) => format!("at least {a}"),
+        }
+    }
+}
+
+impl fmt::Display for Keyword {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Edit distance between two words (case-insensitive).
+fn distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.to_ascii_uppercase().chars().collect();
+    let b: Vec<char> = b.to_ascii_uppercase().chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.iter().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, cb) in b.iter().enumerate() {
+            let substitute = prev[j] + usize::from(ca != cb);
+            cur[j + 1] = substitute.min(prev[j + 1] + 1).min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+/// The known word closest to `word`, if it is close enough to be a typo.
+pub(crate) fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let limit = (word.chars().count() / 2).clamp(1, 3);
+    candidates
+        .into_iter()
+        .map(|c| (distance(word, c), c))
+        .filter(|(d, _)| *d <= limit)
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, c)| c)
+}
+
+/// Every word that may start a line after the mode line.
+pub(crate) fn all_words() -> impl Iterator<Item = &'static str> {
+    Block::ALL.iter().map(|b| b.name()).chain(Keyword::ALL.iter().map(|k| k.name())).chain(["END"])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn typos_find_their_keyword() {
+        assert_eq!(closest("ELME", all_words()), Some("ELEM"));
+        assert_eq!(closest("xfx", all_words()), Some("XFIX"));
+        assert_eq!(closest("MOV_REL", all_words()), Some("MOV_RELE"));
+        assert_eq!(closest("PRINTBUFF", all_words()), Some("PRINTBUF"));
+        assert_eq!(closest("BANANA", all_words()), None);
+    }
+
+    #[test]
+    fn every_keyword_is_found_by_its_name() {
+        for &k in Keyword::ALL {
+            assert_eq!(Keyword::from_name(&k.name().to_lowercase()), Some(k));
+        }
+    }
+}

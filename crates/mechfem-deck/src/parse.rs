@@ -1,0 +1,483 @@
+//! Lines to a typed [`Deck`]: the mode line, block headers, keywords and the
+//! repetition of a keyword by lines that start with a number.
+//!
+//! The parser checks everything that one line can tell on its own (argument
+//! counts, numbers, element types, the element sequence, the place of
+//! TSTEPE, the nesting of pictures). Cross-references between lines are left
+//! to [`crate::compile`].
+
+use std::path::{Path, PathBuf};
+
+use crate::args::Source;
+use crate::ast::{Deck, Geometry, Mode, MotionDef, Movement, PictureDef, Storage, Topology, Tstepe};
+use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Hint, Span, Spanned};
+use crate::keywords::{all_words, closest, Block, Keyword};
+use crate::lexer::{lex, looks_numeric, Line, Word};
+
+/// The parser stops collecting after this many diagnostics.
+const MAX_ERRORS: usize = 20;
+
+/// Reads a deck from a file. The path is kept as given and shown in
+/// diagnostics; MOV_FUNC files are later looked up beside it.
+pub fn parse_file(path: impl AsRef<Path>) -> Result<Deck, Diagnostics> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path)
+        .map_err(|e| Diagnostic::file(DiagnosticKind::Io, path, format!("cannot read the deck: {e}")))?;
+    parse_str(&String::from_utf8_lossy(&bytes), path)
+}
+
+/// Reads a deck from text; `path` is only used in diagnostics.
+pub fn parse_str(text: &str, path: impl Into<PathBuf>) -> Result<Deck, Diagnostics> {
+    let path = path.into();
+    let (raw, lines) = lex(text);
+    let mut parser = Parser::new(Source { path: &path, lines: &raw });
+    parser.run(&lines);
+    parser.finish().map(|mut deck| {
+        deck.source = raw;
+        deck
+    })
+}
+
+/// The MOVEMENT block while it is being read.
+#[derive(Default)]
+pub(crate) struct MovementParts {
+    pub line: usize,
+    pub tstepe: Option<Tstepe>,
+    pub motions: Vec<MotionDef>,
+    pub accuracy: Option<Spanned<f64>>,
+    pub maxiter: Option<Spanned<i64>>,
+    /// A missing or late TSTEPE has been reported.
+    pub tstepe_reported: bool,
+}
+
+pub(crate) struct Parser<'a> {
+    pub src: Source<'a>,
+    pub errors: Vec<Diagnostic>,
+    mode: Option<Spanned<Mode>>,
+    block: Option<Block>,
+    headers: [Option<usize>; 4],
+    /// The keyword a line starting with a number repeats.
+    previous: Option<Keyword>,
+    /// The previous keyword line was refused: its repetitions are skipped.
+    poisoned: bool,
+    /// A keyword alone on its line, waiting for repetition lines.
+    pending: Option<(Keyword, Line)>,
+    pub topology: Topology,
+    pub geometry: Geometry,
+    pub movement: MovementParts,
+    pub storage: Storage,
+    pub picture: Option<PictureDef>,
+    /// ELEM lines seen so far, refused ones included.
+    pub elem_lines: i64,
+    /// Lines of NRDOF, ANIMATE, ... for "given twice" messages.
+    pub once: Vec<(Keyword, usize)>,
+    /// Reading stopped early (a mode that is not run): blocks are not checked.
+    stopped: bool,
+}
+
+impl<'a> Parser<'a> {
+    fn new(src: Source<'a>) -> Self {
+        Parser {
+            src,
+            errors: Vec::new(),
+            mode: None,
+            block: None,
+            headers: [None; 4],
+            previous: None,
+            poisoned: false,
+            pending: None,
+            topology: Topology::default(),
+            geometry: Geometry::default(),
+            movement: MovementParts::default(),
+            storage: Storage::default(),
+            picture: None,
+            elem_lines: 0,
+            once: Vec::new(),
+            stopped: false,
+        }
+    }
+
+    fn error(&mut self, kind: DiagnosticKind, span: Span, message: impl Into<String>, hint: impl Into<String>) {
+        let d = self.src.error(kind, span, message).with_hint(hint);
+        self.errors.push(*d);
+    }
+
+    fn run(&mut self, lines: &[Line]) {
+        let mut lines = lines.iter();
+        let Some(first) = lines.next() else { return };
+        if self.mode_line(first) {
+            if self.mode.as_ref().is_some_and(|m| m.value != Mode::KinAna) {
+                self.stopped = true;
+                return;
+            }
+        } else {
+            self.line(first);
+        }
+        for line in lines {
+            if self.errors.len() >= MAX_ERRORS || !self.line(line) {
+                break;
+            }
+        }
+    }
+
+    /// Reads the first line as the mode line; false when it is not one
+    /// (it is then read as an ordinary line).
+    fn mode_line(&mut self, line: &Line) -> bool {
+        let first = &line.words[0];
+        let upper = first.text.to_ascii_uppercase();
+        let known = |w: &str| w == "END" || Block::from_name(w).is_some() || Keyword::from_name(w).is_some();
+        if known(&upper) || looks_numeric(&upper) {
+            self.error(
+                DiagnosticKind::MissingMode,
+                first.span,
+                "the deck does not start with a mode line",
+                "make `KIN ANA` the first line of the deck",
+            );
+            return false;
+        }
+        let last = line.words.last().map_or(first.span, |w| w.span);
+        let span = first.span.to(line.words.get(1).map_or(first.span, |w| w.span));
+        let second = line.words.get(1).map(|w| w.text.to_ascii_uppercase());
+        let mode = match (upper.as_str(), second.as_deref()) {
+            ("KIN", Some("ANA")) => Mode::KinAna,
+            ("KIN", Some("OPT")) => Mode::KinOpt,
+            ("DYN", Some("ANA")) => Mode::DynAna,
+            ("DYN", Some("SIM")) => Mode::DynSim,
+            _ => {
+                let text: Vec<&str> = line.words.iter().map(|w| w.text.as_str()).collect();
+                self.error(
+                    DiagnosticKind::UnknownMode,
+                    first.span.to(last),
+                    format!("unknown mode `{}`", text.join(" ")),
+                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis)",
+                );
+                return true;
+            }
+        };
+        if let Some(extra) = line.words.get(2) {
+            self.error(
+                DiagnosticKind::ArgumentCount,
+                extra.span.to(last),
+                format!("the mode line `{}` has extra words", mode.name()),
+                "the mode line holds two words, such as `KIN ANA`",
+            );
+        }
+        if mode != Mode::KinAna {
+            self.error(
+                DiagnosticKind::UnsupportedMode,
+                span,
+                format!("mode {} ({}) is not supported yet", mode.name(), mode.description()),
+                "mechfem runs kinematic analysis only: start the deck with `KIN ANA`",
+            );
+        }
+        self.mode = Some(Spanned::new(mode, span));
+        true
+    }
+
+    /// Reads one line; false after END.
+    fn line(&mut self, line: &Line) -> bool {
+        let first = &line.words[0];
+        if looks_numeric(&first.text) {
+            self.repetition(line);
+            return true;
+        }
+        let upper = first.text.to_ascii_uppercase();
+        if upper == "END" {
+            self.header_arguments("END", line);
+            self.close_block();
+            return false;
+        }
+        if let Some(block) = Block::from_name(&upper) {
+            self.open_block(block, line);
+        } else if let Some(kw) = Keyword::from_name(&upper) {
+            self.keyword_line(kw, line, &line.words[1..], false);
+        } else {
+            self.unknown_keyword(first);
+        }
+        true
+    }
+
+    fn unknown_keyword(&mut self, word: &Word) {
+        let hint = match closest(&word.text, all_words()) {
+            Some(k) => format!("did you mean `{k}`?"),
+            None => match self.block {
+                Some(b) => {
+                    let names: Vec<&str> = Keyword::of_block(b).map(Keyword::name).collect();
+                    format!("the keywords of the {b} block are {}", names.join(", "))
+                }
+                None => "the deck has the blocks TOPOLOGY, GEOMETRY, MOVEMENT, STORAGE".to_string(),
+            },
+        };
+        self.error(DiagnosticKind::UnknownKeyword, word.span, format!("unknown keyword `{}`", word.text), hint);
+        self.previous = None;
+        self.poisoned = true;
+    }
+
+    fn repetition(&mut self, line: &Line) {
+        if let Some((kw, _)) = self.pending.take() {
+            self.keyword_line(kw, line, &line.words, true);
+        } else if self.poisoned {
+            // The keyword to repeat was refused: so are its repetitions.
+        } else if let Some(kw) = self.previous {
+            self.keyword_line(kw, line, &line.words, true);
+        } else if !self.errors.is_empty() {
+            // Most likely a consequence of an earlier mistake (a keyword
+            // refused or put in the wrong block): one message is enough.
+            self.poisoned = true;
+        } else {
+            self.repeat_nothing(line);
+        }
+    }
+
+    fn repeat_nothing(&mut self, line: &Line) {
+        let hint = match self.block {
+            Some(b) => {
+                let names: Vec<&str> = Keyword::of_block(b).map(Keyword::name).collect();
+                format!("start the line with a keyword of the {b} block: {}", names.join(", "))
+            }
+            None => "start the line with a keyword, after a block header such as TOPOLOGY".to_string(),
+        };
+        let place = self.block.map_or("before any block".to_string(), |b| format!("in the {b} block"));
+        self.error(
+            DiagnosticKind::NothingToRepeat,
+            line.words[0].span,
+            format!("this line starts with a number, so it repeats the previous keyword, but there is none {place}"),
+            hint,
+        );
+        self.poisoned = true;
+    }
+
+    fn header_arguments(&mut self, name: &str, line: &Line) {
+        if let (Some(first), Some(last)) = (line.words.get(1), line.words.last()) {
+            self.error(
+                DiagnosticKind::ArgumentCount,
+                first.span.to(last.span),
+                format!("{name} takes no arguments"),
+                format!("put {name} alone on its line"),
+            );
+        }
+    }
+
+    fn open_block(&mut self, block: Block, line: &Line) {
+        self.close_block();
+        self.header_arguments(block.name(), line);
+        let slot = &mut self.headers[block as usize];
+        if let Some(first) = *slot {
+            self.error(
+                DiagnosticKind::DuplicateBlock,
+                line.words[0].span,
+                format!("the {block} block is given twice (first at line {first})"),
+                format!("merge the two {block} blocks into one"),
+            );
+        } else {
+            *slot = Some(line.number);
+            match block {
+                Block::Topology => self.topology.line = line.number,
+                Block::Geometry => self.geometry.line = line.number,
+                Block::Movement => self.movement.line = line.number,
+                Block::Storage => self.storage.line = line.number,
+            }
+        }
+        self.block = Some(block);
+        self.previous = None;
+        self.poisoned = false;
+    }
+
+    /// Ends the current block: a bare keyword without repetition lines, an
+    /// open picture, a MOVEMENT block without TSTEPE are reported.
+    fn close_block(&mut self) {
+        self.flush_pending();
+        if let Some(pic) = self.picture.take() {
+            let span =
+                Span::new(pic.line, leading_blanks(self.src.lines, pic.line), line_width(self.src.lines, pic.line));
+            self.error(
+                DiagnosticKind::PictureStructure,
+                span,
+                "this picture has no ENDPIC",
+                "add ENDPIC after the picture's last PLOT line",
+            );
+        }
+        if self.block == Some(Block::Movement) && self.movement.tstepe.is_none() && !self.movement.tstepe_reported {
+            let line = self.movement.line;
+            self.movement.tstepe_reported = true;
+            self.error(
+                DiagnosticKind::MissingTstepe,
+                Span::new(line, leading_blanks(self.src.lines, line), line_width(self.src.lines, line)),
+                "the MOVEMENT block has no TSTEPE",
+                "start the block with `TSTEPE n [dt]`: n steps of time dt; or remove the empty block",
+            );
+        }
+        self.block = None;
+    }
+
+    fn flush_pending(&mut self) {
+        if let Some((kw, line)) = self.pending.take() {
+            let message = format!("{kw} expects {} arguments ({}), got 0", kw.arity_text(), kw.usage());
+            let d = self.src.count_error(&line, &[], None, message).with_hint(format!(
+                "give the arguments on this line, or on the lines below it that start with a number: {}",
+                kw.synopsis()
+            ));
+            self.errors.push(*d);
+        }
+    }
+
+    fn keyword_line(&mut self, kw: Keyword, line: &Line, args: &[Word], repeated: bool) {
+        if !repeated {
+            self.flush_pending();
+            let right = kw.block();
+            let wrong = match self.block {
+                None => Some(format!("{kw} stands before any block header")),
+                Some(b) if b != right => Some(format!("{kw} belongs in the {right} block, not in {b}")),
+                Some(_) => None,
+            };
+            if let Some(message) = wrong {
+                let hint = format!("move it below the `{right}` header");
+                self.error(DiagnosticKind::WrongBlock, line.words[0].span, message, hint);
+                self.previous = Some(kw);
+                self.poisoned = true;
+                return;
+            }
+            self.previous = Some(kw);
+            self.poisoned = false;
+            if args.is_empty() && kw.arity().0 > 0 {
+                self.pending = Some((kw, line.clone()));
+                return;
+            }
+        }
+        let keyword = Spanned::new(kw, line.words[0].span);
+        if let Err(d) = self.statement(keyword, line, args, repeated) {
+            self.errors.push(*d);
+        }
+    }
+
+    /// Records the line of a keyword that may appear once; errs when it
+    /// was there before.
+    pub(crate) fn once(&mut self, kw: Spanned<Keyword>) -> Result<(), Box<Diagnostic>> {
+        if let Some(&(_, first)) = self.once.iter().find(|(k, _)| *k == kw.value) {
+            let k = kw.value;
+            return Err(self
+                .src
+                .error(DiagnosticKind::DuplicateKeyword, kw.span, format!("{k} is given twice (first at line {first})"))
+                .with_hint(format!("keep one {k} line")));
+        }
+        self.once.push((kw.value, kw.span.line));
+        Ok(())
+    }
+
+    fn finish(mut self) -> Result<Deck, Diagnostics> {
+        self.close_block();
+        let path = self.src.path;
+        if self.mode.is_none() && self.errors.is_empty() {
+            let d = Diagnostic::file(DiagnosticKind::MissingMode, path, "the deck is empty")
+                .with_hint("a deck starts with the mode line `KIN ANA`, followed by the TOPOLOGY and GEOMETRY blocks");
+            self.errors.push(d);
+        }
+        for block in [Block::Topology, Block::Geometry] {
+            if self.headers[block as usize].is_none() && self.mode.is_some() && !self.stopped {
+                let d = Diagnostic::file(DiagnosticKind::MissingBlock, path, format!("the deck has no {block} block"))
+                    .with_hint(format!("add a line `{block}` followed by its keywords"));
+                self.errors.push(d);
+            }
+        }
+        self.errors.sort_by_key(|d| (d.line == 0, d.line));
+        let (Some(mode), true) = (self.mode, self.errors.is_empty()) else {
+            return Err(Diagnostics(self.errors));
+        };
+        let m = self.movement;
+        let movement = match (self.headers[Block::Movement as usize], m.tstepe) {
+            (Some(line), Some(tstepe)) => {
+                Some(Movement { line, tstepe, motions: m.motions, accuracy: m.accuracy, maxiter: m.maxiter })
+            }
+            _ => None,
+        };
+        Ok(Deck {
+            path: path.to_path_buf(),
+            mode,
+            topology: self.topology,
+            geometry: self.geometry,
+            movement,
+            storage: self.headers[Block::Storage as usize].map(|_| self.storage),
+            source: Vec::new(),
+        })
+    }
+}
+
+/// Number of blank characters at the start of a line.
+fn leading_blanks(lines: &[String], line: usize) -> usize {
+    line.checked_sub(1).and_then(|k| lines.get(k)).map_or(0, |t| t.chars().take_while(|c| c.is_whitespace()).count())
+}
+
+/// Number of characters of a line without trailing blanks and comment.
+fn line_width(lines: &[String], line: usize) -> usize {
+    line.checked_sub(1)
+        .and_then(|k| lines.get(k))
+        .map_or(0, |t| t.split(';').next().unwrap_or("").trim_end().chars().count())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const HEAD: &str = "KIN ANA\nTOPOLOGY\nELEM 1 BIN 1 2 3 4\nFORM 1 LENL 1 1\nNRDOF 1\n";
+
+    fn parse(text: &str) -> Result<Deck, Diagnostics> {
+        parse_str(text, "t.mec")
+    }
+
+    #[test]
+    fn a_number_line_repeats_the_previous_keyword() {
+        let deck = parse(&format!("{HEAD}GEOMETRY\nXFIX 1 0\n 2 0\nXMOV 3 1\n\t4\t2\n")).unwrap();
+        let moving: Vec<_> = deck.geometry.coords.iter().map(|c| (c.index.value, c.moving)).collect();
+        assert_eq!(moving, [(1, false), (2, false), (3, true), (4, true)]);
+    }
+
+    #[test]
+    fn a_keyword_alone_waits_for_number_lines() {
+        let deck = parse(&format!("{HEAD}GEOMETRY\nXFIX\n 1 0\n 2 0\n")).unwrap();
+        assert_eq!(deck.geometry.coords.len(), 2);
+        assert_eq!(deck.geometry.coords[1].line, 9);
+    }
+
+    #[test]
+    fn a_keyword_alone_without_number_lines_is_an_error() {
+        let err = parse(&format!("{HEAD}GEOMETRY\nXFIX\nXMOV 1 0\n")).unwrap_err();
+        assert_eq!(err.0.len(), 1);
+        assert_eq!(err.0[0].kind, DiagnosticKind::ArgumentCount);
+        assert_eq!(err.0[0].line, 7);
+    }
+
+    #[test]
+    fn repetition_does_not_cross_a_block_header() {
+        let err = parse(&format!("{HEAD}GEOMETRY\n 1 0\n")).unwrap_err();
+        assert_eq!(err.0[0].kind, DiagnosticKind::NothingToRepeat);
+    }
+
+    #[test]
+    fn repetitions_of_a_refused_keyword_are_skipped() {
+        let err = parse(&format!("{HEAD}GEOMETRY\nXFX 1 0\n 2 0\n 3 0\n")).unwrap_err();
+        assert_eq!(err.0.len(), 1);
+        assert_eq!(err.0[0].kind, DiagnosticKind::UnknownKeyword);
+        assert_eq!(err.0[0].hint.as_deref(), Some("did you mean `XFIX`?"));
+    }
+
+    #[test]
+    fn independent_mistakes_are_all_reported() {
+        let err = parse(&format!("{HEAD}GEOMETRY\nXFIX 1 zero\nXMOV 2 1 1\n")).unwrap_err();
+        let kinds: Vec<_> = err.iter().map(|d| d.kind).collect();
+        assert_eq!(kinds, [DiagnosticKind::NotANumber, DiagnosticKind::ArgumentCount]);
+    }
+
+    #[test]
+    fn keywords_and_modes_are_case_insensitive() {
+        let deck =
+            parse("kin ana\ntopology\nelem 1 bin 1 2 3 4\nform 1 lenl 1 1\nnrdof 1\ngeometry\nxfix 1 0\n").unwrap();
+        assert_eq!(deck.mode.value, Mode::KinAna);
+        assert_eq!(deck.topology.forms[0].name.value, "LENL");
+    }
+
+    #[test]
+    fn lines_after_end_are_ignored() {
+        let deck = parse(&format!("{HEAD}GEOMETRY\nXFIX 1 0\nEND\nwhatever follows\n")).unwrap();
+        assert_eq!(deck.geometry.coords.len(), 1);
+    }
+}
