@@ -82,8 +82,6 @@ pub enum DiagnosticKind {
     BadValue,
     /// An element type name that is not in the catalogue.
     UnknownElementType,
-    /// An element type of the catalogue that is not implemented yet.
-    UnsupportedElementType,
     /// Elements not numbered 1, 2, 3, ... in sequence.
     ElementSequence,
     /// A keyword that may appear once is given again (NRDOF, TSTEPE, ...).

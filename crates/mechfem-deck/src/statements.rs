@@ -13,10 +13,6 @@ use crate::parse::Parser;
 /// The largest number of steps TSTEPE accepts: every position is stored.
 const MAX_STEPS: i64 = 10_000_000;
 
-/// Every element type name of the catalogue (`elements.md`); a name here
-/// that the core does not know yet is reported as not supported.
-const CATALOGUE: [&str; 10] = ["BIN", "HLF", "TR1", "TR2", "GR1", "GR2", "RK1", "RK2", "BLT", "CRD"];
-
 impl Parser<'_> {
     /// Reads the arguments of one keyword line into the deck being built.
     pub(crate) fn statement(
@@ -301,17 +297,12 @@ fn element_type(parser: &Parser<'_>, word: &Word) -> Result<ElementType, Box<Dia
     if let Some(ty) = ElementType::from_name(&word.text) {
         return Ok(ty);
     }
-    let upper = word.text.to_ascii_uppercase();
     let names: Vec<&str> = ElementType::ALL.iter().map(|t| t.name()).collect();
-    let (kind, message) = if CATALOGUE.contains(&upper.as_str()) {
-        (
-            DiagnosticKind::UnsupportedElementType,
-            format!("element type {upper} is in the catalogue but not supported yet"),
-        )
-    } else {
-        (DiagnosticKind::UnknownElementType, format!("unknown element type `{}`", word.text))
-    };
-    Err(parser.src.error(kind, word.span, message).with_hint(format!("element types are {}", names.join(", "))))
+    let message = format!("unknown element type `{}`", word.text);
+    Err(parser
+        .src
+        .error(DiagnosticKind::UnknownElementType, word.span, message)
+        .with_hint(format!("element types are {}", names.join(", "))))
 }
 
 /// What the arguments before the buffer number of a `BUF...` keyword mean.
