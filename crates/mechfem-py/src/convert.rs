@@ -1,0 +1,219 @@
+//! Rust results to Python dictionaries and numpy arrays. Everything that
+//! names a co-ordinate, row, element, DOF or position is converted to the
+//! deck's 1-based numbering here.
+
+use mechfem_core::{AdjustInfo, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
+use mechfem_deck::{Buffer, Compiled, PlotItem, RowInfo};
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors;
+
+/// A row-major `rows x cols` array.
+pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_vec(py, data).reshape([rows, cols])?.into_any())
+}
+
+/// `AdjustInfo` as a dict.
+pub fn adjust<'py>(py: Python<'py>, a: &AdjustInfo) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("iterations", a.iterations)?;
+    d.set_item("stages", a.stages)?;
+    d.set_item("initial_deformations", a.initial_deformations.clone())?;
+    d.set_item("residual", a.residual)?;
+    Ok(d)
+}
+
+fn limit_kind(kind: LimitKind) -> &'static str {
+    match kind {
+        LimitKind::SignChange => "sign_change",
+        LimitKind::NearZero => "near_zero",
+        LimitKind::InputLimit => "input_limit",
+        LimitKind::Passed => "passed",
+    }
+}
+
+fn limit<'py>(py: Python<'py>, l: &LimitPosition) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("kind", limit_kind(l.kind))?;
+    d.set_item("after", l.after + 1)?;
+    d.set_item("inputs", l.inputs.clone())?;
+    d.set_item("coords", l.coords.clone())?;
+    d.set_item("det", l.det)?;
+    Ok(d)
+}
+
+fn stop<'py>(py: Python<'py>, mech: &Mechanism, s: &Stop) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("last_good", s.last_good + 1)?;
+    d.set_item("inputs", s.inputs.clone())?;
+    d.set_item("last_inputs", s.last_inputs.clone())?;
+    d.set_item("kind", errors::kind(&s.error))?;
+    d.set_item("message", errors::describe(mech, &s.error))?;
+    d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
+    Ok(d)
+}
+
+/// `RunReport` as a dict; `steps` is the number of steps the motion asked for.
+pub fn report<'py>(py: Python<'py>, mech: &Mechanism, r: &RunReport, steps: usize) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("adjust", adjust(py, &r.adjust)?)?;
+    d.set_item("positions", r.positions)?;
+    d.set_item("steps", steps)?;
+    d.set_item("subdivided_steps", r.subdivided_steps)?;
+    let limits = r.limits.iter().map(|l| limit(py, l)).collect::<PyResult<Vec<_>>>()?;
+    d.set_item("limits", limits)?;
+    d.set_item("singular_positions", r.singular_positions.iter().map(|k| k + 1).collect::<Vec<_>>())?;
+    d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, s)).transpose()?)?;
+    Ok(d)
+}
+
+fn rows<'py>(py: Python<'py>, infos: &[RowInfo], values: &[f64]) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    infos
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let d = PyDict::new(py);
+            d.set_item("dest", r.dest)?;
+            let terms = r
+                .terms
+                .iter()
+                .map(|t| {
+                    let td = PyDict::new(py);
+                    td.set_item("seq", t.seq)?;
+                    td.set_item("element", t.element)?;
+                    td.set_item("form", t.name)?;
+                    td.set_item("factor", t.factor)?;
+                    td.set_item("line", t.line)?;
+                    Ok(td)
+                })
+                .collect::<PyResult<Vec<_>>>()?;
+            d.set_item("terms", terms)?;
+            d.set_item("para", r.para)?;
+            d.set_item("input", r.input)?;
+            d.set_item("value", values.get(k).copied().unwrap_or(f64::NAN))?;
+            Ok(d)
+        })
+        .collect()
+}
+
+/// The echo of the model: elements, rows with their FORM terms and values
+/// at position 1, DOFs, and co-ordinates as given and at position 1.
+pub fn model<'py>(
+    py: Python<'py>,
+    c: &Compiled,
+    given: &[f64],
+    at_1: &[f64],
+    prescribed: &[f64],
+    dependent: &[f64],
+) -> PyResult<Bound<'py, PyDict>> {
+    let mech = &c.mechanism;
+    let d = PyDict::new(py);
+    let elements = c
+        .elements
+        .iter()
+        .map(|e| {
+            let ed = PyDict::new(py);
+            ed.set_item("number", e.number)?;
+            ed.set_item("type", e.ty.name())?;
+            ed.set_item("coords", e.coords.clone())?;
+            ed.set_item("coord_names", e.ty.coord_names().to_vec())?;
+            ed.set_item("line", e.line)?;
+            Ok(ed)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("elements", elements)?;
+    d.set_item("prescribed", rows(py, &c.prescribed, prescribed)?)?;
+    d.set_item("dependent", rows(py, &c.dependent, dependent)?)?;
+    d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
+    let coords = (0..mech.n_coords())
+        .map(|i| {
+            let cd = PyDict::new(py);
+            cd.set_item("number", i + 1)?;
+            cd.set_item("moving", mech.is_moving(i))?;
+            cd.set_item("given", given[i])?;
+            cd.set_item("adjusted", at_1[i])?;
+            Ok(cd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("coordinates", coords)?;
+    Ok(d)
+}
+
+fn dest(f: FormRef) -> i64 {
+    match f {
+        FormRef::Prescribed(r) => r as i64 + 1,
+        FormRef::Dependent(d) => -(d as i64 + 1),
+    }
+}
+
+/// A buffer's quantity as the deck line that defines it: keyword and
+/// arguments before the buffer number.
+fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
+    let n = |i: usize| i as i64 + 1;
+    match q {
+        Quantity::Input(j) => ("BUFINP", vec![n(j)]),
+        Quantity::Time => ("BUFTIME", vec![]),
+        Quantity::X0(i) => ("BUFX0", vec![n(i)]),
+        Quantity::Kx1 { coord, j } => ("BUFKX1", vec![n(coord), n(j)]),
+        Quantity::Kx2 { coord, j, m } => ("BUFKX2", vec![n(coord), n(j), n(m)]),
+        Quantity::Vx(i) => ("BUFVX", vec![n(i)]),
+        Quantity::Ax(i) => ("BUFAX", vec![n(i)]),
+        Quantity::E0(f) => ("BUFE0", vec![dest(f)]),
+        Quantity::Ke1(f, j) => ("BUFKE1", vec![dest(f), n(j)]),
+        Quantity::Ke2(f, j, m) => ("BUFKE2", vec![dest(f), n(j), n(m)]),
+        Quantity::Ve(f) => ("BUFVE", vec![dest(f)]),
+        Quantity::Ae(f) => ("BUFAE", vec![dest(f)]),
+        Quantity::Det => ("BUFDET", vec![]),
+    }
+}
+
+fn buffer<'py>(py: Python<'py>, b: &Buffer) -> PyResult<Bound<'py, PyDict>> {
+    let (kw, args) = keyword(b.quantity);
+    let d = PyDict::new(py);
+    d.set_item("number", b.number)?;
+    d.set_item("keyword", kw)?;
+    d.set_item("args", args)?;
+    d.set_item("line", b.line)?;
+    Ok(d)
+}
+
+/// The storage requests: buffer definitions, PRINTBUF, SAVEDATA, ANIMATE
+/// and the pictures.
+pub fn storage<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("buffers", c.buffers.iter().map(|b| buffer(py, b)).collect::<PyResult<Vec<_>>>()?)?;
+    d.set_item("printbuf", c.printbuf.clone())?;
+    d.set_item("savedata", c.savedata.clone())?;
+    d.set_item("animate", c.animate.clone())?;
+    let pictures = c
+        .pictures
+        .iter()
+        .map(|p| {
+            let pd = PyDict::new(py);
+            pd.set_item("title", &p.title)?;
+            pd.set_item("line", p.line)?;
+            let plots = p
+                .items
+                .iter()
+                .map(|item| {
+                    let (kw, a, b) = match *item {
+                        PlotItem::Function { x, y } => ("PLOTFUNC", i64::from(x), i64::from(y)),
+                        PlotItem::Curve { x, y } => ("PLOTCURV", i64::from(x), i64::from(y)),
+                        PlotItem::Hodograph { x, y } => ("PLOTHODO", x as i64 + 1, y as i64 + 1),
+                    };
+                    let it = PyDict::new(py);
+                    it.set_item("keyword", kw)?;
+                    it.set_item("a", a)?;
+                    it.set_item("b", b)?;
+                    Ok(it)
+                })
+                .collect::<PyResult<Vec<_>>>()?;
+            pd.set_item("plots", plots)?;
+            Ok(pd)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("pictures", pictures)?;
+    Ok(d)
+}

@@ -1,0 +1,121 @@
+//! The Python exceptions and the mapping of deck and solver errors onto them.
+//!
+//! Messages name things as the deck does: elements, rows and co-ordinates
+//! 1-based, never the core's 0-based indices.
+
+use std::path::Path;
+
+use mechfem_core::{diagnose, Mechanism, SolveError, State};
+use mechfem_deck::Diagnostics;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::{create_exception, PyErr};
+
+create_exception!(mechfem.errors, MechfemError, PyException, "Base class of every error mechfem raises.");
+create_exception!(
+    mechfem.errors,
+    DeckError,
+    MechfemError,
+    "The deck has a mistake: str() is the rendered diagnostic; `path` and `line` say where (line 0: the whole file)."
+);
+create_exception!(mechfem.errors, AssemblyError, MechfemError, "The model cannot be evaluated at position 1.");
+create_exception!(mechfem.errors, ConvergenceError, MechfemError, "Newton iteration cannot reach position 1.");
+create_exception!(
+    mechfem.errors,
+    LimitPositionError,
+    MechfemError,
+    "D^c is singular at position 1: `rows` that depend on each other, `coords` that can still move (deck numbers)."
+);
+
+/// A `DeckError` carrying every diagnostic, with the place of the first.
+pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyErr {
+    let err = DeckError::new_err(diagnostics.to_string());
+    let (file, line) = diagnostics.iter().next().map_or((path.to_path_buf(), 0), |d| (d.path.clone(), d.line));
+    let value = err.value(py);
+    // Setting attributes on a fresh exception instance cannot fail.
+    let _ = value.setattr("path", file.to_string_lossy().into_owned());
+    let _ = value.setattr("line", line);
+    err
+}
+
+/// A short name for what failed, used by the run report (`Stop.kind`).
+pub fn kind(err: &SolveError) -> &'static str {
+    match err {
+        SolveError::Element { .. } => "element",
+        SolveError::Singular { .. } => "singular",
+        SolveError::NoConvergence { .. } => "no_convergence",
+        SolveError::BranchJump { .. } => "branch_jump",
+        SolveError::NotComputed => "not_computed",
+        SolveError::Unsupported(_) => "unsupported",
+        SolveError::NonFinite => "non_finite",
+    }
+}
+
+/// The error in words, with the deck's numbering.
+pub fn describe(mech: &Mechanism, err: &SolveError) -> String {
+    match err {
+        SolveError::Element { element, source } => {
+            let ty = mech.elements().get(*element).map_or("?", |e| e.ty.name());
+            format!("element {} ({ty}): {source}", element + 1)
+        }
+        SolveError::Singular { column, pivot } => {
+            let coord = mech.moving_coords().get(*column).map_or(0, |i| i + 1);
+            format!("D^c is singular (pivot {pivot:.2e} at the column of co-ordinate {coord})")
+        }
+        SolveError::NoConvergence { iterations, residual } => {
+            format!("Newton iteration did not converge in {iterations} iterations (largest deformation {residual:.3e})")
+        }
+        SolveError::BranchJump { predicted, corrected } => format!(
+            "the correction ({corrected:.3e}) went farther than the prediction ({predicted:.3e}): the step may jump to \
+             another assembly branch"
+        ),
+        other => other.to_string(),
+    }
+}
+
+/// The exception for a failure at position 1. A singular D^c is analysed
+/// at the co-ordinates where it was met, to name the rows and co-ordinates
+/// at fault.
+pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> PyErr {
+    let message = describe(mech, err);
+    match err {
+        SolveError::Element { element, .. } => {
+            let e = AssemblyError::new_err(message);
+            let _ = e.value(py).setattr("element", element + 1);
+            e
+        }
+        SolveError::Singular { .. } => {
+            let (rows, coords, text) = match diagnose(mech, state) {
+                Ok(m) if m.rank < m.n => {
+                    let rows: Vec<usize> = m.dependent_rows.iter().map(|r| r + 1).collect();
+                    let coords: Vec<usize> = m.free_coords.iter().map(|i| i + 1).collect();
+                    let which = match rows.as_slice() {
+                        [r] => format!("prescribed row {r} is superfluous"),
+                        _ => format!("prescribed rows {} are linearly dependent", list(&rows)),
+                    };
+                    let text = format!(
+                        "{message}; D^c has rank {} of {}: {which}, and co-ordinates {} can move with every \
+                         prescribed value held",
+                        m.rank,
+                        m.n,
+                        list(&coords)
+                    );
+                    (rows, coords, text)
+                }
+                _ => (Vec::new(), Vec::new(), message),
+            };
+            let e = LimitPositionError::new_err(text);
+            let _ = e.value(py).setattr("rows", rows);
+            let _ = e.value(py).setattr("coords", coords);
+            e
+        }
+        SolveError::NoConvergence { .. } | SolveError::BranchJump { .. } | SolveError::NonFinite => {
+            ConvergenceError::new_err(message)
+        }
+        SolveError::NotComputed | SolveError::Unsupported(_) => MechfemError::new_err(message),
+    }
+}
+
+fn list(numbers: &[usize]) -> String {
+    numbers.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")
+}

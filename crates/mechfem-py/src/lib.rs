@@ -1,0 +1,128 @@
+//! The compiled Python module `mechfem._core`: conversion and error mapping
+//! only. The public API, the command line and the output files are Python
+//! (`python/mechfem`); the module's types are in `python/mechfem/_core.pyi`.
+//!
+//! A tour:
+//!
+//! * [`check_deck`] reads a deck with [`mechfem_deck::load`] and computes
+//!   position 1 with [`mechfem_core::run`] (no motion).
+//! * [`run_deck`] runs the deck's whole motion and returns the buffers, the
+//!   co-ordinates, time and det(D^c) per position as numpy arrays, plus the
+//!   run report, the model echo and the storage requests as dicts
+//!   ([`convert`]). The run releases the GIL; [`observe`] attaches only to
+//!   report progress.
+//! * [`errors`] defines `MechfemError` and its subclasses and maps deck
+//!   diagnostics and solver errors onto them. A motion that stops after
+//!   position 1 is not an error: the report says why.
+
+mod convert;
+mod errors;
+mod observe;
+
+use std::path::{Path, PathBuf};
+
+use mechfem_core::{run, Quantity, RunReport};
+use mechfem_deck::Compiled;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError};
+use crate::observe::Recording;
+
+/// Reads and compiles a deck, without the GIL.
+fn load(py: Python<'_>, path: &Path) -> PyResult<Compiled> {
+    py.detach(|| mechfem_deck::load(path)).map_err(|d| errors::deck_error(py, path, &d))
+}
+
+/// A finished run: the compiled deck, the recording and the report.
+struct Ran {
+    compiled: Compiled,
+    given: Vec<f64>,
+    rec: Recording,
+    report: RunReport,
+}
+
+/// Runs the compiled deck (its motion only when `with_motion`), without the GIL.
+fn execute(py: Python<'_>, mut c: Compiled, with_motion: bool, progress: Option<Py<PyAny>>) -> PyResult<Ran> {
+    let given = c.state.x.clone();
+    let motion = if with_motion { c.motion.as_ref() } else { None };
+    let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
+    let mut rec = Recording::new(&quantities, motion.map_or(0, |m| m.steps) + 1, progress);
+    let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
+    let result = py.detach(|| run(mech, state, motion, params, &mut rec));
+    if let Some(err) = rec.interrupted.take() {
+        return Err(err);
+    }
+    match result {
+        Ok(report) => Ok(Ran { compiled: c, given, rec, report }),
+        Err(e) => Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e)),
+    }
+}
+
+/// Reads the deck at `path`, compiles it and computes position 1 only.
+///
+/// Returns the sizes of the model, det(D^c) and the co-ordinates at
+/// position 1, the adjustment that led there, and the model echo.
+#[pyfunction]
+fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+    let Ran { compiled: c, given, rec, report } = execute(py, load(py, &path)?, false, None)?;
+    let mech = &c.mechanism;
+    let n = mech.n_coords();
+    let at_1 = rec.recorder.coords()[..n].to_vec();
+    let d = PyDict::new(py);
+    d.set_item("n_coords", n)?;
+    d.set_item("n_moving", mech.n_moving())?;
+    d.set_item("n_prescribed", mech.n_prescribed())?;
+    d.set_item("n_dependent", mech.n_dependent())?;
+    d.set_item("n_dof", mech.n_dof())?;
+    d.set_item("det", rec.recorder.data()[rec.n_buffers + 1])?;
+    d.set_item("coords", PyArray1::from_vec(py, at_1.clone()))?;
+    d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
+    d.set_item("model", convert::model(py, &c, &given, &at_1, &rec.prescribed_at_1, &rec.dependent_at_1)?)?;
+    Ok(d)
+}
+
+/// Reads the deck at `path` and runs its whole motion.
+///
+/// `progress(done, total)` is called about every 1% of the positions. A
+/// motion that stops early returns every position computed so far and the
+/// reason in `report["stop"]`; only a failure at position 1 raises.
+#[pyfunction]
+#[pyo3(signature = (path, progress=None))]
+fn run_deck(py: Python<'_>, path: PathBuf, progress: Option<Py<PyAny>>) -> PyResult<Bound<'_, PyDict>> {
+    let Ran { compiled: c, given, rec, report } = execute(py, load(py, &path)?, true, progress)?;
+    let mech = &c.mechanism;
+    let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
+    let width = nb + 2;
+    let data = rec.recorder.data();
+    let column = |q: usize| -> Vec<f64> { (0..positions).map(|k| data[k * width + q]).collect() };
+    let values: Vec<f64> = (0..positions).flat_map(|k| data[k * width..k * width + nb].iter().copied()).collect();
+    let coords = rec.recorder.coords();
+
+    let d = PyDict::new(py);
+    d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
+    d.set_item("buffer_values", convert::array2(py, values, positions, nb)?)?;
+    d.set_item("coords", convert::array2(py, coords.to_vec(), positions, n)?)?;
+    d.set_item("time", PyArray1::from_vec(py, column(nb)))?;
+    d.set_item("det", PyArray1::from_vec(py, column(nb + 1)))?;
+    let steps = c.motion.as_ref().map_or(0, |m| m.steps);
+    d.set_item("report", convert::report(py, mech, &report, steps)?)?;
+    d.set_item("model", convert::model(py, &c, &given, &coords[..n], &rec.prescribed_at_1, &rec.dependent_at_1)?)?;
+    d.set_item("storage", convert::storage(py, &c)?)?;
+    Ok(d)
+}
+
+/// The module `mechfem._core`.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add("MechfemError", py.get_type::<MechfemError>())?;
+    m.add("DeckError", py.get_type::<DeckError>())?;
+    m.add("AssemblyError", py.get_type::<AssemblyError>())?;
+    m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
+    m.add_function(wrap_pyfunction!(check_deck, m)?)?;
+    m.add_function(wrap_pyfunction!(run_deck, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,72 @@
+//! The observer of a run: records the buffers, time, det(D^c) and every
+//! co-ordinate per position, keeps the row values of position 1 for the
+//! model echo, and reports progress to Python about every 1% of positions.
+
+use mechfem_core::{Observer, PositionView, Quantity, Recorder};
+use pyo3::prelude::*;
+
+/// Records a run for Python. Runs without the GIL; attaches only to report
+/// progress and to notice Ctrl-C.
+pub struct Recording {
+    /// Buffers, then time, then det(D^c).
+    pub recorder: Recorder,
+    /// Number of buffer columns at the front of the recorder.
+    pub n_buffers: usize,
+    /// Values of the prescribed rows at position 1.
+    pub prescribed_at_1: Vec<f64>,
+    /// Values of the dependent form parameters at position 1.
+    pub dependent_at_1: Vec<f64>,
+    progress: Option<Py<PyAny>>,
+    total: usize,
+    stride: usize,
+    /// The first error raised by the progress callback or a signal handler;
+    /// raised once the run is over (a run cannot be cut short).
+    pub interrupted: Option<PyErr>,
+}
+
+impl Recording {
+    /// Records `buffers` over a run of `total` positions.
+    pub fn new(buffers: &[Quantity], total: usize, progress: Option<Py<PyAny>>) -> Recording {
+        let mut quantities = buffers.to_vec();
+        quantities.extend([Quantity::Time, Quantity::Det]);
+        Recording {
+            recorder: Recorder::new(quantities, true),
+            n_buffers: buffers.len(),
+            prescribed_at_1: Vec::new(),
+            dependent_at_1: Vec::new(),
+            progress,
+            total,
+            stride: (total / 100).max(1),
+            interrupted: None,
+        }
+    }
+
+    fn report(&mut self, done: usize) {
+        if self.interrupted.is_some() {
+            return;
+        }
+        let result = Python::attach(|py| -> PyResult<()> {
+            py.check_signals()?;
+            if let Some(callback) = &self.progress {
+                callback.call1(py, (done, self.total))?;
+            }
+            Ok(())
+        });
+        self.interrupted = result.err();
+    }
+}
+
+impl Observer for Recording {
+    fn position(&mut self, view: &PositionView<'_>) {
+        if view.index == 0 {
+            let (mech, kin) = (view.mech, view.kin);
+            self.prescribed_at_1 = (0..mech.n_prescribed()).map(|r| kin.row_value(r)).collect();
+            self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
+        }
+        self.recorder.position(view);
+        let done = view.index + 1;
+        if done.is_multiple_of(self.stride) || done == self.total {
+            self.report(done);
+        }
+    }
+}

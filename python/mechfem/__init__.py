@@ -1,0 +1,97 @@
+"""mechfem: finite-element kinematics of planar mechanisms.
+
+Read a deck (the keyword language of the classic RUNMEC program), bring the
+mechanism to its first position, move it through the input motion and get
+every recorded buffer back as numpy arrays::
+
+    import mechfem
+
+    result = mechfem.run_deck("examples/supply/supply.mec")
+    result.buffers[101]          # first-order transfer function, one value per position
+    result.report.stop_reason()  # None when every position was computed
+
+Deck mistakes raise :class:`DeckError`; a model that cannot reach position 1
+raises :class:`AssemblyError`, :class:`ConvergenceError` or
+:class:`LimitPositionError`. A motion that stops later is not an error: the
+result holds every position up to the last good one and says why it stopped.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from importlib.metadata import PackageNotFoundError, version
+from pathlib import Path
+
+from mechfem import _core
+from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from mechfem.result import (
+    AdjustInfo,
+    Buffer,
+    CheckResult,
+    Coordinate,
+    Element,
+    Limit,
+    Model,
+    Picture,
+    Plot,
+    Row,
+    RunReport,
+    RunResult,
+    Stop,
+    Storage,
+    Term,
+    check_result,
+    run_result,
+)
+
+try:
+    __version__ = version("mechfem")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
+    __version__ = "0+unknown"
+
+Progress = Callable[[int, int], object]
+"""Called as ``progress(done, total)`` with the number of positions computed so far."""
+
+
+def run_deck(path: str | os.PathLike[str], progress: Progress | None = None) -> RunResult:
+    """Reads the deck at ``path`` and runs it through its whole motion.
+
+    ``progress``, if given, is called about every 1% of the positions.
+    """
+    deck = Path(path)
+    return run_result(deck, _core.run_deck(os.fspath(deck), progress))
+
+
+def check_deck(path: str | os.PathLike[str]) -> CheckResult:
+    """Reads the deck at ``path``, compiles it and computes position 1, without any motion."""
+    deck = Path(path)
+    return check_result(deck, _core.check_deck(os.fspath(deck)))
+
+
+__all__ = [
+    "AdjustInfo",
+    "AssemblyError",
+    "Buffer",
+    "CheckResult",
+    "ConvergenceError",
+    "Coordinate",
+    "DeckError",
+    "Element",
+    "Limit",
+    "LimitPositionError",
+    "MechfemError",
+    "Model",
+    "Picture",
+    "Plot",
+    "Progress",
+    "Row",
+    "RunReport",
+    "RunResult",
+    "Stop",
+    "Storage",
+    "Term",
+    "__version__",
+    "check_deck",
+    "run_deck",
+]

@@ -1,0 +1,161 @@
+"""Types of the compiled module ``mechfem._core`` (crates/mechfem-py). Private: use :mod:`mechfem`.
+
+Numbers that name things are the deck's, 1-based (destinations signed); positions are 1-based.
+"""
+
+import os
+from collections.abc import Callable
+from typing import TypedDict
+
+import numpy as np
+import numpy.typing as npt
+
+_F64 = npt.NDArray[np.float64]
+
+class MechfemError(Exception):
+    """Base class of every error mechfem raises."""
+
+class DeckError(MechfemError):
+    """The deck has a mistake: str() is the rendered diagnostic."""
+
+    path: str
+    line: int
+    """Line of the first mistake (0: the file as a whole)."""
+
+class AssemblyError(MechfemError):
+    """The model cannot be evaluated at position 1."""
+
+    element: int
+
+class ConvergenceError(MechfemError):
+    """Newton iteration cannot reach position 1."""
+
+class LimitPositionError(MechfemError):
+    """D^c is singular at position 1."""
+
+    rows: list[int]
+    """Prescribed rows that depend on each other (empty when not found)."""
+    coords: list[int]
+    """Co-ordinates that can move with every prescribed value held (empty when not found)."""
+
+class AdjustDict(TypedDict):
+    iterations: int
+    stages: int
+    initial_deformations: list[float]
+    """Per prescribed row: value at the given co-ordinates minus the prescribed value."""
+    residual: float
+
+class LimitDict(TypedDict):
+    kind: str
+    """``sign_change``, ``near_zero``, ``input_limit`` or ``passed``."""
+    after: int
+    """The position before it."""
+    inputs: list[float]
+    coords: list[float]
+    det: float
+
+class StopDict(TypedDict):
+    last_good: int
+    inputs: list[float]
+    last_inputs: list[float]
+    kind: str
+    """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported`` or
+    ``not_computed``."""
+    message: str
+    limit: LimitDict | None
+
+class ReportDict(TypedDict):
+    adjust: AdjustDict
+    positions: int
+    steps: int
+    subdivided_steps: int
+    limits: list[LimitDict]
+    singular_positions: list[int]
+    stop: StopDict | None
+
+class ElementDict(TypedDict):
+    number: int
+    type: str
+    coords: list[int]
+    coord_names: list[str]
+    line: int
+
+class TermDict(TypedDict):
+    seq: int
+    element: int
+    form: str
+    factor: float
+    line: int
+
+class RowDict(TypedDict):
+    dest: int
+    terms: list[TermDict]
+    para: float | None
+    input: int | None
+    """The DOF whose input this row is, if it is one."""
+    value: float
+    """Value at position 1."""
+
+class CoordDict(TypedDict):
+    number: int
+    moving: bool
+    given: float
+    adjusted: float
+
+class ModelDict(TypedDict):
+    elements: list[ElementDict]
+    prescribed: list[RowDict]
+    dependent: list[RowDict]
+    dofs: list[int]
+    """For each DOF, its prescribed row."""
+    coordinates: list[CoordDict]
+
+class BufferDict(TypedDict):
+    number: int
+    keyword: str
+    args: list[int]
+    line: int
+
+class PlotDict(TypedDict):
+    keyword: str
+    a: int
+    b: int
+
+class PictureDict(TypedDict):
+    title: str
+    line: int
+    plots: list[PlotDict]
+
+class StorageDict(TypedDict):
+    buffers: list[BufferDict]
+    printbuf: list[int] | None
+    """None without PRINTBUF; empty for a PRINTBUF naming no buffers (all of them)."""
+    savedata: list[int]
+    animate: str | None
+    pictures: list[PictureDict]
+
+class CheckDict(TypedDict):
+    n_coords: int
+    n_moving: int
+    n_prescribed: int
+    n_dependent: int
+    n_dof: int
+    det: float
+    coords: _F64
+    adjust: AdjustDict
+    model: ModelDict
+
+class RunDict(TypedDict):
+    buffer_numbers: list[int]
+    buffer_values: _F64
+    """positions x buffers, columns in the order of ``buffer_numbers``."""
+    coords: _F64
+    """positions x co-ordinates."""
+    time: _F64
+    det: _F64
+    report: ReportDict
+    model: ModelDict
+    storage: StorageDict
+
+def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
+def run_deck(path: str | os.PathLike[str], progress: Callable[[int, int], object] | None = None) -> RunDict: ...

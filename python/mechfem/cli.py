@@ -1,0 +1,180 @@
+"""The ``mechfem`` command.
+
+    mechfem run DECK [-o OUTDIR]   run the deck, write DECK-stem.prt (and .csv with SAVEDATA) to OUTDIR
+    mechfem check DECK             read the deck and compute position 1 only
+
+Exit status: 0 on success; 1 when the deck has a mistake, position 1 cannot be computed, the motion
+stopped early (its results are still written) or an output file cannot be written; 2 for a wrong
+command line; 3 for an internal error. Messages go to stderr as one short paragraph, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import TextIO
+
+import mechfem
+from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from mechfem.output import count, write_outputs
+from mechfem.result import Storage
+
+EXIT_OK = 0
+EXIT_FAILED = 1
+EXIT_INTERNAL = 3
+EXIT_INTERRUPTED = 130
+
+
+class ProgressBar:
+    """A one-line progress bar on a terminal; silent when the stream is not a terminal."""
+
+    def __init__(self, stream: TextIO, width: int = 30) -> None:
+        self.stream = stream
+        self.width = width
+        self.active = stream.isatty()
+        self.shown = False
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.active or total <= 0:
+            return
+        filled = self.width * done // total
+        bar = "#" * filled + "." * (self.width - filled)
+        self.stream.write(f"\r  position {done}/{total} [{bar}] {100 * done // total:3d}%")
+        self.stream.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        """Clears the bar's line."""
+        if self.shown:
+            self.stream.write("\r" + " " * (self.width + 40) + "\r")
+            self.stream.flush()
+            self.shown = False
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="mechfem",
+        description="Finite-element kinematics of planar mechanisms, driven by RUNMEC-style decks.",
+    )
+    parser.add_argument("--version", action="version", version=f"mechfem {mechfem.__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    run = commands.add_parser("run", help="run a deck and write its print file and data set")
+    run.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
+    run.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        default=None,
+        metavar="OUTDIR",
+        help="folder for the output files (created if needed; default: the deck's folder)",
+    )
+    run.set_defaults(func=cmd_run)
+    check = commands.add_parser("check", help="read a deck and compute its first position only")
+    check.add_argument("deck", type=Path, metavar="DECK", help="the deck to check")
+    check.set_defaults(func=cmd_check)
+    return parser
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    deck: Path = args.deck
+    outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    bar = ProgressBar(sys.stderr)
+    try:
+        result = mechfem.run_deck(deck, progress=bar)
+    finally:
+        bar.close()
+    written = write_outputs(result, outdir)
+    report = result.report
+    print(f"{deck}: {count(report.positions, 'position')} computed")
+    for path in written:
+        print(f"wrote {path}")
+    not_yet = unproduced_outputs(result.storage)
+    if not_yet:
+        print("note: pictures and animation are not produced yet by this version; skipped: " + "; ".join(not_yet))
+    for w in report.warnings:
+        print(f"warning: {deck}: {w}", file=sys.stderr)
+    reason = report.stop_reason()
+    if reason is not None:
+        print(f"error: {deck}: {reason}", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def unproduced_outputs(storage: Storage) -> list[str]:
+    """The ANIMATE and BEGINPIC requests of the deck, in words."""
+    out = [f"ANIMATE {storage.animate}"] if storage.animate else []
+    for pic in storage.pictures:
+        plots = ", ".join(f"{p.keyword} {p.a} {p.b}" for p in pic.plots)
+        title = f" '{pic.title}'" if pic.title else ""
+        out.append(f"BEGINPIC{title} (line {pic.line}: {plots})")
+    return out
+
+
+def cmd_check(args: argparse.Namespace) -> int:
+    deck: Path = args.deck
+    c = mechfem.check_deck(deck)
+    a = c.adjust
+    print(f"{deck}: the deck is valid")
+    print(
+        f"  {c.n_coords} co-ordinates ({c.n_coords - c.n_moving} fixed, {c.n_moving} moving), "
+        f"{count(c.n_prescribed, 'prescribed row')}, {count(c.n_dependent, 'dependent form parameter')}, "
+        f"{c.n_dof} DOF"
+    )
+    largest = a.largest()
+    if largest is not None and a.iterations > 0:
+        print(
+            f"  position 1: adjusted in {a.iterations} Newton iterations "
+            f"(largest initial deformation {largest[1]:.6g} in row {largest[0]}; remaining {a.residual:.3g})"
+        )
+    else:
+        print(f"  position 1: the given co-ordinates fit (remaining deformation {a.residual:.3g})")
+    print(f"  det(D^c) at position 1: {c.det:.10g}")
+    return EXIT_OK
+
+
+_HINTS: dict[type[MechfemError], str] = {
+    AssemblyError: "Check the co-ordinates of the elements named.",
+    ConvergenceError: "Check the XMOV estimates and the PARA values: the estimates must be near a position that "
+    "fits, and angles are taken as principal values in (-pi, pi].",
+    LimitPositionError: "The mechanism is in a limit position, or the model cannot move as described: check the "
+    "FORM destinations, NRDOF and which co-ordinates are XFIX or XMOV.",
+}
+
+
+def error_message(deck: Path, error: MechfemError) -> str:
+    """One paragraph for a failed command."""
+    if isinstance(error, DeckError):
+        return str(error)
+    for kind, hint in _HINTS.items():
+        if isinstance(error, kind):
+            return f"error: {deck}: position 1 cannot be computed: {error}. {hint}"
+    return f"error: {deck}: {error}"
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Runs the command line; returns the exit status."""
+    args = build_parser().parse_args(argv)
+    deck: Path = args.deck
+    try:
+        return int(args.func(args))
+    except MechfemError as e:
+        print(error_message(deck, e), file=sys.stderr)
+    except KeyboardInterrupt:
+        print("mechfem: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except OSError as e:
+        where = f" {e.filename}" if e.filename else ""
+        print(f"error: cannot write the output{where}: {e.strerror or e}", file=sys.stderr)
+    except Exception as e:  # the command line never shows a traceback
+        print(
+            f"mechfem: internal error while running {deck} ({type(e).__name__}: {e}). "
+            "This is a bug in mechfem; please report it together with the deck.",
+            file=sys.stderr,
+        )
+        return EXIT_INTERNAL
+    return EXIT_FAILED
+
+
+if __name__ == "__main__":
+    sys.exit(main())

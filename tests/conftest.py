@@ -1,0 +1,54 @@
+"""Shared fixtures: the repository's folders and a way to run the ``mechfem`` command."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+SUPPLY = ROOT / "examples" / "supply" / "supply.mec"
+
+Cli = Callable[..., subprocess.CompletedProcess[str]]
+
+
+def mechfem_command() -> list[str]:
+    """The installed console script, or the module when running from a tree without one."""
+    script = Path(sys.executable).parent / "mechfem"
+    if script.exists():
+        return [str(script)]
+    found = shutil.which("mechfem")
+    return [found] if found else [sys.executable, "-m", "mechfem.cli"]
+
+
+@pytest.fixture
+def cli() -> Cli:
+    """Runs ``mechfem ARGS...`` without stdin and returns the finished process (text output)."""
+
+    def run(*args: str | Path, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [*mechfem_command(), *map(str, args)],
+            cwd=cwd,
+            stdin=subprocess.DEVNULL,
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+
+    return run
+
+
+@pytest.fixture
+def supply_with_savedata(tmp_path: Path) -> Path:
+    """The supply deck with a SAVEDATA line for its four buffers, so that it writes a data set."""
+    lines = SUPPLY.read_text().splitlines()
+    at = next(k for k, line in enumerate(lines) if line.strip().upper() == "STORAGE")
+    lines.insert(at + 1, "  SAVEDATA 99 100 101 102")
+    deck = tmp_path / "deck" / "supply.mec"
+    deck.parent.mkdir()
+    deck.write_text("\n".join(lines) + "\n")
+    return deck
