@@ -44,11 +44,8 @@ def cli() -> Cli:
 
 @pytest.fixture
 def supply_with_savedata(tmp_path: Path) -> Path:
-    """The supply deck with a SAVEDATA line for its four buffers, so that it writes a data set."""
-    lines = SUPPLY.read_text().splitlines()
-    at = next(k for k, line in enumerate(lines) if line.strip().upper() == "STORAGE")
-    lines.insert(at + 1, "  SAVEDATA 99 100 101 102")
+    """A copy of the supply deck (it saves its four buffers) in a folder of its own."""
     deck = tmp_path / "deck" / "supply.mec"
     deck.parent.mkdir()
-    deck.write_text("\n".join(lines) + "\n")
+    deck.write_text(SUPPLY.read_text())
     return deck

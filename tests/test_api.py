@@ -44,7 +44,7 @@ def test_model_echo_of_supply() -> None:
 def test_storage_of_supply() -> None:
     storage = mechfem.run_deck(SUPPLY).storage
     assert storage.printbuf == [99, 100, 101, 102]
-    assert storage.savedata == []
+    assert storage.savedata == [99, 100, 101, 102]
     assert storage.animate == "film"
     assert [[p.keyword for p in pic.plots] for pic in storage.pictures] == [["PLOTHODO"], ["PLOTFUNC"] * 3]
     assert storage.buffer(101).label() == "BUFKE1 -1 1"

@@ -26,9 +26,14 @@ def test_run_supply_writes_print_file_and_data_set(cli: Cli, supply_with_savedat
 
 
 def test_run_without_savedata_writes_no_data_set(cli: Cli, tmp_path: Path) -> None:
-    proc = cli("run", SUPPLY, "-o", tmp_path)
+    text = "\n".join(line for line in SUPPLY.read_text().splitlines() if "SAVEDATA" not in line)
+    deck = tmp_path / "deck" / "supply.mec"
+    deck.parent.mkdir()
+    deck.write_text(text + "\n")
+    out = tmp_path / "out"
+    proc = cli("run", deck, "-o", out)
     assert proc.returncode == 0, proc.stderr
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["supply.prt"]
+    assert sorted(p.name for p in out.iterdir()) == ["supply.prt"]
 
 
 def test_run_notes_pictures_and_animation_not_produced(cli: Cli, tmp_path: Path) -> None:

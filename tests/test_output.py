@@ -52,4 +52,4 @@ def test_print_file_echoes_the_model() -> None:
 
 def test_outputs_go_to_a_new_folder(tmp_path: Path) -> None:
     written = write_outputs(mechfem.run_deck(SUPPLY), tmp_path / "a" / "b")
-    assert [p.name for p in written] == ["supply.prt"]
+    assert sorted(p.name for p in written) == ["supply.csv", "supply.prt"]

@@ -147,6 +147,9 @@ pub enum SolveError {
     /// A motion mode this version cannot run.
     #[error("{0}")]
     Unsupported(&'static str),
+    /// The observer asked the run to stop (for example on Ctrl-C).
+    #[error("the run was interrupted")]
+    Interrupted,
     /// A computed value became NaN or infinite.
     #[error("a computed value is not finite")]
     NonFinite,

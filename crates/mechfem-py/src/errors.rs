@@ -48,6 +48,7 @@ pub fn kind(err: &SolveError) -> &'static str {
         SolveError::NotComputed => "not_computed",
         SolveError::Unsupported(_) => "unsupported",
         SolveError::NonFinite => "non_finite",
+        SolveError::Interrupted => "interrupted",
     }
 }
 
@@ -112,7 +113,9 @@ pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, e
         SolveError::NoConvergence { .. } | SolveError::BranchJump { .. } | SolveError::NonFinite => {
             ConvergenceError::new_err(message)
         }
-        SolveError::NotComputed | SolveError::Unsupported(_) => MechfemError::new_err(message),
+        SolveError::NotComputed | SolveError::Unsupported(_) | SolveError::Interrupted => {
+            MechfemError::new_err(message)
+        }
     }
 }
 

@@ -47,6 +47,10 @@ struct Ran {
 fn execute(py: Python<'_>, mut c: Compiled, with_motion: bool, progress: Option<Py<PyAny>>) -> PyResult<Ran> {
     let given = c.state.x.clone();
     let motion = if with_motion { c.motion.as_ref() } else { None };
+    if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
+        // Position 1 alone, as a run would compute it.
+        m.apply_initial_inputs(&c.mechanism, &mut c.state);
+    }
     let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let mut rec = Recording::new(&quantities, motion.map_or(0, |m| m.steps) + 1, progress);
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);

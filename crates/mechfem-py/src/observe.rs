@@ -20,7 +20,7 @@ pub struct Recording {
     total: usize,
     stride: usize,
     /// The first error raised by the progress callback or a signal handler;
-    /// raised once the run is over (a run cannot be cut short).
+    /// it stops the run, and is raised once the positions so far are kept.
     pub interrupted: Option<PyErr>,
 }
 
@@ -68,5 +68,9 @@ impl Observer for Recording {
         if done.is_multiple_of(self.stride) || done == self.total {
             self.report(done);
         }
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.interrupted.is_some()
     }
 }

@@ -82,6 +82,27 @@ impl PositionView<'_> {
 pub trait Observer {
     /// Called once per position, in order.
     fn position(&mut self, view: &PositionView<'_>);
+
+    /// Asked after every position: `true` ends the run there (for example
+    /// on Ctrl-C), with [`SolveError::Interrupted`] as the stop reason.
+    fn stop_requested(&self) -> bool {
+        false
+    }
+}
+
+impl Motion {
+    /// Sets the inputs that a motion table fixes at position 1 (its first
+    /// row), overriding their prescribed values. [`run`] does this itself;
+    /// call it to compute position 1 alone the way a run would.
+    pub fn apply_initial_inputs(&self, mech: &Mechanism, state: &mut State) {
+        for (j, im) in self.inputs.iter().enumerate() {
+            if let InputMotion::Table { rows } = im {
+                if let Some(r) = rows.first() {
+                    state.target[mech.input_row(j)] = r[1];
+                }
+            }
+        }
+    }
 }
 
 /// Why a motion stopped before its last position.
@@ -156,14 +177,7 @@ pub fn run(
     }
     let schedule = match motion {
         Some(m) if free.is_none() => {
-            // A motion table fixes the inputs at position 1 too.
-            for (j, im) in m.inputs.iter().enumerate() {
-                if let InputMotion::Table { rows } = im {
-                    if let Some(r) = rows.first() {
-                        state.target[mech.input_row(j)] = r[1];
-                    }
-                }
-            }
+            m.apply_initial_inputs(mech, state);
             let start: Vec<f64> = (0..nd).map(|j| state.target[mech.input_row(j)]).collect();
             Some(Schedule::new(m, &start)?)
         }
@@ -355,5 +369,16 @@ fn run_free(
         let time = k as f64 * m.dt;
         observer.position(&PositionView { index: k, time, mech, state, kin, input_vel: &zeros, input_acc: &zeros });
         report.positions += 1;
+        if observer.stop_requested() && k < m.steps {
+            let last = vec![state.target[mech.input_row(dof)]];
+            report.stop = Some(Stop {
+                last_good: k,
+                inputs: Vec::new(),
+                last_inputs: last,
+                error: SolveError::Interrupted,
+                limit: None,
+            });
+            return;
+        }
     }
 }
