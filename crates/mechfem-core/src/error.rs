@@ -18,8 +18,11 @@ pub enum ElementError {
         d: f64,
     },
     /// A gear radius of zero.
-    #[error("a gear radius is zero")]
-    ZeroRadius,
+    #[error("the gear radius {name} is zero")]
+    ZeroRadius {
+        /// Which radius (its co-ordinate name, `R_a` or `R_c`).
+        name: &'static str,
+    },
 }
 
 /// Mistakes found while compiling a model.

@@ -15,10 +15,13 @@
 //! * [`motion`]: the input motion program and the loop over positions, with
 //!   prediction, correction and automatic step subdivision.
 //! * [`record`]: the quantities that can be recorded per position.
+//! * [`batch`]: many independent runs (the variants of a design study) on
+//!   every core.
 //!
 //! Equation numbers refer to chapter 5 of the theory text that mechfem
 //! implements (numerical kinematics with finite elements).
 
+pub mod batch;
 pub mod elements;
 pub mod error;
 pub mod model;

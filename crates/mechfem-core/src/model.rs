@@ -49,11 +49,39 @@ impl Placed {
     }
 }
 
-/// Rows of combined form parameters, stored flat (compressed rows).
+/// One single form parameter of a row, compiled for evaluation: its
+/// element's type, co-ordinates and the column of D^c of each co-ordinate
+/// (entries past the element's `n` co-ordinates have none).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Slot {
+    /// Element type.
+    pub ty: ElementType,
+    /// Number of co-ordinates of the element.
+    pub n: usize,
+    /// Global co-ordinate indices (first `n`).
+    pub coords: [usize; MAX_COORDS],
+    /// Column of D^c of each co-ordinate, or [`FIXED`].
+    pub cols: [usize; MAX_COORDS],
+}
+
+impl Slot {
+    /// A vector over the moving co-ordinates (indexed by column) seen from
+    /// the element: fixed co-ordinates do not move.
+    #[inline]
+    pub fn gather_columns(&self, a: &[f64]) -> [f64; MAX_COORDS] {
+        self.cols.map(|c| a.get(c).copied().unwrap_or(0.0))
+    }
+}
+
+/// Rows of combined form parameters, stored flat (compressed rows), with
+/// every term compiled into a [`Slot`].
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Rows {
     start: Vec<usize>,
     terms: Vec<Term>,
+    slots: Vec<Slot>,
+    /// The row of every term.
+    row_of: Vec<usize>,
 }
 
 impl Rows {
@@ -61,8 +89,27 @@ impl Rows {
         if self.start.is_empty() {
             self.start.push(0);
         }
+        let row = self.start.len() - 1;
         self.terms.extend_from_slice(terms);
+        self.row_of.extend(terms.iter().map(|_| row));
         self.start.push(self.terms.len());
+    }
+    /// Compiles every term once the elements and columns are known.
+    fn compile(&mut self, elements: &[Placed], column: &[usize]) {
+        self.slots = self
+            .terms
+            .iter()
+            .map(|t| {
+                let e = &elements[t.element];
+                let n = e.ty.n_coords();
+                let (mut coords, mut cols) = ([e.coords[0]; MAX_COORDS], [FIXED; MAX_COORDS]);
+                for k in 0..n {
+                    coords[k] = e.coords[k];
+                    cols[k] = column[e.coords[k]];
+                }
+                Slot { ty: e.ty, n, coords, cols }
+            })
+            .collect();
     }
     pub(crate) fn len(&self) -> usize {
         self.start.len().saturating_sub(1)
@@ -77,6 +124,14 @@ impl Rows {
     /// All terms, flat.
     pub(crate) fn terms(&self) -> &[Term] {
         &self.terms
+    }
+    /// The compiled terms, flat (parallel to [`Self::terms`]).
+    pub(crate) fn slots(&self) -> &[Slot] {
+        &self.slots
+    }
+    /// The row of every term, flat (parallel to [`Self::terms`]).
+    pub(crate) fn row_of(&self) -> &[usize] {
+        &self.row_of
     }
 }
 
@@ -178,7 +233,7 @@ impl Mechanism {
 }
 
 /// The mutable part of an analysis.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct State {
     /// All co-ordinates, fixed and moving.
     pub x: Vec<f64>,
@@ -186,6 +241,19 @@ pub struct State {
     pub target: Vec<f64>,
     /// Angle memory per element (NaN before the first evaluation).
     pub branch: Vec<f64>,
+}
+
+impl Clone for State {
+    fn clone(&self) -> Self {
+        State { x: self.x.clone(), target: self.target.clone(), branch: self.branch.clone() }
+    }
+
+    /// Copies into the existing buffers (no allocation when the sizes match).
+    fn clone_from(&mut self, source: &Self) {
+        self.x.clone_from(&source.x);
+        self.target.clone_from(&source.target);
+        self.branch.clone_from(&source.branch);
+    }
 }
 
 impl State {
@@ -327,6 +395,8 @@ impl MechanismBuilder {
         if prescribed.len() != moving_coords.len() {
             return Err(ModelError::NotSquare { n_rows: prescribed.len(), n_moving: moving_coords.len() });
         }
+        prescribed.compile(&elements, &column);
+        dependent.compile(&elements, &column);
         let mech = Mechanism { moving: self.moving, column, moving_coords, elements, prescribed, dependent, n_dof };
         let mut state =
             State { x: self.x, target: vec![0.0; mech.n_prescribed()], branch: vec![f64::NAN; mech.elements.len()] };

@@ -54,6 +54,7 @@ pub enum Quantity {
 }
 
 use crate::motion::{Observer, PositionView};
+use crate::solver::TransferOrder;
 
 impl Quantity {
     /// Whether the quantity is made from transfer functions (and so does
@@ -70,6 +71,33 @@ impl Quantity {
                 | Quantity::Ve(FormRef::Dependent(_))
                 | Quantity::Ae(FormRef::Dependent(_))
         )
+    }
+
+    /// The transfer functions the quantity is made from: `None` for
+    /// positions, values and the (identity) transfer functions of
+    /// prescribed rows; `Some(First)` for first-order transfer functions,
+    /// velocities and det(D^c); `Some(Second)` for second-order transfer
+    /// functions and accelerations.
+    pub fn transfer_order(&self) -> Option<TransferOrder> {
+        match self {
+            Quantity::Input(_)
+            | Quantity::Time
+            | Quantity::X0(_)
+            | Quantity::E0(_)
+            | Quantity::Ke1(FormRef::Prescribed(_), _)
+            | Quantity::Ke2(FormRef::Prescribed(_), _, _)
+            | Quantity::Ve(FormRef::Prescribed(_))
+            | Quantity::Ae(FormRef::Prescribed(_)) => None,
+            Quantity::Kx1 { .. }
+            | Quantity::Vx(_)
+            | Quantity::Ke1(FormRef::Dependent(_), _)
+            | Quantity::Ve(FormRef::Dependent(_))
+            | Quantity::Det => Some(TransferOrder::First),
+            Quantity::Kx2 { .. }
+            | Quantity::Ax(_)
+            | Quantity::Ke2(FormRef::Dependent(_), _, _)
+            | Quantity::Ae(FormRef::Dependent(_)) => Some(TransferOrder::Second),
+        }
     }
 
     /// The quantity's value at a position: NaN for a quantity that
@@ -151,6 +179,12 @@ impl Recorder {
 }
 
 impl Observer for Recorder {
+    /// As far as the recorded quantities need: a recorder of co-ordinates
+    /// only makes a run compute positions only.
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        self.quantities.iter().map(Quantity::transfer_order).max().flatten()
+    }
+
     fn position(&mut self, view: &PositionView<'_>) {
         for q in &self.quantities {
             self.data.push(q.value(view));

@@ -1,7 +1,7 @@
 //! Binary (truss) element: two points P, Q; length and angle of P->Q
 //! (theory eqs. 5.2-5.7, 5.23, 5.24).
 
-use super::local::{spread_pq, Polar};
+use super::local::{diff, spread_pq, Polar};
 use super::{tracked_atan2, Element, FormEval, Order};
 use crate::error::ElementError;
 
@@ -16,15 +16,36 @@ impl Element for Bin {
 
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         let (dx, dy) = (x[2] - x[0], x[3] - x[1]);
+        if order == Order::Value {
+            // The length, or the angle, and nothing else.
+            let l = (dx * dx + dy * dy).sqrt();
+            if !(l > 0.0 && l.is_finite()) {
+                return Err(ElementError::CoincidentPoints);
+            }
+            out.value = if form == 0 { l } else { tracked_atan2(dy, dx, branch) };
+            return Ok(());
+        }
         let p = Polar::new(dx, dy).ok_or(ElementError::CoincidentPoints)?;
-        let (g, h) = if form == 0 {
-            out.value = p.l;
-            p.length_derivs()
+        out.value = if form == 0 { p.l } else { tracked_atan2(dy, dx, branch) };
+        if order == Order::Second {
+            let (g, h) = if form == 0 { p.length_derivs() } else { p.angle_derivs() };
+            spread_pq(g, h, 0, 2, 4, order, out);
         } else {
-            out.value = tracked_atan2(dy, dx, branch);
-            p.angle_derivs()
-        };
-        spread_pq(g, h, 0, 2, 4, order, out);
+            // d l / d(dx, dy) = (c, s); d beta / d(dx, dy) = (-s, c) / l.
+            let g = if form == 0 { [p.c, p.s] } else { [-p.s * p.r, p.c * p.r] };
+            out.grad[..4].copy_from_slice(&[-g[0], -g[1], g[0], g[1]]);
+        }
+        p.stash(&mut out.aux);
         Ok(())
+    }
+
+    fn second(form: usize, _x: &[f64], first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
+        let p = Polar::unstash(&first.aux);
+        let (da, db) = (diff(a, 0, 2), diff(b, 0, 2));
+        if form == 0 {
+            p.length_second(da, db)
+        } else {
+            p.angle_second(da, db)
+        }
     }
 }

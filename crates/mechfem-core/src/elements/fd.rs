@@ -1,8 +1,9 @@
 //! Finite-difference checks shared by the element tests: first derivatives
 //! against central differences of the value, second derivatives against
-//! central differences of the first derivatives.
+//! central differences of the first derivatives, and the directional second
+//! derivatives of [`ElementType::second`] against the Hessian.
 
-use super::{ElementType, FormEval, Order};
+use super::{hess_product, ElementType, FormEval, Order};
 
 /// A small seeded generator (xorshift64*) so the sweeps are repeatable
 /// without a dependency.
@@ -44,6 +45,30 @@ pub(crate) fn check_derivatives(ty: ElementType, x: &[f64], tol: f64) {
         let h = 1e-5 * (1.0 + x.iter().fold(0.0f64, |m, v| m.max(v.abs())));
         let scale1 = 1.0 + centre.grad[..n].iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let scale2 = 1.0 + centre.hess[..n].iter().flat_map(|r| r[..n].iter()).fold(0.0f64, |m, v| m.max(v.abs()));
+        // A first-order evaluation gives the gradient of a second-order one.
+        let order1 = eval(ty, form, x, Order::First);
+        assert_eq!(order1.value, centre.value, "{} value depends on the order asked", ty.name());
+        for k in 0..n {
+            let d = (order1.grad[k] - centre.grad[k]).abs() / scale1;
+            assert!(d < 1e-14, "{} {} gradient depends on the order asked", ty.name(), ty.form_names()[form]);
+        }
+        // The directional second derivative is the Hessian contracted with
+        // two directions (here two directions made from x itself).
+        let a: Vec<f64> = (0..n).map(|k| (1.3 * k as f64 + x[0]).sin()).collect();
+        let b: Vec<f64> = (0..n).map(|k| (0.7 * k as f64 - x[n - 1]).cos()).collect();
+        for (p, q, first) in [(&a, &b, &order1), (&a, &a, &centre), (&b, &a, &order1)] {
+            let want = hess_product(&centre, n, p, q);
+            let got = ty.second(form, x, first, p, q);
+            assert!(
+                (got - want).abs() < 1e-12 * scale2 * n as f64,
+                "{} {} second derivative along directions: {} vs Hessian {} at {:?}",
+                ty.name(),
+                ty.form_names()[form],
+                got,
+                want,
+                x
+            );
+        }
         for k in 0..n {
             let mut xp = x.to_vec();
             let mut xm = x.to_vec();
@@ -198,7 +223,7 @@ mod tests {
         let mut out = FormEval::default();
         let mut b = f64::NAN;
         let r = ElementType::Gr2.eval(0, &[0.0, 0.0, 0.0, 1.0, 0.0], &mut b, Order::Value, &mut out);
-        assert!(matches!(r, Err(crate::error::ElementError::ZeroRadius)));
+        assert!(matches!(r, Err(crate::error::ElementError::ZeroRadius { name: "R_c" })));
     }
 
     #[test]

@@ -18,8 +18,11 @@ impl Element for Gr2 {
 
     fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         let (ba, bb, bc, ra, rc) = (x[0], x[1], x[2], x[3], x[4]);
-        if ra == 0.0 || rc == 0.0 {
-            return Err(ElementError::ZeroRadius);
+        if ra == 0.0 {
+            return Err(ElementError::ZeroRadius { name: "R_a" });
+        }
+        if rc == 0.0 {
+            return Err(ElementError::ZeroRadius { name: "R_c" });
         }
         let i = -ra / rc;
         let w = ba - bb;
@@ -44,5 +47,17 @@ impl Element for Gr2 {
             set(4, 4, w * i_cc);
         }
         Ok(())
+    }
+
+    fn second(_form: usize, x: &[f64], _first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
+        let (ba, bb, ra, rc) = (x[0], x[1], x[3], x[4]);
+        if ra == 0.0 || rc == 0.0 {
+            return f64::NAN;
+        }
+        let w = ba - bb;
+        let (i_a, i_c) = (-1.0 / rc, ra / (rc * rc));
+        let (i_ac, i_cc) = (1.0 / (rc * rc), -2.0 * ra / (rc * rc * rc));
+        let sym = |k: usize, l: usize| a[k] * b[l] + a[l] * b[k];
+        i_a * (sym(0, 3) - sym(1, 3)) + i_c * (sym(0, 4) - sym(1, 4)) + w * i_ac * sym(3, 4) + w * i_cc * a[4] * b[4]
     }
 }

@@ -24,4 +24,8 @@ impl Element for Hlf {
         }
         Ok(())
     }
+
+    fn second(_form: usize, _x: &[f64], _first: &FormEval, _a: &[f64], _b: &[f64]) -> f64 {
+        0.0
+    }
 }

@@ -10,14 +10,61 @@ pub(crate) struct Polar {
     pub l: f64,
     pub c: f64,
     pub s: f64,
+    /// 1 / l.
+    pub r: f64,
 }
 
 impl Polar {
-    /// `None` when d has zero or non-finite length.
+    /// `None` when d has zero or non-finite length. The length is
+    /// `sqrt(dx^2 + dy^2)`: mechanism dimensions are far from the range
+    /// where the squares over- or underflow, and it is several times
+    /// cheaper than `hypot`.
     #[inline]
     pub fn new(dx: f64, dy: f64) -> Option<Polar> {
-        let l = dx.hypot(dy);
-        (l > 0.0 && l.is_finite()).then(|| Polar { l, c: dx / l, s: dy / l })
+        let l = (dx * dx + dy * dy).sqrt();
+        (l > 0.0 && l.is_finite()).then(|| {
+            let r = 1.0 / l;
+            Polar { l, c: dx * r, s: dy * r, r }
+        })
+    }
+
+    /// Keeps the direction and reciprocal length in `aux[0..3]`.
+    #[inline]
+    pub fn stash(&self, aux: &mut [f64]) {
+        aux[..3].copy_from_slice(&[self.c, self.s, self.r]);
+    }
+
+    /// The direction and reciprocal length kept by [`Self::stash`] (the
+    /// length itself is not needed by the second derivatives).
+    #[inline]
+    pub fn unstash(aux: &[f64]) -> Polar {
+        Polar { l: 1.0 / aux[2], c: aux[0], s: aux[1], r: aux[2] }
+    }
+
+    /// `e . w` for the unit vector e = (c, s) along d.
+    #[inline]
+    pub fn along(&self, w: [f64; 2]) -> f64 {
+        self.c * w[0] + self.s * w[1]
+    }
+
+    /// `m . w` for the unit normal m = (-s, c) of d.
+    #[inline]
+    pub fn across(&self, w: [f64; 2]) -> f64 {
+        self.c * w[1] - self.s * w[0]
+    }
+
+    /// Second derivative of the length along the changes `p`, `q` of d:
+    /// `(m . p)(m . q) / l`.
+    #[inline]
+    pub fn length_second(&self, p: [f64; 2], q: [f64; 2]) -> f64 {
+        self.across(p) * self.across(q) * self.r
+    }
+
+    /// Second derivative of the angle along the changes `p`, `q` of d:
+    /// `-((e . p)(m . q) + (m . p)(e . q)) / l^2`.
+    #[inline]
+    pub fn angle_second(&self, p: [f64; 2], q: [f64; 2]) -> f64 {
+        -(self.along(p) * self.across(q) + self.across(p) * self.along(q)) * (self.r * self.r)
     }
 
     /// d l / d(dx, dy) and the Hessian (eq. 5.23 with P's sign folded in).
@@ -67,6 +114,36 @@ pub(crate) fn spread_pq(
                 out.hess[iq + a][ip + b] = -h[a][b];
             }
         }
+    }
+}
+
+/// The change of Q - P along the direction `w`, with P's co-ordinates at
+/// local indices `ip, ip+1` and Q's at `iq, iq+1`.
+#[inline]
+pub(crate) fn diff(w: &[f64], ip: usize, iq: usize) -> [f64; 2] {
+    [w[iq] - w[ip], w[iq + 1] - w[ip + 1]]
+}
+
+/// Second derivative of u (or v) of point R in a frame at P with angle
+/// beta, along the directions `p` and `q` (see [`local_coordinate`] for the
+/// Hessian it contracts). `(c, s)` is the frame's direction, `(u, v)` the
+/// point's local co-ordinates, `rp`, `rq` the changes of R - P along p, q,
+/// `bp`, `bq` the changes of beta along p, q and `hb` the second derivative
+/// of beta along p, q.
+#[inline]
+pub(crate) fn local_second(
+    axis: Axis,
+    (c, s): (f64, f64),
+    (u, v): (f64, f64),
+    (rp, rq): ([f64; 2], [f64; 2]),
+    (bp, bq): (f64, f64),
+    hb: f64,
+) -> f64 {
+    let along = |w: [f64; 2]| c * w[0] + s * w[1];
+    let across = |w: [f64; 2]| c * w[1] - s * w[0];
+    match axis {
+        Axis::U => across(rp) * bq + bp * across(rq) - u * bp * bq + v * hb,
+        Axis::V => -(along(rp) * bq + bp * along(rq)) - v * bp * bq - u * hb,
     }
 }
 

@@ -50,6 +50,9 @@ pub enum Order {
     Second = 2,
 }
 
+/// Number of intermediate results a [`FormEval`] keeps for [`Element::second`].
+pub const AUX: usize = 6;
+
 /// One form parameter evaluated at an element's co-ordinates, in the
 /// element's own co-ordinate order.
 ///
@@ -62,13 +65,18 @@ pub struct FormEval {
     pub value: f64,
     /// First derivatives with respect to the element's co-ordinates.
     pub grad: [f64; MAX_COORDS],
+    /// Intermediate results of an evaluation to first order or more that the
+    /// element type's [`Element::second`] reuses (their meaning is the
+    /// element type's own: a direction's cosine and sine, a reciprocal
+    /// length, ...).
+    pub aux: [f64; AUX],
     /// Second derivatives (symmetric).
     pub hess: [[f64; MAX_COORDS]; MAX_COORDS],
 }
 
 impl Default for FormEval {
     fn default() -> Self {
-        FormEval { value: 0.0, grad: [0.0; MAX_COORDS], hess: [[0.0; MAX_COORDS]; MAX_COORDS] }
+        FormEval { value: 0.0, grad: [0.0; MAX_COORDS], aux: [0.0; AUX], hess: [[0.0; MAX_COORDS]; MAX_COORDS] }
     }
 }
 
@@ -90,6 +98,35 @@ pub trait Element {
     /// Evaluates form parameter `form` (an index into `FORMS`) at the
     /// element's co-ordinates `x` up to `order`.
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError>;
+
+    /// The second derivative of form parameter `form` at `x` along the
+    /// directions `a` and `b` (both in the element's co-ordinate order):
+    /// `sum_kl D_kl a_k b_l`, the element's share of the second-order
+    /// products of eqs. 5.22 and 5.28. `first` is this form parameter's
+    /// evaluation at `x` to first order or more, whose intermediate results
+    /// it may reuse. NaN where the form parameter is not defined.
+    ///
+    /// The default contracts the Hessian of [`Element::eval`]; element types
+    /// on the hot path of a motion write the product directly, without the
+    /// Hessian.
+    fn second(form: usize, x: &[f64], first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
+        let _ = first;
+        let (mut out, mut branch) = (FormEval::default(), f64::NAN);
+        if Self::eval(form, x, &mut branch, Order::Second, &mut out).is_err() {
+            return f64::NAN;
+        }
+        hess_product(&out, x.len(), a, b)
+    }
+}
+
+/// `sum_kl hess_kl a_k b_l` over the leading n x n block.
+pub(crate) fn hess_product(e: &FormEval, n: usize, a: &[f64], b: &[f64]) -> f64 {
+    let mut s = 0.0;
+    for k in 0..n {
+        let row: f64 = (0..n).map(|l| e.hess[k][l] * b[l]).sum();
+        s += a[k] * row;
+    }
+    s
 }
 
 /// Every element type of the catalogue (`elements.md`).
@@ -221,14 +258,78 @@ impl ElementType {
     ) -> Result<(), ElementError> {
         dispatch!(self, T => T::eval(form, x, branch, order, out))
     }
+
+    /// Second derivative of form parameter `form` of this type along `a`
+    /// and `b`; see [`Element::second`].
+    #[inline]
+    pub fn second(self, form: usize, x: &[f64], first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
+        dispatch!(self, T => T::second(form, x, first, a, b))
+    }
+
+    /// [`Self::eval`] of an element whose co-ordinates are `x[coords[k]]`.
+    /// Indices are checked when a model is built; one out of range reads NaN.
+    #[inline]
+    pub(crate) fn eval_at(
+        self,
+        form: usize,
+        coords: &[usize; MAX_COORDS],
+        x: &[f64],
+        branch: &mut f64,
+        order: Order,
+        out: &mut FormEval,
+    ) -> Result<(), ElementError> {
+        dispatch!(self, T => {
+            let xe = gather::<{ MAX_COORDS }>(T::COORDS.len(), coords, x);
+            T::eval(form, &xe[..T::COORDS.len()], branch, order, out)
+        })
+    }
+
+    /// [`Self::second`] of an element whose co-ordinates are `x[coords[k]]`,
+    /// along the vectors `a` and `b` over the columns of D^c (`cols[k]`, a
+    /// fixed co-ordinate having no column and not moving).
+    #[inline]
+    pub(crate) fn second_at(
+        self,
+        form: usize,
+        (coords, cols): (&[usize; MAX_COORDS], &[usize; MAX_COORDS]),
+        x: &[f64],
+        first: &FormEval,
+        a: &[f64],
+        b: &[f64],
+    ) -> f64 {
+        dispatch!(self, T => {
+            let n = T::COORDS.len();
+            let xe = gather::<{ MAX_COORDS }>(n, coords, x);
+            let ae = gather::<{ MAX_COORDS }>(n, cols, a);
+            let be = if std::ptr::eq(a, b) { ae } else { gather::<{ MAX_COORDS }>(n, cols, b) };
+            T::second(form, &xe[..n], first, &ae[..n], &be[..n])
+        })
+    }
+}
+
+/// The first `n` entries `v[idx[k]]`, 0 where an index is out of range (a
+/// fixed co-ordinate's missing column).
+#[inline(always)]
+fn gather<const M: usize>(n: usize, idx: &[usize; M], v: &[f64]) -> [f64; M] {
+    let mut out = [0.0; M];
+    for k in 0..n.min(M) {
+        out[k] = v.get(idx[k]).copied().unwrap_or(0.0);
+    }
+    out
 }
 
 /// `atan2(dy, dx)` moved by a multiple of 2*pi to lie closest to `*branch`
 /// (principal value when the branch is NaN); the branch is updated.
+///
+/// The principal value is fdlibm's `atan2` (the `libm` crate: within one
+/// unit in the last place, like the platform's, and several times cheaper
+/// than glibc's, whose exactly rounded result and errno handling cost most of
+/// an element's evaluation).
 #[inline]
 pub(crate) fn tracked_atan2(dy: f64, dx: f64, branch: &mut f64) -> f64 {
-    let mut beta = dy.atan2(dx);
-    if branch.is_finite() {
+    let mut beta = libm::atan2(dy, dx);
+    // Within pi of the remembered value the principal value is the closest.
+    if branch.is_finite() && (*branch - beta).abs() >= std::f64::consts::PI {
         let k = ((*branch - beta) / std::f64::consts::TAU).round();
         beta += k * std::f64::consts::TAU;
     }

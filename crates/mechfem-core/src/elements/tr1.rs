@@ -2,7 +2,7 @@
 //! (theory, section 5.4.4, fig. 5.4.5). Defined for every position, also
 //! when R coincides with P.
 
-use super::local::{local_coordinate, zero_hess, Axis, FrameAngle};
+use super::local::{diff, local_coordinate, local_second, zero_hess, Axis, FrameAngle};
 use super::{Element, FormEval, Order, MAX_COORDS};
 use crate::error::ElementError;
 
@@ -27,11 +27,41 @@ impl Element for Tr1 {
             }
             return Ok(());
         }
-        let mut grad = [0.0; MAX_COORDS];
-        grad[2] = 1.0;
-        let frame = FrameAngle { c: x[2].cos(), s: x[2].sin(), grad, hess: [[0.0; MAX_COORDS]; MAX_COORDS] };
         let axis = if form == 1 { Axis::U } else { Axis::V };
-        local_coordinate(axis, x, 0, 3, &frame, N, order, out);
+        let (s, c) = x[2].sin_cos();
+        if order == Order::Second {
+            let mut grad = [0.0; MAX_COORDS];
+            grad[2] = 1.0;
+            let frame = FrameAngle { c, s, grad, hess: [[0.0; MAX_COORDS]; MAX_COORDS] };
+            local_coordinate(axis, x, 0, 3, &frame, N, order, out);
+        }
+        // u = r.e, v = r.m with r = R - P, e = (c, s), m = (-s, c), and
+        // de/dbeta = m, dm/dbeta = -e.
+        let r = diff(x, 0, 3);
+        let (u, v) = (c * r[0] + s * r[1], c * r[1] - s * r[0]);
+        if order >= Order::First {
+            out.aux[..4].copy_from_slice(&[c, s, u, v]);
+        }
+        if order == Order::Second {
+            return Ok(());
+        }
+        let (w, d_beta, value) = match axis {
+            Axis::U => ([c, s], v, u),
+            Axis::V => ([-s, c], -u, v),
+        };
+        out.value = value;
+        if order >= Order::First {
+            out.grad[..N].copy_from_slice(&[-w[0], -w[1], d_beta, w[0], w[1]]);
+        }
         Ok(())
+    }
+
+    fn second(form: usize, _x: &[f64], first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
+        if form == 0 {
+            return 0.0;
+        }
+        let axis = if form == 1 { Axis::U } else { Axis::V };
+        let [c, s, u, v, ..] = first.aux;
+        local_second(axis, (c, s), (u, v), (diff(a, 0, 3), diff(b, 0, 3)), (a[2], b[2]), 0.0)
     }
 }

@@ -8,9 +8,8 @@
 
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};
-use crate::solver::assemble::{eval_rows, fill_dc, grad_dot};
+use crate::solver::assemble::grad_dot;
 use crate::solver::{correct_with, Kinematics, Params, TempInput};
-use crate::Order;
 
 /// Steps along the free motion of a one-DOF mechanism.
 pub(crate) struct FreeStepper {
@@ -51,16 +50,8 @@ impl FreeStepper {
     /// Solves D_temp t = e_row with the current temporary input column:
     /// t is the kernel of the reduced D^c, scaled so t_col = 1.
     fn raw_tangent(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics) -> Result<(), SolveError> {
-        eval_rows(
-            mech,
-            &mech.prescribed,
-            &state.x,
-            &mut state.branch,
-            Order::First,
-            &mut kin.cache,
-            &mut kin.row_values,
-        )?;
-        fill_dc(mech, &kin.cache, &mut kin.lu);
+        kin.evaluate(mech, state)?;
+        kin.assemble(mech);
         kin.lu.set_unit_row(self.row, self.col);
         kin.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
         self.tangent.fill(0.0);
@@ -109,7 +100,7 @@ impl FreeStepper {
             }
         }
         let norm = self.tangent.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut rate = grad_dot(mech, &mech.prescribed, &kin.cache, self.row, &self.tangent) / norm;
+        let mut rate = grad_dot(&mech.prescribed, &kin.cache, self.row, &self.tangent) / norm;
         let dot: f64 = self.tangent.iter().zip(&self.previous).map(|(a, b)| a * b).sum();
         let flip = if self.has_previous { dot < 0.0 } else { rate * self.initial_sign < 0.0 };
         let f = if flip { -1.0 / norm } else { 1.0 / norm };

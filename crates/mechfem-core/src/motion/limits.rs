@@ -53,7 +53,7 @@ pub(crate) fn locate_sign_change(
     after: usize,
 ) -> Option<LimitPosition> {
     let mut kin = Kinematics::new(mech);
-    let mut stepper = Stepper::new(mech, params);
+    let mut stepper = Stepper::new(mech, params, Some(TransferOrder::Second));
     let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut best: Option<(State, f64)> = None;
     let at = |s: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + s * (b - a)).collect() };
@@ -61,7 +61,7 @@ pub(crate) fn locate_sign_change(
         let mid = 0.5 * (lo + hi);
         let mut state = start.clone();
         kin.transfer(mech, &mut state, TransferOrder::Second).ok()?;
-        let det = match stepper.step(mech, &mut state, &mut kin, from, &at(mid)) {
+        let det = match stepper.step(mech, &mut state, start, &mut kin, from, &at(mid)) {
             Ok(_) => kin.det(),
             Err(SolveError::Singular { .. }) => 0.0,
             Err(_) => return None,
@@ -95,7 +95,7 @@ pub(crate) fn locate_input_limit(
     if mech.n_dof() != 1 || ds.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
-    let mut kin = Kinematics::new(mech);
+    let mut kin = Kinematics::dense(mech);
     let mut state = start.clone();
     let mut free = FreeStepper::new(mech, dof, towards, params);
     free.tangent(mech, &mut state, &mut kin).ok()?;

@@ -88,6 +88,17 @@ pub trait Observer {
     fn stop_requested(&self) -> bool {
         false
     }
+
+    /// The transfer functions this observer reads, asked once at the start
+    /// of a run. A driven motion computes no more than that at every
+    /// position after the first: `Some(First)` for det(D^c) and the
+    /// first-order transfer functions, `None` for positions and the values
+    /// of the dependent form parameters only (no det(D^c), so no limit
+    /// positions are detected along the way). Transfer functions that were
+    /// not computed read as NaN. The default is everything.
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        Some(TransferOrder::Second)
+    }
 }
 
 impl Motion {
@@ -163,13 +174,13 @@ pub fn run(
     observer: &mut dyn Observer,
 ) -> Result<RunReport, SolveError> {
     let nd = mech.n_dof();
-    let mut kin = Kinematics::new(mech);
     let free = motion.and_then(|m| {
         m.inputs
             .iter()
             .enumerate()
             .find_map(|(j, im)| if let InputMotion::Free { ds } = im { Some((j, *ds)) } else { None })
     });
+    let mut kin = if free.is_some() { Kinematics::dense(mech) } else { Kinematics::new(mech) };
     if free.is_some() && nd != 1 {
         return Err(SolveError::Unsupported(
             "free motion (MOV_FREE) needs a mechanism with exactly one degree of freedom",
@@ -232,21 +243,28 @@ fn run_driven(
     report: &mut RunReport,
 ) {
     let nd = mech.n_dof();
-    let mut stepper = Stepper::new(mech, params);
+    let mut stepper = Stepper::new(mech, params, observer.transfer_order());
+    stepper.start(mech, state);
     let mut previous = state.clone();
     let (mut det_prev2, mut det_prev, mut det_max) = (f64::NAN, kin.det(), kin.det().abs());
     for k in 1..=m.steps {
         previous.clone_from(state);
-        // Length of the predicted step, a scale for locating a limit.
-        let step_len = (0..nd)
-            .map(|j| (s.values(k)[j] - s.values(k - 1)[j]) * kin.x1(j).iter().map(|v| v * v).sum::<f64>().sqrt())
-            .fold(0.0f64, |a, v| a.max(v.abs()));
-        match stepper.step(mech, state, kin, s.values(k - 1), s.values(k)) {
+        match stepper.step(mech, state, &previous, kin, s.values(k - 1), s.values(k)) {
             Ok(halved) => report.subdivided_steps += usize::from(halved),
             Err(error) => {
                 // The stepper may have got part of the way: go back to the
                 // last position observed, the one the report names.
                 state.clone_from(&previous);
+                // Length of the predicted step, a scale for locating a limit.
+                let step_len = match kin.transfer(mech, state, TransferOrder::First) {
+                    Ok(()) => (0..nd)
+                        .map(|j| {
+                            let d = s.values(k)[j] - s.values(k - 1)[j];
+                            d * kin.x1(j).iter().map(|v| v * v).sum::<f64>().sqrt()
+                        })
+                        .fold(0.0f64, |a, v| a.max(v.abs())),
+                    Err(_) => f64::NAN,
+                };
                 let towards = (0..nd).map(|j| s.values(k)[j] - s.values(k - 1)[j]).sum::<f64>().signum();
                 let limit = limits::locate_input_limit(mech, state, 0, towards, step_len / 16.0, params, k - 1);
                 report.stop = Some(Stop {
@@ -335,7 +353,7 @@ fn run_free(
         if free.input_rate * rate < 0.0 {
             // Passed an extreme of the input: locate it on a copy.
             let mut probe = FreeStepper::new(mech, dof, 1.0, params);
-            let mut probe_kin = Kinematics::new(mech);
+            let mut probe_kin = Kinematics::dense(mech);
             let (before_probe, t) = (before.clone(), t_before.clone());
             if let Some(l) = limits::bisect_extreme(
                 mech,

@@ -1,9 +1,27 @@
-//! One step of driven motion: second-order prediction, Newton correction,
-//! and halving of a step that fails or jumps.
+//! One step of driven motion: prediction, Newton correction, and halving of
+//! a step that fails or jumps.
+//!
+//! The predictor is the second-order Taylor expansion of eqs. 5.18 and 5.22
+//! whenever the second-order transfer functions at the position the step
+//! starts from are known. A run that does not need them at every position
+//! (positions only, or first order) predicts a one-DOF mechanism by
+//! extrapolating the quadratic through its last three positions in the
+//! input value, which costs nothing and is as accurate; where that is not
+//! possible (the first steps, uneven steps, several inputs) it computes the
+//! transfer functions it needs for the Taylor expansion.
+//!
+//! A position that passes the convergence check without an iteration still
+//! carries the deformations it was accepted with (up to the tolerance), and
+//! extrapolation would amplify them from step to step. The copy kept for
+//! extrapolation is therefore refined by one Newton correction with the
+//! factorisation at hand (one solve, no evaluation); the position itself is
+//! the one that was checked.
 
+use crate::elements::Order;
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};
-use crate::solver::{correct, Kinematics, Params, TransferOrder};
+use crate::solver::newton::correct_from;
+use crate::solver::{Kinematics, NewtonInfo, Params, TransferOrder};
 
 /// Carries the mechanism from one set of input values to the next.
 pub(crate) struct Stepper {
@@ -13,10 +31,27 @@ pub(crate) struct Stepper {
     delta: Vec<f64>,
     predicted_x: Vec<f64>,
     params: Params,
+    /// What is computed at every position reached.
+    order: Option<TransferOrder>,
+    /// Positions of a one-DOF mechanism for extrapolation, when used.
+    history: Option<History>,
+    /// Deformations at the position the last correction accepted.
+    residual: Vec<f64>,
+    /// That position refined for the history.
+    refined: Vec<f64>,
+    /// Newton iterations of the last correction.
+    last_iterations: usize,
 }
 
 impl Stepper {
-    pub(crate) fn new(mech: &Mechanism, params: &Params) -> Stepper {
+    /// A stepper that computes `order` at every position it reaches (`None`:
+    /// positions and dependent values only). A mechanism with more than one
+    /// input always gets at least the first-order transfer functions, which
+    /// its predictor needs.
+    pub(crate) fn new(mech: &Mechanism, params: &Params, order: Option<TransferOrder>) -> Stepper {
+        let one_input = mech.n_dof() == 1;
+        let order = if one_input { order } else { order.max(Some(TransferOrder::First)) };
+        let extrapolate = one_input && order != Some(TransferOrder::Second);
         Stepper {
             saved_x: vec![0.0; mech.n_coords()],
             saved_branch: vec![0.0; mech.elements().len()],
@@ -24,16 +59,52 @@ impl Stepper {
             delta: vec![0.0; mech.n_dof()],
             predicted_x: vec![0.0; mech.n_moving()],
             params: *params,
+            order,
+            history: extrapolate.then(|| History::new(mech.n_moving())),
+            residual: vec![0.0; mech.n_moving()],
+            refined: vec![0.0; mech.n_moving()],
+            last_iterations: 1,
         }
     }
 
-    /// Moves the inputs from `from` to `to`; on success `kin` holds the
-    /// second-order transfer functions at the new position. Returns whether
+    /// Remembers the current position as the latest one reached (for
+    /// extrapolation); called at the start of a motion.
+    pub(crate) fn start(&mut self, mech: &Mechanism, state: &State) {
+        if let Some(h) = &mut self.history {
+            h.clear();
+            for (r, &i) in self.refined.iter_mut().zip(mech.moving_coords()) {
+                *r = state.x[i];
+            }
+            h.push(state.target[mech.input_row(0)], &self.refined);
+        }
+    }
+
+    /// Adds the position just reached to the history, refined by one
+    /// correction D^c dx = -(deformations) with the factorisation in `kin`.
+    fn remember(&mut self, mech: &Mechanism, state: &State, kin: &mut Kinematics) {
+        let Some(hist) = &mut self.history else { return };
+        // Deformations two orders below the tolerance need no refining: even
+        // amplified by extrapolation they stay far below it.
+        let tiny = 1e-2 * self.params.tol;
+        let refine = kin.factored && self.residual.iter().any(|r| r.abs() > tiny);
+        if refine {
+            kin.lu.solve(&mut self.residual, &mut kin.work);
+        }
+        for ((r, &i), &dx) in self.refined.iter_mut().zip(mech.moving_coords()).zip(&self.residual) {
+            *r = if refine { state.x[i] - dx } else { state.x[i] };
+        }
+        hist.push(state.target[mech.input_row(0)], &self.refined);
+    }
+
+    /// Moves the inputs from `from` to `to`, starting at `start` (a copy of
+    /// `state`); on success `kin` holds what the stepper computes at every
+    /// position (see [`Stepper::new`]) at the new position. Returns whether
     /// the step had to be subdivided.
     pub(crate) fn step(
         &mut self,
         mech: &Mechanism,
         state: &mut State,
+        start: &State,
         kin: &mut Kinematics,
         from: &[f64],
         to: &[f64],
@@ -43,33 +114,49 @@ impl Stepper {
         let mut halved = false;
         while s < 1.0 {
             let s1 = if s + h >= 1.0 - 1e-12 { 1.0 } else { s + h };
-            self.saved_x.copy_from_slice(&state.x);
-            self.saved_branch.copy_from_slice(&state.branch);
-            self.saved_target.copy_from_slice(&state.target);
+            // Where to go back to if this sub-step fails: `start`, or a copy.
+            if s > 0.0 {
+                self.saved_x.copy_from_slice(&state.x);
+                self.saved_branch.copy_from_slice(&state.branch);
+                self.saved_target.copy_from_slice(&state.target);
+            }
             match self.try_step(mech, state, kin, from, to, s1) {
-                Ok(()) => {
+                Ok(info) => {
                     s = s1;
-                    // Transfer functions at the new point drive the next prediction.
-                    let t = kin.transfer(mech, state, TransferOrder::Second);
+                    if self.order.is_none() && info.iterations > 0 && info.factorisations == 0 {
+                        // Corrected with an old factorisation only: renew it
+                        // here, for refining this position and for the next.
+                        kin.assemble(mech);
+                        let _ = kin.factor();
+                    }
+                    // What is needed at the new point, from the evaluation
+                    // Newton converged with; it also drives the next prediction.
+                    let t = kin.finish(mech, state, self.order);
                     if let Err(e) = t {
                         if s >= 1.0 {
                             return Err(e);
                         }
                     }
+                    self.remember(mech, state, kin);
                     if halved {
                         h = (2.0 * h).min(1.0 - s).max(min_h);
                     }
                 }
                 Err(e) => {
-                    state.x.copy_from_slice(&self.saved_x);
-                    state.branch.copy_from_slice(&self.saved_branch);
-                    state.target.copy_from_slice(&self.saved_target);
+                    if s > 0.0 {
+                        state.x.copy_from_slice(&self.saved_x);
+                        state.branch.copy_from_slice(&self.saved_branch);
+                        state.target.copy_from_slice(&self.saved_target);
+                    } else {
+                        state.clone_from(start);
+                    }
                     h *= 0.5;
                     halved = true;
                     if h < min_h {
                         return Err(e);
                     }
-                    // Restore the transfer functions at the saved point.
+                    // The full transfer functions at the saved point drive
+                    // the shorter steps.
                     kin.transfer(mech, state, TransferOrder::Second)?;
                 }
             }
@@ -77,8 +164,7 @@ impl Stepper {
         Ok(halved)
     }
 
-    /// Predicts (second order, eqs. 5.18, 5.22) and corrects to the inputs at
-    /// fraction `s1` of the step.
+    /// Predicts and corrects to the inputs at fraction `s1` of the step.
     fn try_step(
         &mut self,
         mech: &Mechanism,
@@ -87,7 +173,7 @@ impl Stepper {
         from: &[f64],
         to: &[f64],
         s1: f64,
-    ) -> Result<(), SolveError> {
+    ) -> Result<NewtonInfo, SolveError> {
         let nd = mech.n_dof();
         for j in 0..nd {
             let r = mech.input_row(j);
@@ -95,37 +181,129 @@ impl Stepper {
             self.delta[j] = goal - state.target[r];
             state.target[r] = goal;
         }
-        let second = kin.order() == Some(TransferOrder::Second);
-        let mut predicted = 0.0;
-        if kin.order().is_some() {
-            for (c, &i) in mech.moving_coords().iter().enumerate() {
-                let mut dx = 0.0;
-                for j in 0..nd {
-                    dx += kin.x1(j)[c] * self.delta[j];
-                    if second {
-                        for m in 0..nd {
-                            dx += 0.5 * kin.x2(j, m)[c] * self.delta[j] * self.delta[m];
-                        }
-                    }
-                }
-                state.x[i] += dx;
-                self.predicted_x[c] = state.x[i];
-                predicted += dx * dx;
-            }
-        } else {
-            for (c, &i) in mech.moving_coords().iter().enumerate() {
-                self.predicted_x[c] = state.x[i];
-            }
-        }
-        correct(mech, state, kin, &self.params)?;
+        let predicted = self.predict(mech, state, kin);
+        // A run of positions only needs D^c at the predicted point only if
+        // that point is not accepted as it is, as it usually was last time.
+        let first = if self.order.is_none() && self.last_iterations == 0 { Order::Value } else { Order::First };
+        let info = correct_from(mech, state, kin, &self.params, None, first)?;
+        self.last_iterations = info.iterations;
+        self.residual.copy_from_slice(&kin.rhs);
         // A corrector that goes farther than the predictor did has probably
         // jumped to another assembly branch.
-        let corrected: f64 =
-            mech.moving_coords().iter().enumerate().map(|(c, &i)| (state.x[i] - self.predicted_x[c]).powi(2)).sum();
-        let (corrected, predicted) = (corrected.sqrt(), predicted.sqrt());
+        let corrected: f64 = mech
+            .moving_coords()
+            .iter()
+            .zip(&self.predicted_x)
+            .map(|(&i, &p)| (state.x[i] - p) * (state.x[i] - p))
+            .sum::<f64>()
+            .sqrt();
         if predicted > 0.0 && corrected > predicted + 1e3 * self.params.tol {
             return Err(SolveError::BranchJump { predicted, corrected });
         }
-        Ok(())
+        Ok(info)
+    }
+
+    /// Moves the moving co-ordinates to the predicted position for the
+    /// input change `self.delta` (the inputs in `state.target` are already
+    /// the new ones); returns the length of the predicted move.
+    fn predict(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics) -> f64 {
+        let nd = mech.n_dof();
+        let moving = mech.moving_coords();
+        let extrapolated = self.delta.iter().any(|&d| d != 0.0)
+            && kin.order() != Some(TransferOrder::Second)
+            && self
+                .history
+                .as_ref()
+                .is_some_and(|h| h.extrapolate(state.target[mech.input_row(0)], &mut self.predicted_x));
+        if !extrapolated {
+            if kin.order().is_none() && self.delta.iter().any(|&d| d != 0.0) {
+                // Nothing known at this point: get the transfer functions
+                // (a limit position leaves none, and no prediction).
+                let _ = kin.transfer(mech, state, TransferOrder::Second);
+            }
+            let order = kin.order();
+            for (p, &i) in self.predicted_x.iter_mut().zip(moving) {
+                *p = state.x[i];
+            }
+            if order.is_some() {
+                // eqs. 5.18, 5.22: x += x' d + 1/2 x'' d d.
+                for j in 0..nd {
+                    let dj = self.delta[j];
+                    for (p, v) in self.predicted_x.iter_mut().zip(kin.x1(j)) {
+                        *p += v * dj;
+                    }
+                    if order == Some(TransferOrder::Second) {
+                        for m in 0..nd {
+                            let djm = 0.5 * dj * self.delta[m];
+                            for (p, v) in self.predicted_x.iter_mut().zip(kin.x2(j, m)) {
+                                *p += v * djm;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let mut moved = 0.0;
+        for (c, &i) in moving.iter().enumerate() {
+            let d = self.predicted_x[c] - state.x[i];
+            moved += d * d;
+            state.x[i] = self.predicted_x[c];
+        }
+        moved.sqrt()
+    }
+}
+
+/// The last three positions a one-DOF mechanism reached, with the input
+/// values there (a ring, newest at `head`).
+struct History {
+    n: usize,
+    q: [f64; 3],
+    x: Vec<f64>,
+    len: usize,
+    head: usize,
+}
+
+impl History {
+    fn new(n: usize) -> History {
+        History { n, q: [0.0; 3], x: vec![0.0; 3 * n], len: 0, head: 2 }
+    }
+
+    fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Adds the moving co-ordinates `x` reached at input value `q`.
+    fn push(&mut self, q: f64, x: &[f64]) {
+        self.head = (self.head + 1) % 3;
+        self.q[self.head] = q;
+        self.x[self.head * self.n..(self.head + 1) * self.n].copy_from_slice(x);
+        self.len = (self.len + 1).min(3);
+    }
+
+    /// The quadratic through the three positions, at input value `t`, into
+    /// `out`. `false` (and `out` untouched) without three positions, or when
+    /// their input values are too close together for a step this long.
+    fn extrapolate(&self, t: f64, out: &mut [f64]) -> bool {
+        if self.len < 3 {
+            return false;
+        }
+        let k = [(self.head + 1) % 3, (self.head + 2) % 3, self.head];
+        let [q0, q1, q2] = k.map(|i| self.q[i]);
+        let spacing = (q1 - q0).abs().min((q2 - q1).abs()).min((q2 - q0).abs());
+        if !(spacing > 0.0 && (t - q2).abs() <= 2.0 * spacing) {
+            return false;
+        }
+        // Lagrange weights.
+        let w = [
+            (t - q1) * (t - q2) / ((q0 - q1) * (q0 - q2)),
+            (t - q0) * (t - q2) / ((q1 - q0) * (q1 - q2)),
+            (t - q0) * (t - q1) / ((q2 - q0) * (q2 - q1)),
+        ];
+        let n = self.n;
+        let (x0, x1, x2) = (&self.x[k[0] * n..][..n], &self.x[k[1] * n..][..n], &self.x[k[2] * n..][..n]);
+        for c in 0..n {
+            out[c] = w[0] * x0[c] + w[1] * x1[c] + w[2] * x2[c];
+        }
+        true
     }
 }

@@ -1,18 +1,21 @@
 //! Assembly element by element (remark 1 after eq. 5.26): every single form
 //! parameter of a set of rows is evaluated once into a cache, from which the
 //! rows' values, D^c, and the second-order products are summed. Nothing is
-//! allocated here; the cache is sized once per model.
+//! allocated here; the cache is sized once per model, and so is the list of
+//! places in D^c's storage that each term's gradient goes to.
 
 use super::lu::Lu;
-use crate::elements::{FormEval, Order};
+use crate::elements::{FormEval, Order, MAX_COORDS};
 use crate::error::SolveError;
 use crate::model::{Mechanism, Rows, FIXED};
+
+/// Marker for "this co-ordinate has no entry in D^c" (it is fixed).
+pub(crate) const NO_ENTRY: usize = usize::MAX;
 
 /// Evaluates every term of `rows` at `x` up to `order`, storing the results
 /// in `cache` (one entry per flat term) and the combined row values (eq. 5.33)
 /// in `values`.
 pub(crate) fn eval_rows(
-    mech: &Mechanism,
     rows: &Rows,
     x: &[f64],
     branch: &mut [f64],
@@ -20,31 +23,64 @@ pub(crate) fn eval_rows(
     cache: &mut [FormEval],
     values: &mut [f64],
 ) -> Result<(), SolveError> {
-    for (t, out) in rows.terms().iter().zip(cache.iter_mut()) {
-        mech.eval_term(t, x, branch, order, out)?;
+    for ((t, s), out) in rows.terms().iter().zip(rows.slots()).zip(cache.iter_mut()) {
+        s.ty.eval_at(t.form, &s.coords, x, &mut branch[t.element], order, out)
+            .map_err(|source| SolveError::Element { element: t.element, source })?;
     }
-    for (i, v) in values.iter_mut().enumerate().take(rows.len()) {
-        *v = rows.range(i).map(|k| rows.terms()[k].factor * cache[k].value).sum();
-        if !v.is_finite() {
-            return Err(SolveError::NonFinite);
-        }
+    let values = &mut values[..rows.len()];
+    values.fill(0.0);
+    for ((t, e), &row) in rows.terms().iter().zip(cache.iter()).zip(rows.row_of()) {
+        values[row] += t.factor * e.value;
+    }
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err(SolveError::NonFinite);
     }
     Ok(())
 }
 
-/// Writes D^c (rows: prescribed rows, columns: moving co-ordinates) from a
-/// cache filled to at least first order.
-pub(crate) fn fill_dc(mech: &Mechanism, cache: &[FormEval], lu: &mut Lu) {
-    lu.clear();
+/// Where every term's gradient goes in D^c's storage: for prescribed term
+/// k and the element's co-ordinate a, `positions[k][a]` (or [`NO_ENTRY`]).
+pub(crate) fn dc_positions(mech: &Mechanism, lu: &Lu) -> Vec<[usize; MAX_COORDS]> {
     let rows = &mech.prescribed;
+    let mut positions = vec![[NO_ENTRY; MAX_COORDS]; rows.terms().len()];
     for i in 0..rows.len() {
         for k in rows.range(i) {
-            let t = &rows.terms()[k];
-            for (a, &c) in mech.elements()[t.element].coords().iter().enumerate() {
-                let col = mech.column(c);
-                if col != FIXED {
-                    lu.add(i, col, t.factor * cache[k].grad[a]);
+            let s = &rows.slots()[k];
+            for a in 0..s.n {
+                if s.cols[a] != FIXED {
+                    positions[k][a] = lu.position(i, s.cols[a]).expect("D^c's storage holds its pattern");
                 }
+            }
+        }
+    }
+    positions
+}
+
+/// The structural non-zeros of D^c: the columns of every prescribed row.
+pub(crate) fn dc_pattern(mech: &Mechanism) -> Vec<Vec<usize>> {
+    let rows = &mech.prescribed;
+    (0..rows.len())
+        .map(|i| {
+            rows.range(i)
+                .flat_map(|k| {
+                    let s = &rows.slots()[k];
+                    s.cols[..s.n].iter().copied().filter(|&c| c != FIXED).collect::<Vec<_>>()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Writes D^c (rows: prescribed rows, columns: moving co-ordinates) from a
+/// cache of the prescribed rows filled to at least first order.
+pub(crate) fn fill_dc(mech: &Mechanism, cache: &[FormEval], positions: &[[usize; MAX_COORDS]], lu: &mut Lu) {
+    lu.clear();
+    let values = lu.values_mut();
+    let rows = &mech.prescribed;
+    for (((t, s), e), pos) in rows.terms().iter().zip(rows.slots()).zip(cache).zip(positions) {
+        for a in 0..s.n {
+            if pos[a] != NO_ENTRY {
+                values[pos[a]] += t.factor * e.grad[a];
             }
         }
     }
@@ -52,45 +88,23 @@ pub(crate) fn fill_dc(mech: &Mechanism, cache: &[FormEval], lu: &mut Lu) {
 
 /// `sum_k D_{row,k} a_k`: the row's gradient times a vector over the moving
 /// co-ordinates (fixed co-ordinates do not move).
-pub(crate) fn grad_dot(mech: &Mechanism, rows: &Rows, cache: &[FormEval], row: usize, a: &[f64]) -> f64 {
+pub(crate) fn grad_dot(rows: &Rows, cache: &[FormEval], row: usize, a: &[f64]) -> f64 {
     let mut s = 0.0;
     for k in rows.range(row) {
-        let t = &rows.terms()[k];
-        let mut g = 0.0;
-        for (p, &c) in mech.elements()[t.element].coords().iter().enumerate() {
-            let col = mech.column(c);
-            if col != FIXED {
-                g += cache[k].grad[p] * a[col];
-            }
-        }
-        s += t.factor * g;
+        let ae = rows.slots()[k].gather_columns(a);
+        let g: f64 = (0..rows.slots()[k].n).map(|p| cache[k].grad[p] * ae[p]).sum();
+        s += rows.terms()[k].factor * g;
     }
     s
 }
 
-/// `sum_kl D_{row,kl} a_k b_l`: the second-order product of eq. 5.22/5.28,
-/// summed element by element from a cache filled to second order.
-pub(crate) fn hess_product(mech: &Mechanism, rows: &Rows, cache: &[FormEval], row: usize, a: &[f64], b: &[f64]) -> f64 {
-    let mut s = 0.0;
-    for k in rows.range(row) {
-        let t = &rows.terms()[k];
-        let coords = mech.elements()[t.element].coords();
-        let mut h = 0.0;
-        for (p, &cp) in coords.iter().enumerate() {
-            let colp = mech.column(cp);
-            if colp == FIXED {
-                continue;
-            }
-            let mut hb = 0.0;
-            for (q, &cq) in coords.iter().enumerate() {
-                let colq = mech.column(cq);
-                if colq != FIXED {
-                    hb += cache[k].hess[p][q] * b[colq];
-                }
-            }
-            h += a[colp] * hb;
-        }
-        s += t.factor * h;
+/// `sum_kl D_{row,kl} a_k b_l` for every row into `out`: the second-order
+/// products of eqs. 5.22 and 5.28, summed element by element from each
+/// element's second derivative along the directions (no Hessian is formed),
+/// with `cache` the rows' evaluation at `x` to first order or more.
+pub(crate) fn second_products(rows: &Rows, x: &[f64], cache: &[FormEval], a: &[f64], b: &[f64], out: &mut [f64]) {
+    out[..rows.len()].fill(0.0);
+    for (((t, slot), first), &row) in rows.terms().iter().zip(rows.slots()).zip(cache).zip(rows.row_of()) {
+        out[row] += t.factor * slot.ty.second_at(t.form, (&slot.coords, &slot.cols), x, first, a, b);
     }
-    s
 }

@@ -5,9 +5,7 @@
 //! prescribed value held (a right null vector: a missing constraint, or a
 //! limit position of an input).
 
-use super::assemble::{eval_rows, fill_dc};
 use super::transfer::Kinematics;
-use crate::elements::Order;
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};
 
@@ -29,9 +27,9 @@ pub struct Mobility {
 /// Analyses D^c at the state's co-ordinates.
 pub fn diagnose(mech: &Mechanism, state: &mut State) -> Result<Mobility, SolveError> {
     let n = mech.n_moving();
-    let mut kin = Kinematics::new(mech);
-    eval_rows(mech, &mech.prescribed, &state.x, &mut state.branch, Order::First, &mut kin.cache, &mut kin.row_values)?;
-    fill_dc(mech, &kin.cache, &mut kin.lu);
+    let mut kin = Kinematics::dense(mech);
+    kin.evaluate(mech, state)?;
+    kin.assemble(mech);
     let a: Vec<f64> = (0..n * n).map(|k| kin.lu.get(k / n, k % n)).collect();
     let at: Vec<f64> = (0..n * n).map(|k| a[(k % n) * n + k / n]).collect();
     let (rank, right) = null_vector(&a, n);

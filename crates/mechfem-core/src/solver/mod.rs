@@ -1,12 +1,15 @@
 //! Position analysis and transfer functions, split by verb:
-//! [`lu`] factorises D^c, [`mobility`] explains a singular one, [`assemble`] builds D^c, deformations and the
-//! second-order products element by element, [`newton`] finds positions,
-//! [`transfer`] computes first- and second-order transfer functions.
+//! [`lu`] factorises D^c (dense, or banded after reordering for a large
+//! mechanism), [`mobility`] explains a singular one, [`assemble`] builds
+//! D^c, deformations and the second-order products element by element,
+//! [`newton`] finds positions, [`transfer`] computes first- and
+//! second-order transfer functions.
 
 pub mod assemble;
 pub mod lu;
 pub mod mobility;
 pub mod newton;
+mod ordering;
 pub mod transfer;
 
 pub use mobility::{diagnose, Mobility};

@@ -3,7 +3,6 @@
 //! eps(x) - eps^p is below the tolerance, and the adjustment of a rough
 //! initial position to the prescribed values.
 
-use super::assemble::{eval_rows, fill_dc};
 use super::transfer::Kinematics;
 use super::Params;
 use crate::elements::Order;
@@ -13,8 +12,10 @@ use crate::model::{Mechanism, State};
 /// How a Newton correction went.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct NewtonInfo {
-    /// Iterations (factorisations) made.
+    /// Iterations (corrections) made.
     pub iterations: usize,
+    /// Factorisations of D^c made (the other iterations reused one).
+    pub factorisations: usize,
     /// Largest deformation before the first iteration.
     pub initial: f64,
     /// Largest deformation at the end.
@@ -33,25 +34,22 @@ pub struct TempInput {
     pub value: f64,
 }
 
-/// Deformations of all prescribed rows into `kin.rhs` (with D^c assembled
-/// into `kin.lu`); returns (largest |deformation|, whether every row is
-/// within its tolerance).
+/// Deformations of all prescribed rows into `kin.rhs`, from an evaluation
+/// to `order` into `kin`'s cache; returns (largest |deformation|, whether
+/// every row is within its tolerance).
 fn deformations(
     mech: &Mechanism,
     state: &mut State,
     kin: &mut Kinematics,
     tol: f64,
     temp: Option<TempInput>,
+    order: Order,
 ) -> Result<(f64, bool), SolveError> {
-    eval_rows(mech, &mech.prescribed, &state.x, &mut state.branch, Order::First, &mut kin.cache, &mut kin.row_values)?;
-    fill_dc(mech, &kin.cache, &mut kin.lu);
+    kin.evaluate_to(mech, state, order)?;
     let (mut largest, mut ok) = (0.0f64, true);
     for i in 0..mech.n_prescribed() {
         let r = match temp {
-            Some(t) if t.row == i => {
-                kin.lu.set_unit_row(i, t.col);
-                state.x[mech.moving_coords()[t.col]] - t.value
-            }
+            Some(t) if t.row == i => state.x[mech.moving_coords()[t.col]] - t.value,
             _ => kin.row_values[i] - state.target[i],
         };
         kin.rhs[i] = r;
@@ -63,10 +61,24 @@ fn deformations(
     Ok((largest, ok))
 }
 
+/// A correction with a factorisation of D^c from an earlier point must
+/// shrink the largest deformation at least this much; otherwise D^c is
+/// factorised afresh.
+const CHORD_CONTRACTION: f64 = 0.05;
+
 /// Newton correction at fixed prescribed values (eqs. 5.18, 5.19): repeats
 /// D^c dx = -(eps(x) - eps^p) until every deformation is within
 /// `params.tol`. Uses `kin` as workspace; its transfer functions are stale
-/// afterwards.
+/// afterwards. The last evaluation, at the converged position, is left in
+/// `kin` (the prescribed rows and their deformations) so that the transfer
+/// functions there need no second one.
+///
+/// When `kin` holds a factorisation of D^c from a nearby position (the
+/// previous one of a motion) and one correction with it is expected to
+/// suffice (judged by how much the last such correction shrank the
+/// deformations), it is used as it is (a chord step); otherwise, and after a
+/// chord step that did not shrink the deformations twentyfold, D^c is
+/// assembled and factorised at the current point.
 pub fn correct(
     mech: &Mechanism,
     state: &mut State,
@@ -84,15 +96,36 @@ pub fn correct_with(
     params: &Params,
     temp: Option<TempInput>,
 ) -> Result<NewtonInfo, SolveError> {
+    correct_from(mech, state, kin, params, temp, Order::First)
+}
+
+/// [`correct_with`], evaluating the starting point only to `first` (values
+/// only, when the caller expects it to pass): should it not, it is
+/// evaluated again to first order. The converged position is left in `kin`
+/// to first order unless it is the starting point.
+pub(crate) fn correct_from(
+    mech: &Mechanism,
+    state: &mut State,
+    kin: &mut Kinematics,
+    params: &Params,
+    temp: Option<TempInput>,
+    first: Order,
+) -> Result<NewtonInfo, SolveError> {
     let mut info = NewtonInfo::default();
+    let mut order = first;
     let mut previous = f64::INFINITY;
     let mut growing = 0;
+    // Whether the last correction used an earlier factorisation.
+    let mut chord = false;
     loop {
-        let (largest, ok) = deformations(mech, state, kin, params.tol, temp)?;
+        let (largest, ok) = deformations(mech, state, kin, params.tol, temp, order)?;
         if info.iterations == 0 {
             info.initial = largest;
         }
         info.residual = largest;
+        if chord {
+            kin.chord_rate = (largest / previous).max(1e-4);
+        }
         if ok {
             return Ok(info);
         }
@@ -105,8 +138,28 @@ pub fn correct_with(
         if info.iterations >= params.max_iter || growing >= 3 {
             return Err(SolveError::NoConvergence { iterations: info.iterations, residual: largest });
         }
+        let reuse = temp.is_none()
+            && kin.factored
+            && largest * kin.chord_rate <= params.tol
+            && (info.iterations == 0 || (chord && largest <= CHORD_CONTRACTION * previous));
         previous = largest;
-        kin.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
+        if !reuse && order < Order::First {
+            // D^c is needed here after all.
+            kin.evaluate(mech, state)?;
+        }
+        order = Order::First;
+        if !reuse {
+            kin.assemble(mech);
+            match temp {
+                Some(t) => {
+                    kin.lu.set_unit_row(t.row, t.col);
+                    kin.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
+                }
+                None => kin.factor()?,
+            }
+            info.factorisations += 1;
+        }
+        chord = reuse;
         kin.lu.solve(&mut kin.rhs, &mut kin.work);
         for (c, &i) in mech.moving_coords().iter().enumerate() {
             state.x[i] -= kin.rhs[c];

@@ -6,14 +6,14 @@
 //! [`Kinematics`] is also the workspace of the Newton iteration: every
 //! buffer is allocated once, in [`Kinematics::new`].
 
-use super::assemble::{eval_rows, fill_dc, grad_dot, hess_product};
+use super::assemble::{dc_pattern, dc_positions, eval_rows, fill_dc, grad_dot, second_products};
 use super::lu::Lu;
-use crate::elements::{FormEval, Order};
+use crate::elements::{FormEval, Order, MAX_COORDS};
 use crate::error::SolveError;
 use crate::model::{Mechanism, State, FIXED};
 
 /// How far [`Kinematics::transfer`] goes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum TransferOrder {
     /// det(D^c) and first-order transfer functions.
     First,
@@ -27,6 +27,14 @@ pub struct Kinematics {
     n: usize,
     n_dof: usize,
     pub(crate) lu: Lu,
+    /// Whether `lu` holds the factors of D^c (no row replaced) at the
+    /// current or a recent position.
+    pub(crate) factored: bool,
+    /// How much the last chord step of a Newton correction shrank the
+    /// largest deformation.
+    pub(crate) chord_rate: f64,
+    /// Where each prescribed term's gradient goes in `lu`.
+    dc_pos: Vec<[usize; MAX_COORDS]>,
     pub(crate) work: Vec<f64>,
     pub(crate) rhs: Vec<f64>,
     pub(crate) cache: Vec<FormEval>,
@@ -41,12 +49,33 @@ pub struct Kinematics {
     dep: Vec<f64>,
     dep1: Vec<f64>,
     dep2: Vec<f64>,
+    /// The dependent rows' second-order products of one pair of inputs.
+    dep_second: Vec<f64>,
     order: Option<TransferOrder>,
+    /// The co-ordinates of the last second-order transfer.
+    x_second: Vec<f64>,
+    /// Angle memory for evaluations away from the state.
+    branch_scratch: Vec<f64>,
+    /// Whether `x1, dep1` (`x2, dep2`) hold NaN rather than stale values.
+    first_cleared: bool,
+    second_cleared: bool,
 }
 
 impl Kinematics {
-    /// Allocates every buffer for `mech`.
+    /// Allocates every buffer for `mech`. D^c is stored dense, or as a band
+    /// when the mechanism is large and its D^c can be ordered into a narrow
+    /// band (see [`Lu::for_pattern`]).
     pub fn new(mech: &Mechanism) -> Kinematics {
+        Self::with_lu(mech, Lu::for_pattern(mech.n_moving(), &dc_pattern(mech)))
+    }
+
+    /// As [`Self::new`], with D^c always stored dense: free motion replaces
+    /// a row of D^c by a unit row anywhere, which a band may not hold.
+    pub(crate) fn dense(mech: &Mechanism) -> Kinematics {
+        Self::with_lu(mech, Lu::new(mech.n_moving()))
+    }
+
+    fn with_lu(mech: &Mechanism, lu: Lu) -> Kinematics {
         let n = mech.n_moving();
         let n_dof = mech.n_dof();
         let n_pairs = n_dof * (n_dof + 1) / 2;
@@ -63,21 +92,58 @@ impl Kinematics {
         Kinematics {
             n,
             n_dof,
-            lu: Lu::new(n),
+            dc_pos: dc_positions(mech, &lu),
+            lu,
+            factored: false,
+            chord_rate: 0.05,
             work: vec![0.0; n],
             rhs: vec![0.0; n],
             cache: vec![FormEval::default(); mech.prescribed.terms().len()],
             dep_cache: vec![FormEval::default(); mech.dependent.terms().len()],
             row_values: vec![0.0; n],
             det: f64::NAN,
-            x1: vec![0.0; n * n_dof],
-            x2: vec![0.0; n * n_pairs],
+            x1: vec![f64::NAN; n * n_dof],
+            x2: vec![f64::NAN; n * n_pairs],
             pair,
             dep: vec![0.0; n_d],
-            dep1: vec![0.0; n_d * n_dof],
-            dep2: vec![0.0; n_d * n_pairs],
+            dep1: vec![f64::NAN; n_d * n_dof],
+            dep2: vec![f64::NAN; n_d * n_pairs],
+            dep_second: vec![0.0; n_d],
             order: None,
+            x_second: vec![f64::NAN; mech.n_coords()],
+            branch_scratch: vec![f64::NAN; mech.elements().len()],
+            first_cleared: true,
+            second_cleared: true,
         }
+    }
+
+    /// Whether D^c is stored as a band (see [`Lu::for_pattern`]).
+    pub fn is_banded(&self) -> bool {
+        self.lu.is_banded()
+    }
+
+    /// Evaluates the prescribed rows to first order at the state's
+    /// co-ordinates, into the cache and the row values.
+    pub(crate) fn evaluate(&mut self, mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
+        self.evaluate_to(mech, state, Order::First)
+    }
+
+    /// Evaluates the prescribed rows to `order` (values only: no D^c).
+    pub(crate) fn evaluate_to(&mut self, mech: &Mechanism, state: &mut State, order: Order) -> Result<(), SolveError> {
+        eval_rows(&mech.prescribed, &state.x, &mut state.branch, order, &mut self.cache, &mut self.row_values)
+    }
+
+    /// Writes D^c from the cache into the factorisation's storage.
+    pub(crate) fn assemble(&mut self, mech: &Mechanism) {
+        self.factored = false;
+        fill_dc(mech, &self.cache, &self.dc_pos, &mut self.lu);
+    }
+
+    /// Factorises the assembled D^c.
+    pub(crate) fn factor(&mut self) -> Result<(), SolveError> {
+        self.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
+        self.factored = true;
+        Ok(())
     }
 
     /// Computes det(D^c), the transfer functions of the moving co-ordinates
@@ -85,32 +151,35 @@ impl Kinematics {
     /// with one factorisation of D^c.
     pub fn transfer(&mut self, mech: &Mechanism, state: &mut State, order: TransferOrder) -> Result<(), SolveError> {
         self.order = None;
+        self.evaluate(mech, state)?;
+        self.finish(mech, state, Some(order))
+    }
+
+    /// The analysis at a position whose prescribed rows are already in the
+    /// cache (as a converged Newton correction leaves them): with `None`,
+    /// only the values of the dependent form parameters (positions only:
+    /// no det(D^c), no transfer functions); otherwise as [`Self::transfer`].
+    pub(crate) fn finish(
+        &mut self,
+        mech: &Mechanism,
+        state: &mut State,
+        order: Option<TransferOrder>,
+    ) -> Result<(), SolveError> {
+        self.order = None;
+        let Some(order) = order else {
+            self.det = f64::NAN;
+            self.clear_from(TransferOrder::First);
+            return self.dependents(mech, state, None);
+        };
         let n = self.n;
-        let eval_order = if order == TransferOrder::Second { Order::Second } else { Order::First };
-        eval_rows(
-            mech,
-            &mech.prescribed,
-            &state.x,
-            &mut state.branch,
-            eval_order,
-            &mut self.cache,
-            &mut self.row_values,
-        )?;
-        fill_dc(mech, &self.cache, &mut self.lu);
-        if let Err(s) = self.lu.factor() {
+        self.assemble(mech);
+        if let Err(e) = self.factor() {
             // A limit position: no transfer functions, but the values of the
             // dependent form parameters are still known.
             self.det = 0.0;
-            eval_rows(
-                mech,
-                &mech.dependent,
-                &state.x,
-                &mut state.branch,
-                Order::Value,
-                &mut self.dep_cache,
-                &mut self.dep,
-            )?;
-            return Err(SolveError::Singular { column: s.column, pivot: s.pivot });
+            self.clear_from(TransferOrder::First);
+            self.dependents(mech, state, None)?;
+            return Err(e);
         }
         self.det = self.lu.det();
         // eq. 5.16a: column j of F^cm is (D^c)^-1 e_{input row j}.
@@ -120,48 +189,78 @@ impl Kinematics {
             col[mech.input_row(j)] = 1.0;
             self.lu.solve(col, &mut self.work);
         }
+        self.first_cleared = false;
         if order == TransferOrder::Second {
             // eq. 5.22, for every pair (j, m): D^c x''_jm = -D_kl x'_j,k x'_m,l.
             for j in 0..self.n_dof {
                 for m in j..self.n_dof {
                     let p = self.pair[j * self.n_dof + m];
                     let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
-                    for i in 0..n {
-                        self.rhs[i] = -hess_product(mech, &mech.prescribed, &self.cache, i, a, b);
+                    second_products(&mech.prescribed, &state.x, &self.cache, a, b, &mut self.rhs);
+                    for r in self.rhs.iter_mut() {
+                        *r = -*r;
                     }
                     self.lu.solve(&mut self.rhs, &mut self.work);
                     self.x2[p * n..(p + 1) * n].copy_from_slice(&self.rhs);
                 }
             }
+            self.second_cleared = false;
+            self.x_second.copy_from_slice(&state.x);
+        } else {
+            self.clear_from(TransferOrder::Second);
         }
-        self.dependents(mech, state, order)?;
-        if self.x1.iter().chain(&self.x2).any(|v| !v.is_finite()) {
+        self.dependents(mech, state, Some(order))?;
+        let computed = if order == TransferOrder::Second { &self.x2[..] } else { &[][..] };
+        if self.x1.iter().chain(computed).any(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite);
         }
         self.order = Some(order);
         Ok(())
     }
 
+    /// Sets the transfer functions of `order` and above to NaN, so that
+    /// none that was not computed at this position can be read as if it had.
+    fn clear_from(&mut self, order: TransferOrder) {
+        if order == TransferOrder::First && !self.first_cleared {
+            self.x1.fill(f64::NAN);
+            self.dep1.fill(f64::NAN);
+            self.first_cleared = true;
+        }
+        if !self.second_cleared {
+            self.x2.fill(f64::NAN);
+            self.dep2.fill(f64::NAN);
+            self.second_cleared = true;
+        }
+    }
+
     /// eqs. 5.31, 5.32: value, first and second order of every dependent
-    /// form parameter.
-    fn dependents(&mut self, mech: &Mechanism, state: &mut State, order: TransferOrder) -> Result<(), SolveError> {
+    /// form parameter, as far as `order` goes.
+    fn dependents(
+        &mut self,
+        mech: &Mechanism,
+        state: &mut State,
+        order: Option<TransferOrder>,
+    ) -> Result<(), SolveError> {
         let (n, nd) = (self.n, self.n_dof);
         let rows = &mech.dependent;
-        let eval_order = if order == TransferOrder::Second { Order::Second } else { Order::First };
-        eval_rows(mech, rows, &state.x, &mut state.branch, eval_order, &mut self.dep_cache, &mut self.dep)?;
+        let eval_order = if order.is_some() { Order::First } else { Order::Value };
+        eval_rows(rows, &state.x, &mut state.branch, eval_order, &mut self.dep_cache, &mut self.dep)?;
+        let Some(order) = order else { return Ok(()) };
+        let n_pairs = nd * (nd + 1) / 2;
         for d in 0..rows.len() {
             for j in 0..nd {
-                self.dep1[d * nd + j] = grad_dot(mech, rows, &self.dep_cache, d, &self.x1[j * n..(j + 1) * n]);
+                self.dep1[d * nd + j] = grad_dot(rows, &self.dep_cache, d, &self.x1[j * n..(j + 1) * n]);
             }
-            if order == TransferOrder::Second {
-                let n_pairs = nd * (nd + 1) / 2;
-                for j in 0..nd {
-                    for m in j..nd {
-                        let p = self.pair[j * nd + m];
-                        let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
+        }
+        if order == TransferOrder::Second {
+            for j in 0..nd {
+                for m in j..nd {
+                    let p = self.pair[j * nd + m];
+                    let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
+                    second_products(rows, &state.x, &self.dep_cache, a, b, &mut self.dep_second);
+                    for d in 0..rows.len() {
                         self.dep2[d * n_pairs + p] =
-                            grad_dot(mech, rows, &self.dep_cache, d, &self.x2[p * n..(p + 1) * n])
-                                + hess_product(mech, rows, &self.dep_cache, d, a, b);
+                            grad_dot(rows, &self.dep_cache, d, &self.x2[p * n..(p + 1) * n]) + self.dep_second[d];
                     }
                 }
             }
@@ -284,11 +383,22 @@ impl Kinematics {
     pub fn second_order_all(&mut self, mech: &Mechanism, f: &[f64], out: &mut [f64]) -> Result<(), SolveError> {
         let n = self.n;
         self.require(TransferOrder::Second)?;
+        // The prescribed rows at the position of the last second-order transfer.
+        self.branch_scratch.fill(f64::NAN);
+        eval_rows(
+            &mech.prescribed,
+            &self.x_second,
+            &mut self.branch_scratch,
+            Order::First,
+            &mut self.cache,
+            &mut self.work,
+        )?;
         for k in 0..n {
             for l in k..n {
                 let (a, b) = (&f[k * n..(k + 1) * n], &f[l * n..(l + 1) * n]);
-                for i in 0..n {
-                    self.rhs[i] = -hess_product(mech, &mech.prescribed, &self.cache, i, a, b);
+                second_products(&mech.prescribed, &self.x_second, &self.cache, a, b, &mut self.rhs);
+                for r in self.rhs.iter_mut() {
+                    *r = -*r;
                 }
                 self.lu.solve(&mut self.rhs, &mut self.work);
                 out[(k * n + l) * n..(k * n + l + 1) * n].copy_from_slice(&self.rhs);

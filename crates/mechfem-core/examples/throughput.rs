@@ -1,0 +1,93 @@
+//! Positions per second of the core on the four-bar of
+//! `benches/bench_peers.py` (crank 1, coupler 3, rocker 2.5, frame 3.2,
+//! coupler point 1.8 from A at 0.6 rad from A->B), one crank turn on one
+//! core, for each thing a run can compute at every position: positions
+//! only, first-order or second-order transfer functions.
+//!
+//! ```text
+//! cargo run --release -p mechfem-core --example throughput -- [STEPS ...] [--repeat R]
+//! ```
+//!
+//! Prints one JSON object per line: `{"steps": .., "mode": .., "seconds": ..,
+//! "positions_per_second": .., "coupler_last": [x, y]}`, the time being the
+//! best of R runs (default 5). Without STEPS: 360 and 100000.
+
+use mechfem_core::{
+    run, ElementType, InputMotion, MechanismBuilder, Motion, Observer, Params, PositionView, TransferOrder,
+};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// Keeps the coupler point of the last position; asks for `order`.
+struct Last([f64; 2], Option<TransferOrder>);
+
+impl Observer for Last {
+    fn position(&mut self, view: &PositionView<'_>) {
+        self.0 = [view.state.x[8], view.state.x[9]];
+    }
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        self.1
+    }
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut steps_list = Vec::new();
+    let mut repeat = 5usize;
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        if a == "--repeat" {
+            repeat = args.next().ok_or("--repeat needs a number")?.parse()?;
+        } else {
+            steps_list.push(a.parse::<usize>()?);
+        }
+    }
+    if steps_list.is_empty() {
+        steps_list = vec![360, 100_000];
+    }
+
+    let (a, b, c, d, p, alpha) = (1.0, 3.0, 2.5, 3.2, 1.8, 0.6f64);
+    let mut builder = MechanismBuilder::new();
+    let f = [builder.fixed(0.0), builder.fixed(0.0), builder.fixed(d), builder.fixed(0.0)];
+    let m: Vec<usize> = [1.0, 0.0, 2.725, 2.4545, 1.02, 1.8].iter().map(|&v| builder.moving(v)).collect();
+    let crank = builder.element(ElementType::Bin, &[f[0], f[1], m[0], m[1]]);
+    let coupler = builder.element(ElementType::Tr2, &[m[0], m[1], m[2], m[3], m[4], m[5]]);
+    let rocker = builder.element(ElementType::Bin, &[f[2], f[3], m[2], m[3]]);
+    let term = mechfem_core::Term::new;
+    builder.prescribe(&[term(crank, 0)]);
+    builder.prescribe(&[term(coupler, 0)]);
+    builder.prescribe(&[term(rocker, 0)]);
+    builder.prescribe(&[term(coupler, 2)]);
+    builder.prescribe(&[term(coupler, 3)]);
+    builder.input(&[term(crank, 1)]);
+    let (mech, mut start) = builder.build()?;
+    start.target.copy_from_slice(&[a, b, c, p * alpha.cos(), p * alpha.sin(), 0.0]);
+
+    let params = Params::default();
+    for steps in steps_list {
+        let motion = Motion { steps, dt: 1.0, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
+        for (mode, order) in
+            [("positions", None), ("first", Some(TransferOrder::First)), ("second", Some(TransferOrder::Second))]
+        {
+            let mut best = f64::INFINITY;
+            let mut last = [f64::NAN; 2];
+            for _ in 0..repeat.max(1) {
+                let mut state = start.clone();
+                let mut obs = Last([f64::NAN; 2], order);
+                let t = Instant::now();
+                let report = run(&mech, &mut state, Some(&motion), &params, &mut obs)?;
+                best = best.min(t.elapsed().as_secs_f64());
+                if let Some(stop) = report.stop {
+                    return Err(format!("the motion stopped: {:?}", stop.error).into());
+                }
+                last = obs.0;
+            }
+            println!(
+                "{{\"steps\": {steps}, \"mode\": \"{mode}\", \"seconds\": {best:e}, \"positions_per_second\": {:e}, \"coupler_last\": [{}, {}]}}",
+                steps as f64 / best,
+                last[0],
+                last[1]
+            );
+        }
+    }
+    Ok(())
+}

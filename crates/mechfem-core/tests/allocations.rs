@@ -1,0 +1,75 @@
+//! A run allocates its workspace once: the number of heap allocations does
+//! not grow with the number of positions, whatever the run computes at each
+//! one and however D^c is stored. Counted by `allocation_counter`, whose
+//! global allocator counts the allocations of the measuring thread (a count,
+//! not a timing).
+
+#[path = "common/chain.rs"]
+mod chain;
+
+use mechfem_core::{
+    run, ElementType, InputMotion, Mechanism, MechanismBuilder, Motion, Observer, Params, PositionView, State, Term,
+    TransferOrder,
+};
+use std::f64::consts::PI;
+
+/// Reads what a run computed at every position without allocating.
+struct Touch(f64, Option<TransferOrder>);
+
+impl Observer for Touch {
+    fn position(&mut self, view: &PositionView<'_>) {
+        self.0 += view.state.x[4] + view.kin.det().abs().min(1.0);
+    }
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        self.1
+    }
+}
+
+fn fourbar() -> (Mechanism, State) {
+    let mut b = MechanismBuilder::new();
+    let f = [b.fixed(0.0), b.fixed(0.0), b.fixed(3.2), b.fixed(0.0)];
+    let m: Vec<usize> = [1.0, 0.0, 2.7, 2.5, 1.0, 1.8].iter().map(|&v| b.moving(v)).collect();
+    let crank = b.element(ElementType::Bin, &[f[0], f[1], m[0], m[1]]);
+    let coupler = b.element(ElementType::Tr2, &[m[0], m[1], m[2], m[3], m[4], m[5]]);
+    let rocker = b.element(ElementType::Bin, &[f[2], f[3], m[2], m[3]]);
+    for t in [Term::new(crank, 0), Term::new(coupler, 0), Term::new(rocker, 0)] {
+        b.prescribe(&[t]);
+    }
+    b.prescribe(&[Term::new(coupler, 2)]);
+    b.prescribe(&[Term::new(coupler, 3)]);
+    b.input(&[Term::new(crank, 1)]);
+    b.dependent(&[Term::new(coupler, 1)]);
+    let (mech, mut state) = b.build().unwrap();
+    state.target.copy_from_slice(&[1.0, 3.0, 2.5, 1.8 * 0.6f64.cos(), 1.8 * 0.6f64.sin(), 0.0]);
+    (mech, state)
+}
+
+/// Allocations of a run of `steps` steps (one crank revolution).
+fn count(mech: &Mechanism, start: &State, steps: usize, order: Option<TransferOrder>) -> usize {
+    let motion = Motion { steps, dt: 0.01, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
+    let mut state = start.clone();
+    let mut touch = Touch(0.0, order);
+    let mut report = None;
+    let info = allocation_counter::measure(|| {
+        report = Some(run(mech, &mut state, Some(&motion), &Params::default(), &mut touch).unwrap());
+    });
+    let report = report.unwrap();
+    assert!(report.stop.is_none() && report.positions == steps + 1);
+    assert!(touch.0.is_finite());
+    info.count_total as usize
+}
+
+#[test]
+fn allocations_do_not_grow_with_the_number_of_positions() {
+    let small = chain::chain(2, 0.3);
+    let banded = chain::chain(40, 0.3);
+    for (name, (mech, start)) in [("four-bar", fourbar()), ("chain of 2", small), ("chain of 40 (banded)", banded)] {
+        for order in [None, Some(TransferOrder::First), Some(TransferOrder::Second)] {
+            let few = count(&mech, &start, 90, order);
+            let many = count(&mech, &start, 900, order);
+            // The workspace itself is allocated: the counter is live.
+            assert!(few > 0, "no allocation counted at all");
+            assert_eq!(few, many, "{name}, {order:?}: {few} allocations for 90 steps, {many} for 900");
+        }
+    }
+}

@@ -1,0 +1,96 @@
+//! A chain of four-bar loops (see `common/chain.rs`): large enough that D^c
+//! is stored as a band, and checked loop by loop against the closed form of
+//! the four-bar, including the transfer functions of the last rocker.
+
+#[path = "common/chain.rs"]
+mod chain;
+
+use chain::{chain, exact};
+use mechfem_core::{
+    run, FormRef, InputMotion, Kinematics, Motion, Observer, Params, PositionView, Quantity, Recorder, TransferOrder,
+};
+use std::f64::consts::PI;
+
+const LOOPS: usize = 40;
+
+fn close(what: &str, got: f64, want: f64, tol: f64) {
+    assert!((got - want).abs() <= tol * (1.0 + want.abs()), "{what}: got {got}, closed form {want}");
+}
+
+/// The last rocker's angle by the closed form, continued across 2 pi.
+fn last_rocker(theta: f64, near: f64) -> f64 {
+    let g = *exact(LOOPS, theta).1.last().unwrap();
+    g + 2.0 * PI * ((near - g) / (2.0 * PI)).round()
+}
+
+#[test]
+fn a_long_chain_is_stored_as_a_band() {
+    let (mech, _) = chain(LOOPS, 0.2);
+    assert_eq!(mech.n_moving(), 4 * LOOPS);
+    assert!(Kinematics::new(&mech).is_banded());
+    let (small, _) = chain(2, 0.2);
+    assert!(!Kinematics::new(&small).is_banded());
+}
+
+#[test]
+fn chain_follows_the_closed_form_through_a_revolution() {
+    let theta0 = 0.2;
+    let (mech, mut state) = chain(LOOPS, theta0);
+    let steps = 72;
+    let motion = Motion { steps, dt: 1.0, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
+    let last = FormRef::Dependent(LOOPS - 1);
+    let mut q = vec![Quantity::Input(0), Quantity::E0(last), Quantity::Ke1(last, 0), Quantity::Ke2(last, 0, 0)];
+    q.push(Quantity::Det);
+    let mut rec = Recorder::new(q, true);
+    let report = run(&mech, &mut state, Some(&motion), &Params::default(), &mut rec).unwrap();
+    assert!(report.stop.is_none(), "{:?}", report.stop);
+    let n = mech.n_coords();
+    for k in 0..=steps {
+        let row = &rec.data()[k * 5..(k + 1) * 5];
+        let theta = row[0];
+        let (points, _) = exact(LOOPS, theta);
+        let x = &rec.coords()[k * n..(k + 1) * n];
+        for (l, p) in points.iter().enumerate() {
+            for (i, v) in p.iter().enumerate() {
+                // Moving co-ordinates follow the LOOPS + 1 fixed pivots (2 each).
+                close("co-ordinate", x[2 * (LOOPS + 1) + 4 * l + i], *v, 1e-9);
+            }
+        }
+        close("last rocker angle", row[1], last_rocker(theta, row[1]), 1e-9);
+        // Central differences of the closed form.
+        let h = 1e-4;
+        let (gp, gm) = (last_rocker(theta + h, row[1]), last_rocker(theta - h, row[1]));
+        close("last rocker angle'", row[2], (gp - gm) / (2.0 * h), 1e-6);
+        close("last rocker angle''", row[3], (gp - 2.0 * row[1] + gm) / (h * h), 1e-4);
+        assert!(row[4].is_finite() && row[4] != 0.0);
+    }
+}
+
+/// Counts positions and keeps the last co-ordinates, reading positions only.
+struct Positions(Vec<f64>, usize);
+
+impl Observer for Positions {
+    fn position(&mut self, view: &PositionView<'_>) {
+        self.0.extend_from_slice(&view.state.x);
+        self.1 += 1;
+        assert!(view.kin.order().is_none() || view.index == 0);
+    }
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        None
+    }
+}
+
+#[test]
+fn positions_only_run_of_the_chain_reaches_the_same_positions() {
+    let (mech, start) = chain(LOOPS, 0.2);
+    let motion = Motion { steps: 500, dt: 1.0, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
+    let mut full = Recorder::new(vec![Quantity::Ke2(FormRef::Dependent(0), 0, 0)], true);
+    run(&mech, &mut start.clone(), Some(&motion), &Params::default(), &mut full).unwrap();
+    let mut fast = Positions(Vec::new(), 0);
+    let report = run(&mech, &mut start.clone(), Some(&motion), &Params::default(), &mut fast).unwrap();
+    assert!(report.stop.is_none());
+    assert_eq!(fast.1, 501);
+    for (a, b) in fast.0.iter().zip(full.coords()) {
+        assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+    }
+}
