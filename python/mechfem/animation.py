@@ -1,0 +1,270 @@
+"""The deck's animation (``ANIMATE name``): the mechanism moving through its positions.
+
+``name.gif`` is always written; ``name.mp4`` too when ``ffmpeg`` is on the PATH. Each frame shows the
+mechanism, the paths of the PLOTHODO points (faint for the whole motion, strong up to the frame) and their
+first-order velocity arrows, with fixed axis limits that hold every position. A run with more positions than
+:data:`MAX_FRAMES` is subsampled evenly (the first and last positions are always shown).
+
+Frames are rendered one at a time and written to the files as they are made, so memory does not grow with
+the number of frames. Both files are written under temporary names and renamed when complete.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import secrets
+import shutil
+import subprocess
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import BinaryIO
+
+import numpy as np
+import numpy.typing as npt
+
+from mechfem.drawing import MechanismDrawing, MplMechanism
+from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, atomic_path, describe_buffer, fit_equal, hodograph
+from mechfem.result import RunResult
+
+IntArray = npt.NDArray[np.int64]
+
+#: Most frames an animation has; longer runs are subsampled.
+MAX_FRAMES = 200
+#: Frames per second.
+FPS = 20
+#: The longer side of a frame, in pixels.
+FRAME_SIZE = 720
+
+
+@dataclass(frozen=True)
+class FramePlan:
+    """Which positions become frames."""
+
+    positions: int
+    """Positions computed."""
+    frames: IntArray
+    """The 0-based positions shown, in order."""
+
+    @property
+    def subsampled(self) -> bool:
+        return len(self.frames) < self.positions
+
+    def describe(self) -> str:
+        """``73 frames, one per position`` or how the positions were subsampled."""
+        n = len(self.frames)
+        if not self.subsampled:
+            return f"{n} frames, one per position" if n != 1 else "1 frame"
+        every = (self.positions - 1) / max(n - 1, 1)
+        return f"{n} frames for {self.positions} positions: subsampled, about one position in {every:.3g} is shown"
+
+
+def frame_plan(positions: int, max_frames: int = MAX_FRAMES) -> FramePlan:
+    """Evenly spread frames over ``positions`` positions, at most ``max_frames`` (>= 2), first and last included."""
+    if positions <= max_frames:
+        return FramePlan(positions, np.arange(positions, dtype=np.int64))
+    frames = np.unique(np.linspace(0, positions - 1, max(max_frames, 2)).round().astype(np.int64))
+    return FramePlan(positions, frames)
+
+
+def ffmpeg() -> str | None:
+    """The ffmpeg program, or None when it is not on the PATH."""
+    return shutil.which("ffmpeg")
+
+
+def animation_files(result: RunResult, outdir: Path, mp4: bool | None = None) -> list[Path]:
+    """The files ``ANIMATE name`` makes: ``name.gif``, and ``name.mp4`` with ffmpeg (``mp4=None``: if on the PATH)."""
+    name = result.storage.animate
+    if not name:
+        return []
+    with_mp4 = ffmpeg() is not None if mp4 is None else mp4
+    return [outdir / f"{name}.gif"] + ([outdir / f"{name}.mp4"] if with_mp4 else [])
+
+
+@dataclass
+class AnimationInfo:
+    """What :func:`write_animation` wrote."""
+
+    plan: FramePlan
+    files: list[Path] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    """Anything that did not go as asked (e.g. ffmpeg failing), one sentence each."""
+
+
+class GifStream:
+    """Writes an animated GIF frame by frame: only the current frame is ever held in memory.
+
+    Every frame gets its own colour table (adaptive, 255 colours), so colours that appear late are kept.
+    """
+
+    def __init__(self, f: BinaryIO, fps: int = FPS) -> None:
+        self.f = f
+        self.duration = max(20, round(1000 / fps))
+        self.frames = 0
+
+    def add(self, rgb: object) -> None:
+        from PIL import GifImagePlugin, Image
+
+        assert isinstance(rgb, Image.Image)
+        frame = rgb.convert("RGB").quantize(colors=255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        if self.frames == 0:
+            header, _ = GifImagePlugin.getheader(frame, info={"loop": 0, "duration": self.duration})
+            self.f.write(b"".join(header))
+        for chunk in GifImagePlugin.getdata(frame, duration=self.duration, include_color_table=True):
+            self.f.write(chunk)
+        self.frames += 1
+
+    def close(self) -> None:
+        self.f.write(b";")
+
+
+class _Mp4Pipe:
+    """Raw RGB frames piped into ffmpeg, which encodes them to MP4 (H.264 when it has it)."""
+
+    def __init__(self, program: str, path: Path, width: int, height: int, fps: int) -> None:
+        encoders = subprocess.run(
+            [program, "-hide_banner", "-encoders"], capture_output=True, text=True, check=False
+        ).stdout
+        codec = ["-c:v", "libx264", "-pix_fmt", "yuv420p"] if "libx264" in encoders else ["-c:v", "mpeg4", "-q:v", "3"]
+        args = [program, "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24"]
+        args += ["-s", f"{width}x{height}", "-r", str(fps), "-i", "-", "-an", *codec, str(path)]
+        self.proc = subprocess.Popen(args, stdin=subprocess.PIPE, stderr=subprocess.PIPE)
+
+    def add(self, rgb: npt.NDArray[np.uint8]) -> None:
+        assert self.proc.stdin is not None
+        self.proc.stdin.write(np.ascontiguousarray(rgb).tobytes())
+
+    def close(self) -> str | None:
+        """Waits for ffmpeg; returns its complaint when it failed."""
+        assert self.proc.stdin is not None
+        self.proc.stdin.close()
+        err = self.proc.stderr.read().decode(errors="replace") if self.proc.stderr else ""
+        if self.proc.wait() != 0:
+            return err.strip().splitlines()[-1] if err.strip() else f"exit status {self.proc.returncode}"
+        return None
+
+
+def _title(result: RunResult, name: str, k: int) -> str:
+    text = f"{name}: position {k + 1} of {result.positions}"
+    inputs = [b for b in result.storage.buffers if b.keyword == "BUFINP"]
+    shown = []
+    for b in inputs[:2]:
+        value = float(result.buffers[b.number][k])
+        shown.append(f"{describe_buffer(result, b).split(' = ')[0]} = {value:.6g}")
+    if not shown and result.time.size:
+        shown.append(f"time = {float(result.time[k]):.6g}")
+    return text + ("  (" + ", ".join(shown) + ")" if shown else "")
+
+
+def write_animation(
+    result: RunResult,
+    outdir: Path,
+    max_frames: int = MAX_FRAMES,
+    mp4: bool | None = None,
+    on_frame: Callable[[int, int], object] | None = None,
+) -> AnimationInfo:
+    """Writes the deck's animation into ``outdir``; ``mp4=None`` writes MP4 when ffmpeg is on the PATH.
+
+    ``on_frame(done, total)`` is called after every frame.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from PIL import Image
+
+    plan = frame_plan(result.positions, max_frames)
+    info = AnimationInfo(plan)
+    name = result.storage.animate
+    if not name:
+        return info
+    outdir.mkdir(parents=True, exist_ok=True)
+    drawing = MechanismDrawing(result.model, result.coords)
+    hodos = [p for pic in result.storage.pictures for p in pic.plots if p.keyword == "PLOTHODO"]
+    hodos = list({(p.a, p.b): p for p in hodos}.values())
+    paths = [hodograph(result, p.a, p.b) for p in hodos]
+
+    # Fixed limits: every frame's shapes and the whole paths, with a margin.
+    x0, x1, y0, y1 = drawing.bounds(plan.frames)
+    for h in paths:
+        ok = np.isfinite(h.x) & np.isfinite(h.y)
+        if ok.any():
+            x0, x1 = min(x0, float(h.x[ok].min())), max(x1, float(h.x[ok].max()))
+            y0, y1 = min(y0, float(h.y[ok].min())), max(y1, float(h.y[ok].max()))
+    pad = 0.05 * max(x1 - x0, y1 - y0, 1e-12)
+    x0, x1, y0, y1 = x0 - pad, x1 + pad, y0 - pad, y1 + pad
+    # Frame size in pixels: the longer side FRAME_SIZE, both even (video encoders need that), room for the title.
+    aspect = (y1 - y0) / (x1 - x0)
+    title_px = 36
+    if aspect >= 1:
+        height = FRAME_SIZE
+        width = max(320, round((height - title_px) / aspect))
+    else:
+        width = FRAME_SIZE
+        height = max(240, round(width * aspect) + title_px)
+    width, height = width + width % 2, height + height % 2
+    dpi = 100
+    fig = Figure(figsize=(width / dpi, height / dpi), dpi=dpi)
+    canvas = FigureCanvasAgg(fig)
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0 - title_px / height))
+    ax.set_axis_off()
+    fit_equal(ax, (x0, x1, y0, y1))
+    first = int(plan.frames[0])
+    mech = MplMechanism(ax, drawing, result.coords[first])
+    traces = []
+    for h in paths:
+        ax.plot(h.x, h.y, color=PATH_COLOUR, lw=0.8, alpha=0.25, zorder=4)
+        (trace,) = ax.plot([], [], color=PATH_COLOUR, lw=1.6, zorder=4.5)
+        (arrow,) = ax.plot([], [], color=ARROW_COLOUR, lw=2.0, zorder=4.6)
+        (head,) = ax.plot([], [], "o", color=PATH_COLOUR, ms=4, zorder=4.7)
+        traces.append((h, trace, arrow, head))
+    title = fig.suptitle("", fontsize=10, y=1.0 - 6 / height, va="top")
+
+    files = animation_files(result, outdir, mp4)
+    gif_path = files[0]
+    mp4_path = files[1] if len(files) > 1 else None
+    mp4_tmp = None
+    pipe: _Mp4Pipe | None = None
+    program = ffmpeg()
+    if mp4_path is not None and program is not None:
+        mp4_tmp = mp4_path.with_name(f".{mp4_path.stem}.{os.getpid()}.{secrets.token_hex(4)}.tmp.mp4")
+        pipe = _Mp4Pipe(program, mp4_tmp, width, height, FPS)
+    elif mp4_path is not None:
+        info.notes.append("MP4 not written: ffmpeg is not on the PATH.")
+    try:
+        with atomic_path(gif_path) as gif_tmp, open(gif_tmp, "xb") as f:
+            gif = GifStream(f)
+            for done, k in enumerate(plan.frames, 1):
+                x = result.coords[k]
+                mech.update(x)
+                for h, trace, arrow, head in traces:
+                    trace.set_data(h.x[: k + 1], h.y[: k + 1])
+                    px, py = float(h.x[k]), float(h.y[k])
+                    head.set_data([px], [py])
+                    vx = float(result.kx1.get(h.ix, np.full(1, math.nan))[k]) if h.ix in result.kx1 else math.nan
+                    vy = float(result.kx1.get(h.iy, np.full(1, math.nan))[k]) if h.iy in result.kx1 else math.nan
+                    if math.isfinite(vx) and math.isfinite(vy) and h.scale > 0:
+                        arrow.set_data([px, px + vx * h.scale], [py, py + vy * h.scale])
+                    else:
+                        arrow.set_data([], [])
+                title.set_text(_title(result, name, int(k)))
+                canvas.draw()
+                rgb = np.asarray(canvas.buffer_rgba())[:, :, :3]
+                gif.add(Image.fromarray(rgb))
+                if pipe is not None:
+                    pipe.add(rgb)
+                if on_frame is not None:
+                    on_frame(done, len(plan.frames))
+            gif.close()
+        info.files.append(gif_path)
+    finally:
+        if pipe is not None:
+            complaint = pipe.close()
+            assert mp4_tmp is not None and mp4_path is not None
+            if complaint is None and gif_path in info.files:
+                os.replace(mp4_tmp, mp4_path)
+                info.files.append(mp4_path)
+            else:
+                mp4_tmp.unlink(missing_ok=True)
+                if complaint is not None:
+                    info.notes.append(f"MP4 not written: ffmpeg failed: {complaint}")
+    return info

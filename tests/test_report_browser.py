@@ -1,0 +1,201 @@
+"""The interactive report (python/mechfem/report.py): one offline HTML file, checked as text and in headless Chromium.
+
+The browser tests drive Debian's ``chromium`` from the command line, with no Python package: ``--dump-dom`` on
+``<stem>.html#selftest`` lets the page check itself (it draws, moves the slider and writes what it saw into
+``<pre id="selftest">``), ``--log-net-log`` records every network request, and ``--screenshot`` keeps a picture of
+the page as an artifact. ``make browser`` (called by ``make test``) installs Chromium; without it they are skipped.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import re
+import shutil
+import subprocess
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+import mechfem
+import mechfem.report
+from conftest import SUPPLY, Cli
+from mechfem.report import report_data, report_positions, write_report
+from mechfem.result import RunResult
+
+
+def find_chromium() -> str | None:
+    for name in ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable"):
+        path = shutil.which(name)
+        if path:
+            return path
+    return None
+
+
+CHROMIUM = find_chromium()
+needs_chromium = pytest.mark.skipif(
+    CHROMIUM is None,
+    reason="no Chromium on the PATH: `make browser` installs Debian's chromium (as root); `make test` calls it",
+)
+
+# Headless, no sandbox (root in a container), nothing of the browser's own: no first-run, sync, updates or
+# background traffic; host names resolve nowhere and any request that still starts goes to a closed local port.
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-default-apps",
+    "--disable-extensions",
+    "--disable-domain-reliability",
+    "--no-pings",
+    "--host-resolver-rules=MAP * ~NOTFOUND",
+    "--proxy-server=http://127.0.0.1:9",
+    "--hide-scrollbars",
+]
+
+
+def chromium(tmp: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    assert CHROMIUM is not None
+    profile = tmp / f"profile-{len(list(tmp.glob('profile-*')))}"
+    return subprocess.run(
+        [CHROMIUM, *FLAGS, f"--user-data-dir={profile}", *args],
+        capture_output=True,
+        text=True,
+        timeout=180,
+        stdin=subprocess.DEVNULL,
+    )
+
+
+def page_requests(netlog: Path) -> list[tuple[str, str]]:
+    """(initiator, url) of every request the netlog saw start, except file:// loads."""
+    log = json.loads(netlog.read_text())
+    start = log["constants"]["logEventTypes"]["URL_REQUEST_START_JOB"]
+    out = []
+    for event in log["events"]:
+        params = event.get("params") or {}
+        if event["type"] == start and "url" in params and not params["url"].startswith("file:"):
+            out.append((str(params.get("initiator")), params["url"]))
+    return out
+
+
+def self_test(tmp: Path, page: Path) -> tuple[dict[str, Any], list[tuple[str, str]]]:
+    """Opens ``page#selftest``; returns what the page reported and the requests the page itself made."""
+    netlog = tmp / f"{page.stem}.netlog.json"
+    proc = chromium(
+        tmp, f"--log-net-log={netlog}", "--virtual-time-budget=5000", "--dump-dom", page.as_uri() + "#selftest"
+    )
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    found = re.search(r'<pre id="selftest">(.*?)</pre>', proc.stdout, re.S)
+    assert found, "the page wrote no self-test result:\n" + proc.stdout[-2000:]
+    # The browser's own services ask with no origin ("not an origin"); what the page asks for has its (opaque) origin.
+    mine = [(who, url) for who, url in page_requests(netlog) if who != "not an origin"]
+    return json.loads(html.unescape(found.group(1))), mine
+
+
+@pytest.fixture(scope="module")
+def supply() -> RunResult:
+    return mechfem.run_deck(SUPPLY)
+
+
+def embedded_data(text: str) -> dict[str, Any]:
+    found = re.search(r'<script type="application/json" id="data">(.*?)</script>', text, re.S)
+    assert found
+    return json.loads(found.group(1))
+
+
+def test_report_is_one_self_contained_file(supply: RunResult, tmp_path: Path) -> None:
+    path = write_report(supply, tmp_path)
+    assert path == tmp_path / "supply.html"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["supply.html"]
+    text = path.read_text()
+    # Nothing to load: no external script, style, image or font; the page forbids itself to.
+    assert "default-src 'none'" in text
+    assert not re.search(r"\b(src|href)\s*=", text)
+    assert not re.search(r"https?://|//cdn|@import|url\(", text)
+    data = embedded_data(text)
+    assert data["positions"] == 73 and len(data["frames"]) == 73
+    assert data["subsample_note"] is None
+    assert [b["number"] for b in data["buffers"]] == [99, 100, 101, 102]
+    assert all(len(b["values"]) == 73 for b in data["buffers"])
+    assert [len(p["panels"]) for p in data["pictures"]] == [1, 1]
+    hodo = data["pictures"][0]["panels"][0]["hodographs"][0]
+    assert hodo["label"] == "path of (x13, y14)" and len(hodo["vx"]) == 73
+    assert len(data["scene"]["frames"]) == 73 and data["scene"]["moving"]
+    assert data["stop"] is None and data["limits"] == []
+
+
+def test_report_subsamples_long_runs_and_says_so(supply: RunResult, monkeypatch: pytest.MonkeyPatch) -> None:
+    assert len(report_positions(20000)) == 2000
+    monkeypatch.setattr(mechfem.report, "MAX_REPORT_POSITIONS", 20)
+    data = report_data(supply)
+    assert len(data["frames"]) == 20 and data["frames"][0] == 0 and data["frames"][-1] == 72
+    assert "73 positions" in data["subsample_note"] and "show 20 of them" in data["subsample_note"]
+    assert all(len(b["values"]) == 20 for b in data["buffers"])
+
+
+def test_report_command_writes_only_the_report(cli: Cli, tmp_path: Path) -> None:
+    proc = cli("report", SUPPLY, "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["supply.html"]
+    assert f"wrote {tmp_path / 'supply.html'}" in proc.stdout
+
+
+def test_run_with_report_writes_it_beside_the_rest(cli: Cli, tmp_path: Path) -> None:
+    proc = cli("run", SUPPLY, "-o", tmp_path, "--report")
+    assert proc.returncode == 0, proc.stderr
+    names = {p.name for p in tmp_path.iterdir()}
+    assert {"supply.prt", "supply.csv", "supply.html", "film.gif", "supply_pic1.png"} <= names
+    assert "interactive report: supply.html" in (tmp_path / "supply.prt").read_text()
+
+
+@needs_chromium
+def test_report_in_headless_chromium(supply: RunResult, tmp_path: Path) -> None:
+    page = write_report(supply, tmp_path / "out")
+    result, requests = self_test(tmp_path, page)
+    assert result["errors"] == []
+    assert requests == [], "the page made network requests"
+    assert result["resources"] == []
+    # The mechanism is drawn, and moving the slider moves it.
+    mech = result["mechanism"]
+    assert mech["ink_before"] > 1000 and mech["ink_after"] > 1000
+    assert mech["changed_pixels"] > 200
+    assert result["slider"] == {"target": 36, "current": 36}
+    assert result["position_before"].startswith("position 1 of 73")
+    assert result["position_after"].startswith("position 37 of 73")
+    # Every picture is a chart, drawn, whose cursor follows the slider.
+    charts = result["charts"]
+    assert [(c["picture"], c["type"]) for c in charts] == [(1, "curve"), (2, "function")]
+    for c in charts:
+        assert c["ink"] > 2000
+        assert c["changed_pixels"] > 50
+        assert c["cursor_before"] and c["cursor_after"] and c["cursor_before"] != c["cursor_after"]
+    function = charts[1]
+    assert len(function["cursor_before"]) == 3  # one cursor dot per PLOTFUNC
+    assert function["cursor_after"][0][0] > function["cursor_before"][0][0] + 100  # moved right along the input
+    assert (result["play"], result["pause"]) == ("Pause", "Play")
+    assert result["table_rows"] == 73 and result["current_row"] == "37"
+
+    shot = tmp_path / "supply-report.png"
+    proc = chromium(tmp_path, "--window-size=1400,1100", f"--screenshot={shot}", page.as_uri() + "#position=37")
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert shot.stat().st_size > 20_000
+    print(f"screenshot of the report: {shot}")
+
+
+@needs_chromium
+def test_netlog_sees_a_request_a_page_makes(tmp_path: Path) -> None:
+    # The control for the check above: a page that does load something is caught (a closed local port).
+    page = tmp_path / "control.html"
+    page.write_text(
+        '<!doctype html><img src="http://127.0.0.1:9/probe.png"><pre id="selftest">{"ok": true}</pre>',
+        encoding="utf-8",
+    )
+    result, requests = self_test(tmp_path, page)
+    assert result == {"ok": True}
+    assert [url for _, url in requests] == ["http://127.0.0.1:9/probe.png"]
