@@ -1,0 +1,133 @@
+//! Many decks at once, for design studies: every deck text is read,
+//! compiled and run on a pool of worker threads with the GIL released. The
+//! calling thread waits for the results; only it touches Python, to report
+//! progress and to hand each result over as soon as it is there.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use pyo3::prelude::*;
+
+use crate::text::{outcome_dict, run_text, Outcome};
+
+/// How often the waiting thread looks for Ctrl-C while no run finishes.
+const POLL: Duration = Duration::from_millis(100);
+
+/// Runs every deck in `texts` (named `path` in messages; MOV_FUNC files
+/// are read from `base_dir`) on `workers` threads (default: one per core).
+///
+/// For each deck the result is either the dict `run_deck_text` returns or
+/// the exception it would raise (an instance of `DeckError`,
+/// `AssemblyError`, `ConvergenceError`, `LimitPositionError` or
+/// `MechfemError`): one failing variant does not stop the others.
+///
+/// Without `on_result` the results are returned, in the order of `texts`.
+/// With it, `on_result(k, result)` is called for deck k as soon as it has
+/// finished, on the calling thread while the workers go on, and the list
+/// returned is empty: a study can reduce each result and let it go.
+/// `order` is the transfer functions to compute, as for `run_deck_text`.
+/// `progress(done, total)` is called each time a deck has finished. An
+/// exception raised by either callback, or Ctrl-C, stops every worker and
+/// is raised.
+#[pyfunction]
+#[pyo3(signature = (texts, path, base_dir, workers=None, progress=None, on_result=None, order=Some(2)))]
+#[allow(clippy::too_many_arguments)]
+pub fn run_deck_texts(
+    py: Python<'_>,
+    texts: Vec<String>,
+    path: PathBuf,
+    base_dir: PathBuf,
+    workers: Option<usize>,
+    progress: Option<Py<PyAny>>,
+    on_result: Option<Py<PyAny>>,
+    order: Option<u8>,
+) -> PyResult<Vec<Py<PyAny>>> {
+    if let Some(k) = order.filter(|k| !(1..=2).contains(k)) {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!("order must be 1, 2 or None, not {k}")));
+    }
+    let n = texts.len();
+    let cores = std::thread::available_parallelism().map_or(1, usize::from);
+    let workers = workers.unwrap_or(cores).clamp(1, n.max(1));
+    let next = AtomicUsize::new(0);
+    let cancel = AtomicBool::new(false);
+    let mut outcomes: Vec<Option<Outcome>> = (0..n).map(|_| None).collect();
+    let mut raised: Option<PyErr> = None;
+
+    py.detach(|| {
+        let (tx, rx) = mpsc::channel::<(usize, Outcome)>();
+        std::thread::scope(|s| {
+            for _ in 0..workers {
+                let tx = tx.clone();
+                let (texts, next, cancel, path, base_dir) = (&texts, &next, &cancel, &path, &base_dir);
+                s.spawn(move || {
+                    while !cancel.load(Ordering::Relaxed) {
+                        let k = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(text) = texts.get(k) else { break };
+                        if tx.send((k, run_text(text, path, base_dir, order, cancel))).is_err() {
+                            break;
+                        }
+                    }
+                });
+            }
+            drop(tx);
+            let mut done = 0;
+            loop {
+                let finished = match rx.recv_timeout(POLL) {
+                    Ok(item) => Some(item),
+                    Err(mpsc::RecvTimeoutError::Timeout) => None,
+                    Err(mpsc::RecvTimeoutError::Disconnected) => break,
+                };
+                let arrived = finished.is_some();
+                let mut deliver = None;
+                if let Some((k, outcome)) = finished {
+                    done += 1;
+                    if on_result.is_some() {
+                        deliver = Some((k, outcome));
+                    } else {
+                        outcomes[k] = Some(outcome);
+                    }
+                }
+                if raised.is_some() {
+                    continue;
+                }
+                let result = Python::attach(|py| -> PyResult<()> {
+                    py.check_signals()?;
+                    if let (Some(callback), Some((k, outcome))) = (&on_result, deliver) {
+                        callback.call1(py, (k, result_object(py, outcome, &path)))?;
+                    }
+                    match &progress {
+                        Some(callback) if arrived => callback.call1(py, (done, n)).map(drop),
+                        _ => Ok(()),
+                    }
+                });
+                if let Err(e) = result {
+                    raised = Some(e);
+                    cancel.store(true, Ordering::Relaxed);
+                }
+            }
+        });
+    });
+    if let Some(err) = raised {
+        return Err(err);
+    }
+    if on_result.is_some() {
+        return Ok(Vec::new());
+    }
+    outcomes
+        .into_iter()
+        .map(|outcome| {
+            let outcome = outcome.ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err("a batch run was lost"))?;
+            Ok(result_object(py, outcome, &path))
+        })
+        .collect()
+}
+
+/// The run dict, or the exception instance for a deck that failed.
+fn result_object(py: Python<'_>, outcome: Outcome, path: &Path) -> Py<PyAny> {
+    match outcome_dict(py, outcome, path) {
+        Ok(d) => d.into_any().unbind(),
+        Err(e) => e.into_value(py).into_any(),
+    }
+}

@@ -1,0 +1,326 @@
+"""The result of running a :class:`~mechfem.Mechanism`: every quantity of the deck's buffer table, by name.
+
+Arrays have one entry per position (row k is position k + 1). Transfer functions are derivatives with
+respect to the inputs (``order=1``: d/d q_j, ``order=2``: d2/d q_j d q_m); with one input ``wrt`` may be
+left out. Points give two columns (x, y); co-ordinates, rows and outputs one.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import numpy.typing as npt
+
+from mechfem import _core
+from mechfem.result import Limit, RunReport, RunResult
+
+if TYPE_CHECKING:
+    from mechfem.deckio import Numbering
+    from mechfem.model import Coordinate, FormParameter, InputKey, Mechanism, Point, Row
+
+FloatArray = npt.NDArray[np.float64]
+
+
+class Analysis:
+    """Everything a run of a mechanism computed, addressed by the mechanism's names.
+
+    ``coords`` holds every co-ordinate (positions x co-ordinates, in deck numbering), ``time`` and
+    ``det`` (det(D^c), the transfer quality) one value per position; ``buffers`` the deck's own
+    buffers by number (from the storage of the run). ``parameters`` holds the values a design study
+    gave this variant.
+    """
+
+    def __init__(
+        self,
+        mechanism: Mechanism,
+        numbering: Numbering,
+        d: _core.TextRunDict,
+        parameters: dict[str, Any] | None = None,
+        path: str = "",
+    ) -> None:
+        self.mechanism = mechanism
+        self.numbering = numbering
+        self.path = path or f"{mechanism.name}.mec"
+        """The name of the deck written for the run."""
+        self.parameters: dict[str, Any] = parameters or {}
+        table = np.asarray(d["table"], dtype=np.float64)
+        nb = d["n_buffers"]
+        self.buffers: dict[int, FloatArray] = {
+            n: np.ascontiguousarray(table[:, k]) for k, n in enumerate(d["buffer_numbers"])
+        }
+        self.coords: FloatArray = np.asarray(d["coords"], dtype=np.float64)
+        self.time: FloatArray = np.ascontiguousarray(table[:, -2])
+        self.det: FloatArray = np.ascontiguousarray(table[:, -1])
+        """det(D^c) at every position."""
+        self._raw = d
+
+        full = table[:, nb:-2]
+        p, n, nd = full.shape[0], d["n_coords"], d["n_dof"]
+        nr = d["n_prescribed"] + d["n_dependent"]
+        sq = nd * nd
+        cw, rw = nd + sq + 2, 1 + nd + sq + 2
+        self.inputs: FloatArray = full[:, :nd]
+        """Input values, positions x inputs (DOF order)."""
+        cb = full[:, nd : nd + n * cw].reshape(p, n, cw)
+        rb = full[:, nd + n * cw : nd + n * cw + nr * rw].reshape(p, nr, rw)
+        self._kx1 = cb[:, :, :nd]
+        self._kx2 = cb[:, :, nd : nd + sq].reshape(p, n, nd, nd)
+        self._vx = cb[:, :, nd + sq]
+        self._ax = cb[:, :, nd + sq + 1]
+        self._e0 = rb[:, :, 0]
+        self._ke1 = rb[:, :, 1 : 1 + nd]
+        self._ke2 = rb[:, :, 1 + nd : 1 + nd + sq].reshape(p, nr, nd, nd)
+        self._ve = rb[:, :, 1 + nd + sq]
+        self._ae = rb[:, :, 2 + nd + sq]
+        self._row_index = {r: k for k, r in enumerate(numbering.rows)}
+        self._run_result = self._deck_result()
+        self.report: RunReport = self._run_result.report
+        """What the run did, as :func:`mechfem.run_deck` reports it for the deck written from the mechanism."""
+
+    # -- the run
+
+    @property
+    def positions(self) -> int:
+        """Positions computed."""
+        return int(self.coords.shape[0])
+
+    @property
+    def complete(self) -> bool:
+        """True when every position asked for was computed."""
+        return self.report.complete
+
+    @property
+    def limits(self) -> list[Limit]:
+        """Limit positions met on the way."""
+        return self.report.limits
+
+    def stop_reason(self) -> str | None:
+        """Why the motion stopped early (with the model's names), or None."""
+        from mechfem.deckio import names_in
+
+        text = self.report.stop_reason()
+        return None if text is None else names_in(text, self.numbering)
+
+    @property
+    def warnings(self) -> list[str]:
+        """The limit positions and singular positions, one sentence each."""
+        from mechfem.deckio import names_in
+
+        return [names_in(w, self.numbering) for w in self.report.warnings]
+
+    # -- names
+
+    def _lookup(self, ref: object) -> object:
+        from mechfem.model import FormParameter, Row
+
+        obj = self.mechanism[ref] if isinstance(ref, str) else ref
+        if isinstance(obj, FormParameter):
+            found = [r for r in self.numbering.rows if r.terms == ((1.0, obj),)]
+            if not found:
+                raise KeyError(
+                    f"{obj.label} is neither prescribed nor an output; declare it with Mechanism.output() to get it"
+                )
+            obj = found[0]
+        if isinstance(obj, Row) and obj not in self._row_index:
+            raise KeyError(f"row {obj.name!r} is not part of this run")
+        return obj
+
+    def _column(self, c: Coordinate) -> int:
+        try:
+            return self.numbering.coord_number[c] - 1
+        except KeyError:
+            raise KeyError(f"co-ordinate {c.name!r} is not part of this run") from None
+
+    def _dof(self, wrt: InputKey) -> int:
+        return self.numbering.dof(wrt) - 1
+
+    def _point(self, ref: str | Point) -> tuple[int, int]:
+        from mechfem.model import Point
+
+        obj = self._lookup(ref)
+        if not isinstance(obj, Point):
+            raise TypeError(f"{ref!r} is not a point")
+        return self._column(obj.x), self._column(obj.y)
+
+    def _select(
+        self,
+        ref: object,
+        coord: Callable[[list[int]], FloatArray],
+        row: Callable[[int], FloatArray],
+    ) -> FloatArray:
+        from mechfem.model import Coordinate, Point, Row
+
+        obj = self._lookup(ref)
+        if isinstance(obj, Point):
+            return coord([self._column(obj.x), self._column(obj.y)])
+        if isinstance(obj, Coordinate):
+            return coord([self._column(obj)])[:, 0]
+        if isinstance(obj, Row):
+            return row(self._row_index[obj])
+        raise TypeError(f"{ref!r} is not a point, co-ordinate, row or output")
+
+    # -- values
+
+    def x(self, point: str | Point) -> FloatArray:
+        """x of a point at every position."""
+        return self.coords[:, self._point(point)[0]].copy()
+
+    def y(self, point: str | Point) -> FloatArray:
+        """y of a point at every position."""
+        return self.coords[:, self._point(point)[1]].copy()
+
+    def value(
+        self,
+        name: str | Point | Coordinate | Row | FormParameter,
+        order: int = 0,
+        wrt: InputKey = None,
+        wrt2: InputKey = None,
+    ) -> FloatArray:
+        """A point (positions x 2), co-ordinate, row or output at every position (``order`` 0), or its transfer
+        function of first (d/d ``wrt``) or second order (d2/d ``wrt`` d ``wrt2``; ``wrt2`` defaults to ``wrt``)."""
+        if order == 0:
+            return self._select(name, lambda cols: self.coords[:, cols].copy(), lambda k: self._e0[:, k].copy())
+        j = self._dof(wrt)
+        if order == 1:
+            return self._select(name, lambda cols: self._kx1[:, cols, j].copy(), lambda k: self._ke1[:, k, j].copy())
+        if order == 2:
+            m = j if wrt2 is None else self._dof(wrt2)
+            return self._select(
+                name, lambda cols: self._kx2[:, cols, j, m].copy(), lambda k: self._ke2[:, k, j, m].copy()
+            )
+        raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
+
+    def position(self, name: str | Point | Coordinate | Row | FormParameter) -> FloatArray:
+        """The same as ``value(name)``: a point's (x, y), a co-ordinate, a row or an output."""
+        return self.value(name)
+
+    def output(
+        self, name: str | Row | FormParameter, order: int = 0, wrt: InputKey = None, wrt2: InputKey = None
+    ) -> FloatArray:
+        """An output (or any row: a prescribed value, an input) and its transfer functions; see :meth:`value`."""
+        from mechfem.model import Row
+
+        if not isinstance(self._lookup(name), Row):
+            raise TypeError(f"{name!r} is not a row or output")
+        return self.value(name, order, wrt, wrt2)
+
+    def transfer(
+        self,
+        name: str | Point | Coordinate | Row | FormParameter,
+        order: int = 1,
+        wrt: InputKey = None,
+        wrt2: InputKey = None,
+    ) -> FloatArray:
+        """Transfer function of first or second order; see :meth:`value`."""
+        if order not in (1, 2):
+            raise ValueError(f"a transfer function has order 1 or 2, not {order!r}")
+        return self.value(name, order, wrt, wrt2)
+
+    def velocity(self, name: str | Point | Coordinate | Row | FormParameter) -> FloatArray:
+        """Velocity (time derivative) of a point (positions x 2), co-ordinate, row or output."""
+        return self._select(name, lambda cols: self._vx[:, cols].copy(), lambda k: self._ve[:, k].copy())
+
+    def acceleration(self, name: str | Point | Coordinate | Row | FormParameter) -> FloatArray:
+        """Acceleration of a point (positions x 2), co-ordinate, row or output."""
+        return self._select(name, lambda cols: self._ax[:, cols].copy(), lambda k: self._ae[:, k].copy())
+
+    def input(self, name: InputKey = None) -> FloatArray:
+        """The value of an input at every position (under free motion: where it went)."""
+        return self.inputs[:, self._dof(name)].copy()
+
+    # -- tables
+
+    def table(self, coordinates: bool = True) -> dict[str, FloatArray]:
+        """Every result as named columns: ``time``, ``det``, then each input, output and (with ``coordinates``)
+        moving co-ordinate ``q`` as ``q``, ``q'``, ``q''`` (transfer functions; ``q'(a)``, ``q''(a,b)`` with
+        several inputs), ``q_dot`` and ``q_ddot`` (velocity, acceleration)."""
+        nb = self.numbering
+        inputs = [r.name for r in nb.inputs]
+        single = len(inputs) == 1
+        out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
+
+        def add(name: str, ref: object) -> None:
+            out[name] = self.value(ref)  # type: ignore[arg-type]
+            for j, a in enumerate(inputs):
+                out[f"{name}'" if single else f"{name}'({a})"] = self.value(ref, 1, j + 1)  # type: ignore[arg-type]
+                for m, b in enumerate(inputs[j:], j):
+                    key = f"{name}''" if single else f"{name}''({a},{b})"
+                    out[key] = self.value(ref, 2, j + 1, m + 1)  # type: ignore[arg-type]
+            out[f"{name}_dot"] = self.velocity(ref)  # type: ignore[arg-type]
+            out[f"{name}_ddot"] = self.acceleration(ref)  # type: ignore[arg-type]
+
+        for r in nb.inputs:
+            out[r.name] = self.input(r)
+            out[f"{r.name}_dot"] = self.velocity(r)
+            out[f"{r.name}_ddot"] = self.acceleration(r)
+        for r in nb.dependent:
+            add(r.name, r)
+        if coordinates:
+            for c in nb.coords:
+                if not c.fixed:
+                    add(c.name, c)
+        return out
+
+    def to_pandas(self, coordinates: bool = True) -> Any:
+        """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...). Needs pandas
+        (``pip install 'mechfem[pandas]'``)."""
+        pd = _pandas()
+        frame = pd.DataFrame(self.table(coordinates))
+        frame.index = pd.RangeIndex(1, self.positions + 1, name="position")
+        return frame
+
+    # -- pictures
+
+    def run_result(self) -> RunResult:
+        """The run as :func:`mechfem.run_deck` returns it for the deck written from the mechanism (deck numbers),
+        as the deck's pictures and animation use it."""
+        return self._run_result
+
+    def _deck_result(self) -> RunResult:
+        from mechfem.result import run_result
+
+        d: dict[str, Any] = dict(self._raw)
+        nd = self.inputs.shape[1]
+        d["buffer_values"] = np.asarray(self._raw["table"])[:, : self._raw["n_buffers"]]
+        d["time"], d["det"] = self.time, self.det
+        d["kx1_coords"] = list(range(1, self.coords.shape[1] + 1)) if nd else []
+        d["kx1_values"] = self._kx1[:, :, 0] if nd else np.zeros((self.positions, 0))
+        return run_result(Path(self.path), d)  # type: ignore[arg-type]
+
+    def plot(self, *outputs: str, **options: Any) -> Any:
+        """A figure (``matplotlib.figure.Figure``): the mechanism at position 1 with the paths of its moving points,
+        beside the ``outputs`` (default: every output) against the first input. Options: ``picture=k`` draws
+        picture k of the storage as the deck does; ``points=[...]`` chooses the paths; ``against="time"``."""
+        from mechfem import figures
+
+        return figures.result_figure(self, outputs, **options)
+
+    def animate(self, path: str | Path, points: Sequence[str] | None = None) -> list[Path]:
+        """Writes an animation of the motion to ``path`` (GIF; also MP4 when ffmpeg is installed) with the paths
+        of ``points`` (default: every moving point); returns the files written."""
+        from mechfem import figures
+
+        return figures.animate(self, path, points)
+
+    def _repr_png_(self) -> bytes | None:
+        from mechfem import figures
+
+        return figures.result_png(self)
+
+    def __repr__(self) -> str:
+        state = "complete" if self.complete else f"stopped after position {self.positions}"
+        return f"Analysis({self.mechanism.name!r}: {self.positions} positions, {state}, {len(self.limits)} limit(s))"
+
+
+def _pandas() -> Any:
+    try:
+        return importlib.import_module("pandas")
+    except ImportError:
+        raise ImportError(
+            "to_pandas() needs pandas, which mechfem does not install by itself: pip install 'mechfem[pandas]' "
+            "(or pip install pandas)"
+        ) from None

@@ -1,0 +1,285 @@
+"""Design studies: many variants of a mechanism run on every core, summarised in a table.
+
+Each variant is written as a deck in Python; all of them are then run by the compiled module on
+worker threads without the GIL (``_core.run_deck_texts``), so no Python runs per position. Per
+variant, the ``measures`` (Python functions of its :class:`~mechfem.Analysis`) give one number each::
+
+    study = mechfem.sweep(
+        supply,
+        {"kappa": np.linspace(-5.25, -5.10, 16)},
+        measures={"stroke": lambda r: np.ptp(r.output("delta"))},
+        motion=Motion.by(72, 2 * math.pi),
+    )
+    study["stroke"]            # one value per variant
+    study.to_pandas()          # the same as a DataFrame (needs pandas)
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import sys
+import time
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from typing import Any, TextIO
+
+import numpy as np
+import numpy.typing as npt
+
+from mechfem import _core
+from mechfem.analysis import Analysis, _pandas
+from mechfem.errors import MechfemError
+from mechfem.model import Coordinate, Mechanism, Motion, Row, Storage
+
+FloatArray = npt.NDArray[np.float64]
+Measure = Callable[[Analysis], float]
+Progress = bool | Callable[[int, int], object] | None
+
+
+class ProgressBar:
+    """A one-line progress bar on stderr: ``progress(done, total)``; redrawn at most 20 times a second."""
+
+    def __init__(self, what: str, stream: TextIO | None = None, width: int = 30) -> None:
+        self.what = what
+        self.stream = stream or sys.stderr
+        self.width = width
+        self.started = time.monotonic()
+        self.shown = 0.0
+        self.drawn = False
+
+    def __call__(self, done: int, total: int) -> None:
+        now = time.monotonic()
+        if done < total and now - self.shown < 0.05:
+            return
+        self.shown = now
+        filled = self.width * done // max(total, 1)
+        bar = "#" * filled + "." * (self.width - filled)
+        self.stream.write(f"\r[{bar}] {done}/{total} {self.what} {now - self.started:6.1f} s")
+        self.stream.flush()
+        self.drawn = True
+
+    def close(self) -> None:
+        """Ends the bar's line."""
+        if self.drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self.drawn = False
+
+
+def _callback(progress: Progress, what: str) -> Callable[[int, int], object] | None:
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        return ProgressBar(what)
+    return progress
+
+
+def _variants(parameters: Mapping[str, npt.ArrayLike] | Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
+    if isinstance(parameters, Mapping):
+        names = list(parameters)
+        values = [list(np.atleast_1d(np.asarray(parameters[n]))) for n in names]
+        return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*values)]
+    return [dict(p) for p in parameters]
+
+
+def _plain(v: Any) -> Any:
+    return v.item() if isinstance(v, np.generic) else v
+
+
+def _column(values: list[Any], dtype: type | None = None) -> npt.NDArray[Any]:
+    """One column: a plain numpy array, or an array of objects for values that are not scalars (points)."""
+    if dtype is None and all(np.ndim(v) == 0 for v in values):
+        return np.asarray(values)
+    out = np.empty(len(values), dtype=object)
+    out[:] = [tuple(v) if np.ndim(v) else v for v in values]
+    return out
+
+
+def run_many(
+    mechanisms: Sequence[Mechanism],
+    motion: Motion | None = None,
+    storage: Storage | None = None,
+    *,
+    workers: int | None = None,
+    progress: Progress = True,
+    order: int | None = 2,
+) -> list[Analysis | MechfemError]:
+    """Runs every mechanism (each with ``motion``, default its own :attr:`~Mechanism.motion`) on ``workers``
+    threads (default: one per core), computing the transfer functions of ``order`` (see
+    :meth:`Mechanism.run`). Returns, in order, an :class:`Analysis` or the error that stopped that mechanism
+    at position 1 (with the model's names)."""
+    from mechfem import deckio
+
+    decks = [deckio.write(m, motion or m.motion, storage or m.storage) for m in mechanisms]
+    outs = _run_decks([d.text for d in decks], [d.tables for d in decks], workers, progress, order=order)
+    results: list[Analysis | MechfemError] = []
+    for m, d, o in zip(mechanisms, decks, outs, strict=True):
+        if isinstance(o, MechfemError):
+            results.append(deckio.translate(o, d, m.name))
+        else:
+            results.append(Analysis(m, d.numbering, o, path=d.path))
+    return results
+
+
+def _run_decks(
+    texts: list[str],
+    tables: list[dict[str, str]],
+    workers: int | None,
+    progress: Progress,
+    on_result: Callable[[int, _core.TextRunDict | MechfemError], object] | None = None,
+    order: int | None = 2,
+) -> list[_core.TextRunDict | MechfemError]:
+    from mechfem import deckio
+
+    files: dict[str, str] = {}
+    for t in tables:
+        for name, text in t.items():
+            if files.setdefault(name, text) != text:
+                raise ValueError(f"the variants use different motion tables under one file name {name!r}")
+    callback = _callback(progress, "variants")
+    try:
+        with deckio.tables_dir(files) as base:
+            return _core.run_deck_texts(texts, "variant.mec", base, workers, callback, on_result, order)
+    finally:
+        close = getattr(callback, "close", None)
+        if close is not None:
+            close()
+
+
+class Study:
+    """The table of a design study: one row per variant, columns by name (numpy arrays).
+
+    Columns: the parameters, ``ok`` (position 1 was computed), ``complete`` (every position),
+    ``positions``, ``limits`` (limit positions met), ``error`` (the error's text, "" when ok), then the
+    measures (NaN for a variant that failed). ``results`` keeps every :class:`Analysis` (or error) when
+    the study was run with ``keep_results=True``.
+    """
+
+    def __init__(
+        self,
+        columns: dict[str, npt.NDArray[Any]],
+        parameters: list[str],
+        measures: list[str],
+        results: list[Analysis | MechfemError] | None,
+    ) -> None:
+        self.columns = columns
+        self.parameters = parameters
+        self.measures = measures
+        self.results = results
+
+    def __getitem__(self, column: str) -> npt.NDArray[Any]:
+        return self.columns[column]
+
+    def __len__(self) -> int:
+        return len(next(iter(self.columns.values()))) if self.columns else 0
+
+    def __iter__(self) -> Iterator[dict[str, Any]]:
+        return iter(self.records())
+
+    def records(self) -> list[dict[str, Any]]:
+        """One dict per variant."""
+        names = list(self.columns)
+        return [{n: _plain(self.columns[n][k]) for n in names} for k in range(len(self))]
+
+    def best(self, measure: str, largest: bool = False) -> dict[str, Any]:
+        """The record of the variant with the smallest (``largest``: largest) value of ``measure``."""
+        values = np.asarray(self.columns[measure], dtype=np.float64)
+        if np.all(np.isnan(values)):
+            raise ValueError(f"no variant has a value of {measure!r}")
+        k = int(np.nanargmax(values) if largest else np.nanargmin(values))
+        return self.records()[k]
+
+    def to_pandas(self) -> Any:
+        """The table as a ``pandas.DataFrame`` (needs pandas: ``pip install 'mechfem[pandas]'``)."""
+        return _pandas().DataFrame(self.columns)
+
+    def __repr__(self) -> str:
+        ok = int(np.sum(self.columns["ok"])) if "ok" in self.columns else 0
+        return f"Study({len(self)} variants, {ok} ok; columns {', '.join(self.columns)})"
+
+
+def default_measures(mech: Mechanism) -> dict[str, Measure]:
+    """The smallest and largest value of every output, and the smallest |det(D^c)|."""
+    out: dict[str, Measure] = {}
+
+    def extreme(name: str, fn: Callable[[FloatArray], np.float64]) -> Measure:
+        return lambda a: float(fn(a.output(name)))
+
+    for r in mech.outputs:
+        out[f"{r.name}.min"] = extreme(r.name, np.nanmin)
+        out[f"{r.name}.max"] = extreme(r.name, np.nanmax)
+    out["min_abs_det"] = lambda a: float(np.nanmin(np.abs(a.det)))
+    return out
+
+
+def sweep(
+    model: Mechanism | Callable[..., Mechanism],
+    parameters: Mapping[str, npt.ArrayLike] | Sequence[Mapping[str, Any]],
+    measures: Mapping[str, Measure] | None = None,
+    *,
+    motion: Motion | None = None,
+    storage: Storage | None = None,
+    workers: int | None = None,
+    progress: Progress = True,
+    keep_results: bool = False,
+    order: int | None = 2,
+) -> Study:
+    """Runs a design study and tabulates it.
+
+    ``model`` is a mechanism whose named values (see :meth:`Mechanism.set`: prescribed rows, co-ordinates,
+    points) the parameters change, or a function that builds a mechanism from the parameters as keyword
+    arguments. ``parameters`` is a mapping name -> values (every combination is run: one name gives a
+    range, several a grid) or a list of parameter sets. ``measures`` maps a column name to a function of
+    the variant's :class:`Analysis` (default :func:`default_measures`). Variants run on ``workers`` threads
+    (default: one per core) with a progress bar (``progress=False`` for none, or a callable
+    ``progress(done, total)``). ``order`` is the transfer functions computed (see :meth:`Mechanism.run`);
+    ``order=1`` is faster when the measures need no second order.
+    """
+    from mechfem import deckio
+
+    sets = _variants(parameters)
+    if not sets:
+        raise ValueError("a study needs at least one variant")
+    mechanisms: list[Mechanism] = []
+    decks: list[deckio.DeckText] = []
+    if isinstance(model, Mechanism):
+        for p in sets:
+            over: dict[Row | Coordinate, float] = model._targets(p)
+            decks.append(deckio.write(model, motion or model.motion, storage or model.storage, over))
+            mechanisms.append(model)
+    else:
+        for p in sets:
+            m = model(**p)
+            if not isinstance(m, Mechanism):
+                raise TypeError(f"the model function returned {m!r}, not a Mechanism")
+            decks.append(deckio.write(m, motion or m.motion, storage or m.storage))
+            mechanisms.append(m)
+    chosen = dict(measures) if measures is not None else default_measures(mechanisms[0])
+    names = list(sets[0]) if isinstance(parameters, Mapping) else sorted({k for p in sets for k in p})
+    fixed = ["ok", "complete", "positions", "limits", "error"]
+    for extra in (*fixed, *chosen):
+        if extra in names or (extra in chosen and extra in fixed):
+            raise ValueError(f"the column name {extra!r} is used twice")
+    rows: list[list[Any]] = [[] for _ in sets]
+    kept: list[Analysis | MechfemError | None] = [None] * len(sets)
+
+    def take(k: int, o: _core.TextRunDict | MechfemError) -> None:
+        # Called as each variant finishes, while the workers go on with the others.
+        p, m, d = sets[k], mechanisms[k], decks[k]
+        row = [_plain(p.get(n, math.nan)) for n in names]
+        if isinstance(o, MechfemError):
+            err = deckio.translate(o, d, m.name)
+            kept[k] = err if keep_results else None
+            text = str(err).splitlines()[0] if str(err) else type(err).__name__
+            rows[k] = [*row, False, False, 0, 0, text, *(math.nan for _ in chosen)]
+            return
+        a = Analysis(m, d.numbering, o, parameters=p, path=d.path)
+        kept[k] = a if keep_results else None
+        rows[k] = [*row, True, a.complete, a.positions, len(a.limits), "", *(float(fn(a)) for fn in chosen.values())]
+
+    _run_decks([d.text for d in decks], [d.tables for d in decks], workers, progress, take, order)
+    columns: dict[str, list[Any]] = {n: [r[c] for r in rows] for c, n in enumerate([*names, *fixed, *chosen])}
+    results = [r for r in kept if r is not None] if keep_results else None
+    arrays = {n: _column(v) for n, v in columns.items()}
+    arrays["error"] = _column(columns["error"], object)
+    return Study(arrays, names, list(chosen), results)

@@ -1,0 +1,600 @@
+"""Decks to and from the Python model: :class:`~mechfem.Mechanism` as deck text, a deck as a mechanism.
+
+The model API writes a deck and runs it through the deck reader and solver (``_core.run_deck_text``),
+so every result of a model is, by construction, the result of a deck. This module
+
+* writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line
+  with the model's names in comments, keeping a note of what each line declares;
+* reads a deck into a mechanism with generated names (:func:`read`);
+* runs a mechanism (:func:`run`) and gives its errors the model's names (:func:`translate`).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from mechfem import _core
+from mechfem.analysis import Analysis
+from mechfem.errors import AssemblyError, DeckError, LimitPositionError, MechfemError
+from mechfem.model import (
+    BUFFER_ARGS,
+    FORMS,
+    SLOTS,
+    By,
+    Coordinate,
+    Element,
+    FormParameter,
+    Free,
+    InputKey,
+    InputMotion,
+    Mechanism,
+    Motion,
+    Picture,
+    Point,
+    Ref,
+    Row,
+    Slot,
+    Storage,
+    Table,
+    To,
+)
+
+DEFAULT_ACCURACY = 1e-10
+DEFAULT_MAX_ITER = 25
+
+Progress = bool | Callable[[int, int], object] | None
+
+
+def number(v: float) -> str:
+    """A float as deck text that reads back as exactly the same double."""
+    return repr(float(v))
+
+
+@dataclass
+class Numbering:
+    """How a written deck numbers the model: co-ordinates, elements, rows and inputs."""
+
+    coords: list[Coordinate]
+    """Co-ordinate number i is ``coords[i - 1]``."""
+    elements: list[Element]
+    """Element number k is ``elements[k - 1]``."""
+    prescribed: list[Row]
+    """Prescribed row r is ``prescribed[r - 1]``; the last ``n_dof`` are the inputs, in DOF order."""
+    dependent: list[Row]
+    """Dependent form parameter -k (an output) is ``dependent[k - 1]``."""
+    coord_number: dict[Coordinate, int] = field(default_factory=dict)
+    row_dest: dict[Row, int] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.coord_number = {c: i for i, c in enumerate(self.coords, 1)}
+        self.row_dest = {r: k for k, r in enumerate(self.prescribed, 1)}
+        self.row_dest.update({r: -k for k, r in enumerate(self.dependent, 1)})
+
+    @property
+    def inputs(self) -> list[Row]:
+        """The input rows in DOF order."""
+        return [r for r in self.prescribed if r.kind == "input"]
+
+    @property
+    def rows(self) -> list[Row]:
+        """Prescribed rows, then outputs: the row order of the results."""
+        return self.prescribed + self.dependent
+
+    def dof(self, key: InputKey) -> int:
+        """The DOF number (1-based) of an input given by name, DOF number, row or form parameter (None: the only
+        input)."""
+        inputs = self.inputs
+        if key is None:
+            if len(inputs) != 1:
+                names = ", ".join(repr(r.name) for r in inputs) or "none"
+                raise ValueError(f"the mechanism has {len(inputs)} inputs ({names}): say which one")
+            return 1
+        if isinstance(key, bool):
+            raise TypeError(f"not an input: {key!r}")
+        if isinstance(key, int):
+            if not 1 <= key <= len(inputs):
+                raise ValueError(f"input number {key} is out of range 1..{len(inputs)}")
+            return key
+        for j, r in enumerate(inputs, 1):
+            if key is r or r.name == key or (isinstance(key, FormParameter) and r.terms == ((1.0, key),)):
+                return j
+        names = ", ".join(repr(r.name) for r in inputs) or "none"
+        raise KeyError(f"{key!r} is not an input; the inputs are {names}")
+
+
+def number_model(mech: Mechanism) -> Numbering:
+    """Numbers the co-ordinates (a deck's own numbers are kept; others follow, fixed ones first), elements and rows
+    (inputs last)."""
+    explicit = {c.number: c for c in mech.coordinates if c.number is not None}
+    start = max(explicit, default=0)
+    rest = [c for c in mech.coordinates if c.number is None]
+    ordered = [c for c in rest if c.fixed] + [c for c in rest if not c.fixed]
+    by_number = dict(explicit)
+    for k, c in enumerate(ordered, start + 1):
+        by_number[k] = c
+    coords = [by_number[k] for k in sorted(by_number)]
+    prescribed = [r for r in mech.rows if r.kind == "prescribed"] + [r for r in mech.rows if r.kind == "input"]
+    dependent = [r for r in mech.rows if r.kind == "output"]
+    return Numbering(coords, list(mech.elements), prescribed, dependent)
+
+
+@dataclass
+class DeckText:
+    """A written deck: its text, what each line declares, the numbering and the files of its table motions."""
+
+    text: str
+    path: str
+    """The name diagnostics show."""
+    notes: dict[int, tuple[str, str]]
+    """Line -> (what, name), e.g. ``(element, crank)``."""
+    numbering: Numbering
+    tables: dict[str, str]
+    """MOV_FUNC file name -> its text."""
+
+
+class _Lines:
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.notes: dict[int, tuple[str, str]] = {}
+
+    def add(self, text: str, note: tuple[str, str] | None = None, comment: str | None = None) -> None:
+        if comment:
+            text = f"{text} ; {comment}"
+        self.lines.append(text)
+        if note is not None:
+            self.notes[len(self.lines)] = note
+
+
+def _slot_names(e: Element) -> str:
+    return " ".join(s.name for s in e.slots)
+
+
+def _resolve(mech: Mechanism, numbering: Numbering, ref: Ref, kind: str, where: str) -> list[int]:
+    """A buffer's or plot's argument as deck numbers: ``i`` co-ordinate, ``r`` row, ``j`` input, ``P`` point."""
+    if isinstance(ref, bool):
+        raise TypeError(f"{where}: not a reference: {ref!r}")
+    if isinstance(ref, int):
+        return [ref]
+    obj: object = mech[ref] if isinstance(ref, str) else ref
+    if kind == "P":
+        if isinstance(obj, Point):
+            return [numbering.coord_number[obj.x], numbering.coord_number[obj.y]]
+        kind = "i"
+    if kind == "i" and isinstance(obj, Coordinate) and obj in numbering.coord_number:
+        return [numbering.coord_number[obj]]
+    if kind == "r":
+        if isinstance(obj, FormParameter):
+            found = [r for r in numbering.rows if r.terms == ((1.0, obj),)]
+            if found:
+                obj = found[0]
+        if isinstance(obj, Row) and obj in numbering.row_dest:
+            return [numbering.row_dest[obj]]
+    if kind in "jm" and isinstance(obj, Row | FormParameter | str):
+        return [numbering.dof(obj)]
+    what = {"i": "a co-ordinate", "r": "a row or output", "j": "an input", "m": "an input"}[kind]
+    raise ValueError(f"{where}: {ref!r} is not {what} of the mechanism {mech.name!r}")
+
+
+def _ref_name(ref: Ref) -> str:
+    return str(ref) if isinstance(ref, int | str) else ref.label if isinstance(ref, FormParameter) else ref.name
+
+
+def _table_text(rows: np.ndarray, name: str) -> str:
+    head = f"# input motion of {name}: t value velocity acceleration, one row per position\n"
+    return head + "".join(" ".join(number(v) for v in row) + "\n" for row in rows)
+
+
+def _file_stem(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]", "_", name) or "mechanism"
+
+
+def write(
+    mech: Mechanism,
+    motion: Motion | None = None,
+    storage: Storage | None = None,
+    overrides: Mapping[Row | Coordinate, float] | None = None,
+) -> DeckText:
+    """Writes ``mech`` as deck text; ``overrides`` replace prescribed values and initial co-ordinates."""
+    over = overrides or {}
+    nb = number_model(mech)
+    out = _Lines()
+    out.add(f"; written by mechfem from the Python model '{mech.name}'")
+    out.add("KIN ANA")
+    out.add("TOPOLOGY")
+    for k, e in enumerate(nb.elements, 1):
+        nums = " ".join(str(nb.coord_number[c]) for c in e.coordinates)
+        out.add(f"ELEM {k} {e.type} {nums}", ("element", e.name), f"{e.name}: {_slot_names(e)}")
+    element_number = {e: k for k, e in enumerate(nb.elements, 1)}
+    seq = 0
+    for r in nb.rows:
+        dest = nb.row_dest[r]
+        for f, p in r.terms:
+            seq += 1
+            if p.element not in element_number:
+                raise ValueError(f"row {r.name!r}: {p!r} belongs to another mechanism")
+            k = element_number[p.element]
+            formula = r.formula()
+            comment = r.name if formula == r.name else f"{r.name}: {formula}"
+            out.add(f"FORM {seq} {p.form} {k} {dest} {number(f)}", (r.kind, r.name), comment)
+    n_dof = len(nb.inputs)
+    out.add(f"NRDOF {n_dof}", ("inputs", ", ".join(r.name for r in nb.inputs)))
+    out.add("GEOMETRY")
+    for i, c in enumerate(nb.coords, 1):
+        kw = "XFIX" if c.fixed else "XMOV"
+        out.add(f"{kw} {i} {number(over.get(c, c.value))}", ("co-ordinate", c.name), c.name)
+    for r in nb.prescribed:
+        value = over.get(r, r.value)
+        if value is not None:
+            out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name), r.name)
+
+    tables: dict[str, str] = {}
+    if motion is not None:
+        per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
+        for key, im in motion.inputs.items():
+            j = nb.dof(key)
+            if j in per_dof:
+                raise ValueError(f"input {nb.inputs[j - 1].name!r} is given two motions ({per_dof[j][0]!r}, {key!r})")
+            per_dof[j] = (key, im)
+        missing = [nb.inputs[j - 1].name for j in range(1, n_dof + 1) if j not in per_dof]
+        if missing:
+            raise ValueError(f"the motion gives no motion for the input(s) {', '.join(map(repr, missing))}")
+        out.add("MOVEMENT")
+        out.add(f"TSTEPE {motion.steps} {number(motion.dt)}", ("motion", "steps"))
+        for j in range(1, n_dof + 1):
+            im = per_dof[j][1]
+            name = nb.inputs[j - 1].name
+            note = ("motion of input", name)
+            if isinstance(im, By):
+                out.add(f"MOV_RELE {j} {number(im.delta)}", note, name)
+            elif isinstance(im, To):
+                out.add(f"MOV_ABSE {j} {number(im.end)}", note, name)
+            elif isinstance(im, Free):
+                out.add(f"MOV_FREE {j} {number(im.ds)}", note, name)
+            elif isinstance(im, Table):
+                file = im.file or f"{_file_stem(mech.name)}_input{j}.dat"
+                if any(ch.isspace() or ch == ";" for ch in file):
+                    raise ValueError(f"a MOV_FUNC file name cannot hold blanks or ';': {file!r}")
+                tables[file] = _table_text(im.rows(motion.dt), name)
+                out.add(f"MOV_FUNC {j} {file}", note, name)
+            else:
+                raise TypeError(f"not an input motion: {im!r}")
+        if motion.accuracy is not None:
+            out.add(f"ACCURACY {number(motion.accuracy)}", ("motion", "accuracy"))
+        if motion.max_iter is not None:
+            out.add(f"MAXITER {int(motion.max_iter)}", ("motion", "max_iter"))
+
+    if storage is not None:
+        out.add("STORAGE")
+        for b, kw, args in storage.buffers:
+            resolved: list[int] = []
+            for kind, a in zip(BUFFER_ARGS[kw], args, strict=False):
+                resolved += _resolve(mech, nb, a, kind, f"buffer {b}")
+            names = ", ".join(_ref_name(a) for a in args)
+            out.add(" ".join([kw, *map(str, resolved), str(b)]), ("buffer", str(b)), names or None)
+        if storage.printbuf is not None:
+            out.add(" ".join(["PRINTBUF", *map(str, storage.printbuf)]), ("storage", "PRINTBUF"))
+        if storage.savedata:
+            out.add(" ".join(["SAVEDATA", *map(str, storage.savedata)]), ("storage", "SAVEDATA"))
+        if storage.animate:
+            out.add(f"ANIMATE {storage.animate}", ("storage", "ANIMATE"))
+        for pic in storage.pictures:
+            out.add(f"BEGINPIC {pic.title.replace(';', ',')}".rstrip(), ("picture", pic.title))
+            for kw, first, second in pic.plots:
+                if kw == "PLOTHODO" and first == second:
+                    ab = _resolve(mech, nb, first, "P", "PLOTHODO")
+                elif kw == "PLOTHODO":
+                    ab = _resolve(mech, nb, first, "i", kw) + _resolve(mech, nb, second, "i", kw)
+                elif isinstance(first, int) and isinstance(second, int):
+                    ab = [first, second]
+                else:
+                    raise ValueError(f"{kw} takes two buffer numbers, got {first!r} and {second!r}")
+                if len(ab) != 2:
+                    raise ValueError(f"{kw} needs a point or two co-ordinates, got {first!r}")
+                out.add(f"{kw} {ab[0]} {ab[1]}", ("picture", pic.title))
+            out.add("ENDPIC")
+    out.add("END")
+    return DeckText("\n".join(out.lines) + "\n", f"{mech.name}.mec", out.notes, nb, tables)
+
+
+def save(mech: Mechanism, path: Path, motion: Motion | None, storage: Storage | None) -> Path:
+    """Writes the deck to ``path`` and its MOV_FUNC files beside it."""
+    deck = write(mech, motion, storage)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    for name, text in deck.tables.items():
+        (path.parent / name).write_text(text)
+    path.write_text(deck.text)
+    return path
+
+
+@contextmanager
+def tables_dir(tables: Mapping[str, str]) -> Iterator[str]:
+    """A folder holding the MOV_FUNC files (a temporary one, removed afterwards), or ``.`` without any."""
+    if not tables:
+        yield "."
+        return
+    with tempfile.TemporaryDirectory(prefix="mechfem-") as d:
+        for name, text in tables.items():
+            Path(d, name).write_text(text)
+        yield d
+
+
+# --- errors with the model's names ----------------------------------------------------------------------------------
+
+
+def _row_names(nb: Numbering, dests: list[int]) -> list[str]:
+    rows = nb.prescribed
+    return [rows[r - 1].name if 1 <= r <= len(rows) else str(r) for r in dests]
+
+
+def _coord_names(nb: Numbering, numbers: list[int]) -> list[str]:
+    return [nb.coords[i - 1].name if 1 <= i <= len(nb.coords) else str(i) for i in numbers]
+
+
+def _with(err: MechfemError, **attributes: object) -> MechfemError:
+    for key, value in attributes.items():
+        setattr(err, key, value)
+    return err
+
+
+def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
+    """The error with the model's names: the element, rows, co-ordinates or deck line it is about."""
+    nb = deck.numbering
+    if isinstance(err, DeckError):
+        line = int(getattr(err, "line", 0) or 0)
+        what, name = deck.notes.get(line, ("", ""))
+        where = f"{what} '{name}'" if what else "the model"
+        new = DeckError(
+            f"in the Python model '{model}', {where} (line {line} of the deck written for it):\n{err}"
+            if line
+            else f"in the Python model '{model}':\n{err}"
+        )
+        return _with(new, path=getattr(err, "path", deck.path), line=line, name=name or None, deck=deck.text)
+    if isinstance(err, AssemblyError):
+        k = int(getattr(err, "element", 0) or 0)
+        e = nb.elements[k - 1] if 1 <= k <= len(nb.elements) else None
+        text = str(err)
+        if e is not None:
+            text = re.sub(rf"^element {k} \((\w+)\)", rf"element '{e.name}' (\1, {_slot_names(e)})", text)
+        return _with(AssemblyError(text), element=k, element_name=None if e is None else e.name)
+    if isinstance(err, LimitPositionError):
+        rows = list(getattr(err, "rows", []))
+        coords = list(getattr(err, "coords", []))
+        text = names_in(str(err), nb)
+        if rows:
+            text += f"; rows named {', '.join(_row_names(nb, rows))}"
+        if coords:
+            text += f"; co-ordinates named {', '.join(_coord_names(nb, coords))}"
+        names = {"row_names": _row_names(nb, rows), "coord_names": _coord_names(nb, coords)}
+        return _with(LimitPositionError(text), rows=rows, coords=coords, **names)
+    new_e = type(err)(names_in(str(err), nb))
+    return new_e
+
+
+def names_in(text: str, nb: Numbering) -> str:
+    """Adds the model's names to the deck numbers a solver message mentions."""
+
+    def element(m: re.Match[str]) -> str:
+        k = int(m.group(1))
+        if 1 <= k <= len(nb.elements):
+            return f"element {k} '{nb.elements[k - 1].name}' ({m.group(2)})"
+        return m.group(0)
+
+    def coordinate(m: re.Match[str]) -> str:
+        i = int(m.group(1))
+        return f"co-ordinate {i} ({nb.coords[i - 1].name})" if 1 <= i <= len(nb.coords) else m.group(0)
+
+    def inp(m: re.Match[str]) -> str:
+        j = int(m.group(1))
+        inputs = nb.inputs
+        return f"input {j} ({inputs[j - 1].name})" if 1 <= j <= len(inputs) else m.group(0)
+
+    text = re.sub(r"element (\d+) \((\w+)\)", element, text)
+    text = re.sub(r"co-ordinate (\d+)\b", coordinate, text)
+    return re.sub(r"input (\d+)\b", inp, text)
+
+
+# --- running ---------------------------------------------------------------------------------------------------------
+
+
+def progress_callback(progress: Progress, what: str) -> Callable[[int, int], object] | None:
+    """A callable for ``_core``: None, the user's own, or a progress bar on stderr for ``True``."""
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        from mechfem.batch import ProgressBar
+
+        return ProgressBar(what)
+    return progress
+
+
+def run(
+    mech: Mechanism,
+    motion: Motion | None,
+    storage: Storage | None,
+    progress: Progress = None,
+    with_motion: bool = True,
+    order: int | None = 2,
+) -> Analysis:
+    """Runs the mechanism through ``motion`` (position 1 only without one, or with ``with_motion=False``),
+    computing the transfer functions of ``order`` (see :meth:`Mechanism.run`)."""
+    deck = write(mech, motion, storage)
+    callback = progress_callback(progress, "positions")
+    with tables_dir(deck.tables) as base:
+        try:
+            d = _core.run_deck_text(deck.text, deck.path, base, with_motion and motion is not None, callback, order)
+        except MechfemError as e:
+            raise translate(e, deck, mech.name) from None
+        finally:
+            close = getattr(callback, "close", None)
+            if close is not None:
+                close()
+    return Analysis(mech, deck.numbering, d, path=deck.path)
+
+
+# --- reading decks -------------------------------------------------------------------------------------------------
+
+
+def read(path: Path) -> Mechanism:
+    """Reads the deck at ``path`` into a mechanism (see :meth:`Mechanism.from_deck` for the names)."""
+    try:
+        text = path.read_bytes().decode("utf-8", errors="replace")
+    except OSError as e:
+        raise _with(DeckError(f"error: cannot read the deck: {e}\n --> {path}"), path=os.fspath(path), line=0) from None
+    return read_text(text, path.stem, path.parent if str(path.parent) else Path("."), os.fspath(path))
+
+
+def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> Mechanism:
+    """Reads deck text into a mechanism; MOV_FUNC files are read from ``base_dir``."""
+    d = _core.describe_deck_text(text, path or f"{name}.mec", os.fspath(base_dir))
+    m = Mechanism(name)
+    coords = {c["number"]: c for c in d["coordinates"]}
+    objects: dict[int, Coordinate] = {}
+
+    def new_coordinate(i: int, cname: str, kind: Literal["x", "y", "angle", "scalar"]) -> Coordinate:
+        spec = coords[i]
+        c = Coordinate(cname, spec["value"], not spec["moving"], kind, number=i)
+        m._claim(cname, c)
+        m.coordinates.append(c)
+        objects[i] = c
+        return c
+
+    # Points: every (x, y) pair an element uses, named after the x co-ordinate's number.
+    pairs: dict[tuple[int, int], Point] = {}
+    angle_use: set[int] = set()
+    for e in d["elements"]:
+        nums = list(e["coords"])
+        for kind in SLOTS[e["type"]]:
+            if kind == "P":
+                ix, iy = nums[0], nums[1]
+                nums = nums[2:]
+                if (ix, iy) in pairs:
+                    continue
+                pname = f"P{ix}" if f"P{ix}" not in m else f"P{ix}_{iy}"
+                cx = objects.get(ix) or new_coordinate(ix, f"{pname}.x", "x")
+                cy = objects.get(iy) or new_coordinate(iy, f"{pname}.y", "y")
+                p = Point(pname, cx, cy)
+                cx.point = cx.point or p
+                cy.point = cy.point or p
+                m._claim(pname, p)
+                m.points.append(p)
+                pairs[(ix, iy)] = p
+            else:
+                if kind == "a":
+                    angle_use.add(nums[0])
+                nums = nums[1:]
+    for i in sorted(coords):
+        if i not in objects:
+            new_coordinate(i, f"x{i}", "angle" if i in angle_use else "scalar")
+
+    elements: list[Element] = []
+    for e in d["elements"]:
+        nums = list(e["coords"])
+        slots: list[Slot] = []
+        for kind in SLOTS[e["type"]]:
+            if kind == "P":
+                slots.append(pairs[(nums[0], nums[1])])
+                nums = nums[2:]
+            else:
+                slots.append(objects[nums[0]])
+                nums = nums[1:]
+        el = Element(f"E{e['number']}", e["type"], slots)
+        m._claim(el.name, el)
+        m.elements.append(el)
+        elements.append(el)
+
+    # Rows in destination order; a single form parameter with factor 1 becomes its element's own row.
+    own: set[FormParameter] = set()
+
+    def add_row(spec: _core.DescribedRowDict, kind: Literal["prescribed", "input", "output"], fallback: str) -> Row:
+        terms = tuple((t["factor"], FormParameter(elements[t["element"] - 1], t["form"])) for t in spec["terms"])
+        fp = terms[0][1]
+        single = len(terms) == 1 and terms[0][0] == 1.0 and fp not in own and kind != "output"
+        if single and fp.label not in m:
+            own.add(fp)
+            row = Row(fp.label, kind, terms, spec["para"], element=True)
+        else:
+            row = Row(fallback, kind, terms, spec["para"])
+        m._claim(row.name, row)
+        m.rows.append(row)
+        return row
+
+    for spec in d["prescribed"]:
+        add_row(spec, "input" if spec["input"] is not None else "prescribed", f"row{spec['dest']}")
+    for spec in d["dependent"]:
+        add_row(spec, "output", f"out{-spec['dest']}")
+
+    nb = number_model(m)
+    if d["motion"] is not None:
+        mv = d["motion"]
+        inputs: dict[InputKey, InputMotion] = {}
+        for j, im in enumerate(mv["inputs"], 1):
+            key = nb.inputs[j - 1].name
+            value = im["value"]
+            if im["kind"] == "table":
+                rows = np.asarray(im["rows"], dtype=np.float64).reshape(-1, 4)
+                inputs[key] = Table(rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 0], im["file"])
+            elif value is None:
+                raise ValueError(f"input {j}: a {im['kind']} motion without a value")
+            elif im["kind"] == "by":
+                inputs[key] = By(value)
+            elif im["kind"] == "to":
+                inputs[key] = To(value)
+            else:
+                inputs[key] = Free(value)
+        tol, max_iter = d["tol"], d["max_iter"]
+        m.motion = Motion(
+            mv["steps"],
+            inputs,
+            mv["dt"],
+            None if tol == DEFAULT_ACCURACY else tol,
+            None if max_iter == DEFAULT_MAX_ITER else max_iter,
+        )
+    m.storage = _storage(d["storage"], nb)
+    return m
+
+
+def _storage(s: _core.StorageDict, nb: Numbering) -> Storage | None:
+    if not (s["buffers"] or s["printbuf"] is not None or s["savedata"] or s["animate"] or s["pictures"]):
+        return None
+
+    def name(kind: str, v: int) -> Ref:
+        if kind == "i":
+            return nb.coords[v - 1].name
+        if kind == "r":
+            return nb.prescribed[v - 1].name if v > 0 else nb.dependent[-v - 1].name
+        return nb.inputs[v - 1].name
+
+    buffers: list[tuple[int, str, tuple[Ref, ...]]] = []
+    for b in s["buffers"]:
+        kinds = BUFFER_ARGS[b["keyword"]]
+        buffers.append((b["number"], b["keyword"], tuple(name(k, v) for k, v in zip(kinds, b["args"], strict=False))))
+    pictures = []
+    for p in s["pictures"]:
+        plots: list[tuple[str, Ref, Ref]] = []
+        for q in p["plots"]:
+            if q["keyword"] == "PLOTHODO":
+                plots.append((q["keyword"], name("i", q["a"]), name("i", q["b"])))
+            else:
+                plots.append((q["keyword"], q["a"], q["b"]))
+        pictures.append(Picture(p["title"], plots))
+    printbuf = s["printbuf"]
+    return Storage(buffers, None if printbuf is None else list(printbuf), list(s["savedata"]), s["animate"], pictures)
+
+
+def png(mech: Mechanism) -> bytes | None:
+    """The mechanism at position 1 as a PNG image (for Jupyter), or None when it cannot be drawn."""
+    from mechfem import figures
+
+    return figures.mechanism_png(mech)
+
+
+__all__ = ["DeckText", "Numbering", "read", "read_text", "run", "save", "translate", "write", "FORMS"]

@@ -1,0 +1,180 @@
+"""Pictures of a :class:`~mechfem.Mechanism` and of an :class:`~mechfem.Analysis`, for scripts and notebooks.
+
+They are drawn with the code of the deck's pictures and animation (:mod:`mechfem.drawing`,
+:mod:`mechfem.plots`, :mod:`mechfem.animation`) on the run as the deck written from the mechanism gives
+it (:meth:`Analysis.run_result`), with the mechanism's names added. Figures are
+``matplotlib.figure.Figure`` objects (no pyplot state); in Jupyter a mechanism and an analysis show
+themselves as PNG images.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import io
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from mechfem.errors import MechfemError
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from mechfem.analysis import Analysis
+    from mechfem.model import Mechanism, Point
+
+PATH_COLOURS = ["#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f"]
+
+
+def _draw_mechanism(ax: Axes, a: Analysis, position: int = 0, names: bool = True) -> tuple[float, float, float, float]:
+    from mechfem.drawing import MechanismDrawing, MplMechanism
+
+    rr = a.run_result()
+    drawing = MechanismDrawing(rr.model, rr.coords)
+    MplMechanism(ax, drawing, rr.coords[position])
+    if names:
+        x = rr.coords[position]
+        offset = 0.6 * drawing.unit
+        for p in a.mechanism.points:
+            try:
+                i, j = a.numbering.coord_number[p.x] - 1, a.numbering.coord_number[p.y] - 1
+            except KeyError:
+                continue
+            ax.annotate(
+                p.name, (x[i], x[j]), xytext=(x[i] + offset, x[j] + offset), fontsize=8, color="#1f3b57", zorder=10
+            )
+    box = drawing.bounds([position])
+    _limits(ax, box)
+    return box
+
+
+def _limits(ax: Axes, box: tuple[float, float, float, float]) -> None:
+    x0, x1, y0, y1 = box
+    pad = 0.08 * max(x1 - x0, y1 - y0, 1e-12)
+    ax.set_xlim(x0 - pad, x1 + pad)
+    ax.set_ylim(y0 - pad, y1 + pad)
+    ax.set_aspect("equal", adjustable="box")
+
+
+def mechanism_figure(mech: Mechanism, names: bool = True) -> Figure:
+    """The mechanism at position 1 (after the adjustment of its initial co-ordinates), points named."""
+    from matplotlib.figure import Figure
+
+    a = mech.check()
+    fig = Figure(figsize=(6.0, 5.0), layout="constrained")
+    ax = fig.add_subplot()
+    _draw_mechanism(ax, a, 0, names)
+    ax.set_title(f"{mech.name}, position 1", fontsize="medium")
+    return fig
+
+
+def _points(a: Analysis, names: Sequence[str] | None) -> list[Point]:
+    """The points called ``names`` (default: every moving point of the run)."""
+    from mechfem.model import Point
+
+    if names is None:
+        return [p for p in a.mechanism.points if not p.fixed and p.x in a.numbering.coord_number]
+    out = []
+    for name in names:
+        p = a.mechanism[name]
+        if not isinstance(p, Point):
+            raise TypeError(f"{name!r} is not a point")
+        out.append(p)
+    return out
+
+
+def result_figure(
+    a: Analysis,
+    outputs: Sequence[str] = (),
+    *,
+    picture: int | None = None,
+    points: Sequence[str] | None = None,
+    against: str | None = None,
+) -> Figure:
+    """The mechanism at position 1 with the paths of its moving points (``points``: which), beside the
+    ``outputs`` (default: every output) against the first input (``against``: an input name, or ``time``).
+
+    ``picture=k`` draws picture k (0-based) of the run's storage as the deck's pictures do instead.
+    """
+    from matplotlib.figure import Figure
+
+    if picture is not None:
+        from mechfem.plots import picture_figure
+
+        fig = picture_figure(a.run_result(), picture)
+        assert isinstance(fig, Figure)
+        return fig
+    names = list(outputs) or [r.name for r in a.numbering.dependent]
+    fig = Figure(figsize=(12.0 if names else 6.5, 5.0), layout="constrained")
+    axes = fig.subplots(1, 2 if names else 1, squeeze=False)[0]
+    ax = axes[0]
+    x0, x1, y0, y1 = _draw_mechanism(ax, a)
+    chosen = _points(a, points)
+    for k, p in enumerate(chosen):
+        xy = a.value(p)
+        label = f"path of {p.name}"
+        ax.plot(xy[:, 0], xy[:, 1], color=PATH_COLOURS[k % len(PATH_COLOURS)], lw=1.0, label=label)
+        ok = np.isfinite(xy).all(axis=1)
+        if ok.any():
+            x0, x1 = min(x0, float(xy[ok, 0].min())), max(x1, float(xy[ok, 0].max()))
+            y0, y1 = min(y0, float(xy[ok, 1].min())), max(y1, float(xy[ok, 1].max()))
+    _limits(ax, (x0, x1, y0, y1))
+    if chosen:
+        ax.legend(fontsize="small", loc="best")
+    ax.set_title(f"{a.mechanism.name}: position 1 and paths", fontsize="medium")
+    if names:
+        ax2 = axes[1]
+        if against == "time" or not a.numbering.inputs:
+            xs, xlabel = a.time, "time"
+        else:
+            key = against if against is not None else a.numbering.inputs[0].name
+            xs, xlabel = a.input(key), key
+        for k, name in enumerate(names):
+            ax2.plot(xs, a.value(name), color=PATH_COLOURS[k % len(PATH_COLOURS)], label=name)
+        ax2.set_xlabel(xlabel)
+        ax2.grid(True, alpha=0.3)
+        ax2.legend(fontsize="small", loc="best")
+        state = "" if a.complete else f" (stopped after position {a.positions})"
+        ax2.set_title(f"{', '.join(names)} against {xlabel}{state}", fontsize="medium")
+    return fig
+
+
+def _png(fig: Figure) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90)
+    return buf.getvalue()
+
+
+def mechanism_png(mech: Mechanism) -> bytes | None:
+    """:func:`mechanism_figure` as PNG bytes, or None when position 1 cannot be computed."""
+    try:
+        return _png(mechanism_figure(mech))
+    except (MechfemError, ValueError):
+        return None
+
+
+def result_png(a: Analysis) -> bytes | None:
+    """:func:`result_figure` as PNG bytes, or None when it cannot be drawn."""
+    if a.positions == 0:
+        return None
+    return _png(result_figure(a))
+
+
+def animate(
+    a: Analysis, path: str | Path, points: Sequence[str] | None = None, max_frames: int | None = None
+) -> list[Path]:
+    """Writes the animation of the motion to ``path`` (``name.gif``, and ``name.mp4`` when ffmpeg is installed),
+    with the paths and velocity arrows of ``points`` (default: every moving point); returns the files."""
+    from mechfem.animation import MAX_FRAMES, write_animation
+    from mechfem.result import Picture, Plot
+
+    target = Path(path)
+    rr = a.run_result()
+    plots = [Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in _points(a, points)]
+    storage = dataclasses.replace(rr.storage, animate=target.stem, pictures=[Picture("", 0, plots)])
+    rr = dataclasses.replace(rr, storage=storage)
+    info = write_animation(rr, target.parent, max_frames=max_frames or MAX_FRAMES)
+    return list(info.files)
