@@ -12,6 +12,13 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 SUPPLY = ROOT / "examples" / "supply" / "supply.mec"
+STOP_MARK = "; expect: the motion stops at a limit position"
+
+
+def stops_on_purpose(deck: Path) -> bool:
+    """Whether an example deck demonstrates a driven motion stopping at a limit
+    position (it says so in a comment line); such a run exits with status 1."""
+    return STOP_MARK in deck.read_text()
 
 Cli = Callable[..., subprocess.CompletedProcess[str]]
 

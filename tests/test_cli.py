@@ -33,14 +33,19 @@ def test_run_without_savedata_writes_no_data_set(cli: Cli, tmp_path: Path) -> No
     out = tmp_path / "out"
     proc = cli("run", deck, "-o", out)
     assert proc.returncode == 0, proc.stderr
-    assert sorted(p.name for p in out.iterdir()) == ["supply.prt"]
+    assert not (out / "supply.csv").exists()
+    assert (out / "supply.prt").is_file()
 
 
-def test_run_notes_pictures_and_animation_not_produced(cli: Cli, tmp_path: Path) -> None:
+def test_run_writes_pictures_and_animation(cli: Cli, tmp_path: Path) -> None:
     proc = cli("run", SUPPLY, "-o", tmp_path)
-    assert "not produced yet" in proc.stdout
-    assert "ANIMATE film" in proc.stdout
-    assert "PLOTHODO 13 14" in proc.stdout
+    assert proc.returncode == 0, proc.stderr
+    for name in ("supply_pic1.png", "supply_pic1.svg", "supply_pic2.png", "supply_pic2.svg", "film.gif"):
+        assert f"wrote {tmp_path / name}" in proc.stdout
+    assert "film.gif (73 frames, one per position)" in proc.stdout
+    text = (tmp_path / "supply.prt").read_text()
+    assert "PICTURES AND ANIMATION" in text
+    assert "PLOTHODO 13 14): supply_pic1.png, supply_pic1.svg" in text
 
 
 def test_default_output_folder_is_the_decks_folder(cli: Cli, supply_with_savedata: Path, tmp_path: Path) -> None:
@@ -72,7 +77,9 @@ def test_outputs_are_written_atomically(cli: Cli, supply_with_savedata: Path, tm
     (out / "supply.prt").write_text("old")
     proc = cli("run", supply_with_savedata, "-o", out)
     assert proc.returncode == 0, proc.stderr
-    assert sorted(p.name for p in out.iterdir()) == ["supply.csv", "supply.prt"]
+    # No temporary file is left behind: only the finished outputs.
+    pictures = ["supply_pic1.png", "supply_pic1.svg", "supply_pic2.png", "supply_pic2.svg"]
+    assert sorted(p.name for p in out.iterdir()) == sorted(["supply.csv", "supply.prt", "film.gif", *pictures])
     assert (out / "supply.prt").read_text() != "old"
 
 

@@ -553,7 +553,7 @@ def test_gr2_with_zero_radius_names_the_element(cli: Cli, tmp_path: Path) -> Non
     assert proc.returncode == 1
     assert "Traceback" not in proc.stderr
     assert "element 4 (GR2) cannot be evaluated at the initial co-ordinates" in proc.stderr
-    assert "a gear radius is zero" in proc.stderr
+    assert "the gear radius R_c is zero" in proc.stderr
     assert "zero.mec:6" in proc.stderr
 
 

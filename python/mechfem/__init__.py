@@ -10,6 +10,13 @@ every recorded buffer back as numpy arrays::
     result.buffers[101]          # first-order transfer function, one value per position
     result.report.stop_reason()  # None when every position was computed
 
+or build a mechanism in Python with named points and elements (:class:`Mechanism`), run it
+(:class:`Analysis`) and run many variants of it on every core (:func:`sweep`)::
+
+    m = mechfem.Mechanism.from_deck("examples/supply/supply.mec")
+    r = m.run()
+    r.output("out1", order=1)
+
 Deck mistakes raise :class:`DeckError`; a model that cannot reach position 1
 raises :class:`AssemblyError`, :class:`ConvergenceError` or
 :class:`LimitPositionError`. A motion that stops later is not an error: the
@@ -24,7 +31,10 @@ from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 from mechfem import _core
+from mechfem.analysis import Analysis
+from mechfem.batch import Study, run_many, sweep
 from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.result import (
     AdjustInfo,
     Buffer,
@@ -71,17 +81,23 @@ def check_deck(path: str | os.PathLike[str]) -> CheckResult:
 
 __all__ = [
     "AdjustInfo",
+    "Analysis",
     "AssemblyError",
     "Buffer",
     "CheckResult",
     "ConvergenceError",
     "Coordinate",
     "DeckError",
+    "Driven",
     "Element",
+    "Keep",
     "Limit",
     "LimitPositionError",
     "MechfemError",
+    "Mechanism",
     "Model",
+    "Motion",
+    "Output",
     "Picture",
     "Plot",
     "Progress",
@@ -90,8 +106,11 @@ __all__ = [
     "RunResult",
     "Stop",
     "Storage",
+    "Study",
     "Term",
     "__version__",
     "check_deck",
+    "run_many",
     "run_deck",
+    "sweep",
 ]

@@ -153,9 +153,103 @@ class RunDict(TypedDict):
     """positions x co-ordinates."""
     time: _F64
     det: _F64
+    kx1_coords: list[int]
+    """The co-ordinates named by PLOTHODO lines (empty without them or without a DOF)."""
+    kx1_values: _F64
+    """positions x len(kx1_coords): d x_i / d input 1, NaN where D^c is singular."""
     report: ReportDict
     model: ModelDict
     storage: StorageDict
 
 def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
 def run_deck(path: str | os.PathLike[str], progress: Callable[[int, int], object] | None = None) -> RunDict: ...
+
+# --- deck text, for the model API (mechfem.Mechanism) and batch runs ---
+
+class TextRunDict(TypedDict):
+    buffer_numbers: list[int]
+    n_buffers: int
+    table: _F64
+    """positions x columns: the deck's buffers (in the order of ``buffer_numbers``), then every quantity in the
+    layout of ``mechfem.analysis`` (N co-ordinates, D inputs, R rows = prescribed then dependent: D input values;
+    per co-ordinate D first-order and D x D second-order transfer functions, velocity, acceleration; per row
+    value, D first-order, D x D second-order, velocity, acceleration), then time and det(D^c)."""
+    coords: _F64
+    """positions x co-ordinates."""
+    n_coords: int
+    n_dof: int
+    n_prescribed: int
+    n_dependent: int
+    report: ReportDict
+    model: ModelDict
+    storage: StorageDict
+
+class DescribedCoordDict(TypedDict):
+    number: int
+    moving: bool
+    value: float
+
+class DescribedElementDict(TypedDict):
+    number: int
+    type: str
+    coords: list[int]
+    line: int
+
+class DescribedTermDict(TypedDict):
+    element: int
+    form: str
+    factor: float
+    line: int
+
+class DescribedRowDict(TypedDict):
+    dest: int
+    terms: list[DescribedTermDict]
+    para: float | None
+    input: int | None
+
+class DescribedInputDict(TypedDict):
+    kind: str
+    """``by`` (MOV_RELE), ``to`` (MOV_ABSE), ``table`` (MOV_FUNC) or ``free`` (MOV_FREE)."""
+    value: float | None
+    """delta, end or ds; None for a table."""
+    rows: list[list[float]] | None
+    """A table's rows ``t value velocity acceleration``."""
+    file: str | None
+    """A table's file name as the deck gives it."""
+
+class DescribedMotionDict(TypedDict):
+    steps: int
+    dt: float
+    inputs: list[DescribedInputDict]
+
+class DescribedDeckDict(TypedDict):
+    coordinates: list[DescribedCoordDict]
+    elements: list[DescribedElementDict]
+    prescribed: list[DescribedRowDict]
+    dependent: list[DescribedRowDict]
+    dofs: list[int]
+    tol: float
+    max_iter: int
+    motion: DescribedMotionDict | None
+    storage: StorageDict
+
+def run_deck_text(
+    text: str,
+    path: str | os.PathLike[str],
+    base_dir: str | os.PathLike[str],
+    motion: bool = True,
+    progress: Callable[[int, int], object] | None = None,
+    order: int | None = 2,
+) -> TextRunDict: ...
+def describe_deck_text(
+    text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
+) -> DescribedDeckDict: ...
+def run_deck_texts(
+    texts: list[str],
+    path: str | os.PathLike[str],
+    base_dir: str | os.PathLike[str],
+    workers: int | None = None,
+    progress: Callable[[int, int], object] | None = None,
+    on_result: Callable[[int, TextRunDict | MechfemError], object] | None = None,
+    order: int | None = 2,
+) -> list[TextRunDict | MechfemError]: ...

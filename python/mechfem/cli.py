@@ -1,6 +1,10 @@
 """The ``mechfem`` command.
 
-    mechfem run DECK [-o OUTDIR]   run the deck, write DECK-stem.prt (and .csv with SAVEDATA) to OUTDIR
+    mechfem run DECK [-o OUTDIR] [--report] [--max-frames N]
+                                   run the deck, write DECK-stem.prt (and .csv with SAVEDATA), the pictures
+                                   and the animation to OUTDIR; --report adds the interactive DECK-stem.html
+    mechfem report DECK [-o OUTDIR]
+                                   run the deck and write only the interactive report DECK-stem.html
     mechfem check DECK             read the deck and compute position 1 only
 
 Exit status: 0 on success; 1 when the deck has a mistake, position 1 cannot be computed, the motion
@@ -16,9 +20,11 @@ from pathlib import Path
 from typing import TextIO
 
 import mechfem
+from mechfem.animation import MAX_FRAMES
 from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from mechfem.media import Media
 from mechfem.output import count, write_outputs
-from mechfem.result import Storage
+from mechfem.report import write_report
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -69,7 +75,28 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="OUTDIR",
         help="folder for the output files (created if needed; default: the deck's folder)",
     )
+    run.add_argument(
+        "--report", action="store_true", help="also write the interactive report DECK-stem.html (one offline file)"
+    )
+    run.add_argument(
+        "--max-frames",
+        type=frame_count,
+        default=MAX_FRAMES,
+        metavar="N",
+        help=f"most frames of the animation, 2..{MAX_FRAMES} (default {MAX_FRAMES}); longer runs are subsampled",
+    )
     run.set_defaults(func=cmd_run)
+    rep = commands.add_parser("report", help="run a deck and write only its interactive report (HTML)")
+    rep.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
+    rep.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        default=None,
+        metavar="OUTDIR",
+        help="folder for DECK-stem.html (created if needed; default: the deck's folder)",
+    )
+    rep.set_defaults(func=cmd_report)
     check = commands.add_parser("check", help="read a deck and compute its first position only")
     check.add_argument("deck", type=Path, metavar="DECK", help="the deck to check")
     check.set_defaults(func=cmd_check)
@@ -84,31 +111,55 @@ def cmd_run(args: argparse.Namespace) -> int:
         result = mechfem.run_deck(deck, progress=bar)
     finally:
         bar.close()
-    written = write_outputs(result, outdir)
+    media = Media(result, outdir, max_frames=args.max_frames, report=args.report)
+    written = write_outputs(result, outdir, media.print_lines())
     report = result.report
     print(f"{deck}: {count(report.positions, 'position')} computed")
     for path in written:
         print(f"wrote {path}")
-    not_yet = unproduced_outputs(result.storage)
-    if not_yet:
-        print("note: pictures and animation are not produced yet by this version; skipped: " + "; ".join(not_yet))
+    for path, what in media.write():
+        print(f"wrote {path}" + (f" ({what})" if what else ""))
+    for note in media.notes:
+        print(f"note: {note}")
+    for limit in report.limits:
+        if limit.kind == "passed":
+            print(f"limit position: {limit.describe(report.input_names)}")
     for w in report.warnings:
         print(f"warning: {deck}: {w}", file=sys.stderr)
-    reason = report.stop_reason()
+    reason = report.stop_reason(written=True)
     if reason is not None:
         print(f"error: {deck}: {reason}", file=sys.stderr)
         return EXIT_FAILED
     return EXIT_OK
 
 
-def unproduced_outputs(storage: Storage) -> list[str]:
-    """The ANIMATE and BEGINPIC requests of the deck, in words."""
-    out = [f"ANIMATE {storage.animate}"] if storage.animate else []
-    for pic in storage.pictures:
-        plots = ", ".join(f"{p.keyword} {p.a} {p.b}" for p in pic.plots)
-        title = f" '{pic.title}'" if pic.title else ""
-        out.append(f"BEGINPIC{title} (line {pic.line}: {plots})")
-    return out
+def frame_count(text: str) -> int:
+    """``--max-frames``: an integer from 2 to MAX_FRAMES."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if not 2 <= n <= MAX_FRAMES:
+        raise argparse.ArgumentTypeError(f"must be from 2 to {MAX_FRAMES}, not {n}")
+    return n
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    deck: Path = args.deck
+    outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    bar = ProgressBar(sys.stderr)
+    try:
+        result = mechfem.run_deck(deck, progress=bar)
+    finally:
+        bar.close()
+    path = write_report(result, outdir)
+    print(f"{deck}: {count(result.report.positions, 'position')} computed")
+    print(f"wrote {path} (open it in a web browser)")
+    reason = result.report.stop_reason(written=True)
+    if reason is not None:
+        print(f"error: {deck}: {reason}", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 def cmd_check(args: argparse.Namespace) -> int:
@@ -130,6 +181,11 @@ def cmd_check(args: argparse.Namespace) -> int:
     else:
         print(f"  position 1: the given co-ordinates fit (remaining deformation {a.residual:.3g})")
     print(f"  det(D^c) at position 1: {c.det:.10g}")
+    if c.det == 0.0:
+        print(
+            "  position 1 is a limit position of the input: D^c is singular there and no transfer functions exist "
+            "(free motion starts from it)"
+        )
     return EXIT_OK
 
 

@@ -8,12 +8,15 @@ from __future__ import annotations
 
 import os
 import secrets
-from collections.abc import Iterator
+import textwrap
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
 from typing import TextIO
 
-from mechfem.result import Model, RunResult
+import numpy as np
+
+from mechfem.result import Model, RunResult, Storage
 
 #: Buffers per table in the print file, so that a table fits an ordinary terminal or page.
 COLUMNS_PER_TABLE = 6
@@ -41,13 +44,18 @@ def atomic_text(path: Path) -> Iterator[TextIO]:
         raise
 
 
-def write_outputs(result: RunResult, outdir: Path) -> list[Path]:
-    """Writes the print file, and the data set when the deck has SAVEDATA; returns the files written."""
+def write_outputs(result: RunResult, outdir: Path, media: Sequence[str] = ()) -> list[Path]:
+    """Writes the print file, and the data set when the deck has SAVEDATA; returns the files written.
+
+    ``media`` are the print file's lines on pictures, animation and report (:meth:`mechfem.media.Media.print_lines`).
+    """
     outdir.mkdir(parents=True, exist_ok=True)
     stem = result.deck.stem
-    written = [write_print_file(result, outdir / f"{stem}.prt")]
+    written = [write_print_file(result, outdir / f"{stem}.prt", media)]
     if result.storage.savedata:
         written.append(write_data_set(result, outdir / f"{stem}.csv"))
+        if nan_positions(result, result.storage.savedata):
+            written.append(write_data_set_notes(result, outdir / f"{stem}.notes.txt"))
     return written
 
 
@@ -66,10 +74,11 @@ def write_data_set(result: RunResult, path: Path) -> Path:
     return path
 
 
-def write_print_file(result: RunResult, path: Path) -> Path:
-    """The print file: the model, the adjustment of position 1, the PRINTBUF tables, warnings and the stop."""
+def write_print_file(result: RunResult, path: Path, media: Sequence[str] = ()) -> Path:
+    """The print file: the model, the adjustment of position 1, the PRINTBUF tables, warnings, the stop and
+    ``media`` (lines on pictures, animation and report)."""
     with atomic_text(path) as f:
-        f.write("\n".join(print_file_lines(result)) + "\n")
+        f.write("\n".join([*print_file_lines(result), *media]) + "\n")
     return path
 
 
@@ -82,11 +91,12 @@ def print_file_lines(result: RunResult) -> list[str]:
     out += adjustment_lines(result)
     out += motion_lines(result)
     out += table_lines(result)
+    out += limit_lines(result)
     if result.report.warnings:
-        out += ["WARNINGS", *(f"  {w}" for w in result.report.warnings), ""]
-    reason = result.report.stop_reason()
+        out += ["WARNINGS", *(line for w in result.report.warnings for line in paragraph(w)), ""]
+    reason = result.report.stop_reason(written=True)
     if reason is not None:
-        out += ["MOTION STOPPED", f"  {reason}", ""]
+        out += ["MOTION STOPPED", *paragraph(reason), ""]
     return out
 
 
@@ -174,3 +184,134 @@ def table_lines(result: RunResult) -> list[str]:
             out.append(f"  {k + 1:8d}" + "".join(f"{float(c[k]):18.10g}" for c in columns))
         out.append("")
     return out
+
+
+#: A model with at most this many moving co-ordinates has all of them listed at every limit position; a larger one
+#: has only the co-ordinates its BUFX0 buffers record.
+SHORT_MODEL = 10
+
+#: Width of the paragraphs of the limit-position and stop sections.
+TEXT_WIDTH = 100
+
+
+def paragraph(text: str, indent: str = "  ") -> list[str]:
+    """``text`` wrapped to TEXT_WIDTH columns, every line indented."""
+    wrapper = textwrap.TextWrapper(
+        TEXT_WIDTH, initial_indent=indent, subsequent_indent=indent, break_on_hyphens=False, break_long_words=False
+    )
+    return wrapper.wrap(text)
+
+
+def nan_buffers(result: RunResult, numbers: list[int]) -> list[int]:
+    """Those of the buffers ``numbers`` that hold NaN at some position."""
+    return [n for n in numbers if np.isnan(result.buffers[n]).any()]
+
+
+def nan_positions(result: RunResult, numbers: list[int]) -> list[int]:
+    """The positions (1-based) where any of the buffers ``numbers`` holds NaN."""
+    bad: set[int] = set()
+    for n in numbers:
+        bad.update(int(k) + 1 for k in np.flatnonzero(np.isnan(result.buffers[n])))
+    return sorted(bad)
+
+
+def numbers_text(items: Sequence[object]) -> str:
+    """``1``, ``1 and 5``, ``1, 5 and 9``."""
+    text = [str(n) for n in items]
+    return text[0] if len(text) == 1 else ", ".join(text[:-1]) + " and " + text[-1]
+
+
+def buffers_text(storage: Storage, numbers: list[int]) -> str:
+    """``3 (BUFKE1 -1 1) and 5 (BUFKX1 9 1)``."""
+    return numbers_text([f"{n} ({storage.buffer(n).label()})" for n in numbers])
+
+
+def shown_coordinates(result: RunResult) -> list[int]:
+    """The co-ordinates listed at each limit position: every moving one of a small model, otherwise those that
+    BUFX0 buffers record."""
+    moving = [c.number for c in result.model.coordinates if c.moving]
+    if len(moving) <= SHORT_MODEL:
+        return moving
+    return sorted({b.args[0] for b in result.storage.buffers if b.keyword == "BUFX0"})
+
+
+def limit_lines(result: RunResult) -> list[str]:
+    """The LIMIT POSITIONS section: the range of det(D^c), every located limit position, and the positions
+    without transfer functions. Nothing without a motion."""
+    report = result.report
+    if report.steps == 0:
+        return []
+    out = ["LIMIT POSITIONS"]
+    det = np.abs(result.det)
+    k_min, k_max = int(np.nanargmin(det)), int(np.nanargmax(det))
+    out += paragraph(
+        f"det(D^c), the measure of transfer quality, ranges from {np.nanmin(result.det):.6g} to "
+        f"{np.nanmax(result.det):.6g}; its magnitude is smallest at position {k_min + 1} ({det[k_min]:.3g}) and "
+        f"largest at position {k_max + 1} ({det[k_max]:.3g}). Its value depends on units and on the choice of rows: "
+        "compare it only along one run. Where it is zero, an input is in a limit position."
+    )
+    limits = report.located_limits
+    if not limits:
+        out += ["", "  no limit position met"]
+    shown = shown_coordinates(result)
+    for number, limit in enumerate(limits, 1):
+        out.append("")
+        head = paragraph(f"{limit.where}: {limit.what(report.input_names)}", "      ")
+        out += [f"  {number:2d}. {head[0].lstrip()}", *head[1:]]
+        out += paragraph(limit.values(), "      ")
+        if shown:
+            values = [f"{i:>4d} = {limit.coords[i - 1]:<17.10g}" for i in shown]
+            out.append("      co-ordinates there:")
+            out += [f"      {'  '.join(values[k : k + 4])}".rstrip() for k in range(0, len(values), 4)]
+    if report.singular_positions:
+        positions = report.singular_positions
+        nan = nan_buffers(result, [b.number for b in result.storage.buffers])
+        which = "Buffer" if len(nan) == 1 else "Buffers"
+        holds = (
+            f" {which} {buffers_text(result.storage, nan)}, made from them, hold{'s' if len(nan) == 1 else ''} NaN "
+            "there (nan in the tables and the data set); every other value is a number."
+            if nan
+            else ""
+        )
+        out += ["", f"  positions without transfer functions: {numbers_text(positions)}"]
+        out += paragraph(
+            f"D^c is singular at {'this position' if len(positions) == 1 else 'these positions'}: the mechanism is "
+            f"in a limit position of its input there, and no transfer functions exist.{holds}",
+            "    ",
+        )
+    out.append("")
+    return out
+
+
+def write_data_set_notes(result: RunResult, path: Path) -> Path:
+    """The note beside a data set that holds NaN: where, and why."""
+    stem = result.deck.stem
+    saved = result.storage.savedata
+    nan = nan_buffers(result, saved)
+    positions = nan_positions(result, saved)
+    singular = result.report.singular_positions
+    lines = [
+        f"Notes on {stem}.csv, the data set of {result.deck}",
+        "",
+        "Row 1 holds the buffer numbers, row k + 1 the values at position k.",
+        "",
+    ]
+    lines += paragraph(
+        f"nan: column{'s' if len(nan) > 1 else ''} {buffers_text(result.storage, nan)} "
+        f"hold{'s' if len(nan) == 1 else ''} nan at position{'s' if len(positions) > 1 else ''} "
+        f"{numbers_text(positions)} and nowhere else. "
+        + (
+            f"D^c is singular at position{'s' if len(singular) > 1 else ''} {numbers_text(singular)}: the mechanism "
+            "is in a limit position of its input there, so no transfer functions (and no velocities or "
+            "accelerations made from them) exist."
+            if singular
+            else ""
+        ),
+        "",
+    )
+    if result.report.located_limits:
+        lines += ["", f"Limit positions located (details in LIMIT POSITIONS of {stem}.prt):"]
+        lines += [f"  {limit.where}: {limit.values()}" for limit in result.report.located_limits]
+    with atomic_text(path) as f:
+        f.write("\n".join(lines) + "\n")
+    return path

@@ -6,7 +6,8 @@ Numbers that name things (co-ordinates, elements, rows, DOFs, buffers, positions
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -44,33 +45,60 @@ class AdjustInfo:
 
 @dataclass(frozen=True)
 class Limit:
-    """A limit position met during the motion (theory, section 5.5)."""
+    """A limit position met during the motion (theory, section 5.5), located between two positions."""
 
     kind: str
-    """``sign_change``: det(D^c) changed sign; ``near_zero``: |det(D^c)| has a local minimum near zero;
-    ``input_limit``: a driven input reached its extreme value; ``passed``: free motion passed such an extreme."""
+    """``sign_change``: det(D^c) changed sign between two positions of a driven motion; ``near_zero``: |det(D^c)|
+    has a local minimum near zero; ``input_limit``: a driven input reached its extreme value, and the motion stopped
+    there; ``passed``: free motion passed an extreme value of the input."""
     after: int
     """The position before it (the position itself for ``near_zero``)."""
     inputs: list[float]
+    """The input values there; for ``input_limit`` and ``passed`` the input's extreme value."""
     coords: list[float]
+    """All co-ordinates there (index i - 1 for co-ordinate i)."""
     det: float
+    """det(D^c) there: zero up to rounding, except at a ``near_zero`` minimum."""
 
     @classmethod
     def from_core(cls, d: _core.LimitDict) -> Limit:
         return cls(d["kind"], d["after"], list(d["inputs"]), list(d["coords"]), d["det"])
 
-    def describe(self) -> str:
-        """One sentence: what and where."""
-        at = ", ".join(f"input {j} = {v:.10g}" for j, v in enumerate(self.inputs, 1))
-        at = f" (at {at}, det(D^c) = {self.det:.3g})" if at else f" (det(D^c) = {self.det:.3g})"
+    @property
+    def where(self) -> str:
+        """``between positions k and k+1``, or ``at position k`` for a near-zero minimum."""
         if self.kind == "near_zero":
-            return f"det(D^c) comes near zero at position {self.after}{at}: close to a limit position."
-        what = {
-            "sign_change": "det(D^c) changes sign",
-            "input_limit": "the input reaches its extreme value",
-            "passed": "free motion passes an extreme value of the input",
+            return f"at position {self.after}"
+        return f"between positions {self.after} and {self.after + 1}"
+
+    def what(self, names: Sequence[str] = ()) -> str:
+        """The kind in words; ``names`` are the inputs' rows (:attr:`RunReport.input_names`)."""
+        inp = input_name(1, names) if len(self.inputs) == 1 else "an input"
+        return {
+            "sign_change": "det(D^c) changes sign: the driven motion passed a singular position",
+            "near_zero": "det(D^c) has a minimum near zero: close to a limit position, the transfer quality is poor",
+            "input_limit": f"{inp} reaches its limit position: the driven motion cannot go on",
+            "passed": f"free motion passes a limit position of {inp}, which turns back there",
         }.get(self.kind, "a limit position")
-        return f"{what} between positions {self.after} and {self.after + 1}{at}."
+
+    def values(self) -> str:
+        """``input 1 = ..., det(D^c) = ...``."""
+        at = [f"input {j} = {v:.12g}" for j, v in enumerate(self.inputs, 1)]
+        return ", ".join([*at, f"det(D^c) = {self.det:.3g}"])
+
+    def describe(self, names: Sequence[str] = ()) -> str:
+        """One sentence: what, where, the input values and det(D^c)."""
+        return f"{self.what(names)}, {self.where} ({self.values()})."
+
+
+def input_name(j: int, names: Sequence[str] = ()) -> str:
+    """``the input of DOF j``, with its row and form parameters when ``names`` has them."""
+    return f"the input of DOF {j} ({names[j - 1]})" if len(names) >= j else f"the input of DOF {j}"
+
+
+def free_motion_line(j: int, ds: float) -> str:
+    """The deck line ``MOV_FREE j ds``, with ds rounded to two significant digits."""
+    return f"MOV_FREE {j} {float(f'{ds:.2g}'):g}"
 
 
 @dataclass(frozen=True)
@@ -80,11 +108,12 @@ class Stop:
     last_good: int
     """The last position that was computed (1-based)."""
     inputs: list[float]
-    """Input values that could not be reached."""
+    """Input values that could not be reached (empty under free motion)."""
     last_inputs: list[float]
     """Input values at the last good position."""
     kind: str
-    """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``."""
+    """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
+    ``interrupted``."""
     message: str
     """The solver's own words."""
     limit: Limit | None
@@ -95,32 +124,73 @@ class Stop:
         limit = None if d["limit"] is None else Limit.from_core(d["limit"])
         return cls(d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit)
 
-    def describe(self, total: int) -> str:
-        """One paragraph: where the motion stopped, why, and what to change."""
+    def describe(
+        self, total: int, names: Sequence[str] = (), free_step: float | None = None, written: bool = False
+    ) -> str:
+        """One paragraph: where the motion stopped, why, and what to change.
+
+        ``names`` are the inputs' rows (:attr:`RunReport.input_names`), ``free_step`` the ds to suggest for
+        MOV_FREE, and ``written`` says whether the positions computed have been written to output files.
+        """
+        k = self.last_good
+        kept = "written to the output files" if written else "kept in the result"
+        kept = (
+            f"Position 1 was computed and is {kept}."
+            if k == 1
+            else f"Positions 1 to {k} were computed and are all {kept}."
+        )
+        if self.kind == "interrupted":
+            return f"The motion was interrupted after position {k} of {total}. {kept}"
+        limit = self.limit
+        if limit is not None and limit.kind == "input_limit" and len(self.inputs) == 1 == len(limit.inputs):
+            return (
+                f"The motion stopped after position {k} of {total}: {input_name(1, names)} reached its limit "
+                f"position at input 1 = {limit.inputs[0]:.12g}, located between positions {k} and {k + 1} "
+                f"(det(D^c) = {limit.det:.2g} there), and cannot be driven on to {self.inputs[0]:.10g}. {kept} A "
+                "driven input cannot move the mechanism through its limit position; free motion can. "
+                f"{self._free_advice(free_step)} (At the smallest step the solver reported: {self.message}.)"
+            )
         frm = ", ".join(f"input {j} = {v:.10g}" for j, v in enumerate(self.last_inputs, 1))
         to = ", ".join(f"input {j} = {v:.10g}" for j, v in enumerate(self.inputs, 1))
-        step = f"the step from {frm} to {to}" if to else f"the step from {frm}"
-        limit = "" if self.limit is None else f" Located: {self.limit.describe()}"
-        # A located limit position of the input explains the failure better than the solver's symptom.
-        located = self.limit is not None and self.limit.kind in ("input_limit", "sign_change")
-        hint = _HINTS["singular"] if located else _HINTS.get(self.kind, _HINTS["other"])
+        step = f"the step from {frm} to {to}" if to else f"the free-motion step from {frm}"
+        located = "" if limit is None else f" Located: {limit.describe(names)}"
+        hint = _HINTS.get(self.kind, _HINTS["other"])
+        if not self.inputs and self.kind != "element":
+            hint = "Try a smaller ds in MOV_FREE, with a larger n in TSTEPE to cover the same path."
+        elif len(self.inputs) == 1 and self.kind != "element":
+            hint += f" If the input is near a limit position, use free motion. {self._free_advice(free_step)}"
+        elif self.kind != "element":
+            hint += (
+                " Near a limit position, drive the mechanism with other inputs or stop the motion before it "
+                "(free motion, MOV_FREE, needs a mechanism with one degree of freedom)."
+            )
         return (
-            f"The motion stopped after position {self.last_good} of {total}: {step} failed, even with smaller "
-            f"steps: {self.message}.{limit} Every result up to position {self.last_good} is kept. {hint}"
+            f"The motion stopped after position {k} of {total}: {step} failed, even with smaller steps: "
+            f"{self.message}.{located} {kept} {hint}"
+        )
+
+    def _free_advice(self, free_step: float | None) -> str:
+        """The MOV_FREE line to use instead of the driven one, for a one-DOF driven motion."""
+        direction = -1.0 if self.inputs and self.inputs[0] < self.last_inputs[0] else 1.0
+        ds = abs(free_step) if free_step else 0.01
+        line = free_motion_line(1, direction * ds)
+        size = "about the size of the steps made so far" if free_step else "choose it small against the mechanism"
+        return (
+            f"Replace the MOV_ line of DOF 1 by `{line}`: each of the n steps of TSTEPE then moves the co-ordinates "
+            f"a Euclidean distance {abs(float(line.split()[-1])):g} ({size}) through the limit positions, the "
+            f"sign of ds keeps the input's direction, and BUFINP 1 records where the input goes."
         )
 
 
 _HINTS = {
-    "singular": "D^c became singular: this is a limit position of the input, which cannot drive the mechanism "
-    "through it. Stop the motion before it, drive the mechanism with another input, or use MOV_FREE "
-    "(free motion through limit positions).",
-    "no_convergence": "Try more, smaller steps (a larger n in TSTEPE); if the mechanism is near a limit position, "
-    "use MOV_FREE.",
+    "singular": "D^c became singular: an input is in a limit position and cannot drive the mechanism through it. "
+    "Stop the motion before it, or drive the mechanism with another input.",
+    "no_convergence": "Try more, smaller steps (a larger n in TSTEPE).",
     "branch_jump": "The corrector kept jumping to another assembly branch. Try more, smaller steps (a larger n in "
-    "TSTEPE); near a limit position use MOV_FREE.",
+    "TSTEPE).",
     "element": "An element could not be evaluated (two of its points coincide, or a belt lost its free span); "
     "check the dimensions or stop the motion earlier.",
-    "other": "Try more, smaller steps (a larger n in TSTEPE), or MOV_FREE near a limit position.",
+    "other": "Try more, smaller steps (a larger n in TSTEPE).",
 }
 
 
@@ -137,14 +207,21 @@ class RunReport:
     subdivided_steps: int
     """Steps that had to be subdivided to converge."""
     limits: list[Limit]
-    """Limit positions met on the way, in order."""
+    """Limit positions met on the way, in order (the one a driven motion stopped at is ``stop.limit``)."""
     singular_positions: list[int]
-    """Positions where D^c was singular, so that no transfer functions exist there (free motion only)."""
+    """Positions where D^c was singular, so that no transfer functions exist there (free motion only): buffers made
+    from transfer functions hold NaN at exactly these positions."""
     stop: Stop | None
     """Set when the motion stopped early."""
+    input_names: list[str] = field(default_factory=list)
+    """For DOF j (list index j - 1): the input's row and its form parameters, e.g. ``row 6: ANGB(1)``."""
+    free_step: float | None = None
+    """The mean distance the moving co-ordinates moved per step: the ds a stop message suggests for MOV_FREE."""
 
     @classmethod
-    def from_core(cls, d: _core.ReportDict) -> RunReport:
+    def from_core(
+        cls, d: _core.ReportDict, input_names: Sequence[str] = (), free_step: float | None = None
+    ) -> RunReport:
         return cls(
             adjust=AdjustInfo.from_core(d["adjust"]),
             positions=d["positions"],
@@ -153,15 +230,30 @@ class RunReport:
             limits=[Limit.from_core(x) for x in d["limits"]],
             singular_positions=list(d["singular_positions"]),
             stop=None if d["stop"] is None else Stop.from_core(d["stop"]),
+            input_names=list(input_names),
+            free_step=free_step,
         )
 
     @property
+    def located_limits(self) -> list[Limit]:
+        """Every located limit position, in order: those met on the way, then the one the motion stopped at."""
+        out = list(self.limits)
+        if self.stop is not None and self.stop.limit is not None:
+            out.append(self.stop.limit)
+        return out
+
+    @property
     def warnings(self) -> list[str]:
-        """The limit positions and singular positions, one sentence each."""
-        out = [x.describe() for x in self.limits]
+        """What deserves a second look, one sentence each: sign changes and near-zero minima of det(D^c) in a
+        driven motion, and positions where no transfer functions exist."""
+        out = [x.describe(self.input_names) for x in self.limits if x.kind in ("sign_change", "near_zero")]
         if self.singular_positions:
             at = ", ".join(map(str, self.singular_positions))
-            out.append(f"D^c is singular at position(s) {at}: transfer functions there are not defined.")
+            out.append(
+                f"D^c is singular at position{'s' if len(self.singular_positions) > 1 else ''} {at}: the mechanism "
+                "is in a limit position of its input there, no transfer functions exist, and every buffer made from "
+                "them (first and second order, velocities, accelerations) holds NaN there."
+            )
         return out
 
     @property
@@ -169,9 +261,12 @@ class RunReport:
         """True when every position asked for was computed."""
         return self.stop is None
 
-    def stop_reason(self) -> str | None:
-        """The paragraph saying why the motion stopped, or None when it did not."""
-        return None if self.stop is None else self.stop.describe(self.steps + 1)
+    def stop_reason(self, written: bool = False) -> str | None:
+        """The paragraph saying why the motion stopped, or None when it did not; ``written`` says that the
+        positions computed have been written to output files."""
+        if self.stop is None:
+            return None
+        return self.stop.describe(self.steps + 1, self.input_names, self.free_step, written)
 
 
 @dataclass(frozen=True)
@@ -354,6 +449,9 @@ class RunResult:
     report: RunReport
     model: Model
     storage: Storage
+    kx1: dict[int, FloatArray] = field(default_factory=dict)
+    """d x_i / d input 1 at every position, for the co-ordinates i named by PLOTHODO lines (for the hodographs;
+    NaN where D^c is singular)."""
 
     @property
     def positions(self) -> int:
@@ -378,19 +476,35 @@ class CheckResult:
     model: Model
 
 
+def mean_step(coords: FloatArray, model: Model) -> float | None:
+    """The mean Euclidean distance the moving co-ordinates moved from one position to the next (None for fewer
+    than two positions): the natural ds of free motion for this mechanism."""
+    if coords.shape[0] < 2:
+        return None
+    moving = [c.number - 1 for c in model.coordinates if c.moving]
+    steps = np.linalg.norm(np.diff(coords[:, moving], axis=0), axis=1)
+    mean = float(np.mean(steps))
+    return mean if np.isfinite(mean) and mean > 0.0 else None
+
+
 def run_result(deck: Path, d: _core.RunDict) -> RunResult:
     """Builds a :class:`RunResult` from the compiled module's dictionary."""
     values = np.asarray(d["buffer_values"], dtype=np.float64)
+    kx1 = np.asarray(d["kx1_values"], dtype=np.float64)
     buffers = {n: np.ascontiguousarray(values[:, k]) for k, n in enumerate(d["buffer_numbers"])}
+    coords = np.asarray(d["coords"], dtype=np.float64)
+    model = Model.from_core(d["model"])
+    names = [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
     return RunResult(
         deck=deck,
         buffers=buffers,
-        coords=np.asarray(d["coords"], dtype=np.float64),
+        coords=coords,
         time=np.asarray(d["time"], dtype=np.float64),
         det=np.asarray(d["det"], dtype=np.float64),
-        report=RunReport.from_core(d["report"]),
-        model=Model.from_core(d["model"]),
+        report=RunReport.from_core(d["report"], names, mean_step(coords, model)),
+        model=model,
         storage=Storage.from_core(d["storage"]),
+        kx1={n: np.ascontiguousarray(kx1[:, k]) for k, n in enumerate(d["kx1_coords"])},
     )
 
 

@@ -9,20 +9,26 @@
 //! * [`run_deck`] runs the deck's whole motion and returns the buffers, the
 //!   co-ordinates, time and det(D^c) per position as numpy arrays, plus the
 //!   run report, the model echo and the storage requests as dicts
-//!   ([`convert`]). The run releases the GIL; [`observe`] attaches only to
-//!   report progress.
+//!   ([`convert`]). For the hodographs it also records d x_i / d input 1
+//!   of every co-ordinate a PLOTHODO line names. The run releases the GIL;
+//!   [`observe`] attaches only to report progress.
+//! * [`text`] runs deck text (what the Python model API writes) and records
+//!   every quantity of the buffer table; [`batch`] runs many deck texts on
+//!   worker threads without the GIL, for design studies.
 //! * [`errors`] defines `MechfemError` and its subclasses and maps deck
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.
 
+mod batch;
 mod convert;
 mod errors;
 mod observe;
+mod text;
 
 use std::path::{Path, PathBuf};
 
-use mechfem_core::{run, Quantity, RunReport};
-use mechfem_deck::Compiled;
+use mechfem_core::{run, InputMotion, Motion, Quantity, RunReport};
+use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -33,6 +39,22 @@ use crate::observe::Recording;
 /// Reads and compiles a deck, without the GIL.
 fn load(py: Python<'_>, path: &Path) -> PyResult<Compiled> {
     py.detach(|| mechfem_deck::load(path)).map_err(|d| errors::deck_error(py, path, &d))
+}
+
+/// The co-ordinates (0-based, in order of first appearance) of the
+/// PLOTHODO lines: their hodographs need d x_i / d input 1.
+fn hodograph_coords(c: &Compiled) -> Vec<usize> {
+    let mut out = Vec::new();
+    for item in c.pictures.iter().flat_map(|p| &p.items) {
+        if let PlotItem::Hodograph { x, y } = *item {
+            for i in [x, y] {
+                if !out.contains(&i) {
+                    out.push(i);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// A finished run: the compiled deck, the recording and the report.
@@ -46,13 +68,25 @@ struct Ran {
 /// Runs the compiled deck (its motion only when `with_motion`), without the GIL.
 fn execute(py: Python<'_>, mut c: Compiled, with_motion: bool, progress: Option<Py<PyAny>>) -> PyResult<Ran> {
     let given = c.state.x.clone();
-    let motion = if with_motion { c.motion.as_ref() } else { None };
+    // Position 1 of a free-motion deck is computed as its run computes it:
+    // free motion may start in a limit position of its input.
+    let free_start = c
+        .motion
+        .as_ref()
+        .filter(|m| m.inputs.iter().any(|im| matches!(im, InputMotion::Free { .. })))
+        .map(|m| Motion { steps: 0, ..m.clone() });
+    let motion = if with_motion { c.motion.as_ref() } else { free_start.as_ref() };
     if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
         // Position 1 alone, as a run would compute it.
         m.apply_initial_inputs(&c.mechanism, &mut c.state);
     }
     let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
-    let mut rec = Recording::new(&quantities, motion.map_or(0, |m| m.steps) + 1, progress);
+    let extra: Vec<Quantity> = if with_motion && c.mechanism.n_dof() > 0 {
+        hodograph_coords(&c).into_iter().map(|coord| Quantity::Kx1 { coord, j: 0 }).collect()
+    } else {
+        Vec::new()
+    };
+    let mut rec = Recording::new(&quantities, &extra, motion.map_or(0, |m| m.steps) + 1, progress);
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
     let result = py.detach(|| run(mech, state, motion, params, &mut rec));
     if let Some(err) = rec.interrupted.take() {
@@ -92,16 +126,22 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
 /// reason in `report["stop"]`; only a failure at position 1 raises.
+/// `kx1_values` holds d x_i / d input 1 of the co-ordinates `kx1_coords`
+/// that PLOTHODO lines name (for the hodographs).
 #[pyfunction]
 #[pyo3(signature = (path, progress=None))]
 fn run_deck(py: Python<'_>, path: PathBuf, progress: Option<Py<PyAny>>) -> PyResult<Bound<'_, PyDict>> {
     let Ran { compiled: c, given, rec, report } = execute(py, load(py, &path)?, true, progress)?;
     let mech = &c.mechanism;
     let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
-    let width = nb + 2;
+    let width = nb + 2 + rec.n_extra;
     let data = rec.recorder.data();
     let column = |q: usize| -> Vec<f64> { (0..positions).map(|k| data[k * width + q]).collect() };
-    let values: Vec<f64> = (0..positions).flat_map(|k| data[k * width..k * width + nb].iter().copied()).collect();
+    let block = |from: usize, to: usize| -> Vec<f64> {
+        (0..positions).flat_map(|k| data[k * width + from..k * width + to].iter().copied()).collect()
+    };
+    let values = block(0, nb);
+    let kx1_coords: Vec<usize> = if rec.n_extra > 0 { hodograph_coords(&c) } else { Vec::new() };
     let coords = rec.recorder.coords();
 
     let d = PyDict::new(py);
@@ -110,6 +150,8 @@ fn run_deck(py: Python<'_>, path: PathBuf, progress: Option<Py<PyAny>>) -> PyRes
     d.set_item("coords", convert::array2(py, coords.to_vec(), positions, n)?)?;
     d.set_item("time", PyArray1::from_vec(py, column(nb)))?;
     d.set_item("det", PyArray1::from_vec(py, column(nb + 1)))?;
+    d.set_item("kx1_coords", kx1_coords.iter().map(|i| i + 1).collect::<Vec<_>>())?;
+    d.set_item("kx1_values", convert::array2(py, block(nb + 2, width), positions, rec.n_extra)?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     d.set_item("report", convert::report(py, mech, &report, steps)?)?;
     d.set_item("model", convert::model(py, &c, &given, &coords[..n], &rec.prescribed_at_1, &rec.dependent_at_1)?)?;
@@ -128,5 +170,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;
     m.add_function(wrap_pyfunction!(run_deck, m)?)?;
+    m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;
+    m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::run_deck_texts, m)?)?;
     Ok(())
 }

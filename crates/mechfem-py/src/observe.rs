@@ -1,17 +1,20 @@
-//! The observer of a run: records the buffers, time, det(D^c) and every
-//! co-ordinate per position, keeps the row values of position 1 for the
-//! model echo, and reports progress to Python about every 1% of positions.
+//! The observer of a run: records the buffers, time, det(D^c), the extra
+//! quantities the pictures need and every co-ordinate per position, keeps
+//! the row values of position 1 for the model echo, and reports progress to
+//! Python about every 1% of positions.
 
-use mechfem_core::{Observer, PositionView, Quantity, Recorder};
+use mechfem_core::{Observer, PositionView, Quantity, Recorder, TransferOrder};
 use pyo3::prelude::*;
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
 /// progress and to notice Ctrl-C.
 pub struct Recording {
-    /// Buffers, then time, then det(D^c).
+    /// Buffers, then time, then det(D^c), then the extra quantities.
     pub recorder: Recorder,
     /// Number of buffer columns at the front of the recorder.
     pub n_buffers: usize,
+    /// Number of extra columns at the end of the recorder.
+    pub n_extra: usize,
     /// Values of the prescribed rows at position 1.
     pub prescribed_at_1: Vec<f64>,
     /// Values of the dependent form parameters at position 1.
@@ -25,13 +28,16 @@ pub struct Recording {
 }
 
 impl Recording {
-    /// Records `buffers` over a run of `total` positions.
-    pub fn new(buffers: &[Quantity], total: usize, progress: Option<Py<PyAny>>) -> Recording {
+    /// Records `buffers` and `extra` (quantities no buffer asks for) over a
+    /// run of `total` positions.
+    pub fn new(buffers: &[Quantity], extra: &[Quantity], total: usize, progress: Option<Py<PyAny>>) -> Recording {
         let mut quantities = buffers.to_vec();
         quantities.extend([Quantity::Time, Quantity::Det]);
+        quantities.extend_from_slice(extra);
         Recording {
             recorder: Recorder::new(quantities, true),
             n_buffers: buffers.len(),
+            n_extra: extra.len(),
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
             progress,
@@ -60,7 +66,8 @@ impl Observer for Recording {
     fn position(&mut self, view: &PositionView<'_>) {
         if view.index == 0 {
             let (mech, kin) = (view.mech, view.kin);
-            self.prescribed_at_1 = (0..mech.n_prescribed()).map(|r| kin.row_value(r)).collect();
+            // The prescribed values themselves: the rows hold them to within ACCURACY.
+            self.prescribed_at_1 = view.state.target.clone();
             self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
         }
         self.recorder.position(view);
@@ -72,5 +79,11 @@ impl Observer for Recording {
 
     fn stop_requested(&self) -> bool {
         self.interrupted.is_some()
+    }
+
+    /// What the recorded quantities need (det(D^c) is always recorded, so
+    /// at least the first order).
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        self.recorder.transfer_order()
     }
 }
