@@ -103,14 +103,19 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def run_with_progress(deck: Path) -> mechfem.RunResult:
+    """Runs a deck with a progress bar on standard error (shown on a terminal only)."""
+    bar = ProgressBar(sys.stderr)
+    try:
+        return mechfem.run_deck(deck, progress=bar)
+    finally:
+        bar.close()
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
-    bar = ProgressBar(sys.stderr)
-    try:
-        result = mechfem.run_deck(deck, progress=bar)
-    finally:
-        bar.close()
+    result = run_with_progress(deck)
     media = Media(result, outdir, max_frames=args.max_frames, report=args.report)
     written = write_outputs(result, outdir, media.print_lines())
     report = result.report
@@ -147,11 +152,7 @@ def frame_count(text: str) -> int:
 def cmd_report(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
-    bar = ProgressBar(sys.stderr)
-    try:
-        result = mechfem.run_deck(deck, progress=bar)
-    finally:
-        bar.close()
+    result = run_with_progress(deck)
     path = write_report(result, outdir)
     print(f"{deck}: {count(result.report.positions, 'position')} computed")
     print(f"wrote {path} (open it in a web browser)")

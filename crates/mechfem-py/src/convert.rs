@@ -69,7 +69,9 @@ pub fn report<'py>(py: Python<'py>, mech: &Mechanism, r: &RunReport, steps: usiz
     Ok(d)
 }
 
-fn rows<'py>(py: Python<'py>, infos: &[RowInfo], values: &[f64]) -> PyResult<Vec<Bound<'py, PyDict>>> {
+/// The rows of a deck as dicts; `values` holds their values at position 1
+/// (NaN where it is shorter, e.g. empty for a deck that was not run).
+pub fn rows<'py>(py: Python<'py>, infos: &[RowInfo], values: &[f64]) -> PyResult<Vec<Bound<'py, PyDict>>> {
     infos
         .iter()
         .enumerate()

@@ -17,7 +17,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use mechfem_core::SolveError;
 use mechfem_core::{run, FormRef, InputMotion, Mechanism, Observer, PositionView, Quantity, RunReport, TransferOrder};
 use mechfem_deck::ast::MotionKind;
-use mechfem_deck::{Compiled, Diagnostics, RowInfo};
+use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -311,32 +311,6 @@ pub fn run_deck_text<'py>(
     outcome_dict(py, outcome, &path)
 }
 
-fn rows<'py>(py: Python<'py>, infos: &[RowInfo]) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    infos
-        .iter()
-        .map(|r| {
-            let d = PyDict::new(py);
-            d.set_item("dest", r.dest)?;
-            let terms = r
-                .terms
-                .iter()
-                .map(|t| {
-                    let td = PyDict::new(py);
-                    td.set_item("element", t.element)?;
-                    td.set_item("form", t.name)?;
-                    td.set_item("factor", t.factor)?;
-                    td.set_item("line", t.line)?;
-                    Ok(td)
-                })
-                .collect::<PyResult<Vec<_>>>()?;
-            d.set_item("terms", terms)?;
-            d.set_item("para", r.para)?;
-            d.set_item("input", r.input)?;
-            Ok(d)
-        })
-        .collect()
-}
-
 /// Reads and compiles the deck `text` without solving anything and returns
 /// what it declares: `coordinates`, `elements`, `prescribed` and `dependent`
 /// rows with their FORM terms, `dofs`, `motion` (None without a MOVEMENT
@@ -379,8 +353,8 @@ pub fn describe_deck_text<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("elements", elements)?;
-    d.set_item("prescribed", rows(py, &c.prescribed)?)?;
-    d.set_item("dependent", rows(py, &c.dependent)?)?;
+    d.set_item("prescribed", convert::rows(py, &c.prescribed, &[])?)?;
+    d.set_item("dependent", convert::rows(py, &c.dependent, &[])?)?;
     d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
     d.set_item("tol", c.params.tol)?;
     d.set_item("max_iter", c.params.max_iter)?;
