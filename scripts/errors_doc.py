@@ -32,7 +32,7 @@ def runtime_message(deck: Path) -> tuple[str, int]:
     """What `mechfem run` says on standard error for the deck, and its exit code."""
     out = Path("/tmp") / "mechfem-errors-doc"
     proc = subprocess.run(
-        [*MECHFEM, "run", str(deck), "-o", str(out)],
+        [*MECHFEM, "run", str(deck.relative_to(ROOT)), "-o", str(out)],
         cwd=ROOT,
         capture_output=True,
         text=True,
