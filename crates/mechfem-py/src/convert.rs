@@ -69,6 +69,22 @@ pub fn report<'py>(py: Python<'py>, mech: &Mechanism, r: &RunReport, steps: usiz
     Ok(d)
 }
 
+/// The elements of a deck as dicts, with the deck's numbering.
+pub fn elements<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    c.elements
+        .iter()
+        .map(|e| {
+            let ed = PyDict::new(py);
+            ed.set_item("number", e.number)?;
+            ed.set_item("type", e.ty.name())?;
+            ed.set_item("coords", e.coords.clone())?;
+            ed.set_item("coord_names", e.ty.coord_names().to_vec())?;
+            ed.set_item("line", e.line)?;
+            Ok(ed)
+        })
+        .collect()
+}
+
 /// The rows of a deck as dicts; `values` holds their values at position 1
 /// (NaN where it is shorter, e.g. empty for a deck that was not run).
 pub fn rows<'py>(py: Python<'py>, infos: &[RowInfo], values: &[f64]) -> PyResult<Vec<Bound<'py, PyDict>>> {
@@ -112,20 +128,7 @@ pub fn model<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let mech = &c.mechanism;
     let d = PyDict::new(py);
-    let elements = c
-        .elements
-        .iter()
-        .map(|e| {
-            let ed = PyDict::new(py);
-            ed.set_item("number", e.number)?;
-            ed.set_item("type", e.ty.name())?;
-            ed.set_item("coords", e.coords.clone())?;
-            ed.set_item("coord_names", e.ty.coord_names().to_vec())?;
-            ed.set_item("line", e.line)?;
-            Ok(ed)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("elements", elements)?;
+    d.set_item("elements", elements(py, c)?)?;
     d.set_item("prescribed", rows(py, &c.prescribed, prescribed)?)?;
     d.set_item("dependent", rows(py, &c.dependent, dependent)?)?;
     d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;

@@ -340,19 +340,7 @@ pub fn describe_deck_text<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("coordinates", coords)?;
-    let elements = c
-        .elements
-        .iter()
-        .map(|e| {
-            let ed = PyDict::new(py);
-            ed.set_item("number", e.number)?;
-            ed.set_item("type", e.ty.name())?;
-            ed.set_item("coords", e.coords.clone())?;
-            ed.set_item("line", e.line)?;
-            Ok(ed)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("elements", elements)?;
+    d.set_item("elements", convert::elements(py, &c)?)?;
     d.set_item("prescribed", convert::rows(py, &c.prescribed, &[])?)?;
     d.set_item("dependent", convert::rows(py, &c.dependent, &[])?)?;
     d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
