@@ -5,6 +5,9 @@ from __future__ import annotations
 import csv
 from pathlib import Path
 
+import pytest
+
+import mechfem
 from conftest import SUPPLY, Cli
 
 SUPPLY_STEPS = 72
@@ -81,6 +84,18 @@ def test_outputs_are_written_atomically(cli: Cli, supply_with_savedata: Path, tm
     pictures = ["supply_pic1.png", "supply_pic1.svg", "supply_pic2.png", "supply_pic2.svg"]
     assert sorted(p.name for p in out.iterdir()) == sorted(["supply.csv", "supply.prt", "film.gif", *pictures])
     assert (out / "supply.prt").read_text() != "old"
+
+
+def test_check_lists_the_adjusted_coordinates(cli: Cli) -> None:
+    proc = cli("check", SUPPLY)
+    assert proc.returncode == 0, proc.stderr
+    checked = mechfem.check_deck(SUPPLY)
+    lines = proc.stdout.splitlines()
+    at = lines.index("  moving co-ordinates at position 1:")
+    rows = [line.split() for line in lines[at + 2 : at + 2 + checked.n_moving]]
+    assert [int(r[0]) for r in rows] == list(range(9, 21))
+    for r in rows:
+        assert float(r[2]) == pytest.approx(checked.coords[int(r[0]) - 1], rel=1e-9)
 
 
 def test_check_supply(cli: Cli) -> None:

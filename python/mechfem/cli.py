@@ -182,6 +182,12 @@ def cmd_check(args: argparse.Namespace) -> int:
     else:
         print(f"  position 1: the given co-ordinates fit (remaining deformation {a.residual:.3g})")
     print(f"  det(D^c) at position 1: {c.det:.10g}")
+    # The adjusted position is what a run starts from: show it beside the estimate.
+    print("  moving co-ordinates at position 1:")
+    print(f"  {'no':>6} {'given':>16} {'position 1':>16}")
+    for coord in c.model.coordinates:
+        if coord.moving:
+            print(f"  {coord.number:>6} {coord.given:>16.10g} {coord.adjusted:>16.10g}")
     if c.det == 0.0:
         print(
             "  position 1 is a limit position of the input: D^c is singular there and no transfer functions exist "
