@@ -2,18 +2,12 @@
 //! closed-form solution of the loop a e^{i theta} + b e^{i delta} = d + c e^{i gamma}
 //! and its first and second derivatives, over several crank revolutions.
 
-use mechfem_core::{
-    run, ElementType, FormRef, InputMotion, Mechanism, MechanismBuilder, Motion, Params, Quantity, Recorder, State,
-    Term,
-};
-use std::f64::consts::PI;
+#[path = "common/fourbar.rs"]
+mod fourbar;
 
-const A: f64 = 1.0; // crank A0A
-const B: f64 = 3.0; // coupler AB
-const C: f64 = 2.5; // rocker B0B
-const D: f64 = 3.2; // frame A0B0
-const P: f64 = 1.8; // coupler point: distance from A
-const ALPHA: f64 = 0.6; // coupler point: angle from AB
+use fourbar::{A, ALPHA, B, C, D, P};
+use mechfem_core::{run, FormRef, InputMotion, Mechanism, Motion, Params, Quantity, Recorder, State};
+use std::f64::consts::PI;
 
 /// Closed form at crank angle theta (open branch, B above the line A-B0).
 struct Exact {
@@ -64,29 +58,16 @@ fn exact(theta: f64) -> Exact {
     Exact { a, b, c, da, db, dc, dda, ddb, ddc, delta, ddelta: dd, dddelta: ddd }
 }
 
-/// Co-ordinates 1..4 fixed (A0, B0), 5..10 moving (A, B, C). The coupler
-/// is a ternary-2 on A, B with C at local (u, v); the coupler angle is a
-/// dependent form parameter.
+/// The shared four-bar with its estimates at the closed form, each moved by
+/// `rough`.
 fn model(theta0: f64, rough: f64) -> (Mechanism, State) {
     let e = exact(theta0);
-    let mut b = MechanismBuilder::new();
-    let f = [b.fixed(0.0), b.fixed(0.0), b.fixed(D), b.fixed(0.0)];
-    let m: Vec<usize> =
-        [e.a, e.b, e.c].iter().flat_map(|p| [p[0] + rough, p[1] - rough]).map(|v| b.moving(v)).collect();
-    let crank = b.element(ElementType::Bin, &[f[0], f[1], m[0], m[1]]);
-    let coupler = b.element(ElementType::Tr2, &[m[0], m[1], m[2], m[3], m[4], m[5]]);
-    let rocker = b.element(ElementType::Bin, &[f[2], f[3], m[2], m[3]]);
-    b.prescribe(&[Term::new(crank, 0)]);
-    b.prescribe(&[Term::new(coupler, 0)]);
-    b.prescribe(&[Term::new(rocker, 0)]);
-    b.prescribe(&[Term::new(coupler, 2)]);
-    b.prescribe(&[Term::new(coupler, 3)]);
-    b.input(&[Term::new(crank, 1)]);
-    b.dependent(&[Term::new(coupler, 1)]);
-    let (mech, mut state) = b.build().unwrap();
-    state.target[..5].copy_from_slice(&[A, B, C, P * ALPHA.cos(), P * ALPHA.sin()]);
-    state.target[5] = theta0;
-    (mech, state)
+    let mut estimates = [0.0; 6];
+    for (k, p) in [e.a, e.b, e.c].iter().enumerate() {
+        estimates[2 * k] = p[0] + rough;
+        estimates[2 * k + 1] = p[1] - rough;
+    }
+    fourbar::model(estimates, theta0)
 }
 
 fn quantities() -> Vec<Quantity> {

@@ -7,36 +7,19 @@
 use criterion::{BenchmarkGroup, Throughput};
 use mechfem_core::solver::correct;
 use mechfem_core::{
-    adjust, run, ElementType, InputMotion, Kinematics, Mechanism, MechanismBuilder, Motion, Observer, Params,
-    PositionView, State, Term, TransferOrder,
+    adjust, run, InputMotion, Kinematics, Mechanism, Motion, Observer, Params, PositionView, State, TransferOrder,
 };
 use std::f64::consts::PI;
 use std::hint::black_box;
 
+#[path = "../../tests/common/fourbar.rs"]
+mod shared_fourbar;
+
 /// The crank-rocker four-bar with a coupler point and the coupler angle as
-/// a dependent form parameter, adjusted to crank angle 0.
+/// a dependent form parameter (`tests/common/fourbar.rs`), adjusted to crank
+/// angle 0.
 pub fn fourbar() -> (Mechanism, State) {
-    const A: f64 = 1.0; // crank A0A
-    const B: f64 = 3.0; // coupler AB
-    const C: f64 = 2.5; // rocker B0B
-    const D: f64 = 3.2; // frame A0B0
-    const P: f64 = 1.8; // coupler point: distance from A
-    const ALPHA: f64 = 0.6; // coupler point: angle from AB
-    let mut b = MechanismBuilder::new();
-    let f = [b.fixed(0.0), b.fixed(0.0), b.fixed(D), b.fixed(0.0)];
-    let m: Vec<usize> = [1.0, 0.0, 2.5, 2.4, 1.5, 2.0].iter().map(|&v| b.moving(v)).collect();
-    let crank = b.element(ElementType::Bin, &[f[0], f[1], m[0], m[1]]);
-    let coupler = b.element(ElementType::Tr2, &[m[0], m[1], m[2], m[3], m[4], m[5]]);
-    let rocker = b.element(ElementType::Bin, &[f[2], f[3], m[2], m[3]]);
-    b.prescribe(&[Term::new(crank, 0)]);
-    b.prescribe(&[Term::new(coupler, 0)]);
-    b.prescribe(&[Term::new(rocker, 0)]);
-    b.prescribe(&[Term::new(coupler, 2)]);
-    b.prescribe(&[Term::new(coupler, 3)]);
-    b.input(&[Term::new(crank, 1)]);
-    b.dependent(&[Term::new(coupler, 1)]);
-    let (mech, mut state) = b.build().unwrap();
-    state.target.copy_from_slice(&[A, B, C, P * ALPHA.cos(), P * ALPHA.sin(), 0.0]);
+    let (mech, mut state) = shared_fourbar::model([1.0, 0.0, 2.5, 2.4, 1.5, 2.0], 0.0);
     let mut kin = Kinematics::new(&mech);
     adjust(&mech, &mut state, &mut kin, &Params::default()).unwrap();
     (mech, state)
