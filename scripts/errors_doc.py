@@ -71,13 +71,21 @@ def render() -> str:
         "A deck that reads well can still describe a mechanism that cannot be put",
         "together or moved. Position 1 failing ends the run with status 1 and writes",
         "nothing; a motion that stops later writes every position computed up to the",
-        "stop and then exits with status 1. The decks are in",
+        "stop and then exits with status 1. A run whose results would not fit in the",
+        "memory limit is refused before it starts, also with status 1. (Ctrl-C is not",
+        "an error of the deck: the run writes every position computed before it and",
+        "exits with status 130.) The decks are in",
         f"[{RUNTIME}](../{RUNTIME}).",
         "",
     ]
     for deck in sorted((ROOT / RUNTIME).glob("*.mec")):
         message, status = runtime_message(deck)
-        parts += [f"### {deck.stem}", "", f"{description(deck)} ([deck](../{RUNTIME}/{deck.name}); exit status {status})", ""]
+        parts += [
+            f"### {deck.stem}",
+            "",
+            f"{description(deck)} ([deck](../{RUNTIME}/{deck.name}); exit status {status})",
+            "",
+        ]
         parts += ["```text", message, "```", ""]
     return "\n".join(parts)
 

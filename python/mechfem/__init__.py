@@ -19,8 +19,11 @@ or build a mechanism in Python with named points and elements (:class:`Mechanism
 
 Deck mistakes raise :class:`DeckError`; a model that cannot reach position 1
 raises :class:`AssemblyError`, :class:`ConvergenceError` or
-:class:`LimitPositionError`. A motion that stops later is not an error: the
-result holds every position up to the last good one and says why it stopped.
+:class:`LimitPositionError`; a run whose results would not fit in the memory
+limit (:mod:`mechfem.limits`) raises :class:`ResourceError` before it starts.
+A motion that stops later is not an error: the result holds every position up
+to the last good one and says why it stopped. Ctrl-C raises
+:class:`RunInterrupted` carrying the positions computed before it.
 """
 
 from __future__ import annotations
@@ -30,10 +33,18 @@ from collections.abc import Callable
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
-from mechfem import _core
+from mechfem import _core, limits
 from mechfem.analysis import Analysis
 from mechfem.batch import Study, run_many, sweep
-from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from mechfem.errors import (
+    AssemblyError,
+    ConvergenceError,
+    DeckError,
+    LimitPositionError,
+    MechfemError,
+    ResourceError,
+    RunInterrupted,
+)
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.result import (
     AdjustInfo,
@@ -64,13 +75,22 @@ Progress = Callable[[int, int], object]
 """Called as ``progress(done, total)`` with the number of positions computed so far."""
 
 
-def run_deck(path: str | os.PathLike[str], progress: Progress | None = None) -> RunResult:
+def run_deck(
+    path: str | os.PathLike[str], progress: Progress | None = None, memory_limit: int | str | None = None
+) -> RunResult:
     """Reads the deck at ``path`` and runs it through its whole motion.
 
-    ``progress``, if given, is called about every 1% of the positions.
+    ``progress``, if given, is called about every 1% of the positions. ``memory_limit`` (bytes, or a size
+    such as ``"4G"``; default :func:`mechfem.limits.memory_limit`) bounds the memory the results may take:
+    a run that would need more raises :class:`ResourceError` before it starts. Ctrl-C raises
+    :class:`RunInterrupted` with the positions computed so far in its ``result``.
     """
     deck = Path(path)
-    return run_result(deck, _core.run_deck(os.fspath(deck), progress))
+    d = _core.run_deck(os.fspath(deck), progress, limits.memory_limit(memory_limit))
+    result = run_result(deck, d)
+    if d["interrupted"]:
+        raise RunInterrupted(result)
+    return result
 
 
 def check_deck(path: str | os.PathLike[str]) -> CheckResult:
@@ -102,6 +122,8 @@ __all__ = [
     "Plot",
     "Progress",
     "Row",
+    "ResourceError",
+    "RunInterrupted",
     "RunReport",
     "RunResult",
     "Stop",

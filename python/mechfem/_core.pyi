@@ -30,6 +30,9 @@ class AssemblyError(MechfemError):
 class ConvergenceError(MechfemError):
     """Newton iteration cannot reach position 1."""
 
+class ResourceError(MechfemError):
+    """The results would take more memory than the limit; the run was refused before it started."""
+
 class LimitPositionError(MechfemError):
     """D^c is singular at position 1."""
 
@@ -160,9 +163,15 @@ class RunDict(TypedDict):
     report: ReportDict
     model: ModelDict
     storage: StorageDict
+    interrupted: bool
+    """Ctrl-C stopped the run; the positions before it are here."""
 
 def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
-def run_deck(path: str | os.PathLike[str], progress: Callable[[int, int], object] | None = None) -> RunDict: ...
+def run_deck(
+    path: str | os.PathLike[str],
+    progress: Callable[[int, int], object] | None = None,
+    memory_limit: int = ...,
+) -> RunDict: ...
 
 # --- deck text, for the model API (mechfem.Mechanism) and batch runs ---
 
@@ -183,6 +192,8 @@ class TextRunDict(TypedDict):
     report: ReportDict
     model: ModelDict
     storage: StorageDict
+    interrupted: bool
+    """Ctrl-C stopped the run; the positions before it are here (absent in batch results)."""
 
 class DescribedCoordDict(TypedDict):
     number: int
@@ -240,6 +251,7 @@ def run_deck_text(
     motion: bool = True,
     progress: Callable[[int, int], object] | None = None,
     order: int | None = 2,
+    memory_limit: int = ...,
 ) -> TextRunDict: ...
 def describe_deck_text(
     text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
@@ -252,4 +264,5 @@ def run_deck_texts(
     progress: Callable[[int, int], object] | None = None,
     on_result: Callable[[int, TextRunDict | MechfemError], object] | None = None,
     order: int | None = 2,
+    memory_limit: int = ...,
 ) -> list[TextRunDict | MechfemError]: ...

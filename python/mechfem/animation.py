@@ -157,6 +157,20 @@ def _title(result: RunResult, name: str, k: int) -> str:
     return text + ("  (" + ", ".join(shown) + ")" if shown else "")
 
 
+MAX_PATH_POINTS = 20_000
+"""Most points of a path drawn in a frame: far more than a frame has pixels along the path, and few enough
+that a run of a million positions draws its 200 frames in seconds, not minutes."""
+
+
+def path_sample(positions: int) -> npt.NDArray[np.intp]:
+    """The positions whose points draw the paths: all of them, or every s-th and the last."""
+    stride = max(1, -(-positions // MAX_PATH_POINTS))
+    sample = np.arange(0, positions, stride)
+    if positions and sample[-1] != positions - 1:
+        sample = np.append(sample, positions - 1)
+    return sample
+
+
 def write_animation(
     result: RunResult,
     outdir: Path,
@@ -211,8 +225,9 @@ def write_animation(
     first = int(plan.frames[0])
     mech = MplMechanism(ax, drawing, result.coords[first])
     traces = []
+    sample = path_sample(result.positions)
     for h in paths:
-        ax.plot(h.x, h.y, color=PATH_COLOUR, lw=0.8, alpha=0.25, zorder=4)
+        ax.plot(h.x[sample], h.y[sample], color=PATH_COLOUR, lw=0.8, alpha=0.25, zorder=4)
         (trace,) = ax.plot([], [], color=PATH_COLOUR, lw=1.6, zorder=4.5)
         (arrow,) = ax.plot([], [], color=ARROW_COLOUR, lw=2.0, zorder=4.6)
         (head,) = ax.plot([], [], "o", color=PATH_COLOUR, ms=4, zorder=4.7)
@@ -237,7 +252,8 @@ def write_animation(
                 x = result.coords[k]
                 mech.update(x)
                 for h, trace, arrow, head in traces:
-                    trace.set_data(h.x[: k + 1], h.y[: k + 1])
+                    upto = np.append(sample[: np.searchsorted(sample, k)], k)
+                    trace.set_data(h.x[upto], h.y[upto])
                     px, py = float(h.x[k]), float(h.y[k])
                     head.set_data([px], [py])
                     vx = float(result.kx1.get(h.ix, np.full(1, math.nan))[k]) if h.ix in result.kx1 else math.nan

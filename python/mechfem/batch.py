@@ -29,6 +29,7 @@ import numpy.typing as npt
 from mechfem import _core
 from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import MechfemError
+from mechfem.limits import memory_limit
 from mechfem.model import Coordinate, Mechanism, Motion, Row, Storage
 
 FloatArray = npt.NDArray[np.float64]
@@ -139,7 +140,7 @@ def _run_decks(
     callback = _callback(progress, "variants")
     try:
         with deckio.tables_dir(files) as base:
-            return _core.run_deck_texts(texts, "variant.mec", base, workers, callback, on_result, order)
+            return _core.run_deck_texts(texts, "variant.mec", base, workers, callback, on_result, order, memory_limit())
     finally:
         close = getattr(callback, "close", None)
         if close is not None:

@@ -1,15 +1,16 @@
 """The ``mechfem`` command.
 
-    mechfem run DECK [-o OUTDIR] [--report] [--max-frames N]
+    mechfem run DECK [-o OUTDIR] [--report] [--max-frames N] [--memory-limit SIZE]
                                    run the deck, write DECK-stem.prt (and .csv with SAVEDATA), the pictures
                                    and the animation to OUTDIR; --report adds the interactive DECK-stem.html
-    mechfem report DECK [-o OUTDIR]
+    mechfem report DECK [-o OUTDIR] [--memory-limit SIZE]
                                    run the deck and write only the interactive report DECK-stem.html
     mechfem check DECK             read the deck and compute position 1 only
 
-Exit status: 0 on success; 1 when the deck has a mistake, position 1 cannot be computed, the motion
-stopped early (its results are still written) or an output file cannot be written; 2 for a wrong
-command line; 3 for an internal error. Messages go to stderr as one short paragraph, never a traceback.
+Exit status: 0 on success; 1 when the deck has a mistake, position 1 cannot be computed, the results would
+not fit in the memory limit, the motion stopped early (its results are still written) or an output file
+cannot be written; 2 for a wrong command line; 3 for an internal error; 130 after Ctrl-C (a run writes
+every position computed before it). Messages go to stderr as one short paragraph, never a traceback.
 """
 
 from __future__ import annotations
@@ -21,7 +22,15 @@ from typing import TextIO
 
 import mechfem
 from mechfem.animation import MAX_FRAMES
-from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from mechfem.errors import (
+    AssemblyError,
+    ConvergenceError,
+    DeckError,
+    LimitPositionError,
+    MechfemError,
+    RunInterrupted,
+)
+from mechfem.limits import DEFAULT_MEMORY_LIMIT, ENV, memory_limit, parse_size
 from mechfem.media import Media
 from mechfem.output import count, write_outputs
 from mechfem.report import write_report
@@ -85,6 +94,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="N",
         help=f"most frames of the animation, 2..{MAX_FRAMES} (default {MAX_FRAMES}); longer runs are subsampled",
     )
+    add_memory_limit(run)
     run.set_defaults(func=cmd_run)
     rep = commands.add_parser("report", help="run a deck and write only its interactive report (HTML)")
     rep.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
@@ -96,6 +106,7 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="OUTDIR",
         help="folder for DECK-stem.html (created if needed; default: the deck's folder)",
     )
+    add_memory_limit(rep)
     rep.set_defaults(func=cmd_report)
     check = commands.add_parser("check", help="read a deck and compute its first position only")
     check.add_argument("deck", type=Path, metavar="DECK", help="the deck to check")
@@ -103,19 +114,48 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def run_with_progress(deck: Path) -> mechfem.RunResult:
-    """Runs a deck with a progress bar on standard error (shown on a terminal only)."""
+def add_memory_limit(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--memory-limit",
+        type=size,
+        default=None,
+        metavar="SIZE",
+        help=f"most memory the results may take, e.g. 512M or 8G (default ${ENV} or "
+        f"{DEFAULT_MEMORY_LIMIT // 1024**3}G); a deck asking for more is refused before it runs",
+    )
+
+
+def size(text: str) -> int:
+    """``--memory-limit``: a size such as 512M or 8G."""
+    try:
+        return parse_size(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+def run_with_progress(deck: Path, limit: int | None) -> tuple[mechfem.RunResult, bool]:
+    """Runs a deck with a progress bar on standard error (shown on a terminal only). Returns the result and
+    whether Ctrl-C stopped it (the result then holds the positions computed before)."""
     bar = ProgressBar(sys.stderr)
     try:
-        return mechfem.run_deck(deck, progress=bar)
+        return mechfem.run_deck(deck, progress=bar, memory_limit=limit), False
+    except RunInterrupted as e:
+        return e.result, True
     finally:
         bar.close()
+
+
+def interrupted_message(deck: Path, result: mechfem.RunResult) -> str:
+    reason = result.report.stop_reason(written=True)
+    if reason is None:
+        reason = f"All {count(result.report.positions, 'position')} had been computed and are written."
+    return f"mechfem: {deck}: interrupted. {reason}"
 
 
 def cmd_run(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
-    result = run_with_progress(deck)
+    result, interrupted = run_with_progress(deck, args.memory_limit)
     media = Media(result, outdir, max_frames=args.max_frames, report=args.report)
     written = write_outputs(result, outdir, media.print_lines())
     report = result.report
@@ -131,6 +171,9 @@ def cmd_run(args: argparse.Namespace) -> int:
             print(f"limit position: {limit.describe(report.input_names)}")
     for w in report.warnings:
         print(f"warning: {deck}: {w}", file=sys.stderr)
+    if interrupted:
+        print(interrupted_message(deck, result), file=sys.stderr)
+        return EXIT_INTERRUPTED
     reason = report.stop_reason(written=True)
     if reason is not None:
         print(f"error: {deck}: {reason}", file=sys.stderr)
@@ -152,10 +195,13 @@ def frame_count(text: str) -> int:
 def cmd_report(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
-    result = run_with_progress(deck)
+    result, interrupted = run_with_progress(deck, args.memory_limit)
     path = write_report(result, outdir)
     print(f"{deck}: {count(result.report.positions, 'position')} computed")
     print(f"wrote {path} (open it in a web browser)")
+    if interrupted:
+        print(interrupted_message(deck, result), file=sys.stderr)
+        return EXIT_INTERRUPTED
     reason = result.report.stop_reason(written=True)
     if reason is not None:
         print(f"error: {deck}: {reason}", file=sys.stderr)
@@ -217,8 +263,14 @@ def error_message(deck: Path, error: MechfemError) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     """Runs the command line; returns the exit status."""
-    args = build_parser().parse_args(argv)
+    parser = build_parser()
+    args = parser.parse_args(argv)
     deck: Path = args.deck
+    if "memory_limit" in args and args.memory_limit is None:
+        try:
+            args.memory_limit = memory_limit()
+        except ValueError as e:
+            parser.error(str(e))
     try:
         return int(args.func(args))
     except MechfemError as e:

@@ -24,7 +24,8 @@ import numpy as np
 
 from mechfem import _core
 from mechfem.analysis import Analysis
-from mechfem.errors import AssemblyError, DeckError, LimitPositionError, MechfemError
+from mechfem.errors import AssemblyError, DeckError, LimitPositionError, MechfemError, RunInterrupted
+from mechfem.limits import memory_limit
 from mechfem.model import (
     BUFFER_ARGS,
     FORMS,
@@ -430,14 +431,19 @@ def run(
     callback = progress_callback(progress, "positions")
     with tables_dir(deck.tables) as base:
         try:
-            d = _core.run_deck_text(deck.text, deck.path, base, with_motion and motion is not None, callback, order)
+            d = _core.run_deck_text(
+                deck.text, deck.path, base, with_motion and motion is not None, callback, order, memory_limit()
+            )
         except MechfemError as e:
             raise translate(e, deck, mech.name) from None
         finally:
             close = getattr(callback, "close", None)
             if close is not None:
                 close()
-    return Analysis(mech, deck.numbering, d, path=deck.path)
+    analysis = Analysis(mech, deck.numbering, d, path=deck.path)
+    if d["interrupted"]:
+        raise RunInterrupted(analysis)
+    return analysis
 
 
 # --- reading decks -------------------------------------------------------------------------------------------------

@@ -10,11 +10,41 @@ All of them derive from :class:`MechfemError`:
   co-ordinates (for example two points of a binary coincide).
 * :class:`ConvergenceError` — position 1 cannot be reached by Newton iteration.
 * :class:`LimitPositionError` — D^c is singular at position 1.
+* :class:`ResourceError` — the results would take more memory than the limit
+  (:mod:`mechfem.limits`); the run was refused before it started.
 
 A motion that stops after position 1 is not an error: the run returns what
 it computed and says why it stopped (:attr:`mechfem.RunReport.stop`).
+
+Ctrl-C during a run raises :class:`RunInterrupted`, a ``KeyboardInterrupt``
+that carries the positions computed before it in ``result``, so a script
+still stops while the command line writes them.
 """
 
-from mechfem._core import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError
+from __future__ import annotations
 
-__all__ = ["AssemblyError", "ConvergenceError", "DeckError", "LimitPositionError", "MechfemError"]
+from typing import Generic, TypeVar
+
+from mechfem._core import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
+
+R = TypeVar("R")
+
+
+class RunInterrupted(KeyboardInterrupt, Generic[R]):
+    """Ctrl-C stopped a run: ``result`` holds every position computed before it (its report's ``stop`` says
+    where, with kind ``interrupted``, unless the run had just finished)."""
+
+    def __init__(self, result: R) -> None:
+        super().__init__("the run was interrupted")
+        self.result = result
+
+
+__all__ = [
+    "AssemblyError",
+    "ConvergenceError",
+    "DeckError",
+    "LimitPositionError",
+    "MechfemError",
+    "ResourceError",
+    "RunInterrupted",
+]

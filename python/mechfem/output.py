@@ -66,12 +66,22 @@ def write_data_set(result: RunResult, path: Path) -> Path:
     (up to 17 significant digits).
     """
     numbers = result.storage.savedata
-    columns = [result.buffers[n] for n in numbers]
+    table = np.column_stack([np.asarray(result.buffers[n], dtype=np.float64) for n in numbers])
     with atomic_text(path) as f:
         f.write(",".join(str(n) for n in numbers) + "\n")
-        for k in range(result.positions):
-            f.write(",".join(repr(float(c[k])) for c in columns) + "\n")
+        # A block of rows at a time: tolist() gives Python floats in bulk, which is several times faster
+        # than indexing numpy per value, and the block keeps the memory for text small.
+        for start in range(0, result.positions, CSV_BLOCK):
+            f.writelines(format_row(row) for row in table[start : start + CSV_BLOCK].tolist())
     return path
+
+
+CSV_BLOCK = 10_000
+
+
+def format_row(row: list[float]) -> str:
+    """One line of the data set."""
+    return ",".join(map(repr, row)) + "\n"
 
 
 def write_print_file(result: RunResult, path: Path, media: Sequence[str] = ()) -> Path:

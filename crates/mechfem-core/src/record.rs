@@ -155,6 +155,19 @@ impl Recorder {
     pub fn new(quantities: Vec<Quantity>, keep_coords: bool) -> Recorder {
         Recorder { quantities, keep_coords, ..Recorder::default() }
     }
+    /// Makes room for `positions` more positions of a model of `n_coords`
+    /// co-ordinates, so that recording them allocates nothing more (and
+    /// never holds twice the memory while a growing table is moved).
+    pub fn reserve(&mut self, positions: usize, n_coords: usize) {
+        self.data.reserve_exact(positions.saturating_mul(self.quantities.len()));
+        if self.keep_coords {
+            self.coords.reserve_exact(positions.saturating_mul(n_coords));
+        }
+    }
+    /// Numbers recorded per position for a model of `n_coords` co-ordinates.
+    pub fn values_per_position(&self, n_coords: usize) -> usize {
+        self.quantities.len() + if self.keep_coords { n_coords } else { 0 }
+    }
     /// The recorded quantities, in column order.
     pub fn quantities(&self) -> &[Quantity] {
         &self.quantities

@@ -163,3 +163,33 @@ fn transfer_functions_match_finite_differences_along_the_path() {
         close("fd second order", (x1[k + 1] - x1[k - 1]) / (2.0 * h), x2[k], 1e-5);
     }
 }
+
+/// Records like a [`Recorder`] and asks the run to stop once `stop_after`
+/// positions are done, as Ctrl-C does through the Python binding.
+struct StopAfter {
+    rec: Recorder,
+    stop_after: usize,
+}
+
+impl mechfem_core::Observer for StopAfter {
+    fn position(&mut self, view: &mechfem_core::PositionView<'_>) {
+        self.rec.position(view);
+    }
+    fn stop_requested(&self) -> bool {
+        self.rec.positions() >= self.stop_after
+    }
+}
+
+#[test]
+fn a_driven_motion_stops_when_its_observer_asks() {
+    let (mech, mut state) = model(0.3, 0.0);
+    let motion = Motion { steps: 72, dt: 0.1, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
+    let mut obs = StopAfter { rec: Recorder::new(quantities(), false), stop_after: 11 };
+    let report = run(&mech, &mut state, Some(&motion), &Params::default(), &mut obs).unwrap();
+    assert_eq!(obs.rec.positions(), 11);
+    assert_eq!(report.positions, 11);
+    let stop = report.stop.expect("the run reports why it stopped");
+    assert_eq!(stop.last_good, 10);
+    assert!(matches!(stop.error, mechfem_core::SolveError::Interrupted));
+    close("last input", stop.last_inputs[0], 0.3 + 2.0 * PI * 10.0 / 72.0, 1e-14);
+}

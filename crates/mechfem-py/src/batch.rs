@@ -20,19 +20,20 @@ const POLL: Duration = Duration::from_millis(100);
 ///
 /// For each deck the result is either the dict `run_deck_text` returns or
 /// the exception it would raise (an instance of `DeckError`,
-/// `AssemblyError`, `ConvergenceError`, `LimitPositionError` or
-/// `MechfemError`): one failing variant does not stop the others.
+/// `AssemblyError`, `ConvergenceError`, `LimitPositionError`,
+/// `ResourceError` or `MechfemError`): one failing variant does not stop the others.
 ///
 /// Without `on_result` the results are returned, in the order of `texts`.
 /// With it, `on_result(k, result)` is called for deck k as soon as it has
 /// finished, on the calling thread while the workers go on, and the list
 /// returned is empty: a study can reduce each result and let it go.
-/// `order` is the transfer functions to compute, as for `run_deck_text`.
+/// `order` is the transfer functions to compute and `memory_limit` the
+/// most bytes of one deck's results, as for `run_deck_text`.
 /// `progress(done, total)` is called each time a deck has finished. An
 /// exception raised by either callback, or Ctrl-C, stops every worker and
 /// is raised.
 #[pyfunction]
-#[pyo3(signature = (texts, path, base_dir, workers=None, progress=None, on_result=None, order=Some(2)))]
+#[pyo3(signature = (texts, path, base_dir, workers=None, progress=None, on_result=None, order=Some(2), memory_limit=u64::MAX))]
 #[allow(clippy::too_many_arguments)]
 pub fn run_deck_texts(
     py: Python<'_>,
@@ -43,6 +44,7 @@ pub fn run_deck_texts(
     progress: Option<Py<PyAny>>,
     on_result: Option<Py<PyAny>>,
     order: Option<u8>,
+    memory_limit: u64,
 ) -> PyResult<Vec<Py<PyAny>>> {
     if let Some(k) = order.filter(|k| !(1..=2).contains(k)) {
         return Err(pyo3::exceptions::PyValueError::new_err(format!("order must be 1, 2 or None, not {k}")));
@@ -65,7 +67,7 @@ pub fn run_deck_texts(
                     while !cancel.load(Ordering::Relaxed) {
                         let k = next.fetch_add(1, Ordering::Relaxed);
                         let Some(text) = texts.get(k) else { break };
-                        if tx.send((k, run_text(text, path, base_dir, order, cancel))).is_err() {
+                        if tx.send((k, run_text(text, path, base_dir, order, cancel, memory_limit))).is_err() {
                             break;
                         }
                     }

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use mechfem_core::{diagnose, Mechanism, SolveError, State};
 use mechfem_deck::Diagnostics;
-use pyo3::exceptions::PyException;
+use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
 use pyo3::{create_exception, PyErr};
 
@@ -27,6 +27,52 @@ create_exception!(
     "D^c is singular at position 1: `rows` that depend on each other, `coords` that can still move (deck numbers)."
 );
 
+create_exception!(
+    mechfem.errors,
+    ResourceError,
+    MechfemError,
+    "The run would keep more results in memory than its limit allows; it was refused before it started."
+);
+
+/// How many bytes a run holds per recorded value at its peak: the
+/// recording itself, and the arrays handed to Python while it is converted.
+const BYTES_PER_VALUE: u128 = 3 * 8;
+
+/// The refusal of a run of `positions` positions that records `values`
+/// numbers per position, when its results would not fit in `limit` bytes;
+/// `None` when they fit. Checked before the run starts, so that a deck
+/// asking for too much fails at once instead of after hours or by running
+/// the machine out of memory.
+pub fn memory_refusal(positions: usize, values: usize, limit: u64) -> Option<String> {
+    let need = positions as u128 * values as u128 * BYTES_PER_VALUE;
+    (need > u128::from(limit)).then(|| {
+        format!(
+            "the run would keep about {} of results in memory ({positions} positions x {values} values), more than \
+             the memory limit of {}. Ask for fewer steps (TSTEPE), fewer buffers or a smaller model, or raise the \
+             limit with `mechfem run --memory-limit SIZE` or the environment variable MECHFEM_MEMORY_LIMIT \
+             (for example 8G)",
+            bytes_text(need),
+            bytes_text(u128::from(limit))
+        )
+    })
+}
+
+/// Bytes in words: `512 MiB`, `5.4 GiB`.
+fn bytes_text(bytes: u128) -> String {
+    const UNITS: [&str; 5] = ["bytes", "KiB", "MiB", "GiB", "TiB"];
+    let mut value = bytes as f64;
+    let mut unit = 0;
+    while value >= 1024.0 && unit + 1 < UNITS.len() {
+        value /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 || value >= 100.0 || value.fract() == 0.0 {
+        format!("{value:.0} {}", UNITS[unit])
+    } else {
+        format!("{value:.1} {}", UNITS[unit])
+    }
+}
+
 /// A `DeckError` carrying every diagnostic, with the place of the first.
 pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyErr {
     let err = DeckError::new_err(diagnostics.to_string());
@@ -36,6 +82,13 @@ pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyE
     let _ = value.setattr("path", file.to_string_lossy().into_owned());
     let _ = value.setattr("line", line);
     err
+}
+
+/// Whether `err`, raised by a progress report during a run, is Ctrl-C after
+/// which the run `kept` its positions: the caller returns them (with
+/// `interrupted` set) instead of raising.
+pub fn is_interrupt(py: Python<'_>, err: &PyErr, kept: bool) -> bool {
+    kept && err.is_instance_of::<PyKeyboardInterrupt>(py)
 }
 
 /// A short name for what failed, used by the run report (`Stop.kind`).

@@ -33,7 +33,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError};
+use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
 use crate::observe::Recording;
 
 /// Reads and compiles a deck, without the GIL.
@@ -63,10 +63,20 @@ struct Ran {
     given: Vec<f64>,
     rec: Recording,
     report: RunReport,
+    /// Ctrl-C stopped the run; the positions before it are kept.
+    interrupted: bool,
 }
 
-/// Runs the compiled deck (its motion only when `with_motion`), without the GIL.
-fn execute(py: Python<'_>, mut c: Compiled, with_motion: bool, progress: Option<Py<PyAny>>) -> PyResult<Ran> {
+/// Runs the compiled deck (its motion only when `with_motion`), without the
+/// GIL; refuses before it starts when the results would take more than
+/// `memory_limit` bytes.
+fn execute(
+    py: Python<'_>,
+    mut c: Compiled,
+    with_motion: bool,
+    progress: Option<Py<PyAny>>,
+    memory_limit: u64,
+) -> PyResult<Ran> {
     let given = c.state.x.clone();
     // Position 1 of a free-motion deck is computed as its run computes it:
     // free motion may start in a limit position of its input.
@@ -86,14 +96,23 @@ fn execute(py: Python<'_>, mut c: Compiled, with_motion: bool, progress: Option<
     } else {
         Vec::new()
     };
-    let mut rec = Recording::new(&quantities, &extra, motion.map_or(0, |m| m.steps) + 1, progress);
+    let total = motion.map_or(0, |m| m.steps) + 1;
+    let mut rec = Recording::new(&quantities, &extra, total, progress);
+    let n = c.mechanism.n_coords();
+    if let Some(message) = errors::memory_refusal(total, rec.recorder.values_per_position(n), memory_limit) {
+        return Err(ResourceError::new_err(message));
+    }
+    rec.recorder.reserve(total, n);
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
     let result = py.detach(|| run(mech, state, motion, params, &mut rec));
-    if let Some(err) = rec.interrupted.take() {
-        return Err(err);
-    }
+    // Ctrl-C keeps the positions computed so far (the report says the motion
+    // was interrupted); any other error of the progress callback is raised.
+    let interrupted = match rec.interrupted.take() {
+        Some(err) if !errors::is_interrupt(py, &err, result.is_ok()) => return Err(err),
+        raised => raised.is_some(),
+    };
     match result {
-        Ok(report) => Ok(Ran { compiled: c, given, rec, report }),
+        Ok(report) => Ok(Ran { compiled: c, given, rec, report, interrupted }),
         Err(e) => Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e)),
     }
 }
@@ -104,7 +123,7 @@ fn execute(py: Python<'_>, mut c: Compiled, with_motion: bool, progress: Option<
 /// position 1, the adjustment that led there, and the model echo.
 #[pyfunction]
 fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
-    let Ran { compiled: c, given, rec, report } = execute(py, load(py, &path)?, false, None)?;
+    let Ran { compiled: c, given, rec, report, .. } = execute(py, load(py, &path)?, false, None, u64::MAX)?;
     let mech = &c.mechanism;
     let n = mech.n_coords();
     let at_1 = rec.recorder.coords()[..n].to_vec();
@@ -125,13 +144,23 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 ///
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
-/// reason in `report["stop"]`; only a failure at position 1 raises.
+/// reason in `report["stop"]`; only a failure at position 1 raises. Ctrl-C
+/// (KeyboardInterrupt from a signal or from `progress`) stops the run and
+/// returns the positions so far with `interrupted` set: the caller writes
+/// them and then raises. A run whose results would take more than
+/// `memory_limit` bytes raises `ResourceError` before it starts.
 /// `kx1_values` holds d x_i / d input 1 of the co-ordinates `kx1_coords`
 /// that PLOTHODO lines name (for the hodographs).
 #[pyfunction]
-#[pyo3(signature = (path, progress=None))]
-fn run_deck(py: Python<'_>, path: PathBuf, progress: Option<Py<PyAny>>) -> PyResult<Bound<'_, PyDict>> {
-    let Ran { compiled: c, given, rec, report } = execute(py, load(py, &path)?, true, progress)?;
+#[pyo3(signature = (path, progress=None, memory_limit=u64::MAX))]
+fn run_deck(
+    py: Python<'_>,
+    path: PathBuf,
+    progress: Option<Py<PyAny>>,
+    memory_limit: u64,
+) -> PyResult<Bound<'_, PyDict>> {
+    let Ran { compiled: c, given, rec, report, interrupted } =
+        execute(py, load(py, &path)?, true, progress, memory_limit)?;
     let mech = &c.mechanism;
     let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
     let width = nb + 2 + rec.n_extra;
@@ -156,6 +185,7 @@ fn run_deck(py: Python<'_>, path: PathBuf, progress: Option<Py<PyAny>>) -> PyRes
     d.set_item("report", convert::report(py, mech, &report, steps)?)?;
     d.set_item("model", convert::model(py, &c, &given, &coords[..n], &rec.prescribed_at_1, &rec.dependent_at_1)?)?;
     d.set_item("storage", convert::storage(py, &c)?)?;
+    d.set_item("interrupted", interrupted)?;
     Ok(d)
 }
 
@@ -168,6 +198,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("AssemblyError", py.get_type::<AssemblyError>())?;
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
     m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
+    m.add("ResourceError", py.get_type::<ResourceError>())?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;
     m.add_function(wrap_pyfunction!(run_deck, m)?)?;
     m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;

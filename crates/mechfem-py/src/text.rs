@@ -173,17 +173,21 @@ pub enum Outcome {
     Failed(Box<Compiled>, SolveError),
     /// The run (possibly stopped early; see the report).
     Ran(Box<FullRun>),
+    /// The results would not fit in the memory limit: nothing was run.
+    Refused(String),
 }
 
 /// Runs a compiled deck (its motion only when `with_motion`), recording
-/// everything. Needs no GIL unless `progress` is given. Returns the error
-/// the progress callback raised, if any, beside the outcome.
+/// everything, unless the results would take more than `memory_limit`
+/// bytes. Needs no GIL unless `progress` is given. Returns the error the
+/// progress callback raised, if any, beside the outcome.
 pub fn execute(
     mut c: Compiled,
     with_motion: bool,
     order: TransferOrder,
     cancel: &AtomicBool,
     progress: Option<Progress>,
+    memory_limit: u64,
 ) -> (Outcome, Option<PyErr>) {
     if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
         // Position 1 alone, as a run would compute it.
@@ -197,6 +201,9 @@ pub fn execute(
     let motion = if with_motion { c.motion.as_ref() } else { None };
     let steps = motion.map_or(0, |m| m.steps);
     let (width, n) = (quantities.len(), c.mechanism.n_coords());
+    if let Some(message) = errors::memory_refusal(steps + 1, width + n, memory_limit) {
+        return (Outcome::Refused(message), None);
+    }
     let mut watch = Watch {
         table: Vec::with_capacity((steps + 1) * width),
         coords: Vec::with_capacity((steps + 1) * n),
@@ -226,12 +233,19 @@ pub fn execute(
 }
 
 /// Compiles and runs one deck text without the GIL (for worker threads).
-pub fn run_text(text: &str, path: &Path, base_dir: &Path, order: Option<u8>, cancel: &AtomicBool) -> Outcome {
+pub fn run_text(
+    text: &str,
+    path: &Path,
+    base_dir: &Path,
+    order: Option<u8>,
+    cancel: &AtomicBool,
+    memory_limit: u64,
+) -> Outcome {
     match compile_text(text, path, base_dir) {
         // `order` has been checked by the caller.
         Ok(c) => {
             let order = transfer_order(&c, order).unwrap_or(TransferOrder::Second);
-            execute(c, true, order, cancel, None).0
+            execute(c, true, order, cancel, None, memory_limit).0
         }
         Err(d) => Outcome::Deck(d),
     }
@@ -272,6 +286,7 @@ pub fn outcome_dict<'py>(py: Python<'py>, outcome: Outcome, path: &Path) -> PyRe
     match outcome {
         Outcome::Ran(r) => run_dict(py, *r),
         Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
+        Outcome::Refused(message) => Err(errors::ResourceError::new_err(message)),
         Outcome::Failed(mut c, e) => {
             let c = &mut *c;
             Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e))
@@ -289,8 +304,12 @@ pub fn outcome_dict<'py>(py: Python<'py>, outcome: Outcome, path: &Path) -> PyRe
 /// motion that stops early returns every position computed so far and the
 /// reason in `report["stop"]`; a deck mistake raises `DeckError`, a failure
 /// at position 1 `AssemblyError`, `ConvergenceError` or `LimitPositionError`.
+/// Ctrl-C returns the positions so far with `interrupted` set, as `run_deck`;
+/// results that would take more than `memory_limit` bytes raise
+/// `ResourceError` before the run starts.
 #[pyfunction]
-#[pyo3(signature = (text, path, base_dir, motion=true, progress=None, order=Some(2)))]
+#[pyo3(signature = (text, path, base_dir, motion=true, progress=None, order=Some(2), memory_limit=u64::MAX))]
+#[allow(clippy::too_many_arguments)]
 pub fn run_deck_text<'py>(
     py: Python<'py>,
     text: &str,
@@ -299,16 +318,22 @@ pub fn run_deck_text<'py>(
     motion: bool,
     progress: Option<Py<PyAny>>,
     order: Option<u8>,
+    memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
     let order = transfer_order(&c, order)?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
     let cancel = AtomicBool::new(false);
-    let (outcome, raised) = py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total))));
-    if let Some(err) = raised {
-        return Err(err);
-    }
-    outcome_dict(py, outcome, &path)
+    let (outcome, raised) =
+        py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
+    // Ctrl-C keeps the positions so far (see `run_deck`).
+    let interrupted = match raised {
+        Some(err) if !errors::is_interrupt(py, &err, matches!(outcome, Outcome::Ran(_))) => return Err(err),
+        raised => raised.is_some(),
+    };
+    let d = outcome_dict(py, outcome, &path)?;
+    d.set_item("interrupted", interrupted)?;
+    Ok(d)
 }
 
 /// Reads and compiles the deck `text` without solving anything and returns

@@ -308,6 +308,16 @@ fn run_driven(
             input_acc: s.acc(k),
         });
         report.positions += 1;
+        if observer.stop_requested() && k < m.steps {
+            report.stop = Some(Stop {
+                last_good: k,
+                inputs: s.values(k + 1).to_vec(),
+                last_inputs: s.values(k).to_vec(),
+                error: SolveError::Interrupted,
+                limit: None,
+            });
+            return;
+        }
     }
 }
 

@@ -27,6 +27,7 @@ pub(crate) fn model(deck: &Deck) -> Result<Model, Box<Diagnostic>> {
     let n_dof = degrees_of_freedom(deck, n_p)?;
     check_square(deck, &coords, &prescribed)?;
     let paras = paras(deck, n_p)?;
+    check_lengths(deck, &prescribed[..n_p - n_dof])?;
 
     let mut b = MechanismBuilder::new();
     for c in coords.values() {
@@ -91,6 +92,36 @@ pub(crate) fn model(deck: &Deck) -> Result<Model, Box<Diagnostic>> {
             .collect()
     };
     Ok(Model { mechanism, state, elements, prescribed: info(&prescribed, 1), dependent: info(&dependent, -1) })
+}
+
+/// A constant row that is one length alone (LENL, a distance between two
+/// points) must be given a value above zero: at zero the points coincide
+/// and the element's direction is undefined, below zero no position fits.
+/// Newton iteration would only fail to converge, so say it here. Input rows
+/// may pass through zero on purpose; the run then stops where they do.
+fn check_lengths(deck: &Deck, constant: &[Vec<&Resolved>]) -> Result<(), Box<Diagnostic>> {
+    for p in &deck.geometry.paras {
+        let Some(row) = usize::try_from(p.row.value - 1).ok().and_then(|k| constant.get(k)) else { continue };
+        let [t] = row.as_slice() else { continue };
+        let form = t.ty.form_names().get(t.form).copied().unwrap_or("?");
+        let length = p.value.value / t.def.factor();
+        if form == "LENL" && !(length > 0.0) {
+            return Err(deck
+                .error(
+                    DiagnosticKind::BadValue,
+                    p.value.span,
+                    format!(
+                        "row {} prescribes the length LENL of element {} ({}) as {length}, but a length must be \
+                         greater than zero",
+                        p.row.value,
+                        t.element + 1,
+                        t.ty.name()
+                    ),
+                )
+                .with_hint("give the distance between the element's two points, a positive number; points that coincide have no direction"));
+        }
+    }
+    Ok(())
 }
 
 /// Points a refusal of the core at the deck line that caused it.

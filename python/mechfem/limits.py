@@ -1,0 +1,51 @@
+"""How much memory a run may use for its results.
+
+A run keeps every recorded value of every position until its outputs are written, so a deck asking for
+millions of positions of a large model could exhaust the machine hours into the run. Instead, each run
+estimates its peak before it starts and is refused with :class:`~mechfem.ResourceError` when that exceeds
+the limit: by default ``DEFAULT_MEMORY_LIMIT``, or the environment variable ``MECHFEM_MEMORY_LIMIT``, or
+what the caller passes (``mechfem run --memory-limit``, ``run_deck(memory_limit=...)``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+
+DEFAULT_MEMORY_LIMIT = 2 * 1024**3
+"""2 GiB: about 9 million positions of a four-bar that records a dozen buffers."""
+
+ENV = "MECHFEM_MEMORY_LIMIT"
+
+_UNITS = {"": 1, "K": 1024, "M": 1024**2, "G": 1024**3, "T": 1024**4}
+_SIZE = re.compile(r"^\s*(\d+(?:\.\d*)?|\.\d+)\s*([KMGT]?)(?:i?B)?\s*$", re.IGNORECASE)
+
+
+def parse_size(text: str) -> int:
+    """Bytes from ``text``: a number with an optional binary unit, ``500M``, ``4G``, ``1.5GiB``, ``1048576``.
+
+    Raises ValueError with a message that shows the accepted forms.
+    """
+    m = _SIZE.match(text)
+    if m is None:
+        raise ValueError(f"not a size: {text!r} (write for example 512M, 4G or 1.5GiB)")
+    value = float(m.group(1)) * _UNITS[m.group(2).upper()]
+    if not math.isfinite(value) or value < 1:
+        raise ValueError(f"not a size: {text!r} (it must be at least one byte)")
+    return int(value)
+
+
+def memory_limit(value: int | str | None = None) -> int:
+    """The limit in bytes: ``value`` when given (bytes, or a size as :func:`parse_size` reads it), else the
+    environment variable ``MECHFEM_MEMORY_LIMIT``, else ``DEFAULT_MEMORY_LIMIT``."""
+    if value is None:
+        value = os.environ.get(ENV) or DEFAULT_MEMORY_LIMIT
+    if isinstance(value, str):
+        try:
+            return parse_size(value)
+        except ValueError as e:
+            raise ValueError(f"{ENV}: {e}" if value == os.environ.get(ENV) else str(e)) from None
+    if value < 1:
+        raise ValueError(f"the memory limit must be at least one byte, not {value}")
+    return int(value)

@@ -1,0 +1,155 @@
+"""Ctrl-C during a run: the positions computed before it are kept and written completely.
+
+The interrupts here are real SIGINTs (the process signals itself from the progress callback at a chosen
+position), so they take the path a user's Ctrl-C takes: Python's signal handler, noticed by the run's
+next progress report.
+"""
+
+from __future__ import annotations
+
+import csv
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechfem
+from conftest import ROOT
+
+FOURBAR = ROOT / "examples" / "fourbar" / "fourbar.mec"
+STEPS = 144
+
+
+def sigint_at(position: int) -> mechfem.Progress:
+    """A progress callback that sends SIGINT to this process once ``position`` positions are done."""
+    sent = []
+
+    def progress(done: int, total: int) -> None:
+        if done >= position and not sent:
+            sent.append(done)
+            os.kill(os.getpid(), signal.SIGINT)
+
+    return progress
+
+
+def test_run_deck_raises_with_the_positions_so_far() -> None:
+    full = mechfem.run_deck(FOURBAR)
+    with pytest.raises(mechfem.RunInterrupted) as caught:
+        mechfem.run_deck(FOURBAR, progress=sigint_at(40))
+    part = caught.value.result
+    assert isinstance(caught.value, KeyboardInterrupt)
+    k = part.report.positions
+    assert 40 <= k < STEPS + 1
+    stop = part.report.stop
+    assert stop is not None and stop.kind == "interrupted" and stop.last_good == k
+    assert part.coords.shape == (k, full.coords.shape[1])
+    # The positions kept are the ones an uninterrupted run computes.
+    np.testing.assert_array_equal(part.coords, full.coords[:k])
+    for number, values in part.buffers.items():
+        np.testing.assert_array_equal(values, full.buffers[number][:k])
+
+
+def test_an_error_of_the_progress_callback_is_raised_as_it_is() -> None:
+    def progress(done: int, total: int) -> None:
+        if done == 10:
+            raise ValueError("the callback's own mistake")
+
+    with pytest.raises(ValueError, match="own mistake"):
+        mechfem.run_deck(FOURBAR, progress=progress)
+
+
+def test_model_api_run_raises_with_the_analysis_so_far() -> None:
+    m = mechfem.Mechanism.from_deck(FOURBAR)
+    with pytest.raises(mechfem.RunInterrupted) as caught:
+        m.run(progress=sigint_at(30))
+    analysis = caught.value.result
+    assert isinstance(analysis, mechfem.Analysis)
+    assert 30 <= analysis.report.positions < STEPS + 1
+    assert analysis.report.stop is not None and analysis.report.stop.kind == "interrupted"
+
+
+# The command line, in a child process whose progress bar signals it half-way.
+SCRIPT = textwrap.dedent(
+    """
+    import os, signal, sys
+    from mechfem import cli
+
+    class Bar(cli.ProgressBar):
+        def __call__(self, done, total):
+            if done >= int(sys.argv[1]) and not getattr(self, "sent", False):
+                self.sent = True
+                os.kill(os.getpid(), signal.SIGINT)
+
+    cli.ProgressBar = Bar
+    sys.exit(cli.main(sys.argv[2:]))
+    """
+)
+
+
+def run_cli_interrupted(at: int, *args: str | Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-c", SCRIPT, str(at), *map(str, args)],
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+
+
+def test_cli_writes_complete_files_up_to_the_last_good_position(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    proc = run_cli_interrupted(50, "run", FOURBAR, "-o", out)
+    assert proc.returncode == 130, proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert "interrupted" in proc.stderr
+    rows = list(csv.reader((out / "fourbar.csv").read_text().splitlines()))
+    header, body = rows[0], rows[1:]
+    assert 50 <= len(body) < STEPS + 1
+    assert f"Positions 1 to {len(body)} were computed and are all written" in proc.stderr
+    # Every row is whole: as many fields as the header, each a number.
+    assert all(len(r) == len(header) for r in body)
+    assert all(np.isfinite(float(v)) for r in body for v in r)
+    prt = (out / "fourbar.prt").read_text()
+    assert f"interrupted after position {len(body)}" in prt
+    assert (out / "fourbar.gif").is_file()
+    assert not [p for p in out.iterdir() if p.name.startswith(".")], "a temporary file was left behind"
+
+
+def test_cli_interrupt_while_writing_keeps_the_previous_files(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    first = subprocess.run(
+        [sys.executable, "-m", "mechfem.cli", "run", FOURBAR, "-o", out], capture_output=True, text=True
+    )
+    assert first.returncode == 0, first.stderr
+    before = (out / "fourbar.csv").read_bytes()
+    # Ctrl-C in the middle of writing the data set: the old file stays as it was, whole.
+    script = textwrap.dedent(
+        """
+        import sys
+        from mechfem import cli, output
+
+        write_row = output.format_row
+        count = [0]
+
+        def format_row(*a):
+            count[0] += 1
+            if count[0] == 20:
+                raise KeyboardInterrupt
+            return write_row(*a)
+
+        output.format_row = format_row
+        sys.exit(cli.main(sys.argv[1:]))
+        """
+    )
+    proc = subprocess.run(
+        [sys.executable, "-c", script, "run", str(FOURBAR), "-o", str(out)], capture_output=True, text=True
+    )
+    assert proc.returncode == 130, proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert (out / "fourbar.csv").read_bytes() == before
+    assert not [p for p in out.iterdir() if p.name.startswith(".")], "a temporary file was left behind"
