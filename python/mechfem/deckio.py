@@ -48,6 +48,7 @@ from mechfem.model import (
     Table,
     To,
 )
+from mechfem.output import atomic_text
 
 DEFAULT_ACCURACY = 1e-10
 DEFAULT_MAX_ITER = 25
@@ -310,9 +311,10 @@ def save(mech: Mechanism, path: Path, motion: Motion | None, storage: Storage | 
     """Writes the deck to ``path`` and its MOV_FUNC files beside it."""
     deck = write(mech, motion, storage)
     path.parent.mkdir(parents=True, exist_ok=True)
-    for name, text in deck.tables.items():
-        (path.parent / name).write_text(text)
-    path.write_text(deck.text)
+    # Each file whole or not at all, as the run's outputs.
+    for name, text in [*deck.tables.items(), (path.name, deck.text)]:
+        with atomic_text(path.parent / name) as f:
+            f.write(text)
     return path
 
 
