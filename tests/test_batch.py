@@ -90,6 +90,29 @@ def test_variants_with_a_deck_mistake_carry_the_model_names() -> None:
     assert isinstance(out[1], mechfem.DeckError) and out[1].name == "Z.x"  # type: ignore[attr-defined]
 
 
+def test_a_study_of_points_and_rows_gives_the_single_runs_bit_for_bit() -> None:
+    # The study changes the numbers of one compiled deck; a single run writes and reads a deck of its own.
+    base = fourbar()
+    sets = [{"B0": (4.2, 0.1), "crank.length": 0.9}, {"B0": (3.8, -0.1), "rocker.length": 3.2}]
+    study = mechfem.sweep(base, sets, {"stroke": stroke}, motion=MOTION, progress=False, keep_results=True)
+    assert study.results is not None
+    for p, got in zip(sets, study.results, strict=True):
+        assert isinstance(got, mechfem.Analysis)
+        want = base.variant(p).run(MOTION)
+        assert np.array_equal(got.coords, want.coords) and np.array_equal(got.det, want.det)
+        assert np.array_equal(got.output("psi", 2), want.output("psi", 2))
+        assert got.report.adjust == want.report.adjust
+
+
+def test_run_many_of_one_mechanism_many_times() -> None:
+    m = fourbar()
+    out = mechfem.run_many([m, m, m], MOTION, progress=False)
+    want = m.run(MOTION)
+    for got in out:
+        assert isinstance(got, mechfem.Analysis)
+        assert np.array_equal(got.coords, want.coords)
+
+
 def test_points_as_parameters_and_records() -> None:
     study = mechfem.sweep(fourbar(), [{"B0": (4.2, 0.1)}, {"B0": (4.0, 0.0)}], motion=MOTION, progress=False)
     assert study["B0"][0] == (4.2, 0.1)

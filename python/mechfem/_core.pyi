@@ -256,8 +256,9 @@ def run_deck_text(
 def describe_deck_text(
     text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
 ) -> DescribedDeckDict: ...
-def run_deck_texts(
+def run_deck_variants(
     texts: list[str],
+    variants: list[tuple[int, list[tuple[int, int, float]]]],
     path: str | os.PathLike[str],
     base_dir: str | os.PathLike[str],
     workers: int | None = None,
@@ -265,4 +266,6 @@ def run_deck_texts(
     on_result: Callable[[int, TextRunDict | MechfemError], object] | None = None,
     order: int | None = 2,
     memory_limit: int = ...,
-) -> list[TextRunDict | MechfemError]: ...
+) -> list[TextRunDict | MechfemError]:
+    """Each variant is (index into ``texts``, changes); a change is (0, co-ordinate, value) or
+    (1, prescribed row, value), numbered as in the deck."""

@@ -1,7 +1,9 @@
 """Design studies: many variants of a mechanism run on every core, summarised in a table.
 
-Each variant is written as a deck in Python; all of them are then run by the compiled module on
-worker threads without the GIL (``_core.run_deck_texts``), so no Python runs per position. Per
+A study of one mechanism writes one deck in Python; every variant is a copy of it with some values
+changed, compiled once and run by the compiled module on worker threads without the GIL
+(``_core.run_deck_variants``), so no Python runs per position (a model function writes one deck per
+variant instead). Per
 variant, the ``measures`` (Python functions of its :class:`~mechfem.Analysis`) give one number each::
 
     study = mechfem.sweep(
@@ -21,7 +23,7 @@ import math
 import sys
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
 
 import numpy as np
 import numpy.typing as npt
@@ -31,6 +33,9 @@ from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import MechfemError
 from mechfem.limits import memory_limit
 from mechfem.model import Coordinate, Mechanism, Motion, Row, Storage
+
+if TYPE_CHECKING:
+    from mechfem import deckio
 
 FloatArray = npt.NDArray[np.float64]
 Measure = Callable[[Analysis], float]
@@ -111,8 +116,19 @@ def run_many(
     at position 1 (with the model's names)."""
     from mechfem import deckio
 
-    decks = [deckio.write(m, motion or m.motion, storage or m.storage) for m in mechanisms]
-    outs = _run_decks([d.text for d in decks], [d.tables for d in decks], workers, progress, order=order)
+    # One deck per distinct mechanism: the same mechanism given many times is read and compiled once.
+    written: dict[tuple[int, int, int], int] = {}
+    texts: list[deckio.DeckText] = []
+    variants: list[Variant] = []
+    for m in mechanisms:
+        mo, st = motion or m.motion, storage or m.storage
+        key = (id(m), id(mo), id(st))
+        if key not in written:
+            written[key] = len(texts)
+            texts.append(deckio.write(m, mo, st))
+        variants.append((written[key], []))
+    decks = [texts[t] for t, _ in variants]
+    outs = _run_variants(texts, variants, workers, progress, order=order)
     results: list[Analysis | MechfemError] = []
     for m, d, o in zip(mechanisms, decks, outs, strict=True):
         if isinstance(o, MechfemError):
@@ -122,9 +138,14 @@ def run_many(
     return results
 
 
-def _run_decks(
-    texts: list[str],
-    tables: list[dict[str, str]],
+Variant = tuple[int, list[tuple[int, int, float]]]
+"""A deck text (its index) and the changes of one variant: (0, co-ordinate, value) or (1, prescribed row,
+value), numbered as in the deck."""
+
+
+def _run_variants(
+    decks: list[deckio.DeckText],
+    variants: list[Variant],
     workers: int | None,
     progress: Progress,
     on_result: Callable[[int, _core.TextRunDict | MechfemError], object] | None = None,
@@ -133,14 +154,17 @@ def _run_decks(
     from mechfem import deckio
 
     files: dict[str, str] = {}
-    for t in tables:
-        for name, text in t.items():
+    for d in decks:
+        for name, text in d.tables.items():
             if files.setdefault(name, text) != text:
                 raise ValueError(f"the variants use different motion tables under one file name {name!r}")
     callback = _callback(progress, "variants")
+    texts = [d.text for d in decks]
     try:
         with deckio.tables_dir(files) as base:
-            return _core.run_deck_texts(texts, "variant.mec", base, workers, callback, on_result, order, memory_limit())
+            return _core.run_deck_variants(
+                texts, variants, "variant.mec", base, workers, callback, on_result, order, memory_limit()
+            )
     finally:
         close = getattr(callback, "close", None)
         if close is not None:
@@ -199,6 +223,17 @@ class Study:
         return f"Study({len(self)} variants, {ok} ok; columns {', '.join(self.columns)})"
 
 
+def _changes(over: Mapping[Row | Coordinate, float], numbering: deckio.Numbering) -> list[tuple[int, int, float]]:
+    """``over`` (see :meth:`Mechanism._targets`) as changes of the deck written with ``numbering``."""
+    out = []
+    for obj, value in over.items():
+        if isinstance(obj, Coordinate):
+            out.append((0, numbering.coord_number[obj], float(value)))
+        else:
+            out.append((1, numbering.row_dest[obj], float(value)))
+    return out
+
+
 def default_measures(mech: Mechanism) -> dict[str, Measure]:
     """The smallest and largest value of every output, and the smallest |det(D^c)|."""
     out: dict[str, Measure] = {}
@@ -243,18 +278,24 @@ def sweep(
         raise ValueError("a study needs at least one variant")
     mechanisms: list[Mechanism] = []
     decks: list[deckio.DeckText] = []
+    variants: list[Variant] = []
     if isinstance(model, Mechanism):
+        # One deck for the whole study; each variant changes numbers of it.
+        base = deckio.write(model, motion or model.motion, storage or model.storage)
         for p in sets:
-            over: dict[Row | Coordinate, float] = model._targets(p)
-            decks.append(deckio.write(model, motion or model.motion, storage or model.storage, over))
+            variants.append((0, _changes(model._targets(p), base.numbering)))
+            decks.append(base)
             mechanisms.append(model)
+        texts = [base]
     else:
-        for p in sets:
+        for k, p in enumerate(sets):
             m = model(**p)
             if not isinstance(m, Mechanism):
                 raise TypeError(f"the model function returned {m!r}, not a Mechanism")
             decks.append(deckio.write(m, motion or m.motion, storage or m.storage))
+            variants.append((k, []))
             mechanisms.append(m)
+        texts = decks
     chosen = dict(measures) if measures is not None else default_measures(mechanisms[0])
     names = list(sets[0]) if isinstance(parameters, Mapping) else sorted({k for p in sets for k in p})
     fixed = ["ok", "complete", "positions", "limits", "error"]
@@ -278,7 +319,7 @@ def sweep(
         kept[k] = a if keep_results else None
         rows[k] = [*row, True, a.complete, a.positions, len(a.limits), "", *(float(fn(a)) for fn in chosen.values())]
 
-    _run_decks([d.text for d in decks], [d.tables for d in decks], workers, progress, take, order)
+    _run_variants(texts, variants, workers, progress, take, order)
     columns: dict[str, list[Any]] = {n: [r[c] for r in rows] for c, n in enumerate([*names, *fixed, *chosen])}
     results = [r for r in kept if r is not None] if keep_results else None
     arrays = {n: _column(v) for n, v in columns.items()}

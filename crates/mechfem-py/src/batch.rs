@@ -1,43 +1,57 @@
-//! Many decks at once, for design studies: every deck text is read,
-//! compiled and run on a pool of worker threads with the GIL released. The
-//! calling thread waits for the results; only it touches Python, to report
-//! progress and to hand each result over as soon as it is there.
+//! Many runs at once, for design studies: variants of a few deck texts
+//! (each text with some co-ordinate or PARA values changed) are compiled
+//! and run on a pool of worker threads with the GIL released. Each text is
+//! read and compiled once, by the first worker that needs it; a variant
+//! runs a copy with its changes made, so a study of one mechanism writes
+//! and reads one deck, not one per variant. The calling thread waits for
+//! the results; only it touches Python, to report progress and to hand each
+//! result over as soon as it is there.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc;
+use std::sync::{mpsc, OnceLock};
 use std::time::Duration;
 
+use mechfem_deck::{Compiled, Diagnostics};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::text::{outcome_dict, run_text, Outcome};
+use crate::text::{compile_text, outcome_dict, run_variant, Change, Outcome};
+
+/// A change as Python gives it: (kind, number, value); see [`Change::from_triple`].
+type ChangeTriple = (u8, usize, f64);
 
 /// How often the waiting thread looks for Ctrl-C while no run finishes.
 const POLL: Duration = Duration::from_millis(100);
 
-/// Runs every deck in `texts` (named `path` in messages; MOV_FUNC files
-/// are read from `base_dir`) on `workers` threads (default: one per core).
+/// Runs every variant in `variants` on `workers` threads (default: one per
+/// core). A variant is `(t, changes)`: deck text `texts[t]` (named `path`
+/// in messages; MOV_FUNC files are read from `base_dir`) with `changes`
+/// made, each `(kind, number, value)`: kind 0 sets co-ordinate `number`
+/// (its XFIX or XMOV value), kind 1 prescribed row `number` (its PARA
+/// value), as if the deck said so.
 ///
-/// For each deck the result is either the dict `run_deck_text` returns or
-/// the exception it would raise (an instance of `DeckError`,
+/// For each variant the result is either the dict `run_deck_text` returns
+/// or the exception it would raise (an instance of `DeckError`,
 /// `AssemblyError`, `ConvergenceError`, `LimitPositionError`,
 /// `ResourceError` or `MechfemError`): one failing variant does not stop the others.
 ///
-/// Without `on_result` the results are returned, in the order of `texts`.
-/// With it, `on_result(k, result)` is called for deck k as soon as it has
+/// Without `on_result` the results are returned, in the order of `variants`.
+/// With it, `on_result(k, result)` is called for variant k as soon as it has
 /// finished, on the calling thread while the workers go on, and the list
 /// returned is empty: a study can reduce each result and let it go.
 /// `order` is the transfer functions to compute and `memory_limit` the
 /// most bytes of one deck's results, as for `run_deck_text`.
-/// `progress(done, total)` is called each time a deck has finished. An
+/// `progress(done, total)` is called each time a variant has finished. An
 /// exception raised by either callback, or Ctrl-C, stops every worker and
 /// is raised.
 #[pyfunction]
-#[pyo3(signature = (texts, path, base_dir, workers=None, progress=None, on_result=None, order=Some(2), memory_limit=u64::MAX))]
+#[pyo3(signature = (texts, variants, path, base_dir, workers=None, progress=None, on_result=None, order=Some(2), memory_limit=u64::MAX))]
 #[allow(clippy::too_many_arguments)]
-pub fn run_deck_texts(
+pub fn run_deck_variants(
     py: Python<'_>,
     texts: Vec<String>,
+    variants: Vec<(usize, Vec<ChangeTriple>)>,
     path: PathBuf,
     base_dir: PathBuf,
     workers: Option<usize>,
@@ -49,7 +63,17 @@ pub fn run_deck_texts(
     if let Some(k) = order.filter(|k| !(1..=2).contains(k)) {
         return Err(pyo3::exceptions::PyValueError::new_err(format!("order must be 1, 2 or None, not {k}")));
     }
-    let n = texts.len();
+    let variants = variants
+        .into_iter()
+        .map(|(t, changes)| {
+            if t >= texts.len() {
+                return Err(PyValueError::new_err(format!("variant of text {t}, but there are {} texts", texts.len())));
+            }
+            Ok((t, changes.into_iter().map(Change::from_triple).collect::<PyResult<Vec<_>>>()?))
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let compiled: Vec<OnceLock<Result<Compiled, Diagnostics>>> = texts.iter().map(|_| OnceLock::new()).collect();
+    let n = variants.len();
     let cores = std::thread::available_parallelism().map_or(1, usize::from);
     let workers = workers.unwrap_or(cores).clamp(1, n.max(1));
     let next = AtomicUsize::new(0);
@@ -62,12 +86,14 @@ pub fn run_deck_texts(
         std::thread::scope(|s| {
             for _ in 0..workers {
                 let tx = tx.clone();
-                let (texts, next, cancel, path, base_dir) = (&texts, &next, &cancel, &path, &base_dir);
+                let (texts, variants, compiled) = (&texts, &variants, &compiled);
+                let (next, cancel, path, base_dir) = (&next, &cancel, &path, &base_dir);
                 s.spawn(move || {
                     while !cancel.load(Ordering::Relaxed) {
                         let k = next.fetch_add(1, Ordering::Relaxed);
-                        let Some(text) = texts.get(k) else { break };
-                        if tx.send((k, run_text(text, path, base_dir, order, cancel, memory_limit))).is_err() {
+                        let Some((t, changes)) = variants.get(k) else { break };
+                        let c = compiled[*t].get_or_init(|| compile_text(&texts[*t], path, base_dir));
+                        if tx.send((k, run_variant(c, changes, order, cancel, memory_limit))).is_err() {
                             break;
                         }
                     }

@@ -13,8 +13,8 @@
 //!   of every co-ordinate a PLOTHODO line names. The run releases the GIL;
 //!   [`observe`] attaches only to report progress.
 //! * [`text`] runs deck text (what the Python model API writes) and records
-//!   every quantity of the buffer table; [`batch`] runs many deck texts on
-//!   worker threads without the GIL, for design studies.
+//!   every quantity of the buffer table; [`batch`] runs many variants of a
+//!   few deck texts on worker threads without the GIL, for design studies.
 //! * [`errors`] defines `MechfemError` and its subclasses and maps deck
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.
@@ -203,6 +203,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run_deck, m)?)?;
     m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
-    m.add_function(wrap_pyfunction!(batch::run_deck_texts, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     Ok(())
 }

@@ -8,7 +8,7 @@
 //!   quantity of the deck's buffer table for every co-ordinate, row and input,
 //!   in the fixed layout of [`full_quantities`].
 //!
-//! The helpers [`run_text`] (no GIL) and [`outcome_dict`] (GIL) are shared
+//! The helpers [`run_variant`] (no GIL) and [`outcome_dict`] (GIL) are shared
 //! with the batch runner ([`crate::batch`]).
 
 use std::path::{Path, PathBuf};
@@ -175,6 +175,8 @@ pub enum Outcome {
     Ran(Box<FullRun>),
     /// The results would not fit in the memory limit: nothing was run.
     Refused(String),
+    /// A change names a co-ordinate or row the deck does not have.
+    BadChange(String),
 }
 
 /// Runs a compiled deck (its motion only when `with_motion`), recording
@@ -232,23 +234,26 @@ pub fn execute(
     (outcome, raised)
 }
 
-/// Compiles and runs one deck text without the GIL (for worker threads).
-pub fn run_text(
-    text: &str,
-    path: &Path,
-    base_dir: &Path,
+/// Runs a variant of a compiled deck (a copy of `compiled` with `changes`
+/// made) without the GIL, for worker threads.
+pub fn run_variant(
+    compiled: &Result<Compiled, Diagnostics>,
+    changes: &[Change],
     order: Option<u8>,
     cancel: &AtomicBool,
     memory_limit: u64,
 ) -> Outcome {
-    match compile_text(text, path, base_dir) {
-        // `order` has been checked by the caller.
-        Ok(c) => {
-            let order = transfer_order(&c, order).unwrap_or(TransferOrder::Second);
-            execute(c, true, order, cancel, None, memory_limit).0
-        }
-        Err(d) => Outcome::Deck(d),
+    let c = match compiled {
+        Ok(c) => c,
+        Err(d) => return Outcome::Deck(d.clone()),
+    };
+    let mut c = c.clone();
+    if let Err(message) = changes.iter().try_for_each(|ch| ch.apply(&mut c)) {
+        return Outcome::BadChange(message);
     }
+    // `order` has been checked by the caller.
+    let order = transfer_order(&c, order).unwrap_or(TransferOrder::Second);
+    execute(c, true, order, cancel, None, memory_limit).0
 }
 
 /// The run as a dict: `table` (positions x columns: the deck's buffers, in
@@ -287,10 +292,51 @@ pub fn outcome_dict<'py>(py: Python<'py>, outcome: Outcome, path: &Path) -> PyRe
         Outcome::Ran(r) => run_dict(py, *r),
         Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
         Outcome::Refused(message) => Err(errors::ResourceError::new_err(message)),
+        Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
         Outcome::Failed(mut c, e) => {
             let c = &mut *c;
             Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e))
         }
+    }
+}
+
+/// A change of one number of a compiled deck, as a variant of a design
+/// study makes it: the value of a co-ordinate (its XFIX or XMOV value) or of
+/// a prescribed row (its PARA value), both numbered as in the deck.
+#[derive(Debug, Clone, Copy)]
+pub enum Change {
+    /// Co-ordinate `number` gets `value`.
+    Coord(usize, f64),
+    /// Prescribed row `number` gets `value`.
+    Row(usize, f64),
+}
+
+impl Change {
+    /// From the Python triple (kind, number, value): kind 0 a co-ordinate, 1 a prescribed row.
+    pub fn from_triple((kind, number, value): (u8, usize, f64)) -> PyResult<Change> {
+        match kind {
+            0 => Ok(Change::Coord(number, value)),
+            1 => Ok(Change::Row(number, value)),
+            _ => Err(PyValueError::new_err(format!("a change is of kind 0 (co-ordinate) or 1 (row), not {kind}"))),
+        }
+    }
+
+    /// Makes the change in `c`, as if the deck had said so (the model echo
+    /// included); an error when the deck has no such co-ordinate or row.
+    pub fn apply(self, c: &mut Compiled) -> Result<(), String> {
+        match self {
+            Change::Coord(number, value) => {
+                let x = number.checked_sub(1).and_then(|i| c.state.x.get_mut(i));
+                *x.ok_or_else(|| format!("the deck has no co-ordinate {number}"))? = value;
+            }
+            Change::Row(number, value) => {
+                let k = number.checked_sub(1).filter(|&k| k < c.prescribed.len() && k < c.state.target.len());
+                let k = k.ok_or_else(|| format!("the deck has no prescribed row {number}"))?;
+                c.state.target[k] = value;
+                c.prescribed[k].para = Some(value);
+            }
+        }
+        Ok(())
     }
 }
 

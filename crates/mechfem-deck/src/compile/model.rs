@@ -105,7 +105,7 @@ fn check_lengths(deck: &Deck, constant: &[Vec<&Resolved>]) -> Result<(), Box<Dia
         let [t] = row.as_slice() else { continue };
         let form = t.ty.form_names().get(t.form).copied().unwrap_or("?");
         let length = p.value.value / t.def.factor();
-        if form == "LENL" && !(length > 0.0) {
+        if form == "LENL" && (length.is_nan() || length <= 0.0) {
             return Err(deck
                 .error(
                     DiagnosticKind::BadValue,
