@@ -5,12 +5,13 @@
 //! only, first-order or second-order transfer functions.
 //!
 //! ```text
-//! cargo run --release -p mechfem-core --example throughput -- [STEPS ...] [--repeat R]
+//! cargo run --release -p mechfem-core --example throughput -- [STEPS ...] [--repeat R] [--mode MODE]
 //! ```
 //!
 //! Prints one JSON object per line: `{"steps": .., "mode": .., "seconds": ..,
 //! "positions_per_second": .., "coupler_last": [x, y]}`, the time being the
-//! best of R runs (default 5). Without STEPS: 360 and 100000.
+//! best of R runs (default 5). Without STEPS: 360 and 100000. `--mode`
+//! (positions, first or second) times that mode only, for profiling.
 
 use mechfem_core::{
     run, ElementType, InputMotion, MechanismBuilder, Motion, Observer, Params, PositionView, TransferOrder,
@@ -33,10 +34,13 @@ impl Observer for Last {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut steps_list = Vec::new();
     let mut repeat = 5usize;
+    let mut only: Option<String> = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         if a == "--repeat" {
             repeat = args.next().ok_or("--repeat needs a number")?.parse()?;
+        } else if a == "--mode" {
+            only = Some(args.next().ok_or("--mode needs positions, first or second")?);
         } else {
             steps_list.push(a.parse::<usize>()?);
         }
@@ -68,6 +72,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (mode, order) in
             [("positions", None), ("first", Some(TransferOrder::First)), ("second", Some(TransferOrder::Second))]
         {
+            if only.as_deref().is_some_and(|m| m != mode) {
+                continue;
+            }
             let mut best = f64::INFINITY;
             let mut last = [f64::NAN; 2];
             for _ in 0..repeat.max(1) {
