@@ -1071,7 +1071,10 @@ class Mechanism:
         within the Newton tolerance, ACCURACY).
         Raises :class:`~mechfem.DeckError` for a model the deck reader refuses and
         :class:`~mechfem.AssemblyError`, :class:`~mechfem.ConvergenceError` or
-        :class:`~mechfem.LimitPositionError` when position 1 cannot be computed, with this model's names.
+        :class:`~mechfem.LimitPositionError` when position 1 cannot be computed, with this model's names, and
+        :class:`~mechfem.ResourceError` before the run when its results would exceed the memory limit
+        (:mod:`mechfem.limits`). Ctrl-C raises :class:`~mechfem.RunInterrupted` with the :class:`Analysis` of
+        the positions computed so far.
         """
         from mechfem import deckio
 
