@@ -17,13 +17,14 @@ PY := $(VENV)/bin/python
 BIN := $(abspath $(VENV))/bin
 RUST_SOURCES := Cargo.toml $(wildcard Cargo.lock) $(shell find crates -name '*.rs' -o -name Cargo.toml)
 
-.PHONY: help install demo test bench browser clean
+.PHONY: help install demo test bench browser fuzz fuzz-seeds clean
 
 help:
 	@echo "make demo     install everything into $(VENV), then run examples/supply/supply.mec into out/supply"
 	@echo "make test     install everything into $(VENV), then run the Rust and Python tests and linters"
 	@echo "make bench    install everything into $(VENV), then time mechfem against its peers (benches/bench_peers.py)"
 	@echo "make browser  install Debian's chromium for the report's browser test (as root; make test calls it)"
+	@echo "make fuzz     fuzz the deck reader and the run for FUZZ_SECONDS (default $(FUZZ_SECONDS)) per target (nightly Rust, cargo-fuzz)"
 	@echo "make clean    remove $(VENV), out/ and the build products"
 
 # A virtual environment with the build tool.
@@ -69,6 +70,29 @@ test: install browser
 # mechfem is imported from this tree with the module built by `install`.
 bench: install
 	$(PY) benches/bench_peers.py
+
+# Fuzzing with cargo-fuzz (docs/robustness.md): nightly Rust and cargo-fuzz are installed when
+# missing. Not part of `make test`: CI has no nightly. Each target starts from the seeds (the
+# repository's decks, among them every input that once failed) and keeps what it finds in
+# fuzz/corpus/<target>; a failing input is written to fuzz/artifacts/<target>.
+FUZZ_SECONDS ?= 60
+FUZZ_TIMEOUT ?= 10
+FUZZ_TARGETS := deck_parse deck_run deck_grammar
+SEED_DECKS := $(wildcard examples/*/*.mec tests/decks/*.mec crates/mechfem-deck/tests/decks/*/*.mec)
+
+# fuzz/seeds holds a copy of every deck of the repository, named after its path.
+fuzz-seeds:
+	mkdir -p fuzz/seeds
+	@for d in $(SEED_DECKS); do cp "$$d" "fuzz/seeds/$$(echo "$$d" | sed 's#^crates/mechfem-deck/tests/decks/#deck_#; s#^tests/decks/#run_#; s#/#_#g')"; done
+
+fuzz: fuzz-seeds
+	rustup toolchain list | grep -q '^nightly' || rustup toolchain install nightly --profile minimal
+	cargo fuzz --version >/dev/null 2>&1 || cargo install cargo-fuzz
+	for t in $(FUZZ_TARGETS); do \
+		mkdir -p fuzz/corpus/$$t; \
+		cp fuzz/seeds/* fuzz/corpus/$$t/; \
+		(cd fuzz && cargo +nightly fuzz run $$t -- -max_total_time=$(FUZZ_SECONDS) -timeout=$(FUZZ_TIMEOUT) -dict=deck.dict); \
+	done
 
 clean:
 	rm -rf $(VENV) .venv-bench out python/mechfem/_core*.so

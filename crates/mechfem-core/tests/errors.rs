@@ -255,3 +255,40 @@ fn a_stopped_run_leaves_the_state_at_the_last_observed_position() {
     assert_eq!(&state.x[..], &rec.coords()[stop.last_good * n..(stop.last_good + 1) * n]);
     assert_eq!(state.target[mech.input_row(0)], stop.last_inputs[0]);
 }
+
+/// A slider: one moving co-ordinate, driven by itself (CRD).
+fn slider() -> (Mechanism, State) {
+    let mut b = MechanismBuilder::new();
+    let x = b.moving(0.5);
+    b.element(ElementType::Crd, &[x]);
+    b.input(&[Term::new(0, 0)]);
+    b.build().unwrap()
+}
+
+#[test]
+fn a_motion_whose_input_velocity_overflows_is_refused() {
+    let (mech, mut state) = slider();
+    let motion = Motion { steps: 1, dt: 1e-308, inputs: vec![InputMotion::Relative { delta: 10.0 }] };
+    let result = run(&mech, &mut state, Some(&motion), &Params::default(), &mut Ignore);
+    assert_eq!(result.unwrap_err(), SolveError::NonFinite);
+}
+
+#[test]
+fn free_motion_with_an_infinite_step_stops_instead_of_halving_for_ever() {
+    let (mech, mut state) = slider();
+    let motion = Motion { steps: 3, dt: 1.0, inputs: vec![InputMotion::Free { ds: f64::INFINITY }] };
+    let report = run(&mech, &mut state, Some(&motion), &Params::default(), &mut Ignore).unwrap();
+    let stop = report.stop.expect("the first step cannot be made");
+    assert_eq!((stop.last_good, stop.error), (0, SolveError::NonFinite));
+    assert_eq!(state.x, vec![0.5]);
+}
+
+#[test]
+fn adjusting_between_opposite_extremes_does_not_overflow() {
+    let (mech, mut state) = slider();
+    state.x[0] = -1e308;
+    state.target[0] = 1e308;
+    let report = run(&mech, &mut state, None, &Params::default(), &mut Ignore).unwrap();
+    assert!(report.adjust.stages > 1);
+    assert_eq!((state.x[0], state.target[0]), (1e308, 1e308));
+}

@@ -7,7 +7,8 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 use crate::lexer::{parse_number, Line, NumberError, Word};
 
-/// Whole numbers beyond this are refused: f64 holds them exactly up to 2^53.
+/// Whole numbers from this (2^53) on are refused: f64 holds every whole
+/// number below it exactly, but 2^53 + 1 already reads as 2^53.
 const MAX_WHOLE: f64 = 9_007_199_254_740_992.0;
 
 /// Where diagnostics go: the file's path and raw lines.
@@ -46,14 +47,14 @@ impl Source<'_> {
                 )
                 .with_hint(format!("write {what} without a fraction, e.g. `{}`", v.value.trunc())));
         }
-        if v.value.abs() > MAX_WHOLE {
+        if v.value.abs() >= MAX_WHOLE {
             return Err(self.error(
                 DiagnosticKind::NumberOutOfRange,
                 w.span,
                 format!("{what} `{}` is too large", w.text),
             ));
         }
-        // The value is integral and within +-2^53, so the conversion is exact.
+        // The value is integral and below 2^53, so the conversion is exact.
         Ok(Spanned::new(v.value as i64, w.span))
     }
 

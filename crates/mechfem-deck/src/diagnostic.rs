@@ -293,6 +293,16 @@ pub(crate) fn numbered(n: usize, sign: i64) -> String {
     }
 }
 
+/// A number as a message shows it: in exponent form when very large or
+/// very small, so that 1e307 does not take three hundred digits.
+pub(crate) fn real(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e15).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// Which degrees of freedom exist, as a hint.
 pub(crate) fn dof_hint(n: usize) -> String {
     match n {

@@ -5,13 +5,17 @@ use mechfem_core::ElementType;
 use crate::ast::{
     BufDef, BufList, CoordDef, ElemDef, FormDef, MotionDef, MotionKind, ParaDef, PictureDef, PlotDef, Tstepe,
 };
-use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Spanned};
+use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::{Block, Keyword};
 use crate::lexer::{Line, Word};
 use crate::parse::Parser;
 
 /// The largest number of steps TSTEPE accepts: every position is stored.
 const MAX_STEPS: i64 = 10_000_000;
+/// The largest MAXITER: Newton iterations that neither converge nor diverge
+/// would otherwise go on for as long as the deck says, at every subdivision
+/// of a failing step.
+const MAX_ITER: i64 = 1000;
 
 impl Parser<'_> {
     /// Reads the arguments of one keyword line into the deck being built.
@@ -104,6 +108,19 @@ impl Parser<'_> {
                         )
                         .with_hint("give the time of one step, or leave it out for 1"));
                 }
+                if let Some(dt) = dt.as_ref().filter(|dt| !(steps.value as f64 * dt.value).is_finite()) {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::BadValue,
+                            dt.span,
+                            format!(
+                                "{} steps of {} last longer than the largest time a number can hold",
+                                steps.value,
+                                real(dt.value)
+                            ),
+                        )
+                        .with_hint("give a shorter time step: n * dt must stay below about 1.8e308"));
+                }
                 self.once(kw)?;
                 self.movement.tstepe = Some(Tstepe { line: line_no, steps, dt });
             }
@@ -150,6 +167,18 @@ impl Parser<'_> {
                     return Err(src
                         .error(DiagnosticKind::BadValue, m.span, format!("MAXITER must be at least 1, got {}", m.value))
                         .with_hint("give the largest number of Newton iterations per position, e.g. 25"));
+                }
+                if m.value > MAX_ITER {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::BadValue,
+                            m.span,
+                            format!("MAXITER {} is more than {MAX_ITER} iterations", m.value),
+                        )
+                        .with_hint(
+                            "Newton converges in a few iterations or not at all, and a step that fails is subdivided \
+                             anyway; give at most 1000 (default 25)",
+                        ));
                 }
                 self.once(kw)?;
                 self.movement.maxiter = Some(m);

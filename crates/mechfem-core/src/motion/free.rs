@@ -127,8 +127,9 @@ impl FreeStepper {
         self.tangent(mech, state, kin)?;
         self.saved_x.copy_from_slice(&state.x);
         self.saved_branch.copy_from_slice(&state.branch);
-        let mut h = ds;
-        let min_h = ds * 0.5f64.powi(self.params.max_halvings as i32);
+        // The halvings are counted: an infinite or subnormal ds halved
+        // never falls below ds / 2^max_halvings.
+        let (mut h, mut halvings) = (ds, 0);
         loop {
             for (c, &i) in mech.moving_coords().iter().enumerate() {
                 state.x[i] += h * self.tangent[c];
@@ -149,10 +150,11 @@ impl FreeStepper {
                 Err(e) => {
                     state.x.copy_from_slice(&self.saved_x);
                     state.branch.copy_from_slice(&self.saved_branch);
-                    h *= 0.5;
-                    if h < min_h {
+                    if halvings == self.params.max_halvings {
                         return Err(e);
                     }
+                    h *= 0.5;
+                    halvings += 1;
                 }
             }
         }

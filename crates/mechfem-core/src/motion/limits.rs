@@ -92,7 +92,7 @@ pub(crate) fn locate_input_limit(
     params: &Params,
     after: usize,
 ) -> Option<LimitPosition> {
-    if mech.n_dof() != 1 || ds.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+    if mech.n_dof() != 1 || !(ds > 0.0 && ds.is_finite()) {
         return None;
     }
     let mut kin = Kinematics::dense(mech);

@@ -55,6 +55,11 @@ impl Schedule {
             }
             table_time |= matches!(m, InputMotion::Table { .. });
         }
+        // A motion that lasts longer than f64 can count, or whose inputs
+        // move faster (a step time so short that delta / dt overflows).
+        if s.time.iter().chain(&s.values).chain(&s.vel).chain(&s.acc).any(|v| !v.is_finite()) {
+            return Err(SolveError::NonFinite);
+        }
         Ok(s)
     }
     pub(crate) fn values(&self, k: usize) -> &[f64] {

@@ -46,7 +46,7 @@ fn deformations(
     order: Order,
 ) -> Result<(f64, bool), SolveError> {
     kin.evaluate_to(mech, state, order)?;
-    let (mut largest, mut ok) = (0.0f64, true);
+    let (mut largest, mut ok, mut finite) = (0.0f64, true, true);
     for i in 0..mech.n_prescribed() {
         let r = match temp {
             Some(t) if t.row == i => state.x[mech.moving_coords()[t.col]] - t.value,
@@ -54,11 +54,14 @@ fn deformations(
         };
         kin.rhs[i] = r;
         largest = largest.max(r.abs());
+        finite &= r.is_finite();
         // A row whose value is so large that tol is below its resolution
         // is held to 16 ulp of the value instead.
         ok &= r.abs() <= tol.max(16.0 * f64::EPSILON * state.target[i].abs());
     }
-    Ok((largest, ok))
+    // A deformation that is not finite is never within the tolerance (an
+    // infinite target would make the tolerance infinite too).
+    Ok(if finite { (largest, ok) } else { (f64::NAN, false) })
 }
 
 /// A correction with a factorisation of D^c from an earlier point must
@@ -126,11 +129,11 @@ pub(crate) fn correct_from(
         if chord {
             kin.chord_rate = (largest / previous).max(1e-4);
         }
-        if ok {
-            return Ok(info);
-        }
         if !largest.is_finite() {
             return Err(SolveError::NonFinite);
+        }
+        if ok {
+            return Ok(info);
         }
         // Newton near a solution shrinks the deformations fast; three
         // growing iterations in a row mean it is heading elsewhere.
@@ -219,7 +222,9 @@ pub fn adjust(
         let next = (lambda + h).min(1.0);
         let saved = (state.x.clone(), state.branch.clone());
         for r in 0..target.len() {
-            state.target[r] = from[r] + next * (target[r] - from[r]);
+            // Weighted, not from + next * (target - from): the difference of
+            // two finite values may overflow.
+            state.target[r] = (1.0 - next) * from[r] + next * target[r];
         }
         match correct(mech, state, kin, params) {
             Ok(n) => {

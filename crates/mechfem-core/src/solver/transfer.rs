@@ -210,8 +210,12 @@ impl Kinematics {
             self.clear_from(TransferOrder::Second);
         }
         self.dependents(mech, state, Some(order))?;
-        let computed = if order == TransferOrder::Second { &self.x2[..] } else { &[][..] };
-        if self.x1.iter().chain(computed).any(|v| !v.is_finite()) {
+        let (x2, dep2) =
+            if order == TransferOrder::Second { (&self.x2[..], &self.dep2[..]) } else { (&[][..], &[][..]) };
+        // det(D^c) overflows where D^c's entries are huge although its
+        // inverse is not; the limit positions are found from it, so it must
+        // be a number too.
+        if !self.det.is_finite() || self.x1.iter().chain(x2).chain(&self.dep1).chain(dep2).any(|v| !v.is_finite()) {
             return Err(SolveError::NonFinite);
         }
         self.order = Some(order);

@@ -23,6 +23,9 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let m = model::model(deck)?;
     let n_dof = m.mechanism.n_dof();
     let (motion, params) = motion::motion(deck, n_dof, deck_dir)?;
+    if let Some(mo) = &motion {
+        motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
+    }
     let sizes = storage::Sizes {
         n_coords: m.mechanism.n_coords(),
         n_prescribed: m.mechanism.n_prescribed(),

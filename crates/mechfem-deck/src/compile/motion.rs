@@ -3,11 +3,11 @@
 use std::io::ErrorKind;
 use std::path::Path;
 
-use mechfem_core::{InputMotion, Motion, Params};
+use mechfem_core::{InputMotion, Mechanism, Motion, Params, State};
 
 use crate::args::Source;
 use crate::ast::{Deck, MotionDef, MotionKind};
-use crate::diagnostic::{dof_hint, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
+use crate::diagnostic::{dof_hint, real, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::lexer::lex_line;
 
 pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Option<Motion>, Params), Box<Diagnostic>> {
@@ -72,6 +72,44 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
     Ok((Some(Motion { steps, dt, inputs }), params))
 }
 
+/// Checks the velocity change / (n dt) of every MOV_RELE and MOV_ABSE
+/// input as the run computes it (from the input's value at position 1):
+/// a step time so short, or a change so large, that it is not a finite
+/// number leaves the run nothing to work with.
+pub(crate) fn check_rates(
+    deck: &Deck,
+    motion: &Motion,
+    mech: &Mechanism,
+    state: &State,
+) -> Result<(), Box<Diagnostic>> {
+    let Some(mv) = &deck.movement else { return Ok(()) };
+    let time = motion.steps as f64 * motion.dt;
+    for m in &mv.motions {
+        let j = usize::try_from(m.dof.value - 1).unwrap_or(0);
+        let (word, change) = match &m.kind {
+            MotionKind::Relative(delta) => (delta, delta.value),
+            MotionKind::Absolute(end) => (end, end.value - state.target[mech.input_row(j)]),
+            MotionKind::Function(_) | MotionKind::Free(_) => continue,
+        };
+        if !(change / time).is_finite() {
+            return Err(deck
+                .error(
+                    DiagnosticKind::BadValue,
+                    word.span,
+                    format!(
+                        "{} asks DOF {} to change by {} in a time of {}, faster than a number can hold",
+                        m.keyword.value,
+                        j + 1,
+                        real(change),
+                        real(time)
+                    ),
+                )
+                .with_hint("give a longer time step (TSTEPE n dt) or a smaller change"));
+        }
+    }
+    Ok(())
+}
+
 /// Reads a MOV_FUNC file: one row `t value [velocity [acceleration]]` per
 /// position. Blank lines and comments (`;` or `#`) are skipped; numbers
 /// may be separated by blanks, tabs or commas and use Fortran's format.
@@ -82,12 +120,19 @@ fn table(
     expected: usize,
 ) -> Result<Vec<[f64; 4]>, Box<Diagnostic>> {
     let path = deck_dir.join(&file.value);
-    let bytes = std::fs::read(&path).map_err(|e| {
-        let why = match e.kind() {
-            ErrorKind::NotFound => "it does not exist".to_string(),
-            ErrorKind::PermissionDenied => "permission denied".to_string(),
-            _ => e.to_string(),
-        };
+    let why = |e: std::io::Error| match e.kind() {
+        ErrorKind::NotFound => "it does not exist".to_string(),
+        ErrorKind::PermissionDenied => "permission denied".to_string(),
+        _ => e.to_string(),
+    };
+    // A regular file only: a device such as /dev/zero, or a pipe, would be
+    // read without end.
+    let read = || match std::fs::metadata(&path).map_err(why)? {
+        meta if meta.is_dir() => Err("it is a folder".to_string()),
+        meta if !meta.is_file() => Err("it is not a regular file".to_string()),
+        _ => std::fs::read(&path).map_err(why),
+    };
+    let bytes = read().map_err(|why| {
         deck.error(
             DiagnosticKind::MotionFile,
             file.span,
