@@ -463,3 +463,11 @@ def test_python_code_of_the_documents_runs(doc: str, monkeypatch: pytest.MonkeyP
     monkeypatch.setenv("MECHFEM_DOCS_OUT", str(tmp_path))
     namespace: dict[str, object] = {"__name__": f"docs_{doc.replace('-', '_').replace('.', '_')}"}
     exec(compile(code, f"docs/{doc}", "exec"), namespace)
+
+
+def test_max_iter_is_bounded_as_in_a_deck() -> None:
+    # The deck reader accepts MAXITER 1..1000; a motion that could not be written as a deck is refused at once.
+    assert Motion.by(10, 1.0, max_iter=1000).max_iter == 1000
+    for bad in (0, 1001):
+        with pytest.raises(ValueError, match="max_iter must be from 1 to 1000"):
+            Motion.by(10, 1.0, max_iter=bad)

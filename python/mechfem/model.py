@@ -81,6 +81,9 @@ ATTRIBUTES: dict[str, str] = {
 }
 """The Python attribute of each form parameter (``bar.length`` is ``LENL``)."""
 
+MAX_ITER = 1000
+"""The most Newton iterations per position a motion may allow (MAXITER of the deck reader)."""
+
 
 def _finite(value: float, what: str) -> float:
     v = float(value)
@@ -448,6 +451,8 @@ class Motion:
             raise ValueError(f"a motion needs at least one step, got {self.steps!r}")
         if not self.dt > 0:
             raise ValueError(f"the time per step must be positive, got {self.dt!r}")
+        if self.max_iter is not None and not 1 <= self.max_iter <= MAX_ITER:
+            raise ValueError(f"max_iter must be from 1 to {MAX_ITER} (as MAXITER in a deck), got {self.max_iter!r}")
         for key, im in self.inputs.items():
             if isinstance(im, Table) and len(np.asarray(im.values)) != self.steps + 1:
                 raise ValueError(

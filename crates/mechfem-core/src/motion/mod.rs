@@ -214,6 +214,7 @@ pub fn run(
         Some(s) => (s.time[0], s.vel(0), s.acc(0)),
         None => (0.0, &zeros[..], &zeros[..]),
     };
+    timed_finite(mech, &kin, vel0, acc0)?;
     observer.position(&PositionView {
         index: 0,
         time: time0,
@@ -229,6 +230,32 @@ pub fn run(
         run_driven(mech, state, &mut kin, m, &s, params, observer, &mut report);
     }
     Ok(report)
+}
+
+/// Checks that the velocities and accelerations of the moving co-ordinates
+/// and the dependent form parameters (eqs. 5.29, 5.30) are finite at the
+/// position in `kin`, for input velocities `qd` and accelerations `qdd`:
+/// finite transfer functions times finite input rates can still overflow,
+/// and an observer must never be handed an infinity as a result.
+/// Accelerations are checked only where the second order was computed.
+fn timed_finite(mech: &Mechanism, kin: &Kinematics, qd: &[f64], qdd: &[f64]) -> Result<(), SolveError> {
+    let Some(order) = kin.order() else { return Ok(()) };
+    let second = order == TransferOrder::Second;
+    for &i in mech.moving_coords() {
+        let v = kin.velocity(mech, i, qd);
+        let a = if second { kin.acceleration(mech, i, qd, qdd) } else { 0.0 };
+        if !(v.is_finite() && a.is_finite()) {
+            return Err(SolveError::NonFinite);
+        }
+    }
+    for d in 0..mech.n_dependent() {
+        let v = kin.dep_velocity(d, qd);
+        let a = if second { kin.dep_acceleration(d, qd, qdd) } else { 0.0 };
+        if !(v.is_finite() && a.is_finite()) {
+            return Err(SolveError::NonFinite);
+        }
+    }
+    Ok(())
 }
 
 /// Driven motion through the schedule, with limit-position detection.
@@ -249,7 +276,8 @@ fn run_driven(
     let (mut det_prev2, mut det_prev, mut det_max) = (f64::NAN, kin.det(), kin.det().abs());
     for k in 1..=m.steps {
         previous.clone_from(state);
-        match stepper.step(mech, state, &previous, kin, s.values(k - 1), s.values(k)) {
+        let stepped = stepper.step(mech, state, &previous, kin, s.values(k - 1), s.values(k));
+        match stepped.and_then(|halved| timed_finite(mech, kin, s.vel(k), s.acc(k)).map(|()| halved)) {
             Ok(halved) => report.subdivided_steps += usize::from(halved),
             Err(error) => {
                 // The stepper may have got part of the way: go back to the

@@ -458,21 +458,6 @@ fn slots(ty: ElementType) -> &'static [char] {
     }
 }
 
-/// Velocities and accelerations are products of finite transfer functions
-/// and finite input rates that can still overflow (huge input velocities,
-/// nearly singular D^c), and the run does not check them yet: see "Open" in
-/// docs/robustness.md. Until it does they are exempt from the finiteness
-/// check; the transfer functions themselves are not.
-pub const TIMED_OVERFLOW_OPEN: bool = true;
-
-/// A velocity or acceleration made from transfer functions.
-fn timed(q: &Quantity) -> bool {
-    matches!(
-        q,
-        Quantity::Vx(_) | Quantity::Ax(_) | Quantity::Ve(FormRef::Dependent(_)) | Quantity::Ae(FormRef::Dependent(_))
-    )
-}
-
 /// What became of a deck.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Outcome {
@@ -581,7 +566,7 @@ pub fn run_checked(c: &Compiled, quantities: Vec<Quantity>, max_steps: usize) ->
         let singular = report.singular_positions.contains(&k);
         for (q, v) in rec.quantities().iter().zip(&rec.data()[k * w..(k + 1) * w]) {
             assert!(
-                v.is_finite() || (singular && q.needs_transfer()) || (TIMED_OVERFLOW_OPEN && timed(q)),
+                v.is_finite() || (singular && q.needs_transfer()),
                 "{q:?} at position {k} is {v} without an error (report: {:?})",
                 report.stop
             );
