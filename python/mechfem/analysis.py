@@ -7,6 +7,7 @@ left out. Points give two columns (x, y); co-ordinates, rows and outputs one.
 
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -77,9 +78,17 @@ class Analysis:
         self._ve = rb[:, :, 1 + nd + sq]
         self._ae = rb[:, :, 2 + nd + sq]
         self._row_index = {r: k for k, r in enumerate(numbering.rows)}
-        self._run_result = self._deck_result()
-        self.report: RunReport = self._run_result.report
+
+    # The run as a deck run reports it is built when first asked for: a design study reads most variants
+    # through their outputs only, and building it (the model echo, the report) costs more than the rest.
+    @functools.cached_property
+    def _run_result(self) -> RunResult:
+        return self._deck_result()
+
+    @property
+    def report(self) -> RunReport:
         """What the run did, as :func:`mechfem.run_deck` reports it for the deck written from the mechanism."""
+        return self._run_result.report
 
     # -- the run
 

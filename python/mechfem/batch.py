@@ -317,7 +317,10 @@ def sweep(
             return
         a = Analysis(m, d.numbering, o, parameters=p, path=d.path)
         kept[k] = a if keep_results else None
-        rows[k] = [*row, True, a.complete, a.positions, len(a.limits), "", *(float(fn(a)) for fn in chosen.values())]
+        # What the table needs of the report, from the run's own dict (cheaper than the full report).
+        report = o["report"]
+        done = [True, report["stop"] is None, a.positions, len(report["limits"]), ""]
+        rows[k] = [*row, *done, *(float(fn(a)) for fn in chosen.values())]
 
     _run_variants(texts, variants, workers, progress, take, order)
     columns: dict[str, list[Any]] = {n: [r[c] for r in rows] for c, n in enumerate([*names, *fixed, *chosen])}

@@ -78,7 +78,8 @@ pub fn run_deck_variants(
     let workers = workers.unwrap_or(cores).clamp(1, n.max(1));
     let next = AtomicUsize::new(0);
     let cancel = AtomicBool::new(false);
-    let mut outcomes: Vec<Option<Outcome>> = (0..n).map(|_| None).collect();
+    // Each result is converted for Python as it arrives, while the workers go on.
+    let mut results: Vec<Option<Py<PyAny>>> = (0..n).map(|_| None).collect();
     let mut raised: Option<PyErr> = None;
 
     py.detach(|| {
@@ -108,22 +109,20 @@ pub fn run_deck_variants(
                     Err(mpsc::RecvTimeoutError::Disconnected) => break,
                 };
                 let arrived = finished.is_some();
-                let mut deliver = None;
-                if let Some((k, outcome)) = finished {
+                if arrived {
                     done += 1;
-                    if on_result.is_some() {
-                        deliver = Some((k, outcome));
-                    } else {
-                        outcomes[k] = Some(outcome);
-                    }
                 }
                 if raised.is_some() {
                     continue;
                 }
                 let result = Python::attach(|py| -> PyResult<()> {
                     py.check_signals()?;
-                    if let (Some(callback), Some((k, outcome))) = (&on_result, deliver) {
-                        callback.call1(py, (k, result_object(py, outcome, &path)))?;
+                    if let Some((k, outcome)) = finished {
+                        let object = result_object(py, outcome, &path);
+                        match &on_result {
+                            Some(callback) => drop(callback.call1(py, (k, object))?),
+                            None => results[k] = Some(object),
+                        }
                     }
                     match &progress {
                         Some(callback) if arrived => callback.call1(py, (done, n)).map(drop),
@@ -143,12 +142,9 @@ pub fn run_deck_variants(
     if on_result.is_some() {
         return Ok(Vec::new());
     }
-    outcomes
+    results
         .into_iter()
-        .map(|outcome| {
-            let outcome = outcome.ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err("a batch run was lost"))?;
-            Ok(result_object(py, outcome, &path))
-        })
+        .map(|object| object.ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err("a batch run was lost")))
         .collect()
 }
 
