@@ -241,6 +241,15 @@ pub fn run(
 fn timed_finite(mech: &Mechanism, kin: &Kinematics, qd: &[f64], qdd: &[f64]) -> Result<(), SolveError> {
     let Some(order) = kin.order() else { return Ok(()) };
     let second = order == TransferOrder::Second;
+    // A bound of every velocity and acceleration: when it lies well inside
+    // the range of a double, so does each of them, and none needs computing.
+    let largest = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let (v, a) = (largest(qd), largest(qdd));
+    let (s1, s2) = kin.transfer_sums();
+    let bound = s1 * (v + a) + s2 * v * v;
+    if bound < 0.5 * f64::MAX {
+        return Ok(());
+    }
     for &i in mech.moving_coords() {
         let v = kin.velocity(mech, i, qd);
         let a = if second { kin.acceleration(mech, i, qd, qdd) } else { 0.0 };

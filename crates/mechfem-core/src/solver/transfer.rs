@@ -52,6 +52,8 @@ pub struct Kinematics {
     /// The dependent rows' second-order products of one pair of inputs.
     dep_second: Vec<f64>,
     order: Option<TransferOrder>,
+    /// See [`Kinematics::transfer_sums`].
+    sums: (f64, f64),
     /// The co-ordinates of the last second-order transfer.
     x_second: Vec<f64>,
     /// Angle memory for evaluations away from the state.
@@ -110,6 +112,7 @@ impl Kinematics {
             dep2: vec![f64::NAN; n_d * n_pairs],
             dep_second: vec![0.0; n_d],
             order: None,
+            sums: (0.0, 0.0),
             x_second: vec![f64::NAN; mech.n_coords()],
             branch_scratch: vec![f64::NAN; mech.elements().len()],
             first_cleared: true,
@@ -215,9 +218,15 @@ impl Kinematics {
         // det(D^c) overflows where D^c's entries are huge although its
         // inverse is not; the limit positions are found from it, so it must
         // be a number too.
-        if !self.det.is_finite() || self.x1.iter().chain(x2).chain(&self.dep1).chain(dep2).any(|v| !v.is_finite()) {
+        // The sums of magnitudes are infinite or NaN exactly when a transfer
+        // function is not finite, and bound every velocity and acceleration
+        // made from them (see `transfer_sums`).
+        let abs_sum = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+        let (s1, s2) = (abs_sum(&self.x1) + abs_sum(&self.dep1), abs_sum(x2) + abs_sum(dep2));
+        if !(self.det.is_finite() && s1.is_finite() && s2.is_finite()) {
             return Err(SolveError::NonFinite);
         }
+        self.sums = (s1, s2);
         self.order = Some(order);
         Ok(())
     }
@@ -296,6 +305,16 @@ impl Kinematics {
             FIXED => 0.0,
             c => self.x2[self.pair[j * self.n_dof + m] * self.n + c],
         }
+    }
+
+    /// The sums of the magnitudes of the first-order transfer functions (of
+    /// the moving co-ordinates and the dependent form parameters) and of the
+    /// second-order ones (0 when they were not computed), as of the last
+    /// transfer: every velocity is at most s1 v and every acceleration at
+    /// most s1 a + s2 v^2, v and a the largest input velocity and
+    /// acceleration.
+    pub fn transfer_sums(&self) -> (f64, f64) {
+        self.sums
     }
 
     /// First-order transfer function of input j over the moving co-ordinates.
