@@ -72,14 +72,6 @@ class ProgressBar:
             self.drawn = False
 
 
-def _callback(progress: Progress, what: str) -> Callable[[int, int], object] | None:
-    if progress is None or progress is False:
-        return None
-    if progress is True:
-        return ProgressBar(what)
-    return progress
-
-
 def _variants(parameters: Mapping[str, npt.ArrayLike] | Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:
     if isinstance(parameters, Mapping):
         names = list(parameters)
@@ -158,7 +150,7 @@ def _run_variants(
         for name, text in d.tables.items():
             if files.setdefault(name, text) != text:
                 raise ValueError(f"the variants use different motion tables under one file name {name!r}")
-    callback = _callback(progress, "variants")
+    callback = deckio.progress_callback(progress, "variants")
     texts = [d.text for d in decks]
     try:
         with deckio.tables_dir(files) as base:

@@ -76,14 +76,7 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     run = commands.add_parser("run", help="run a deck and write its print file and data set")
     run.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
-    run.add_argument(
-        "-o",
-        "--outdir",
-        type=Path,
-        default=None,
-        metavar="OUTDIR",
-        help="folder for the output files (created if needed; default: the deck's folder)",
-    )
+    add_outdir(run, "the output files")
     run.add_argument(
         "--report", action="store_true", help="also write the interactive report DECK-stem.html (one offline file)"
     )
@@ -98,20 +91,24 @@ def build_parser() -> argparse.ArgumentParser:
     run.set_defaults(func=cmd_run)
     rep = commands.add_parser("report", help="run a deck and write only its interactive report (HTML)")
     rep.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
-    rep.add_argument(
-        "-o",
-        "--outdir",
-        type=Path,
-        default=None,
-        metavar="OUTDIR",
-        help="folder for DECK-stem.html (created if needed; default: the deck's folder)",
-    )
+    add_outdir(rep, "DECK-stem.html")
     add_memory_limit(rep)
     rep.set_defaults(func=cmd_report)
     check = commands.add_parser("check", help="read a deck and compute its first position only")
     check.add_argument("deck", type=Path, metavar="DECK", help="the deck to check")
     check.set_defaults(func=cmd_check)
     return parser
+
+
+def add_outdir(parser: argparse.ArgumentParser, what: str) -> None:
+    parser.add_argument(
+        "-o",
+        "--outdir",
+        type=Path,
+        default=None,
+        metavar="OUTDIR",
+        help=f"folder for {what} (created if needed; default: the deck's folder)",
+    )
 
 
 def add_memory_limit(parser: argparse.ArgumentParser) -> None:
@@ -145,11 +142,18 @@ def run_with_progress(deck: Path, limit: int | None) -> tuple[mechfem.RunResult,
         bar.close()
 
 
-def interrupted_message(deck: Path, result: mechfem.RunResult) -> str:
+def exit_status(deck: Path, result: mechfem.RunResult, interrupted: bool) -> int:
+    """After the outputs are written: says why the motion stopped early, if it did, and gives the exit status."""
     reason = result.report.stop_reason(written=True)
-    if reason is None:
-        reason = f"All {count(result.report.positions, 'position')} had been computed and are written."
-    return f"mechfem: {deck}: interrupted. {reason}"
+    if interrupted:
+        if reason is None:
+            reason = f"All {count(result.report.positions, 'position')} had been computed and are written."
+        print(f"mechfem: {deck}: interrupted. {reason}", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    if reason is not None:
+        print(f"error: {deck}: {reason}", file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK
 
 
 def cmd_run(args: argparse.Namespace) -> int:
@@ -171,14 +175,7 @@ def cmd_run(args: argparse.Namespace) -> int:
             print(f"limit position: {limit.describe(report.input_names)}")
     for w in report.warnings:
         print(f"warning: {deck}: {w}", file=sys.stderr)
-    if interrupted:
-        print(interrupted_message(deck, result), file=sys.stderr)
-        return EXIT_INTERRUPTED
-    reason = report.stop_reason(written=True)
-    if reason is not None:
-        print(f"error: {deck}: {reason}", file=sys.stderr)
-        return EXIT_FAILED
-    return EXIT_OK
+    return exit_status(deck, result, interrupted)
 
 
 def frame_count(text: str) -> int:
@@ -199,14 +196,7 @@ def cmd_report(args: argparse.Namespace) -> int:
     path = write_report(result, outdir)
     print(f"{deck}: {count(result.report.positions, 'position')} computed")
     print(f"wrote {path} (open it in a web browser)")
-    if interrupted:
-        print(interrupted_message(deck, result), file=sys.stderr)
-        return EXIT_INTERRUPTED
-    reason = result.report.stop_reason(written=True)
-    if reason is not None:
-        print(f"error: {deck}: {reason}", file=sys.stderr)
-        return EXIT_FAILED
-    return EXIT_OK
+    return exit_status(deck, result, interrupted)
 
 
 def cmd_check(args: argparse.Namespace) -> int:

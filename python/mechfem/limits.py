@@ -40,12 +40,15 @@ def memory_limit(value: int | str | None = None) -> int:
     """The limit in bytes: ``value`` when given (bytes, or a size as :func:`parse_size` reads it), else the
     environment variable ``MECHFEM_MEMORY_LIMIT``, else ``DEFAULT_MEMORY_LIMIT``."""
     if value is None:
-        value = os.environ.get(ENV) or DEFAULT_MEMORY_LIMIT
-    if isinstance(value, str):
+        env = os.environ.get(ENV)
+        if not env:
+            return DEFAULT_MEMORY_LIMIT
         try:
-            return parse_size(value)
+            return parse_size(env)
         except ValueError as e:
-            raise ValueError(f"{ENV}: {e}" if value == os.environ.get(ENV) else str(e)) from None
+            raise ValueError(f"{ENV}: {e}") from None
+    if isinstance(value, str):
+        return parse_size(value)
     if value < 1:
         raise ValueError(f"the memory limit must be at least one byte, not {value}")
     return int(value)

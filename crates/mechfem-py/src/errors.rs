@@ -84,11 +84,16 @@ pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyE
     err
 }
 
-/// Whether `err`, raised by a progress report during a run, is Ctrl-C after
-/// which the run `kept` its positions: the caller returns them (with
-/// `interrupted` set) instead of raising.
-pub fn is_interrupt(py: Python<'_>, err: &PyErr, kept: bool) -> bool {
-    kept && err.is_instance_of::<PyKeyboardInterrupt>(py)
+/// What to do with the error `raised` by progress reporting during a run
+/// that `kept` its positions (or not): Ctrl-C after which they were kept is
+/// `Ok(true)`, the run was interrupted and its positions are returned (the
+/// report says so); no error is `Ok(false)`; any other error is raised.
+pub fn interrupted(py: Python<'_>, raised: Option<PyErr>, kept: bool) -> PyResult<bool> {
+    match raised {
+        None => Ok(false),
+        Some(err) if kept && err.is_instance_of::<PyKeyboardInterrupt>(py) => Ok(true),
+        Some(err) => Err(err),
+    }
 }
 
 /// A short name for what failed, used by the run report (`Stop.kind`).

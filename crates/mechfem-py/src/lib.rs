@@ -105,12 +105,7 @@ fn execute(
     rec.recorder.reserve(total, n);
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
     let result = py.detach(|| run(mech, state, motion, params, &mut rec));
-    // Ctrl-C keeps the positions computed so far (the report says the motion
-    // was interrupted); any other error of the progress callback is raised.
-    let interrupted = match rec.interrupted.take() {
-        Some(err) if !errors::is_interrupt(py, &err, result.is_ok()) => return Err(err),
-        raised => raised.is_some(),
-    };
+    let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
     match result {
         Ok(report) => Ok(Ran { compiled: c, given, rec, report, interrupted }),
         Err(e) => Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e)),

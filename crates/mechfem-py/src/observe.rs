@@ -1,7 +1,8 @@
 //! The observer of a run: records the buffers, time, det(D^c), the extra
 //! quantities the pictures need and every co-ordinate per position, keeps
 //! the row values of position 1 for the model echo, and reports progress to
-//! Python about every 1% of positions.
+//! Python about every 1% of positions ([`Progress`], which the observer of
+//! deck-text runs shares).
 
 use mechfem_core::{Observer, PositionView, Quantity, Recorder, TransferOrder};
 use pyo3::prelude::*;
@@ -19,12 +20,43 @@ pub struct Recording {
     pub prescribed_at_1: Vec<f64>,
     /// Values of the dependent form parameters at position 1.
     pub dependent_at_1: Vec<f64>,
-    progress: Option<Py<PyAny>>,
+    /// Progress reporting; its error stops the run.
+    pub progress: Progress,
+}
+
+/// Progress reporting of a single run: attaches to Python about every 1%
+/// of the positions to call the callback and to notice Ctrl-C.
+pub struct Progress {
+    callback: Option<Py<PyAny>>,
     total: usize,
     stride: usize,
-    /// The first error raised by the progress callback or a signal handler;
-    /// it stops the run, and is raised once the positions so far are kept.
-    pub interrupted: Option<PyErr>,
+    /// The first error raised by the callback or a signal handler; it stops
+    /// the run, and is raised (or, for Ctrl-C, reported) once the positions
+    /// so far are kept.
+    pub error: Option<PyErr>,
+}
+
+impl Progress {
+    /// Progress over `total` positions.
+    pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
+        Progress { callback, total, stride: (total / 100).max(1), error: None }
+    }
+
+    /// Reports that `done` positions are computed, when that is a multiple
+    /// of the stride or the last one, unless an error has stopped the run.
+    pub fn report(&mut self, done: usize) {
+        if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
+            return;
+        }
+        let result = Python::attach(|py| -> PyResult<()> {
+            py.check_signals()?;
+            if let Some(callback) = &self.callback {
+                callback.call1(py, (done, self.total))?;
+            }
+            Ok(())
+        });
+        self.error = result.err();
+    }
 }
 
 impl Recording {
@@ -40,25 +72,8 @@ impl Recording {
             n_extra: extra.len(),
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
-            progress,
-            total,
-            stride: (total / 100).max(1),
-            interrupted: None,
+            progress: Progress::new(progress, total),
         }
-    }
-
-    fn report(&mut self, done: usize) {
-        if self.interrupted.is_some() {
-            return;
-        }
-        let result = Python::attach(|py| -> PyResult<()> {
-            py.check_signals()?;
-            if let Some(callback) = &self.progress {
-                callback.call1(py, (done, self.total))?;
-            }
-            Ok(())
-        });
-        self.interrupted = result.err();
     }
 }
 
@@ -71,14 +86,11 @@ impl Observer for Recording {
             self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
         }
         self.recorder.position(view);
-        let done = view.index + 1;
-        if done.is_multiple_of(self.stride) || done == self.total {
-            self.report(done);
-        }
+        self.progress.report(view.index + 1);
     }
 
     fn stop_requested(&self) -> bool {
-        self.interrupted.is_some()
+        self.progress.error.is_some()
     }
 
     /// What the recorded quantities need (det(D^c) is always recorded, so

@@ -22,6 +22,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::observe::Progress;
 use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
@@ -60,23 +61,6 @@ pub fn full_quantities(mech: &Mechanism) -> Vec<Quantity> {
     q
 }
 
-/// Progress reporting of a single run: attaches to Python about every 1%
-/// of the positions to call the callback and to notice Ctrl-C.
-pub struct Progress {
-    callback: Option<Py<PyAny>>,
-    total: usize,
-    stride: usize,
-    /// The first error the callback or a signal handler raised.
-    error: Option<PyErr>,
-}
-
-impl Progress {
-    /// Progress over `total` positions.
-    pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        Progress { callback, total, stride: (total / 100).max(1), error: None }
-    }
-}
-
 /// The observer of [`execute`]: records `quantities` (the deck's buffers,
 /// the full layout, time and det(D^c)) and every co-ordinate into tables
 /// sized for the whole motion up front; stops when `cancel` is set or
@@ -99,19 +83,9 @@ impl Observer for Watch<'_> {
         self.table.extend(self.quantities.iter().map(|q| q.value(view)));
         self.coords.extend_from_slice(&view.state.x);
         self.positions += 1;
-        let Some(p) = self.progress.as_mut() else { return };
-        let done = view.index + 1;
-        if p.error.is_some() || !(done.is_multiple_of(p.stride) || done == p.total) {
-            return;
+        if let Some(p) = self.progress.as_mut() {
+            p.report(view.index + 1);
         }
-        let result = Python::attach(|py| -> PyResult<()> {
-            py.check_signals()?;
-            if let Some(callback) = &p.callback {
-                callback.call1(py, (done, p.total))?;
-            }
-            Ok(())
-        });
-        p.error = result.err();
     }
 
     fn stop_requested(&self) -> bool {
@@ -372,11 +346,7 @@ pub fn run_deck_text<'py>(
     let cancel = AtomicBool::new(false);
     let (outcome, raised) =
         py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
-    // Ctrl-C keeps the positions so far (see `run_deck`).
-    let interrupted = match raised {
-        Some(err) if !errors::is_interrupt(py, &err, matches!(outcome, Outcome::Ran(_))) => return Err(err),
-        raised => raised.is_some(),
-    };
+    let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
     let d = outcome_dict(py, outcome, &path)?;
     d.set_item("interrupted", interrupted)?;
     Ok(d)
