@@ -82,6 +82,8 @@ pub(crate) struct Rows {
     slots: Vec<Slot>,
     /// The row of every term.
     row_of: Vec<usize>,
+    /// Whether every row is one term with factor 1 (most are).
+    plain: bool,
 }
 
 impl Rows {
@@ -110,6 +112,9 @@ impl Rows {
                 Slot { ty: e.ty, n, coords, cols }
             })
             .collect();
+        self.plain = self.terms.len() == self.len()
+            && self.row_of.iter().enumerate().all(|(k, &row)| row == k)
+            && self.terms.iter().all(|t| t.factor == 1.0);
     }
     pub(crate) fn len(&self) -> usize {
         self.start.len().saturating_sub(1)
@@ -128,6 +133,11 @@ impl Rows {
     /// The compiled terms, flat (parallel to [`Self::terms`]).
     pub(crate) fn slots(&self) -> &[Slot] {
         &self.slots
+    }
+    /// Whether every row is a single term with factor 1: its value is the
+    /// term's.
+    pub(crate) fn plain(&self) -> bool {
+        self.plain
     }
     /// The row of every term, flat (parallel to [`Self::terms`]).
     pub(crate) fn row_of(&self) -> &[usize] {

@@ -28,6 +28,15 @@ impl Element for Blt {
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta_a", "xQ", "yQ", "beta_c", "R_P", "R_Q"];
     const FORMS: &'static [&'static str] = &["LENL", "ANGB", "BELT"];
 
+    /// The bar P->Q involves neither the wheels' angles nor their radii.
+    fn depends(form: usize) -> u32 {
+        if form < 2 {
+            0b0001_1011
+        } else {
+            0b1111_1111
+        }
+    }
+
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         const N: usize = 8;
         let bar = [x[0], x[1], x[3], x[4]];

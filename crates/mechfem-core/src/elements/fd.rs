@@ -52,6 +52,18 @@ pub(crate) fn check_derivatives(ty: ElementType, x: &[f64], tol: f64) {
             let d = (order1.grad[k] - centre.grad[k]).abs() / scale1;
             assert!(d < 1e-14, "{} {} gradient depends on the order asked", ty.name(), ty.form_names()[form]);
         }
+        // Outside the declared dependencies the value does not change at
+        // all, and every derivative is exactly zero.
+        let mask = ty.depends(form);
+        assert!(mask != 0 && mask < 1 << n, "{} {} dependency mask", ty.name(), ty.form_names()[form]);
+        for k in (0..n).filter(|&k| mask & (1 << k) == 0) {
+            let mut moved = x.to_vec();
+            moved[k] += 0.37 * (1.0 + x[k].abs());
+            let (name, form_name) = (ty.name(), ty.form_names()[form]);
+            assert_eq!(eval(ty, form, &moved, Order::Value).value, centre.value, "{name} {form_name} depends on {k}");
+            assert_eq!(centre.grad[k], 0.0, "{name} {form_name} gradient {k}");
+            assert!(centre.hess[k][..n].iter().all(|&v| v == 0.0), "{name} {form_name} Hessian row {k}");
+        }
         // The directional second derivative is the Hessian contracted with
         // two directions (here two directions made from x itself).
         let a: Vec<f64> = (0..n).map(|k| (1.3 * k as f64 + x[0]).sin()).collect();

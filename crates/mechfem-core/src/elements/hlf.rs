@@ -13,6 +13,10 @@ impl Element for Hlf {
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta"];
     const FORMS: &'static [&'static str] = &["ANGV"];
 
+    fn depends(_form: usize) -> u32 {
+        0b100
+    }
+
     fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         // The angle is a co-ordinate: never wrapped.
         out.value = x[2];

@@ -99,6 +99,15 @@ pub trait Element {
     /// element's co-ordinates `x` up to `order`.
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError>;
 
+    /// The co-ordinates form parameter `form` can depend on, as a bit mask
+    /// over the element's co-ordinates (bit k: co-ordinate k). Its
+    /// derivatives with respect to the others are zero everywhere; D^c's
+    /// sparsity, and the blocks it is factorised in, follow from this.
+    fn depends(form: usize) -> u32 {
+        let _ = form;
+        (1 << Self::COORDS.len()) - 1
+    }
+
     /// The second derivative of form parameter `form` at `x` along the
     /// directions `a` and `b` (both in the element's co-ordinate order):
     /// `sum_kl D_kl a_k b_l`, the element's share of the second-order
@@ -244,6 +253,11 @@ impl ElementType {
     /// Index of the form parameter with this name (case-insensitive).
     pub fn form_index(self, name: &str) -> Option<usize> {
         self.form_names().iter().position(|f| f.eq_ignore_ascii_case(name))
+    }
+
+    /// The co-ordinates form parameter `form` depends on; see [`Element::depends`].
+    pub fn depends(self, form: usize) -> u32 {
+        dispatch!(self, T => T::depends(form))
     }
 
     /// Evaluates form parameter `form` of this type; see [`Element::eval`].

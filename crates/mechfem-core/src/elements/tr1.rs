@@ -15,6 +15,15 @@ impl Element for Tr1 {
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta", "xR", "yR"];
     const FORMS: &'static [&'static str] = &["ANGV", "LENU", "LENV"];
 
+    /// ANGV is the angle co-ordinate alone.
+    fn depends(form: usize) -> u32 {
+        if form == 0 {
+            0b00100
+        } else {
+            0b11111
+        }
+    }
+
     fn eval(form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         const N: usize = 5;
         if form == 0 {

@@ -17,6 +17,15 @@ impl Element for Tr2 {
     const COORDS: &'static [&'static str] = &["xP", "yP", "xQ", "yQ", "xR", "yR"];
     const FORMS: &'static [&'static str] = &["LENL", "ANGB", "LENU", "LENV"];
 
+    /// The bar P->Q does not involve R.
+    fn depends(form: usize) -> u32 {
+        if form < 2 {
+            0b001111
+        } else {
+            0b111111
+        }
+    }
+
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         const N: usize = 6;
         if form < 2 {

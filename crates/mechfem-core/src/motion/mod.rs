@@ -39,6 +39,7 @@ pub struct Motion {
 }
 
 mod free;
+mod history;
 mod limits;
 mod schedule;
 mod step;

@@ -17,6 +17,7 @@
 //! factorisation at hand (one solve, no evaluation); the position itself is
 //! the one that was checked.
 
+use super::history::History;
 use crate::elements::Order;
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};
@@ -41,6 +42,10 @@ pub(crate) struct Stepper {
     refined: Vec<f64>,
     /// Newton iterations of the last correction.
     last_iterations: usize,
+    /// Whether the history predicts (otherwise the Taylor expansion).
+    use_history: bool,
+    /// Whether the last prediction was the history's.
+    extrapolated: bool,
 }
 
 impl Stepper {
@@ -51,7 +56,7 @@ impl Stepper {
     pub(crate) fn new(mech: &Mechanism, params: &Params, order: Option<TransferOrder>) -> Stepper {
         let one_input = mech.n_dof() == 1;
         let order = if one_input { order } else { order.max(Some(TransferOrder::First)) };
-        let extrapolate = one_input && order != Some(TransferOrder::Second);
+        let extrapolate = one_input;
         Stepper {
             saved_x: vec![0.0; mech.n_coords()],
             saved_branch: vec![0.0; mech.elements().len()],
@@ -60,10 +65,12 @@ impl Stepper {
             predicted_x: vec![0.0; mech.n_moving()],
             params: *params,
             order,
-            history: extrapolate.then(|| History::new(mech.n_moving())),
+            history: extrapolate.then(|| History::new(mech.n_moving(), 1e-2 * params.tol)),
             residual: vec![0.0; mech.n_moving()],
             refined: vec![0.0; mech.n_moving()],
             last_iterations: 1,
+            use_history: order != Some(TransferOrder::Second),
+            extrapolated: false,
         }
     }
 
@@ -81,8 +88,24 @@ impl Stepper {
 
     /// Adds the position just reached to the history, refined by one
     /// correction D^c dx = -(deformations) with the factorisation in `kin`.
+    ///
+    /// A run that computes the second order predicts by the Taylor
+    /// expansion as long as that needs no correction (fine steps), and
+    /// turns to the history when it does (coarse ones), back when the
+    /// history needs no more than the quadratic.
     fn remember(&mut self, mech: &Mechanism, state: &State, kin: &mut Kinematics) {
         let Some(hist) = &mut self.history else { return };
+        if self.order == Some(TransferOrder::Second) {
+            if !self.use_history && self.last_iterations > 0 {
+                self.use_history = true;
+                hist.clear();
+            } else if self.use_history && self.extrapolated && self.last_iterations == 0 && hist.degree() <= 2 {
+                self.use_history = false;
+            }
+            if !self.use_history {
+                return;
+            }
+        }
         // Deformations two orders below the tolerance need no refining: even
         // amplified by extrapolation they stay far below it.
         let tiny = 1e-2 * self.params.tol;
@@ -126,8 +149,10 @@ impl Stepper {
                     if self.order.is_none() && info.iterations > 0 && info.factorisations == 0 {
                         // Corrected with an old factorisation only: renew it
                         // here, for refining this position and for the next.
-                        kin.assemble(mech);
-                        let _ = kin.factor();
+                        if kin.evaluate(mech, state).is_ok() {
+                            kin.assemble(mech);
+                            let _ = kin.factor();
+                        }
                     }
                     // What is needed at the new point, from the evaluation
                     // Newton converged with; it also drives the next prediction.
@@ -185,11 +210,23 @@ impl Stepper {
         // A run of positions only needs D^c at the predicted point only if
         // that point is not accepted as it is, as it usually was last time.
         let first = if self.order.is_none() && self.last_iterations == 0 { Order::Value } else { Order::First };
-        let info = correct_from(mech, state, kin, &self.params, None, first)?;
+        // Nor at a corrected point, which usually passes.
+        let then = if self.order.is_none() { Order::Value } else { Order::First };
+        let info = correct_from(mech, state, kin, &self.params, None, (first, then))?;
         self.last_iterations = info.iterations;
-        self.residual.copy_from_slice(&kin.rhs);
+        if self.extrapolated && info.iterations > 0 {
+            if let Some(h) = &mut self.history {
+                h.deepen();
+            }
+        }
+        // Newton leaves the deformations at the accepted position in
+        // `kin.rhs`, which every later use overwrites first: take them.
+        std::mem::swap(&mut self.residual, &mut kin.rhs);
         // A corrector that goes farther than the predictor did has probably
         // jumped to another assembly branch.
+        if info.iterations == 0 {
+            return Ok(info);
+        }
         let corrected: f64 = mech
             .moving_coords()
             .iter()
@@ -209,12 +246,13 @@ impl Stepper {
     fn predict(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics) -> f64 {
         let nd = mech.n_dof();
         let moving = mech.moving_coords();
-        let extrapolated = self.delta.iter().any(|&d| d != 0.0)
-            && kin.order() != Some(TransferOrder::Second)
+        let extrapolated = self.use_history
+            && self.delta.iter().any(|&d| d != 0.0)
             && self
                 .history
-                .as_ref()
+                .as_mut()
                 .is_some_and(|h| h.extrapolate(state.target[mech.input_row(0)], &mut self.predicted_x));
+        self.extrapolated = extrapolated;
         if !extrapolated {
             if kin.order().is_none() && self.delta.iter().any(|&d| d != 0.0) {
                 // Nothing known at this point: get the transfer functions
@@ -250,60 +288,5 @@ impl Stepper {
             state.x[i] = self.predicted_x[c];
         }
         moved.sqrt()
-    }
-}
-
-/// The last three positions a one-DOF mechanism reached, with the input
-/// values there (a ring, newest at `head`).
-struct History {
-    n: usize,
-    q: [f64; 3],
-    x: Vec<f64>,
-    len: usize,
-    head: usize,
-}
-
-impl History {
-    fn new(n: usize) -> History {
-        History { n, q: [0.0; 3], x: vec![0.0; 3 * n], len: 0, head: 2 }
-    }
-
-    fn clear(&mut self) {
-        self.len = 0;
-    }
-
-    /// Adds the moving co-ordinates `x` reached at input value `q`.
-    fn push(&mut self, q: f64, x: &[f64]) {
-        self.head = (self.head + 1) % 3;
-        self.q[self.head] = q;
-        self.x[self.head * self.n..(self.head + 1) * self.n].copy_from_slice(x);
-        self.len = (self.len + 1).min(3);
-    }
-
-    /// The quadratic through the three positions, at input value `t`, into
-    /// `out`. `false` (and `out` untouched) without three positions, or when
-    /// their input values are too close together for a step this long.
-    fn extrapolate(&self, t: f64, out: &mut [f64]) -> bool {
-        if self.len < 3 {
-            return false;
-        }
-        let k = [(self.head + 1) % 3, (self.head + 2) % 3, self.head];
-        let [q0, q1, q2] = k.map(|i| self.q[i]);
-        let spacing = (q1 - q0).abs().min((q2 - q1).abs()).min((q2 - q0).abs());
-        if !(spacing > 0.0 && (t - q2).abs() <= 2.0 * spacing) {
-            return false;
-        }
-        // Lagrange weights.
-        let w = [
-            (t - q1) * (t - q2) / ((q0 - q1) * (q0 - q2)),
-            (t - q0) * (t - q2) / ((q1 - q0) * (q1 - q2)),
-            (t - q0) * (t - q1) / ((q2 - q0) * (q2 - q1)),
-        ];
-        let n = self.n;
-        let (x0, x1, x2) = (&self.x[k[0] * n..][..n], &self.x[k[1] * n..][..n], &self.x[k[2] * n..][..n]);
-        for c in 0..n {
-            out[c] = w[0] * x0[c] + w[1] * x1[c] + w[2] * x2[c];
-        }
-        true
     }
 }

@@ -28,11 +28,17 @@ pub(crate) fn eval_rows(
             .map_err(|source| SolveError::Element { element: t.element, source })?;
     }
     let values = &mut values[..rows.len()];
-    values.fill(0.0);
-    for ((t, e), &row) in rows.terms().iter().zip(cache.iter()).zip(rows.row_of()) {
-        values[row] += t.factor * e.value;
+    if rows.plain() {
+        for (v, e) in values.iter_mut().zip(cache.iter()) {
+            *v = e.value;
+        }
+    } else {
+        values.fill(0.0);
+        for ((t, e), &row) in rows.terms().iter().zip(cache.iter()).zip(rows.row_of()) {
+            values[row] += t.factor * e.value;
+        }
     }
-    if values.iter().any(|v| !v.is_finite()) {
+    if !values.iter().fold(true, |ok, v| ok & v.is_finite()) {
         return Err(SolveError::NonFinite);
     }
     Ok(())
@@ -45,30 +51,27 @@ pub(crate) fn dc_positions(mech: &Mechanism, lu: &Lu) -> Vec<[usize; MAX_COORDS]
     let mut positions = vec![[NO_ENTRY; MAX_COORDS]; rows.terms().len()];
     for i in 0..rows.len() {
         for k in rows.range(i) {
-            let s = &rows.slots()[k];
-            for a in 0..s.n {
-                if s.cols[a] != FIXED {
-                    positions[k][a] = lu.position(i, s.cols[a]).expect("D^c's storage holds its pattern");
-                }
+            for (a, c) in moving_columns(rows, k) {
+                positions[k][a] = lu.position(i, c).expect("D^c's storage holds its pattern");
             }
         }
     }
     positions
 }
 
-/// The structural non-zeros of D^c: the columns of every prescribed row.
+/// The co-ordinates of prescribed term k that it depends on and that move:
+/// (position in the element, column of D^c).
+fn moving_columns(rows: &Rows, k: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+    let (t, s) = (&rows.terms()[k], &rows.slots()[k]);
+    let mask = s.ty.depends(t.form);
+    (0..s.n).filter(move |&a| mask & (1 << a) != 0 && s.cols[a] != FIXED).map(move |a| (a, s.cols[a]))
+}
+
+/// The structural non-zeros of D^c: the columns of every prescribed row
+/// (the moving co-ordinates its form parameters depend on).
 pub(crate) fn dc_pattern(mech: &Mechanism) -> Vec<Vec<usize>> {
     let rows = &mech.prescribed;
-    (0..rows.len())
-        .map(|i| {
-            rows.range(i)
-                .flat_map(|k| {
-                    let s = &rows.slots()[k];
-                    s.cols[..s.n].iter().copied().filter(|&c| c != FIXED).collect::<Vec<_>>()
-                })
-                .collect()
-        })
-        .collect()
+    (0..rows.len()).map(|i| rows.range(i).flat_map(|k| moving_columns(rows, k).map(|(_, c)| c)).collect()).collect()
 }
 
 /// Writes D^c (rows: prescribed rows, columns: moving co-ordinates) from a

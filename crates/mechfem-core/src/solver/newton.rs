@@ -99,20 +99,21 @@ pub fn correct_with(
     params: &Params,
     temp: Option<TempInput>,
 ) -> Result<NewtonInfo, SolveError> {
-    correct_from(mech, state, kin, params, temp, Order::First)
+    correct_from(mech, state, kin, params, temp, (Order::First, Order::First))
 }
 
-/// [`correct_with`], evaluating the starting point only to `first` (values
-/// only, when the caller expects it to pass): should it not, it is
+/// [`correct_with`], evaluating the starting point to `first` and every
+/// corrected point to `then` (values only, when the caller expects the
+/// point to pass and needs no D^c there): a point that does not pass is
 /// evaluated again to first order. The converged position is left in `kin`
-/// to first order unless it is the starting point.
+/// to the order it was evaluated to.
 pub(crate) fn correct_from(
     mech: &Mechanism,
     state: &mut State,
     kin: &mut Kinematics,
     params: &Params,
     temp: Option<TempInput>,
-    first: Order,
+    (first, then): (Order, Order),
 ) -> Result<NewtonInfo, SolveError> {
     let mut info = NewtonInfo::default();
     let mut order = first;
@@ -150,7 +151,7 @@ pub(crate) fn correct_from(
             // D^c is needed here after all.
             kin.evaluate(mech, state)?;
         }
-        order = Order::First;
+        order = then;
         if !reuse {
             kin.assemble(mech);
             match temp {

@@ -64,11 +64,13 @@ pub struct Kinematics {
 }
 
 impl Kinematics {
-    /// Allocates every buffer for `mech`. D^c is stored dense, or as a band
-    /// when the mechanism is large and its D^c can be ordered into a narrow
-    /// band (see [`Lu::for_pattern`]).
+    /// Allocates every buffer for `mech`. D^c is stored as blocks when it
+    /// splits into groups of co-ordinates that can be solved one after the
+    /// other, a large block as a band when it can be ordered into a narrow
+    /// one, anything else dense (see [`Lu::for_pattern`]).
     pub fn new(mech: &Mechanism) -> Kinematics {
-        Self::with_lu(mech, Lu::for_pattern(mech.n_moving(), &dc_pattern(mech)))
+        let lu = Lu::for_pattern(mech.n_moving(), &dc_pattern(mech));
+        Self::with_lu(mech, lu)
     }
 
     /// As [`Self::new`], with D^c always stored dense: free motion replaces
@@ -120,9 +122,17 @@ impl Kinematics {
         }
     }
 
-    /// Whether D^c is stored as a band (see [`Lu::for_pattern`]).
+    /// Whether D^c, or one of its diagonal blocks, is stored as a band
+    /// (see [`Lu::for_pattern`]).
     pub fn is_banded(&self) -> bool {
         self.lu.is_banded()
+    }
+
+    /// The sizes of the diagonal blocks D^c is factorised in, in the order
+    /// they are solved (one block of every moving co-ordinate when it does
+    /// not split; see [`Lu::for_pattern`]).
+    pub fn block_sizes(&self) -> Vec<usize> {
+        self.lu.block_sizes()
     }
 
     /// Evaluates the prescribed rows to first order at the state's
@@ -256,6 +266,9 @@ impl Kinematics {
     ) -> Result<(), SolveError> {
         let (n, nd) = (self.n, self.n_dof);
         let rows = &mech.dependent;
+        if rows.len() == 0 {
+            return Ok(());
+        }
         let eval_order = if order.is_some() { Order::First } else { Order::Value };
         eval_rows(rows, &state.x, &mut state.branch, eval_order, &mut self.dep_cache, &mut self.dep)?;
         let Some(order) = order else { return Ok(()) };

@@ -7,6 +7,13 @@
 //! of rows and columns (rows and columns numbered in the order they are
 //! reached), and the symmetric graph of the columns after a matching of rows
 //! to columns has put a structural non-zero on every diagonal position.
+//!
+//! Before that, [`block_order`] splits a matrix into the blocks that can be
+//! factorised one after the other; only a large block needs a band.
+
+mod blocks;
+
+pub(crate) use blocks::{block_order, BlockOrder};
 
 /// Marker for "not matched".
 const NONE: usize = usize::MAX;

@@ -1,0 +1,174 @@
+//! The positions a one-DOF mechanism reached, kept as Newton's divided
+//! differences for predicting the next one by polynomial extrapolation in
+//! the input value.
+//!
+//! The order adapts to the step: terms are added while they still matter
+//! and still shrink. Fine steps need no more than the quadratic (its next
+//! term is already below the tolerance), coarse ones up to degree seven,
+//! which at one-degree steps of a four-bar's crank predicts the position to
+//! about 1e-10, so that most positions need no Newton iteration at all. A
+//! term that no longer shrinks is made of the deformations the positions
+//! were accepted with, amplified, and is left out.
+
+/// Most positions kept (the degree of the extrapolation is one less).
+const MAX_POINTS: usize = 8;
+
+/// Divided differences of the last positions, newest first: row k holds
+/// x[q_0, ..., q_k] (q_0 the newest input value), so that the polynomial
+/// through them is x_0 + x[q_0, q_1](t - q_0) + x[q_0, q_1, q_2](t - q_0)(t - q_1) + ...
+pub(super) struct History {
+    n: usize,
+    q: [f64; MAX_POINTS],
+    diff: Vec<f64>,
+    /// Rows held.
+    len: usize,
+    /// Rows kept up to date: one more than the last extrapolation used,
+    /// or more after [`History::deepen`].
+    depth: usize,
+    /// Terms beyond the constant the last extrapolation used.
+    used: usize,
+    /// A term below this changes no prediction that matters.
+    tiny: f64,
+}
+
+impl History {
+    /// A history for `n` moving co-ordinates; a term below `tiny` is
+    /// negligible.
+    pub(super) fn new(n: usize, tiny: f64) -> History {
+        History { n, q: [0.0; MAX_POINTS], diff: vec![0.0; MAX_POINTS * n], len: 0, depth: 3, used: 0, tiny }
+    }
+
+    pub(super) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// Adds the moving co-ordinates `x` reached at input value `q`.
+    pub(super) fn push(&mut self, q: f64, x: &[f64]) {
+        // Two positions at one input value have no divided difference: the
+        // new one starts the history afresh.
+        let keep = self.len.min(self.depth - 1);
+        let len = if self.q[..keep].contains(&q) { 1 } else { keep + 1 };
+        let mut inv = [0.0; MAX_POINTS];
+        for k in 0..len - 1 {
+            inv[k] = 1.0 / (q - self.q[k]);
+        }
+        self.q.copy_within(0..len - 1, 1);
+        self.q[0] = q;
+        let n = self.n;
+        // x[q, r_0..r_{k-1}] = (x[q, r_0..r_{k-2}] - x[r_0..r_{k-1}]) / (q - r_{k-1}).
+        for (c, &xc) in x.iter().enumerate() {
+            let mut new = xc;
+            for (k, &ik) in inv[..len].iter().enumerate() {
+                let old = self.diff[k * n + c];
+                self.diff[k * n + c] = new;
+                new = (new - old) * ik;
+            }
+        }
+        self.len = len;
+    }
+
+    /// The extrapolation to input value `t` into `out`. `false` (and `out`
+    /// untouched) with fewer than three positions, or for a step more than
+    /// twice as long as the last one.
+    pub(super) fn extrapolate(&mut self, t: f64, out: &mut [f64]) -> bool {
+        let n = self.n;
+        // (Written so that a NaN refuses too.)
+        let short = (t - self.q[0]).abs() <= 2.0 * (self.q[0] - self.q[1]).abs();
+        if self.len < 3 || !short {
+            return false;
+        }
+        out.copy_from_slice(&self.diff[..n]);
+        let (mut w, mut last, mut used) = (1.0, f64::INFINITY, 0);
+        for k in 1..self.len {
+            w *= t - self.q[k - 1];
+            let row = &self.diff[k * n..(k + 1) * n];
+            let size = w.abs() * row.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            // Always the quadratic; beyond it, only terms that matter and shrink.
+            let useful = size >= self.tiny && size < last;
+            if k >= 3 && !useful {
+                break;
+            }
+            for (o, v) in out.iter_mut().zip(row) {
+                *o += w * v;
+            }
+            last = size;
+            used = k;
+        }
+        // Rows beyond those used cost time at every position; the next one
+        // is added when a prediction falls short (`deepen`), and kept while
+        // it matters.
+        self.depth = (used + 1).max(3);
+        self.used = used;
+        true
+    }
+
+    /// Keeps one more row from now on: the last extrapolation was not
+    /// accurate enough to be accepted without correction.
+    pub(super) fn deepen(&mut self) {
+        self.depth = (self.depth + 1).min(MAX_POINTS);
+    }
+
+    /// The degree of the last extrapolation.
+    pub(super) fn degree(&self) -> usize {
+        self.used
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_polynomial_is_extrapolated_exactly() {
+        // A cubic in two co-ordinates at uneven input values: the cubic term
+        // is needed and the quartic one is zero.
+        let f = |q: f64| [1.0 + 2.0 * q - q * q + 0.5 * q * q * q, (q - 0.3) * (q + 0.2)];
+        let mut h = History::new(2, 1e-14);
+        // As after a prediction that needed correcting.
+        h.deepen();
+        for q in [0.0, 0.1, 0.25, 0.3, 0.42] {
+            h.push(q, &f(q));
+        }
+        let mut out = [0.0; 2];
+        assert!(h.extrapolate(0.6, &mut out));
+        let want = f(0.6);
+        assert!((out[0] - want[0]).abs() < 1e-13 && (out[1] - want[1]).abs() < 1e-13, "{out:?} vs {want:?}");
+    }
+
+    #[test]
+    fn a_smooth_curve_gets_the_degree_it_needs() {
+        // sin at one-degree steps: the quadratic misses by about 1e-6, the
+        // full history by about 1e-16.
+        let step = 1f64.to_radians();
+        let mut h = History::new(1, 1e-12);
+        let mut worst = 0.0f64;
+        for i in 0..40 {
+            let q = i as f64 * step;
+            let mut out = [0.0];
+            if h.extrapolate(q, &mut out) {
+                let error = (out[0] - q.sin()).abs();
+                // As a Newton correction would report it.
+                if error > 1e-12 {
+                    h.deepen();
+                }
+                if i >= 20 {
+                    worst = worst.max(error);
+                }
+            }
+            h.push(q, &[q.sin()]);
+        }
+        assert!(worst < 1e-12, "{worst}");
+        assert!(h.degree() >= 5, "degree {}", h.degree());
+    }
+
+    #[test]
+    fn the_same_input_value_twice_starts_afresh() {
+        let mut h = History::new(1, 1e-12);
+        for q in [0.0, 0.1, 0.2, 0.2] {
+            h.push(q, &[q]);
+        }
+        assert_eq!(h.len, 1);
+        assert!(!h.extrapolate(0.3, &mut [0.0]));
+        assert!(h.diff.iter().all(|v| v.is_finite()));
+    }
+}

@@ -1,0 +1,216 @@
+//! Block lower triangular storage: rows and columns reordered (see
+//! [`block_order`](crate::solver::ordering::block_order)) so that every row
+//! touches only its own diagonal block and earlier ones. Each diagonal
+//! block is factorised on its own: in place when dense, through an [`Lu`] of
+//! its own when it is large enough for a band. The entries left of the
+//! blocks are kept row by row and only enter the solves. det(D^c) is the
+//! product of the blocks' determinants, so D^c is singular exactly when a
+//! block is.
+
+use super::dense::{self, Factors};
+use super::{parity, Lu, SingularPivot};
+use crate::solver::ordering::BlockOrder;
+
+#[derive(Debug, Clone)]
+pub(super) struct Blocks {
+    pub(super) n: usize,
+    /// Every block's storage in turn, then the entries left of the blocks.
+    pub(super) a: Vec<f64>,
+    pub(super) blocks: Vec<Block>,
+    /// Where the entries left of the blocks start in `a`.
+    left_base: usize,
+    row_new: Vec<usize>,
+    col_new: Vec<usize>,
+    col_old: Vec<usize>,
+    /// The block of every reordered row (and column).
+    block_of: Vec<usize>,
+    /// Reordered row r's entries left of its block: reordered columns
+    /// `left_cols[left_ptr[r]..left_ptr[r + 1]]`, values at the same places
+    /// after `left_base` in `a`.
+    left_ptr: Vec<usize>,
+    left_cols: Vec<usize>,
+    /// Row order and U's reciprocal diagonal of the dense blocks, by
+    /// reordered row, and workspace.
+    perm: Vec<usize>,
+    inv_diag: Vec<f64>,
+    scale: Vec<f64>,
+    order_sign: f64,
+}
+
+/// A diagonal block: reordered rows and columns `start..end`, its storage
+/// at `a[base..]`.
+#[derive(Debug, Clone)]
+pub(super) struct Block {
+    start: usize,
+    end: usize,
+    base: usize,
+    /// Sign of the row interchanges of a dense block.
+    sign: f64,
+    /// A large block stored as a band; its entries are copied in to factorise.
+    band: Option<Lu>,
+}
+
+impl Block {
+    pub(super) fn n(&self) -> usize {
+        self.end - self.start
+    }
+
+    pub(super) fn is_banded(&self) -> bool {
+        self.band.is_some()
+    }
+
+    fn len(&self) -> usize {
+        self.band.as_ref().map_or(self.n() * self.n(), |lu| lu.values().len())
+    }
+}
+
+impl Blocks {
+    pub(super) fn new(n: usize, rows: &[Vec<usize>], order: BlockOrder) -> Blocks {
+        let BlockOrder { row_new, col_new, starts } = order;
+        let n_blocks = starts.len() - 1;
+        let mut block_of = vec![0; n];
+        for b in 0..n_blocks {
+            block_of[starts[b]..starts[b + 1]].fill(b);
+        }
+        let mut col_old = vec![0; n];
+        for (old, &new) in col_new.iter().enumerate() {
+            col_old[new] = old;
+        }
+        // Every reordered row's columns, split into its block's and the rest.
+        let mut inside: Vec<Vec<usize>> = vec![Vec::new(); n];
+        let mut left: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for (i, cols) in rows.iter().enumerate() {
+            let r = row_new[i];
+            for &c in cols {
+                let c = col_new[c];
+                if block_of[c] == block_of[r] {
+                    inside[r].push(c - starts[block_of[r]]);
+                } else {
+                    left[r].push(c);
+                }
+            }
+        }
+        let mut blocks = Vec::with_capacity(n_blocks);
+        let mut base = 0;
+        for b in 0..n_blocks {
+            let (start, end) = (starts[b], starts[b + 1]);
+            let lu = Lu::unsplit(end - start, &inside[start..end]);
+            let block = Block { start, end, base, sign: 1.0, band: lu.is_banded().then_some(lu) };
+            base += block.len();
+            blocks.push(block);
+        }
+        let mut left_ptr = vec![0];
+        let mut left_cols = Vec::new();
+        for mut cols in left {
+            cols.sort_unstable();
+            cols.dedup();
+            left_cols.extend(cols);
+            left_ptr.push(left_cols.len());
+        }
+        let order_sign = parity(&row_new) * parity(&col_new);
+        Blocks {
+            n,
+            a: vec![0.0; base + left_cols.len()],
+            blocks,
+            left_base: base,
+            row_new,
+            col_new,
+            col_old,
+            block_of,
+            left_ptr,
+            left_cols,
+            perm: vec![0; n],
+            inv_diag: vec![0.0; n],
+            scale: vec![0.0; n],
+            order_sign,
+        }
+    }
+
+    /// Position of original entry (i, j) in `a`, if it is in the pattern.
+    pub(super) fn position(&self, i: usize, j: usize) -> Option<usize> {
+        let (r, c) = (self.row_new[i], self.col_new[j]);
+        let blk = &self.blocks[self.block_of[r]];
+        if (blk.start..blk.end).contains(&c) {
+            let (r, c) = (r - blk.start, c - blk.start);
+            return match &blk.band {
+                Some(lu) => lu.position(r, c).map(|p| blk.base + p),
+                None => Some(blk.base + r * blk.n() + c),
+            };
+        }
+        let range = self.left_ptr[r]..self.left_ptr[r + 1];
+        let k = self.left_cols[range.clone()].binary_search(&c).ok()?;
+        Some(self.left_base + range.start + k)
+    }
+
+    /// Factorises every block.
+    pub(super) fn factor(&mut self) -> Result<(), SingularPivot> {
+        for blk in &mut self.blocks {
+            let (s, e, m) = (blk.start, blk.end, blk.n());
+            let storage = &mut self.a[blk.base..blk.base + blk.len()];
+            let result = match &mut blk.band {
+                Some(lu) => {
+                    lu.values_mut().copy_from_slice(storage);
+                    lu.factor()
+                }
+                None => Factors {
+                    n: m,
+                    a: storage,
+                    perm: &mut self.perm[s..e],
+                    inv_diag: &mut self.inv_diag[s..e],
+                    scale: &mut self.scale[s..e],
+                }
+                .factor()
+                .map(|sign| blk.sign = sign),
+            };
+            result.map_err(|p| SingularPivot { column: self.col_old[s + p.column], pivot: p.pivot })?;
+        }
+        Ok(())
+    }
+
+    /// Block forward substitution: each block's right-hand side less the
+    /// entries left of it times the solution found so far.
+    pub(super) fn solve(&self, b: &mut [f64], work: &mut [f64]) {
+        let n = self.n;
+        let z = &mut work[..n];
+        for (i, &r) in self.row_new.iter().enumerate() {
+            z[r] = b[i];
+        }
+        let left = &self.a[self.left_base..];
+        for blk in &self.blocks {
+            let (s, e) = (blk.start, blk.end);
+            for r in s..e {
+                let mut v = z[r];
+                for k in self.left_ptr[r]..self.left_ptr[r + 1] {
+                    v -= left[k] * z[self.left_cols[k]];
+                }
+                z[r] = v;
+            }
+            let (a, inv) = (&self.a[blk.base..], &self.inv_diag[s..e]);
+            match (e - s, &blk.band) {
+                // The usual blocks, written out (see `dense::solve`).
+                (1, None) => z[s] *= inv[0],
+                (2, None) => {
+                    let (b0, b1) = if self.perm[s] == 0 { (z[s], z[s + 1]) } else { (z[s + 1], z[s]) };
+                    let y1 = (b1 - a[2] * b0) * inv[1];
+                    z[s] = (b0 - a[1] * y1) * inv[0];
+                    z[s + 1] = y1;
+                }
+                // `b` is free until the end: the blocks' workspace.
+                (m, None) => dense::solve(m, a, &self.perm[s..e], inv, &mut z[s..e], &mut b[..m]),
+                (m, Some(lu)) => lu.solve(&mut z[s..e], &mut b[..m]),
+            }
+        }
+        for (j, &c) in self.col_new.iter().enumerate() {
+            b[j] = z[c];
+        }
+    }
+
+    pub(super) fn det(&self) -> f64 {
+        self.blocks.iter().fold(self.order_sign, |p, blk| {
+            p * match &blk.band {
+                Some(lu) => lu.det(),
+                None => dense::det(blk.n(), &self.a[blk.base..], blk.sign),
+            }
+        })
+    }
+}
