@@ -1,6 +1,6 @@
 //! How the cost grows with the size of a mechanism: chains of 10, 100 and
 //! 1000 four-bar loops (`tests/common/chain.rs`; 4 moving co-ordinates and
-//! 4 rows of D^c per loop, D^c stored as a band from 100 loops on). Per size:
+//! 4 rows of D^c per loop, D^c factorised in one 2 x 2 block per pin). Per size:
 //! one Newton position, the transfer functions at one position, and a turn
 //! of the first crank in 360 positions (see `common`).
 //! Throughput is in positions; divide by the loops for the cost per loop.

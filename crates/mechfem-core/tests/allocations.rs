@@ -62,8 +62,8 @@ fn count(mech: &Mechanism, start: &State, steps: usize, order: Option<TransferOr
 #[test]
 fn allocations_do_not_grow_with_the_number_of_positions() {
     let small = chain::chain(2, 0.3);
-    let banded = chain::chain(40, 0.3);
-    for (name, (mech, start)) in [("four-bar", fourbar()), ("chain of 2", small), ("chain of 40 (banded)", banded)] {
+    let blocks = chain::chain(40, 0.3);
+    for (name, (mech, start)) in [("four-bar", fourbar()), ("chain of 2", small), ("chain of 40 (in blocks)", blocks)] {
         for order in [None, Some(TransferOrder::First), Some(TransferOrder::Second)] {
             let few = count(&mech, &start, 90, order);
             let many = count(&mech, &start, 900, order);
