@@ -1,5 +1,5 @@
 //! Position analysis and transfer functions, split by verb:
-//! [`lu`] factorises D^c (dense, or banded after reordering for a large
+//! [`lu`] factorises D^c (in diagonal blocks, dense, or banded for a large
 //! mechanism), [`mobility`] explains a singular one, [`assemble`] builds
 //! D^c, deformations and the second-order products element by element,
 //! [`newton`] finds positions, [`transfer`] computes first- and
