@@ -108,6 +108,11 @@ impl History {
         self.depth = (self.depth + 1).min(MAX_POINTS);
     }
 
+    /// Below this a term, or a deformation, changes no prediction that matters.
+    pub(super) fn negligible(&self) -> f64 {
+        self.tiny
+    }
+
     /// The degree of the last extrapolation.
     pub(super) fn degree(&self) -> usize {
         self.used

@@ -58,7 +58,6 @@ impl Stepper {
     pub(crate) fn new(mech: &Mechanism, params: &Params, order: Option<TransferOrder>) -> Stepper {
         let one_input = mech.n_dof() == 1;
         let order = if one_input { order } else { order.max(Some(TransferOrder::First)) };
-        let extrapolate = one_input;
         Stepper {
             saved_x: vec![0.0; mech.n_coords()],
             saved_branch: vec![0.0; mech.elements().len()],
@@ -67,7 +66,7 @@ impl Stepper {
             predicted_x: vec![0.0; mech.n_moving()],
             params: *params,
             order,
-            history: extrapolate.then(|| History::new(mech.n_moving(), 1e-2 * params.tol)),
+            history: one_input.then(|| History::new(mech.n_moving(), 1e-2 * params.tol)),
             residual: vec![0.0; mech.n_moving()],
             refined: vec![0.0; mech.n_moving()],
             last_iterations: 1,
@@ -108,9 +107,9 @@ impl Stepper {
                 return;
             }
         }
-        // Deformations two orders below the tolerance need no refining: even
-        // amplified by extrapolation they stay far below it.
-        let tiny = 1e-2 * self.params.tol;
+        // Deformations the history counts as negligible need no refining:
+        // even amplified by extrapolation they stay far below the tolerance.
+        let tiny = hist.negligible();
         let refine = kin.factored && self.residual.iter().any(|r| r.abs() > tiny);
         if refine {
             kin.lu.solve(&mut self.residual, &mut kin.work);

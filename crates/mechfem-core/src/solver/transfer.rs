@@ -69,8 +69,7 @@ impl Kinematics {
     /// other, a large block as a band when it can be ordered into a narrow
     /// one, anything else dense (see [`Lu::for_pattern`]).
     pub fn new(mech: &Mechanism) -> Kinematics {
-        let lu = Lu::for_pattern(mech.n_moving(), &dc_pattern(mech));
-        Self::with_lu(mech, lu)
+        Self::with_lu(mech, Lu::for_pattern(mech.n_moving(), &dc_pattern(mech)))
     }
 
     /// As [`Self::new`], with D^c always stored dense: free motion replaces

@@ -185,19 +185,11 @@ impl Blocks {
                 }
                 z[r] = v;
             }
-            let (a, inv) = (&self.a[blk.base..], &self.inv_diag[s..e]);
-            match (e - s, &blk.band) {
-                // The usual blocks, written out (see `dense::solve`).
-                (1, None) => z[s] *= inv[0],
-                (2, None) => {
-                    let (b0, b1) = if self.perm[s] == 0 { (z[s], z[s + 1]) } else { (z[s + 1], z[s]) };
-                    let y1 = (b1 - a[2] * b0) * inv[1];
-                    z[s] = (b0 - a[1] * y1) * inv[0];
-                    z[s + 1] = y1;
-                }
-                // `b` is free until the end: the blocks' workspace.
-                (m, None) => dense::solve(m, a, &self.perm[s..e], inv, &mut z[s..e], &mut b[..m]),
-                (m, Some(lu)) => lu.solve(&mut z[s..e], &mut b[..m]),
+            // `b` is free until the end: the blocks' workspace.
+            let (z, w) = (&mut z[s..e], &mut b[..e - s]);
+            match &blk.band {
+                None => dense::solve(e - s, &self.a[blk.base..], &self.perm[s..e], &self.inv_diag[s..e], z, w),
+                Some(lu) => lu.solve(z, w),
             }
         }
         for (j, &c) in self.col_new.iter().enumerate() {
