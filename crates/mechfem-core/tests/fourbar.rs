@@ -6,7 +6,7 @@
 mod fourbar;
 
 use fourbar::{A, ALPHA, B, C, D, P};
-use mechfem_core::{run, FormRef, InputMotion, Mechanism, Motion, Params, Quantity, Recorder, State};
+use mechfem_core::{run, FormRef, InputMotion, Mechanism, Motion, Observer, Params, Quantity, Recorder, State};
 use std::f64::consts::PI;
 
 /// Closed form at crank angle theta (open branch, B above the line A-B0).
@@ -192,4 +192,27 @@ fn a_driven_motion_stops_when_its_observer_asks() {
     assert_eq!(stop.last_good, 10);
     assert!(matches!(stop.error, mechfem_core::SolveError::Interrupted));
     close("last input", stop.last_inputs[0], 0.3 + 2.0 * PI * 10.0 / 72.0, 1e-14);
+}
+
+#[test]
+fn a_run_of_positions_only_matches_the_closed_form_at_fine_and_coarse_steps() {
+    // Positions only predict by extrapolation and factorise D^c only now
+    // and then: at every step size the positions must still be exact.
+    let theta0 = 0.3;
+    let x0: Vec<Quantity> = (4..10).map(Quantity::X0).collect();
+    for steps in [3 * 36, 3 * 360, 3 * 20_000] {
+        let (mech, mut state) = model(theta0, 0.0);
+        let motion = Motion { steps, dt: 1.0, inputs: vec![InputMotion::Relative { delta: 6.0 * PI }] };
+        let mut rec = Recorder::new(x0.clone(), false);
+        assert_eq!(rec.transfer_order(), None);
+        let report = run(&mech, &mut state, Some(&motion), &Params::default(), &mut rec).unwrap();
+        assert!(report.stop.is_none() && report.subdivided_steps == 0, "{steps}: {report:?}");
+        for k in 0..=steps {
+            let e = exact(theta0 + 6.0 * PI * k as f64 / steps as f64);
+            let want = [e.a[0], e.a[1], e.b[0], e.b[1], e.c[0], e.c[1]];
+            for (got, want) in rec.data()[6 * k..6 * k + 6].iter().zip(want) {
+                close("x", *got, want, 1e-10);
+            }
+        }
+    }
 }

@@ -17,7 +17,9 @@
 //! extrapolation would amplify them from step to step. The copy kept for
 //! extrapolation is therefore refined by one Newton correction with the
 //! factorisation at hand (one solve, no evaluation); the position itself is
-//! the one that was checked.
+//! the one that was checked. A run of positions only has no factorisation
+//! at every position: it keeps one for as long as it refines well enough
+//! ([`Renewal`]).
 
 use super::history::History;
 use crate::elements::Order;
@@ -48,6 +50,13 @@ pub(crate) struct Stepper {
     use_history: bool,
     /// Whether the last prediction was the history's.
     extrapolated: bool,
+    /// Positions only: when D^c is factorised afresh.
+    renewal: Renewal,
+    /// Positions only: whether D^c was factorised at the last position, so
+    /// that it probably will be at the next one too (evaluate it there).
+    renewed: bool,
+    /// Whether the last correction evaluated its starting point to first order.
+    first_order_start: bool,
 }
 
 impl Stepper {
@@ -72,6 +81,9 @@ impl Stepper {
             last_iterations: 1,
             use_history: order != Some(TransferOrder::Second),
             extrapolated: false,
+            renewal: Renewal { age: 0, max_age: 1, clean: 0 },
+            renewed: false,
+            first_order_start: false,
         }
     }
 
@@ -94,7 +106,7 @@ impl Stepper {
     /// expansion as long as that needs no correction (fine steps), and
     /// turns to the history when it does (coarse ones), back when the
     /// history needs no more than the quadratic.
-    fn remember(&mut self, mech: &Mechanism, state: &State, kin: &mut Kinematics) {
+    fn remember(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics, info: NewtonInfo) {
         let Some(hist) = &mut self.history else { return };
         if self.order == Some(TransferOrder::Second) {
             if !self.use_history && self.last_iterations > 0 {
@@ -110,7 +122,20 @@ impl Stepper {
         // Deformations the history counts as negligible need no refining:
         // even amplified by extrapolation they stay far below the tolerance.
         let tiny = hist.negligible();
-        let refine = kin.factored && self.residual.iter().any(|r| r.abs() > tiny);
+        let mut refine = self.residual.iter().any(|r| r.abs() > tiny);
+        if self.order.is_none() {
+            // A run of positions only computes D^c only where it must.
+            let renew = self.renewal.renew(info, self.extrapolated, refine);
+            if renew {
+                let evaluated = info.iterations == 0 && self.first_order_start;
+                refine &= (evaluated || kin.evaluate(mech, state).is_ok()) && {
+                    kin.assemble(mech);
+                    kin.factor().is_ok()
+                };
+            }
+            self.renewed = renew;
+        }
+        refine &= kin.factored;
         if refine {
             kin.lu.solve(&mut self.residual, &mut kin.work);
         }
@@ -147,14 +172,6 @@ impl Stepper {
             match self.try_step(mech, state, kin, from, to, s1) {
                 Ok(info) => {
                     s = s1;
-                    if self.order.is_none() && info.iterations > 0 && info.factorisations == 0 {
-                        // Corrected with an old factorisation only: renew it
-                        // here, for refining this position and for the next.
-                        if kin.evaluate(mech, state).is_ok() {
-                            kin.assemble(mech);
-                            let _ = kin.factor();
-                        }
-                    }
                     // What is needed at the new point, from the evaluation
                     // Newton converged with; it also drives the next prediction.
                     let t = kin.finish(mech, state, self.order);
@@ -163,7 +180,7 @@ impl Stepper {
                             return Err(e);
                         }
                     }
-                    self.remember(mech, state, kin);
+                    self.remember(mech, state, kin, info);
                     if halved {
                         h = (2.0 * h).min(1.0 - s).max(min_h);
                     }
@@ -210,19 +227,24 @@ impl Stepper {
         let predicted = self.predict(mech, state, kin);
         // A run of positions only needs D^c at the predicted point only if
         // that point is not accepted as it is, as it usually was last time.
-        let first = if self.order.is_none() && self.last_iterations == 0 { Order::Value } else { Order::First };
+        let first = if self.order.is_none() && self.last_iterations == 0 && !self.renewed {
+            Order::Value
+        } else {
+            Order::First
+        };
+        self.first_order_start = first == Order::First;
         // Nor at a corrected point, which usually passes.
         let then = if self.order.is_none() { Order::Value } else { Order::First };
         let info = correct_from(mech, state, kin, &self.params, None, (first, then))?;
         self.last_iterations = info.iterations;
+        // Newton leaves the deformations at the accepted position in
+        // `kin.rhs`, which every later use overwrites first: take them.
+        std::mem::swap(&mut self.residual, &mut kin.rhs);
         if self.extrapolated && info.iterations > 0 {
             if let Some(h) = &mut self.history {
                 h.deepen();
             }
         }
-        // Newton leaves the deformations at the accepted position in
-        // `kin.rhs`, which every later use overwrites first: take them.
-        std::mem::swap(&mut self.residual, &mut kin.rhs);
         // A corrector that goes farther than the predictor did has probably
         // jumped to another assembly branch.
         if info.iterations == 0 {
@@ -289,5 +311,78 @@ impl Stepper {
             state.x[i] = self.predicted_x[c];
         }
         moved.sqrt()
+    }
+}
+
+/// When a run of positions only factorises D^c afresh. It needs D^c for
+/// nothing but correcting a prediction (rare) and refining the positions
+/// kept for extrapolation. A factorisation from some steps back refines
+/// well at fine steps; at coarse ones (a degree of a crank) it leaves
+/// deformations that an extrapolation of high degree amplifies until
+/// predictions need correcting. So the factorisation may grow older, up
+/// to `max_age` positions, while predictions pass: each one that needs
+/// correcting halves `max_age`, and 128 `max_age` positions in a row that
+/// do not double it (up to 256).
+struct Renewal {
+    /// Positions since D^c was last factorised.
+    age: usize,
+    max_age: usize,
+    /// Positions in a row whose prediction passed.
+    clean: usize,
+}
+
+impl Renewal {
+    /// Whether to factorise D^c at the position just accepted, after a
+    /// correction `info` of a prediction that was `extrapolated`, to
+    /// `refine` it for the history.
+    fn renew(&mut self, info: NewtonInfo, extrapolated: bool, refine: bool) -> bool {
+        if info.iterations > 0 && extrapolated {
+            self.max_age = (self.max_age / 2).max(1);
+            self.clean = 0;
+        } else {
+            self.clean += 1;
+            if self.clean >= 128 * self.max_age {
+                self.max_age = (2 * self.max_age).min(256);
+                self.clean = 0;
+            }
+        }
+        // The correction factorised D^c near here.
+        let fresh = info.factorisations > 0;
+        self.age = if fresh { 0 } else { self.age + 1 };
+        // A correction with an old factorisation renews it as well, for the
+        // chord steps of the next ones.
+        let renew = !fresh && ((refine && self.age >= self.max_age) || info.iterations > 0);
+        if renew {
+            self.age = 0;
+        }
+        renew
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_factorisation_ages_while_predictions_pass() {
+        let mut r = Renewal { age: 0, max_age: 1, clean: 0 };
+        let passed = NewtonInfo::default();
+        // Refining at every position: a new factorisation each time, until
+        // 128 predictions in a row have passed.
+        assert!((0..127).all(|_| r.renew(passed, true, true)));
+        // Then every other position.
+        assert!(!r.renew(passed, true, true));
+        assert_eq!(r.max_age, 2);
+        assert!(r.renew(passed, true, true) && !r.renew(passed, true, true) && r.renew(passed, true, true));
+        // Nothing to refine: no factorisation, however old.
+        assert!((0..10).all(|_| !r.renew(passed, true, false)));
+        // A prediction that needed a correction with the old factorisation
+        // renews it and halves the age allowed.
+        let corrected = NewtonInfo { iterations: 1, ..NewtonInfo::default() };
+        assert!(r.renew(corrected, true, false));
+        assert_eq!(r.max_age, 1);
+        // One that got a factorisation of its own does not.
+        let factorised = NewtonInfo { iterations: 2, factorisations: 1, ..NewtonInfo::default() };
+        assert!(!r.renew(factorised, true, true) && r.age == 0);
     }
 }
