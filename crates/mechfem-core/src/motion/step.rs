@@ -55,8 +55,6 @@ pub(crate) struct Stepper {
     /// Positions only: whether D^c was factorised at the last position, so
     /// that it probably will be at the next one too (evaluate it there).
     renewed: bool,
-    /// Whether the last correction evaluated its starting point to first order.
-    first_order_start: bool,
 }
 
 impl Stepper {
@@ -83,7 +81,6 @@ impl Stepper {
             extrapolated: false,
             renewal: Renewal { age: 0, max_age: 1, clean: 0 },
             renewed: false,
-            first_order_start: false,
         }
     }
 
@@ -127,11 +124,7 @@ impl Stepper {
             // A run of positions only computes D^c only where it must.
             let renew = self.renewal.renew(info, self.extrapolated, refine);
             if renew {
-                let evaluated = info.iterations == 0 && self.first_order_start;
-                refine &= (evaluated || kin.evaluate(mech, state).is_ok()) && {
-                    kin.assemble(mech);
-                    kin.factor().is_ok()
-                };
+                refine &= kin.factor_here(mech, state).is_ok();
             }
             self.renewed = renew;
         }
@@ -232,19 +225,18 @@ impl Stepper {
         } else {
             Order::First
         };
-        self.first_order_start = first == Order::First;
         // Nor at a corrected point, which usually passes.
         let then = if self.order.is_none() { Order::Value } else { Order::First };
         let info = correct_from(mech, state, kin, &self.params, None, (first, then))?;
         self.last_iterations = info.iterations;
-        // Newton leaves the deformations at the accepted position in
-        // `kin.rhs`, which every later use overwrites first: take them.
-        std::mem::swap(&mut self.residual, &mut kin.rhs);
         if self.extrapolated && info.iterations > 0 {
             if let Some(h) = &mut self.history {
                 h.deepen();
             }
         }
+        // Newton leaves the deformations at the accepted position in
+        // `kin.rhs`, which every later use overwrites first: take them.
+        std::mem::swap(&mut self.residual, &mut kin.rhs);
         // A corrector that goes farther than the predictor did has probably
         // jumped to another assembly branch.
         if info.iterations == 0 {

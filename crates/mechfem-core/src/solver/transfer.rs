@@ -38,6 +38,8 @@ pub struct Kinematics {
     pub(crate) work: Vec<f64>,
     pub(crate) rhs: Vec<f64>,
     pub(crate) cache: Vec<FormEval>,
+    /// How far the last evaluation of the prescribed rows into `cache` went.
+    evaluated: Order,
     dep_cache: Vec<FormEval>,
     pub(crate) row_values: Vec<f64>,
     det: f64,
@@ -102,6 +104,7 @@ impl Kinematics {
             work: vec![0.0; n],
             rhs: vec![0.0; n],
             cache: vec![FormEval::default(); mech.prescribed.terms().len()],
+            evaluated: Order::Value,
             dep_cache: vec![FormEval::default(); mech.dependent.terms().len()],
             row_values: vec![0.0; n],
             det: f64::NAN,
@@ -142,7 +145,23 @@ impl Kinematics {
 
     /// Evaluates the prescribed rows to `order` (values only: no D^c).
     pub(crate) fn evaluate_to(&mut self, mech: &Mechanism, state: &mut State, order: Order) -> Result<(), SolveError> {
-        eval_rows(&mech.prescribed, &state.x, &mut state.branch, order, &mut self.cache, &mut self.row_values)
+        // Until it has succeeded, the cache holds nothing to build on.
+        self.evaluated = Order::Value;
+        eval_rows(&mech.prescribed, &state.x, &mut state.branch, order, &mut self.cache, &mut self.row_values)?;
+        self.evaluated = order;
+        Ok(())
+    }
+
+    /// Assembles and factorises D^c at the state's co-ordinates, which must
+    /// be the point evaluated last (as a Newton correction leaves it): that
+    /// evaluation is reused when it went to first order, and repeated to
+    /// first order otherwise.
+    pub(crate) fn factor_here(&mut self, mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
+        if self.evaluated < Order::First {
+            self.evaluate(mech, state)?;
+        }
+        self.assemble(mech);
+        self.factor()
     }
 
     /// Writes D^c from the cache into the factorisation's storage.
@@ -418,7 +437,9 @@ impl Kinematics {
     pub fn second_order_all(&mut self, mech: &Mechanism, f: &[f64], out: &mut [f64]) -> Result<(), SolveError> {
         let n = self.n;
         self.require(TransferOrder::Second)?;
-        // The prescribed rows at the position of the last second-order transfer.
+        // The prescribed rows at the position of the last second-order
+        // transfer, which need not be the state's.
+        self.evaluated = Order::Value;
         self.branch_scratch.fill(f64::NAN);
         eval_rows(
             &mech.prescribed,
