@@ -3,12 +3,16 @@
 //! the input value.
 //!
 //! The order adapts to the step: terms are added while they still matter
-//! and still shrink. Fine steps need no more than the quadratic (its next
-//! term is already below the tolerance), coarse ones up to degree seven,
-//! which at one-degree steps of a four-bar's crank predicts the position to
-//! about 1e-10, so that most positions need no Newton iteration at all. A
-//! term that no longer shrinks is made of the deformations the positions
-//! were accepted with, amplified, and is left out.
+//! (the stepper counts a ten-thousandth of the tolerance as mattering) and
+//! still shrink. Fine steps need the quadratic or the cubic, coarse ones up
+//! to degree seven, which at one-degree steps of a four-bar's crank
+//! predicts the position to about 1e-10, so that most positions need no
+//! Newton iteration at all. A term that no longer shrinks is made of the
+//! deformations the positions were accepted with, amplified, and is left
+//! out.
+//!
+//! The stepper may leave positions out ([`History::skip`]); the next
+//! extrapolations then reach further ahead of the last position kept.
 
 /// Most positions kept (the degree of the extrapolation is one less).
 const MAX_POINTS: usize = 8;
@@ -20,6 +24,9 @@ pub(super) struct History {
     n: usize,
     q: [f64; MAX_POINTS],
     diff: Vec<f64>,
+    /// The largest magnitude in each row of `diff` (a term's size without
+    /// a pass over its row at every extrapolation).
+    row_max: [f64; MAX_POINTS],
     /// Rows held.
     len: usize,
     /// Rows kept up to date: one more than the last extrapolation used,
@@ -29,17 +36,40 @@ pub(super) struct History {
     used: usize,
     /// A term below this changes no prediction that matters.
     tiny: f64,
+    /// Positions reached since the last one added.
+    skipped: usize,
 }
 
 impl History {
     /// A history for `n` moving co-ordinates; a term below `tiny` is
     /// negligible.
     pub(super) fn new(n: usize, tiny: f64) -> History {
-        History { n, q: [0.0; MAX_POINTS], diff: vec![0.0; MAX_POINTS * n], len: 0, depth: 3, used: 0, tiny }
+        History {
+            n,
+            q: [0.0; MAX_POINTS],
+            diff: vec![0.0; MAX_POINTS * n],
+            row_max: [0.0; MAX_POINTS],
+            len: 0,
+            depth: 3,
+            used: 0,
+            tiny,
+            skipped: 0,
+        }
     }
 
     pub(super) fn clear(&mut self) {
         self.len = 0;
+        self.skipped = 0;
+    }
+
+    /// Notes a position reached and not added.
+    pub(super) fn skip(&mut self) {
+        self.skipped += 1;
+    }
+
+    /// Positions reached since the last one added.
+    pub(super) fn skipped(&self) -> usize {
+        self.skipped
     }
 
     /// Adds the moving co-ordinates `x` reached at input value `q`.
@@ -56,24 +86,32 @@ impl History {
         self.q[0] = q;
         let n = self.n;
         // x[q, r_0..r_{k-1}] = (x[q, r_0..r_{k-2}] - x[r_0..r_{k-1}]) / (q - r_{k-1}).
+        let mut row_max = [0.0f64; MAX_POINTS];
         for (c, &xc) in x.iter().enumerate() {
             let mut new = xc;
             for (k, &ik) in inv[..len].iter().enumerate() {
                 let old = self.diff[k * n + c];
                 self.diff[k * n + c] = new;
+                // (`f64::max` minds NaN, at thrice the cost; a NaN is left out either way.)
+                if new.abs() > row_max[k] {
+                    row_max[k] = new.abs();
+                }
                 new = (new - old) * ik;
             }
         }
+        self.row_max = row_max;
         self.len = len;
+        self.skipped = 0;
     }
 
     /// The extrapolation to input value `t` into `out`. `false` (and `out`
     /// untouched) with fewer than three positions, or for a step more than
-    /// twice as long as the last one.
+    /// twice as long as the last one (counting the positions skipped since
+    /// the last one added as steps of that length).
     pub(super) fn extrapolate(&mut self, t: f64, out: &mut [f64]) -> bool {
         let n = self.n;
         // (Written so that a NaN refuses too.)
-        let short = (t - self.q[0]).abs() <= 2.0 * (self.q[0] - self.q[1]).abs();
+        let short = (t - self.q[0]).abs() <= (2 + self.skipped) as f64 * (self.q[0] - self.q[1]).abs();
         if self.len < 3 || !short {
             return false;
         }
@@ -82,7 +120,7 @@ impl History {
         for k in 1..self.len {
             w *= t - self.q[k - 1];
             let row = &self.diff[k * n..(k + 1) * n];
-            let size = w.abs() * row.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let size = w.abs() * self.row_max[k];
             // Always the quadratic; beyond it, only terms that matter and shrink.
             let useful = size >= self.tiny && size < last;
             if k >= 3 && !useful {
@@ -106,11 +144,6 @@ impl History {
     /// accurate enough to be accepted without correction.
     pub(super) fn deepen(&mut self) {
         self.depth = (self.depth + 1).min(MAX_POINTS);
-    }
-
-    /// Below this a term, or a deformation, changes no prediction that matters.
-    pub(super) fn negligible(&self) -> f64 {
-        self.tiny
     }
 
     /// The degree of the last extrapolation.
@@ -164,6 +197,31 @@ mod tests {
         }
         assert!(worst < 1e-12, "{worst}");
         assert!(h.degree() >= 5, "degree {}", h.degree());
+    }
+
+    #[test]
+    fn positions_skipped_are_extrapolated_past() {
+        // A cubic at steps of 0.1: after two positions left out, the
+        // extrapolation three steps ahead of the last one kept is exact.
+        let f = |q: f64| 2.0 - q + 0.3 * q * q * q;
+        let mut h = History::new(1, 1e-14);
+        h.deepen();
+        for q in [0.0, 0.1, 0.2, 0.3] {
+            h.push(q, &[f(q)]);
+        }
+        let mut out = [0.0];
+        // One step ahead, then (skipping) two and three.
+        for (k, t) in [0.4, 0.5, 0.6].into_iter().enumerate() {
+            assert!(h.extrapolate(t, &mut out), "step {k}");
+            assert!((out[0] - f(t)).abs() < 1e-13, "{} vs {}", out[0], f(t));
+            h.skip();
+        }
+        assert_eq!(h.skipped(), 3);
+        // Five steps ahead is within (2 + 3) steps; six is not.
+        assert!(h.extrapolate(0.79, &mut out) && !h.extrapolate(0.81, &mut out));
+        // Adding a position starts the count again.
+        h.push(0.4, &[f(0.4)]);
+        assert_eq!(h.skipped(), 0);
     }
 
     #[test]

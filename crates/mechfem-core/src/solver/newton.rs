@@ -53,11 +53,15 @@ fn deformations(
             _ => kin.row_values[i] - state.target[i],
         };
         kin.rhs[i] = r;
-        largest = largest.max(r.abs());
+        // Compared, not `f64::max`: that minds NaN at thrice the cost, and
+        // `finite` takes care of NaN here.
+        if r.abs() > largest {
+            largest = r.abs();
+        }
         finite &= r.is_finite();
         // A row whose value is so large that tol is below its resolution
         // is held to 16 ulp of the value instead.
-        ok &= r.abs() <= tol.max(16.0 * f64::EPSILON * state.target[i].abs());
+        ok &= r.abs() <= tol || r.abs() <= 16.0 * f64::EPSILON * state.target[i].abs();
     }
     // A deformation that is not finite is never within the tolerance (an
     // infinite target would make the tolerance infinite too).

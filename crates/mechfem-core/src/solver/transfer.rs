@@ -101,7 +101,8 @@ impl Kinematics {
             lu,
             factored: false,
             chord_rate: 0.05,
-            work: vec![0.0; n],
+            // Two right-hand sides at once need twice n (`Lu::solve_two`).
+            work: vec![0.0; 2 * n],
             rhs: vec![0.0; n],
             cache: vec![FormEval::default(); mech.prescribed.terms().len()],
             evaluated: Order::Value,
@@ -183,18 +184,23 @@ impl Kinematics {
     pub fn transfer(&mut self, mech: &Mechanism, state: &mut State, order: TransferOrder) -> Result<(), SolveError> {
         self.order = None;
         self.evaluate(mech, state)?;
-        self.finish(mech, state, Some(order))
+        self.finish(mech, state, Some(order), None)
     }
 
     /// The analysis at a position whose prescribed rows are already in the
     /// cache (as a converged Newton correction leaves them): with `None`,
     /// only the values of the dependent form parameters (positions only:
     /// no det(D^c), no transfer functions); otherwise as [`Self::transfer`].
+    ///
+    /// With an order, `extra` (if any) is solved with D^c's new
+    /// factorisation, together with the first column of x' (one pass for
+    /// both); it is solved exactly when `self.factored` is true afterwards.
     pub(crate) fn finish(
         &mut self,
         mech: &Mechanism,
         state: &mut State,
         order: Option<TransferOrder>,
+        mut extra: Option<&mut [f64]>,
     ) -> Result<(), SolveError> {
         self.order = None;
         let Some(order) = order else {
@@ -218,7 +224,13 @@ impl Kinematics {
             let col = &mut self.x1[j * n..(j + 1) * n];
             col.fill(0.0);
             col[mech.input_row(j)] = 1.0;
-            self.lu.solve(col, &mut self.work);
+            match extra.take() {
+                Some(e) => self.lu.solve_two(col, e, &mut self.work),
+                None => self.lu.solve(col, &mut self.work),
+            }
+        }
+        if let Some(e) = extra {
+            self.lu.solve(e, &mut self.work);
         }
         self.first_cleared = false;
         if order == TransferOrder::Second {

@@ -168,32 +168,81 @@ impl Blocks {
     }
 
     /// Block forward substitution: each block's right-hand side less the
-    /// entries left of it times the solution found so far.
+    /// entries left of it times the solution found so far. `work` holds n
+    /// values.
     pub(super) fn solve(&self, b: &mut [f64], work: &mut [f64]) {
+        self.solve_k([b], work);
+    }
+
+    /// [`Self::solve`] for two right-hand sides at once; `work` holds 2n
+    /// values.
+    pub(super) fn solve_two(&self, b: &mut [f64], c: &mut [f64], work: &mut [f64]) {
+        self.solve_k([b, c], work);
+    }
+
+    /// The solve for K right-hand sides together. Its time goes into the
+    /// chain from block to block (each waits for the unknowns before it),
+    /// so independent right-hand sides in one pass overlap their chains;
+    /// blocks of one and two are solved inline, without a call.
+    fn solve_k<const K: usize>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) {
         let n = self.n;
-        let z = &mut work[..n];
-        for (i, &r) in self.row_new.iter().enumerate() {
-            z[r] = b[i];
+        if n == 0 {
+            return;
+        }
+        let mut chunks = work.chunks_exact_mut(n);
+        let mut z: [&mut [f64]; K] = std::array::from_fn(|_| chunks.next().expect("K n values of workspace"));
+        for (zk, bk) in z.iter_mut().zip(rhs.iter()) {
+            for (&r, &v) in self.row_new.iter().zip(bk.iter()) {
+                zk[r] = v;
+            }
         }
         let left = &self.a[self.left_base..];
         for blk in &self.blocks {
             let (s, e) = (blk.start, blk.end);
             for r in s..e {
-                let mut v = z[r];
-                for k in self.left_ptr[r]..self.left_ptr[r + 1] {
-                    v -= left[k] * z[self.left_cols[k]];
+                let range = self.left_ptr[r]..self.left_ptr[r + 1];
+                let mut v: [f64; K] = std::array::from_fn(|k| z[k][r]);
+                for (&c, &l) in self.left_cols[range.clone()].iter().zip(&left[range]) {
+                    for (vk, zk) in v.iter_mut().zip(z.iter()) {
+                        *vk -= l * zk[c];
+                    }
                 }
-                z[r] = v;
+                for (zk, vk) in z.iter_mut().zip(v) {
+                    zk[r] = vk;
+                }
             }
-            // `b` is free until the end: the blocks' workspace.
-            let (z, w) = (&mut z[s..e], &mut b[..e - s]);
-            match &blk.band {
-                None => dense::solve(e - s, &self.a[blk.base..], &self.perm[s..e], &self.inv_diag[s..e], z, w),
-                Some(lu) => lu.solve(z, w),
+            match (&blk.band, e - s) {
+                (None, 1) => {
+                    let d = self.inv_diag[s];
+                    for zk in z.iter_mut() {
+                        zk[s] *= d;
+                    }
+                }
+                (None, 2) => {
+                    let a = &self.a[blk.base..blk.base + 4];
+                    let (p0, inv) = (self.perm[s], [self.inv_diag[s], self.inv_diag[s + 1]]);
+                    for zk in z.iter_mut() {
+                        [zk[s], zk[s + 1]] = dense::solve_2(a, p0, inv, [zk[s], zk[s + 1]]);
+                    }
+                }
+                // `rhs` is free until the end: the blocks' workspace.
+                (None, m) => {
+                    for (zk, bk) in z.iter_mut().zip(rhs.iter_mut()) {
+                        let a = &self.a[blk.base..];
+                        dense::solve(m, a, &self.perm[s..e], &self.inv_diag[s..e], &mut zk[s..e], &mut bk[..m]);
+                    }
+                }
+                (Some(lu), m) => {
+                    for (zk, bk) in z.iter_mut().zip(rhs.iter_mut()) {
+                        lu.solve(&mut zk[s..e], &mut bk[..m]);
+                    }
+                }
             }
         }
-        for (j, &c) in self.col_new.iter().enumerate() {
-            b[j] = z[c];
+        for (zk, bk) in z.iter().zip(rhs.iter_mut()) {
+            for (j, &c) in self.col_new.iter().enumerate() {
+                bk[j] = zk[c];
+            }
         }
     }
 

@@ -85,14 +85,18 @@ pub(super) fn det(n: usize, a: &[f64], sign: f64) -> f64 {
 pub(super) fn solve(n: usize, a: &[f64], perm: &[usize], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
     match n {
         1 => b[0] *= inv_diag[0],
-        2 => {
-            let (b0, b1) = if perm[0] == 0 { (b[0], b[1]) } else { (b[1], b[0]) };
-            let y1 = (b1 - a[2] * b0) * inv_diag[1];
-            b[0] = (b0 - a[1] * y1) * inv_diag[0];
-            b[1] = y1;
-        }
+        2 => [b[0], b[1]] = solve_2(a, perm[0], [inv_diag[0], inv_diag[1]], [b[0], b[1]]),
         _ => by_size!(n, solve_fixed, (a, perm, inv_diag, b), solve_general(n, a, perm, inv_diag, b, work)),
     }
+}
+
+/// [`solve`] of a 2 x 2 block, written out: `perm0` is `perm[0]`, `inv`
+/// the reciprocal diagonal, `b` the right-hand side.
+#[inline(always)]
+pub(super) fn solve_2(a: &[f64], perm0: usize, inv: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    let (b0, b1) = if perm0 == 0 { (b[0], b[1]) } else { (b[1], b[0]) };
+    let y1 = (b1 - a[2] * b0) * inv[1];
+    [(b0 - a[1] * y1) * inv[0], y1]
 }
 
 fn solve_general(n: usize, a: &[f64], perm: &[usize], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
