@@ -144,16 +144,9 @@ impl Stepper {
     /// such positions add up through the extrapolation until predictions
     /// need refining at most steps (at 100 000 steps a turn: 59 000
     /// refinements a turn when kept, 6 000 when left out).
-    fn remember(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics, info: NewtonInfo, refine: bool) {
+    fn remember(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics, info: NewtonInfo, wanted: bool) {
         let Some(hist) = &mut self.history else { return };
-        if !refine && self.extrapolated && info.iterations == 0 && hist.skipped() < MAX_SKIPPED {
-            if self.order.is_none() {
-                self.renewed = self.renewal.renew(info, self.extrapolated, false);
-            }
-            hist.skip();
-            return;
-        }
-        let mut refine = refine;
+        let mut refine = wanted;
         if self.order.is_none() {
             // A run of positions only computes D^c only where it must.
             let renew = self.renewal.renew(info, self.extrapolated, refine);
@@ -161,12 +154,15 @@ impl Stepper {
                 refine &= kin.factor_here(mech, state).is_ok();
             }
             self.renewed = renew;
-            refine &= kin.factored;
-            if refine {
-                kin.lu.solve(&mut self.residual, &mut kin.work);
-            }
+        }
+        if !wanted && self.extrapolated && info.iterations == 0 && hist.skipped() < MAX_SKIPPED {
+            hist.skip();
+            return;
         }
         refine &= kin.factored;
+        if refine && self.order.is_none() {
+            kin.lu.solve(&mut self.residual, &mut kin.work);
+        }
         for ((r, &i), &dx) in self.refined.iter_mut().zip(mech.moving_coords()).zip(&self.residual) {
             *r = if refine { state.x[i] - dx } else { state.x[i] };
         }
