@@ -44,7 +44,8 @@ fn fourbar() -> (Mechanism, State) {
     (mech, state)
 }
 
-/// Allocations of a run of `steps` steps (one crank revolution).
+/// Allocations of a run of `steps` steps (one crank revolution; 900 steps
+/// move the window of input values of `motion/schedule.rs` on three times).
 fn count(mech: &Mechanism, start: &State, steps: usize, order: Option<TransferOrder>) -> usize {
     let motion = Motion { steps, dt: 0.01, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
     let mut state = start.clone();

@@ -212,7 +212,7 @@ pub fn run(
     }
     let zeros = vec![0.0; nd];
     let (time0, vel0, acc0) = match &schedule {
-        Some(s) => (s.time[0], s.vel(0), s.acc(0)),
+        Some(s) => (s.time(0), s.vel(0), s.acc(0)),
         None => (0.0, &zeros[..], &zeros[..]),
     };
     timed_finite(mech, &kin, vel0, acc0)?;
@@ -227,8 +227,8 @@ pub fn run(
     });
     if let (Some((dof, ds)), Some(m)) = (free, motion) {
         run_free(mech, state, &mut kin, m, dof, ds, params, observer, &mut report);
-    } else if let (Some(s), Some(m)) = (schedule, motion) {
-        run_driven(mech, state, &mut kin, m, &s, params, observer, &mut report);
+    } else if let (Some(mut s), Some(m)) = (schedule, motion) {
+        run_driven(mech, state, &mut kin, m, &mut s, params, observer, &mut report);
     }
     Ok(report)
 }
@@ -274,7 +274,7 @@ fn run_driven(
     state: &mut State,
     kin: &mut Kinematics,
     m: &Motion,
-    s: &Schedule,
+    s: &mut Schedule<'_>,
     params: &Params,
     observer: &mut dyn Observer,
     report: &mut RunReport,
@@ -285,6 +285,7 @@ fn run_driven(
     let mut previous = state.clone();
     let (mut det_prev2, mut det_prev, mut det_max) = (f64::NAN, kin.det(), kin.det().abs());
     for k in 1..=m.steps {
+        s.reach(k);
         previous.clone_from(state);
         let stepped = stepper.step(mech, state, &previous, kin, s.values(k - 1), s.values(k));
         match stepped.and_then(|halved| timed_finite(mech, kin, s.vel(k), s.acc(k)).map(|()| halved)) {
@@ -338,7 +339,7 @@ fn run_driven(
         (det_prev2, det_prev) = (det_prev, det);
         observer.position(&PositionView {
             index: k,
-            time: s.time[k],
+            time: s.time(k),
             mech,
             state,
             kin,

@@ -253,7 +253,7 @@ impl Stepper {
             self.delta[j] = goal - state.target[r];
             state.target[r] = goal;
         }
-        let predicted = self.predict(mech, state, kin);
+        let predicted_sq = self.predict(mech, state, kin);
         // A run of positions only needs D^c at the predicted point only if
         // that point is not accepted as it is, as it usually was last time.
         let first = if self.order.is_none() && self.last_iterations == 0 && !self.renewed {
@@ -278,6 +278,7 @@ impl Stepper {
         if info.iterations == 0 {
             return Ok(info);
         }
+        let predicted = predicted_sq.sqrt();
         let corrected: f64 = mech
             .moving_coords()
             .iter()
@@ -293,7 +294,9 @@ impl Stepper {
 
     /// Moves the moving co-ordinates to the predicted position for the
     /// input change `self.delta` (the inputs in `state.target` are already
-    /// the new ones); returns the length of the predicted move.
+    /// the new ones); returns the square of the length of the predicted
+    /// move (its root is wanted only after a correction: a square root's
+    /// latency is a good part of a step that needs none).
     fn predict(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics) -> f64 {
         let nd = mech.n_dof();
         let moving = mech.moving_coords();
@@ -338,7 +341,7 @@ impl Stepper {
             moved += d * d;
             state.x[i] = self.predicted_x[c];
         }
-        moved.sqrt()
+        moved
     }
 }
 
