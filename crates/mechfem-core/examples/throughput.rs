@@ -5,19 +5,24 @@
 //! only, first-order or second-order transfer functions.
 //!
 //! ```text
-//! cargo run --release -p mechfem-core --example throughput -- [STEPS ...] [--repeat R] [--mode MODE]
+//! cargo run --release -p mechfem-core --example throughput -- [STEPS ...] [--repeat R] [--min-time S] [--mode MODE]
 //! ```
 //!
 //! Prints one JSON object per line: `{"steps": .., "mode": .., "seconds": ..,
-//! "positions_per_second": .., "coupler_last": [x, y]}`, the time being the
-//! best of R runs (default 5). Without STEPS: 360 and 100000. `--mode`
-//! (positions, first or second) times that mode only, for profiling.
+//! "positions_per_second": .., "runs": .., "coupler_last": [x, y]}`, the
+//! time being the best of the runs: at least R (default 5), and more until
+//! they have taken S seconds in all (default 0), as `bench_peers.py` times
+//! every tool. Without STEPS: 360 and 100000. `--mode` (positions, first or
+//! second) times that mode only, for profiling.
 
 use mechfem_core::{
     run, ElementType, InputMotion, MechanismBuilder, Motion, Observer, Params, PositionView, TransferOrder,
 };
 use std::f64::consts::PI;
 use std::time::Instant;
+
+/// The most runs `--min-time` adds.
+const MAX_RUNS: usize = 1_000_000;
 
 /// Keeps the coupler point of the last position; asks for `order`.
 struct Last([f64; 2], Option<TransferOrder>);
@@ -34,11 +39,14 @@ impl Observer for Last {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut steps_list = Vec::new();
     let mut repeat = 5usize;
+    let mut min_time = 0.0f64;
     let mut only: Option<String> = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         if a == "--repeat" {
             repeat = args.next().ok_or("--repeat needs a number")?.parse()?;
+        } else if a == "--min-time" {
+            min_time = args.next().ok_or("--min-time needs a number of seconds")?.parse()?;
         } else if a == "--mode" {
             only = Some(args.next().ok_or("--mode needs positions, first or second")?);
         } else {
@@ -77,19 +85,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
             let mut best = f64::INFINITY;
             let mut last = [f64::NAN; 2];
-            for _ in 0..repeat.max(1) {
+            let (mut runs, mut total) = (0usize, 0.0f64);
+            while runs < repeat.max(1) || (total < min_time && runs < MAX_RUNS) {
                 let mut state = start.clone();
                 let mut obs = Last([f64::NAN; 2], order);
                 let t = Instant::now();
                 let report = run(&mech, &mut state, Some(&motion), &params, &mut obs)?;
-                best = best.min(t.elapsed().as_secs_f64());
+                let seconds = t.elapsed().as_secs_f64();
+                best = best.min(seconds);
+                (runs, total) = (runs + 1, total + seconds);
                 if let Some(stop) = report.stop {
                     return Err(format!("the motion stopped: {:?}", stop.error).into());
                 }
                 last = obs.0;
             }
             println!(
-                "{{\"steps\": {steps}, \"mode\": \"{mode}\", \"seconds\": {best:e}, \"positions_per_second\": {:e}, \"coupler_last\": [{}, {}]}}",
+                "{{\"steps\": {steps}, \"mode\": \"{mode}\", \"seconds\": {best:e}, \"positions_per_second\": {:e}, \"runs\": {runs}, \"coupler_last\": [{}, {}]}}",
                 steps as f64 / best,
                 last[0],
                 last[1]

@@ -246,10 +246,18 @@ mod tests {
 
     #[test]
     fn bin_reports_coincident_points() {
+        // Length and angle, at every order (the angle's value alone is
+        // checked on the squared length), and a point at infinity.
         let mut out = FormEval::default();
-        let mut b = f64::NAN;
-        let r = ElementType::Bin.eval(0, &[1.0, 2.0, 1.0, 2.0], &mut b, Order::First, &mut out);
-        assert!(matches!(r, Err(crate::error::ElementError::CoincidentPoints)));
+        for x in [[1.0, 2.0, 1.0, 2.0], [1.0, 2.0, f64::INFINITY, 2.0], [0.0, 0.0, 1e200, 0.0]] {
+            for form in 0..2 {
+                for order in [Order::Value, Order::First, Order::Second] {
+                    let mut b = f64::NAN;
+                    let r = ElementType::Bin.eval(form, &x, &mut b, order, &mut out);
+                    assert!(matches!(r, Err(crate::error::ElementError::CoincidentPoints)), "{x:?} {form} {order:?}");
+                }
+            }
+        }
     }
 
     #[test]
