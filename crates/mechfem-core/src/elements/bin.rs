@@ -17,22 +17,14 @@ impl Element for Bin {
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         let (dx, dy) = (x[2] - x[0], x[3] - x[1]);
         if order == Order::Value {
-            // The length, or the angle, and nothing else. The angle needs
-            // no square root: the squared length is positive and finite
-            // exactly when the length is.
+            // The length, or the angle, and nothing else. The squared
+            // length is positive and finite exactly when the length is, so
+            // the angle needs no square root.
             let l2 = dx * dx + dy * dy;
-            if form != 0 {
-                if !(l2 > 0.0 && l2.is_finite()) {
-                    return Err(ElementError::CoincidentPoints);
-                }
-                out.value = tracked_atan2(dy, dx, branch);
-                return Ok(());
-            }
-            let l = l2.sqrt();
-            if !(l > 0.0 && l.is_finite()) {
+            if !(l2 > 0.0 && l2.is_finite()) {
                 return Err(ElementError::CoincidentPoints);
             }
-            out.value = l;
+            out.value = if form == 0 { l2.sqrt() } else { tracked_atan2(dy, dx, branch) };
             return Ok(());
         }
         let p = Polar::new(dx, dy).ok_or(ElementError::CoincidentPoints)?;
