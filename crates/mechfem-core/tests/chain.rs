@@ -37,6 +37,26 @@ fn a_chain_is_factorised_loop_by_loop() {
 }
 
 #[test]
+fn every_workspace_of_a_mechanism_shares_its_plan() {
+    // D^c's storage is chosen by the first workspace and cloned into the
+    // later ones, also those of a clone of the mechanism: each must
+    // compute exactly what the first did, before and after the first has
+    // factorised (a clone of the plan carries no factors).
+    let (mech, mut state) = chain(LOOPS, 0.2);
+    let mut first = Kinematics::new(&mech);
+    first.transfer(&mech, &mut state, TransferOrder::Second).expect("not a limit position");
+    let copy = mech.clone();
+    for m in [&mech, &copy] {
+        let mut kin = Kinematics::new(m);
+        assert_eq!(kin.block_sizes(), first.block_sizes());
+        kin.transfer(m, &mut state.clone(), TransferOrder::Second).expect("not a limit position");
+        assert_eq!(kin.det().to_bits(), first.det().to_bits());
+        assert!(kin.x1(0).iter().zip(first.x1(0)).all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert!(kin.x2(0, 0).iter().zip(first.x2(0, 0)).all(|(a, b)| a.to_bits() == b.to_bits()));
+    }
+}
+
+#[test]
 fn chain_follows_the_closed_form_through_a_revolution() {
     let theta0 = 0.2;
     let (mech, mut state) = chain(LOOPS, theta0);

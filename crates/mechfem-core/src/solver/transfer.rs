@@ -21,6 +21,15 @@ pub enum TransferOrder {
     Second,
 }
 
+/// D^c's storage as [`Lu::for_pattern`] chose it for a mechanism, and where
+/// each prescribed term's gradient goes in it: the same for every
+/// workspace of the mechanism, so it is made once ([`Mechanism`] keeps it).
+#[derive(Debug, Clone)]
+pub(crate) struct DcPlan {
+    lu: Lu,
+    dc_pos: Vec<[usize; MAX_COORDS]>,
+}
+
 /// Workspace and results of the analysis at one position.
 #[derive(Debug, Clone)]
 pub struct Kinematics {
@@ -71,16 +80,22 @@ impl Kinematics {
     /// other, a large block as a band when it can be ordered into a narrow
     /// one, anything else dense (see [`Lu::for_pattern`]).
     pub fn new(mech: &Mechanism) -> Kinematics {
-        Self::with_lu(mech, Lu::for_pattern(mech.n_moving(), &dc_pattern(mech)))
+        let plan = mech.dc_plan.get_or_init(|| {
+            let lu = Lu::for_pattern(mech.n_moving(), &dc_pattern(mech));
+            DcPlan { dc_pos: dc_positions(mech, &lu), lu }
+        });
+        Self::with_lu(mech, plan.lu.clone(), plan.dc_pos.clone())
     }
 
     /// As [`Self::new`], with D^c always stored dense: free motion replaces
     /// a row of D^c by a unit row anywhere, which a band may not hold.
     pub(crate) fn dense(mech: &Mechanism) -> Kinematics {
-        Self::with_lu(mech, Lu::new(mech.n_moving()))
+        let lu = Lu::new(mech.n_moving());
+        let dc_pos = dc_positions(mech, &lu);
+        Self::with_lu(mech, lu, dc_pos)
     }
 
-    fn with_lu(mech: &Mechanism, lu: Lu) -> Kinematics {
+    fn with_lu(mech: &Mechanism, lu: Lu, dc_pos: Vec<[usize; MAX_COORDS]>) -> Kinematics {
         let n = mech.n_moving();
         let n_dof = mech.n_dof();
         let n_pairs = n_dof * (n_dof + 1) / 2;
@@ -97,7 +112,7 @@ impl Kinematics {
         Kinematics {
             n,
             n_dof,
-            dc_pos: dc_positions(mech, &lu),
+            dc_pos,
             lu,
             factored: false,
             chord_rate: 0.05,

@@ -181,7 +181,8 @@ impl Factors<'_> {
 }
 
 /// A 1 x 1 block (a slider's co-ordinate, a gear's angle).
-fn factor_1(d: Factors<'_>) -> Result<f64, SingularPivot> {
+#[inline(always)]
+pub(super) fn factor_1(d: Factors<'_>) -> Result<f64, SingularPivot> {
     let p = d.a[0];
     if is_zero_pivot(p.abs(), 1, p.abs()) {
         return Err(SingularPivot { column: 0, pivot: p });
@@ -193,7 +194,8 @@ fn factor_1(d: Factors<'_>) -> Result<f64, SingularPivot> {
 
 /// A 2 x 2 block (the joint of a dyad), written out: through the general
 /// fixed-size path, copying the factors back costs more than computing them.
-fn factor_2(d: Factors<'_>) -> Result<f64, SingularPivot> {
+#[inline(always)]
+pub(super) fn factor_2(d: Factors<'_>) -> Result<f64, SingularPivot> {
     let [a00, a01, a10, a11] = [d.a[0], d.a[1], d.a[2], d.a[3]];
     let scale = [a00.abs().max(a10.abs()), a01.abs().max(a11.abs())];
     let swap = a10.abs() > a00.abs();
