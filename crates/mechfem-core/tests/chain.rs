@@ -40,8 +40,8 @@ fn a_chain_is_factorised_loop_by_loop() {
 fn every_workspace_of_a_mechanism_shares_its_plan() {
     // D^c's storage is chosen by the first workspace and cloned into the
     // later ones, also those of a clone of the mechanism: each must
-    // compute exactly what the first did, before and after the first has
-    // factorised (a clone of the plan carries no factors).
+    // compute exactly what the first did, made after the first has
+    // factorised its own copy (the plan itself holds no factors).
     let (mech, mut state) = chain(LOOPS, 0.2);
     let mut first = Kinematics::new(&mech);
     first.transfer(&mech, &mut state, TransferOrder::Second).expect("not a limit position");
