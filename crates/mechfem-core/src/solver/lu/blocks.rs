@@ -152,24 +152,15 @@ impl Blocks {
                     lu.values_mut().copy_from_slice(storage);
                     lu.factor()
                 }
-                None => {
-                    let d = Factors {
-                        n: m,
-                        a: storage,
-                        perm: &mut self.perm[s..e],
-                        inv_diag: &mut self.inv_diag[s..e],
-                        scale: &mut self.scale[s..e],
-                    };
-                    // The blocks of sliders and dyads inline: through the
-                    // call that picks a code path by size, their
-                    // factorisation costs about thrice as many instructions.
-                    match m {
-                        1 => dense::factor_1(d),
-                        2 => dense::factor_2(d),
-                        _ => d.factor(),
-                    }
-                    .map(|sign| blk.sign = sign)
+                None => Factors {
+                    n: m,
+                    a: storage,
+                    perm: &mut self.perm[s..e],
+                    inv_diag: &mut self.inv_diag[s..e],
+                    scale: &mut self.scale[s..e],
                 }
+                .factor()
+                .map(|sign| blk.sign = sign),
             };
             result.map_err(|p| SingularPivot { column: self.col_old[s + p.column], pivot: p.pivot })?;
         }
@@ -259,12 +250,7 @@ impl Blocks {
         self.blocks.iter().fold(self.order_sign, |p, blk| {
             p * match &blk.band {
                 Some(lu) => lu.det(),
-                None => match blk.n() {
-                    // As `dense::det` multiplies, without its loop.
-                    1 => blk.sign * self.a[blk.base],
-                    2 => blk.sign * self.a[blk.base] * self.a[blk.base + 3],
-                    m => dense::det(m, &self.a[blk.base..], blk.sign),
-                },
+                None => dense::det(blk.n(), &self.a[blk.base..], blk.sign),
             }
         })
     }

@@ -75,8 +75,14 @@ impl Dense {
 }
 
 /// The determinant of factors with row-interchange sign `sign`.
+#[inline]
 pub(super) fn det(n: usize, a: &[f64], sign: f64) -> f64 {
-    (0..n).fold(sign, |p, i| p * a[i * n + i])
+    match n {
+        // The blocks of sliders and dyads, multiplied in the loop's order.
+        1 => sign * a[0],
+        2 => sign * a[0] * a[3],
+        _ => (0..n).fold(sign, |p, i| p * a[i * n + i]),
+    }
 }
 
 /// Solves with the factors of [`Factors::factor`]: b becomes the solution;
@@ -119,14 +125,23 @@ fn solve_general(n: usize, a: &[f64], perm: &[usize], inv_diag: &[f64], b: &mut 
 
 impl Factors<'_> {
     /// LU with partial pivoting in place; returns the sign of the row
-    /// interchanges.
+    /// interchanges. Sizes one and two are written out here, and the code
+    /// that picks a path by size is called from size three on: through it,
+    /// the blocks of sliders and dyads cost about thrice as many
+    /// instructions.
     #[inline]
     pub(super) fn factor(self) -> Result<f64, SingularPivot> {
         match self.n {
             1 => factor_1(self),
             2 => factor_2(self),
-            _ => by_size!(self.n, factor_fixed, (self), self.factor_general()),
+            _ => self.factor_larger(),
         }
+    }
+
+    /// [`Self::factor`] from size three on.
+    #[inline(never)]
+    fn factor_larger(self) -> Result<f64, SingularPivot> {
+        by_size!(self.n, factor_fixed, (self), self.factor_general())
     }
 
     fn factor_general(self) -> Result<f64, SingularPivot> {
@@ -182,7 +197,7 @@ impl Factors<'_> {
 
 /// A 1 x 1 block (a slider's co-ordinate, a gear's angle).
 #[inline(always)]
-pub(super) fn factor_1(d: Factors<'_>) -> Result<f64, SingularPivot> {
+fn factor_1(d: Factors<'_>) -> Result<f64, SingularPivot> {
     let p = d.a[0];
     if is_zero_pivot(p.abs(), 1, p.abs()) {
         return Err(SingularPivot { column: 0, pivot: p });
@@ -195,7 +210,7 @@ pub(super) fn factor_1(d: Factors<'_>) -> Result<f64, SingularPivot> {
 /// A 2 x 2 block (the joint of a dyad), written out: through the general
 /// fixed-size path, copying the factors back costs more than computing them.
 #[inline(always)]
-pub(super) fn factor_2(d: Factors<'_>) -> Result<f64, SingularPivot> {
+fn factor_2(d: Factors<'_>) -> Result<f64, SingularPivot> {
     let [a00, a01, a10, a11] = [d.a[0], d.a[1], d.a[2], d.a[3]];
     let scale = [a00.abs().max(a10.abs()), a01.abs().max(a11.abs())];
     let swap = a10.abs() > a00.abs();
