@@ -52,8 +52,7 @@ impl FreeStepper {
     fn raw_tangent(&mut self, mech: &Mechanism, state: &mut State, kin: &mut Kinematics) -> Result<(), SolveError> {
         kin.evaluate(mech, state)?;
         kin.assemble(mech);
-        kin.lu.set_unit_row(self.row, self.col);
-        kin.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
+        kin.factor_with_unit_row(self.row, self.col)?;
         self.tangent.fill(0.0);
         self.tangent[self.row] = 1.0;
         kin.lu.solve(&mut self.tangent, &mut kin.work);

@@ -76,17 +76,43 @@ pub(crate) fn dc_pattern(mech: &Mechanism) -> Vec<Vec<usize>> {
 
 /// Writes D^c (rows: prescribed rows, columns: moving co-ordinates) from a
 /// cache of the prescribed rows filled to at least first order.
-pub(crate) fn fill_dc(mech: &Mechanism, cache: &[FormEval], positions: &[[usize; MAX_COORDS]], lu: &mut Lu) {
-    lu.clear();
+///
+/// With `overwrite` (see [`writes_every_place_once`]), each place is
+/// written rather than added to, and the storage is not cleared first.
+pub(crate) fn fill_dc(
+    mech: &Mechanism,
+    cache: &[FormEval],
+    positions: &[[usize; MAX_COORDS]],
+    overwrite: bool,
+    lu: &mut Lu,
+) {
+    if !overwrite {
+        lu.clear();
+    }
     let values = lu.values_mut();
     let rows = &mech.prescribed;
     for (((t, s), e), pos) in rows.terms().iter().zip(rows.slots()).zip(cache).zip(positions) {
         for a in 0..s.n {
             if pos[a] != NO_ENTRY {
-                values[pos[a]] += t.factor * e.grad[a];
+                let v = t.factor * e.grad[a];
+                if overwrite {
+                    values[pos[a]] = v;
+                } else {
+                    values[pos[a]] += v;
+                }
             }
         }
     }
+}
+
+/// Whether `positions` write every place of D^c's storage (of `len`
+/// places) exactly once, so that assembly need not clear it first.
+pub(crate) fn writes_every_place_once(positions: &[[usize; MAX_COORDS]], len: usize) -> bool {
+    let mut count = vec![0u32; len];
+    for &p in positions.iter().flatten().filter(|&&p| p != NO_ENTRY) {
+        count[p] += 1;
+    }
+    count.iter().all(|&c| c == 1)
 }
 
 /// `sum_k D_{row,k} a_k`: the row's gradient times a vector over the moving

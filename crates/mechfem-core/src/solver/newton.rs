@@ -159,10 +159,7 @@ pub(crate) fn correct_from(
         if !reuse {
             kin.assemble(mech);
             match temp {
-                Some(t) => {
-                    kin.lu.set_unit_row(t.row, t.col);
-                    kin.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
-                }
+                Some(t) => kin.factor_with_unit_row(t.row, t.col)?,
                 None => kin.factor()?,
             }
             info.factorisations += 1;

@@ -6,7 +6,9 @@
 //! [`Kinematics`] is also the workspace of the Newton iteration: every
 //! buffer is allocated once, in [`Kinematics::new`].
 
-use super::assemble::{dc_pattern, dc_positions, eval_rows, fill_dc, grad_dot, second_products};
+use super::assemble::{
+    dc_pattern, dc_positions, eval_rows, fill_dc, grad_dot, second_products, writes_every_place_once,
+};
 use super::lu::Lu;
 use crate::elements::{FormEval, Order, MAX_COORDS};
 use crate::error::SolveError;
@@ -28,6 +30,8 @@ pub enum TransferOrder {
 pub(crate) struct DcPlan {
     lu: Lu,
     dc_pos: Vec<[usize; MAX_COORDS]>,
+    /// Whether the gradients write every place of `lu` once.
+    overwrite: bool,
 }
 
 /// Workspace and results of the analysis at one position.
@@ -39,11 +43,18 @@ pub struct Kinematics {
     /// Whether `lu` holds the factors of D^c (no row replaced) at the
     /// current or a recent position.
     pub(crate) factored: bool,
+    /// Whether `lu` holds D^c as assembled at the current or a recent
+    /// position, not factorised.
+    pub(crate) assembled: bool,
+    /// Whether D^c splits into blocks of one and two only.
+    pub(crate) small_blocks: bool,
     /// How much the last chord step of a Newton correction shrank the
     /// largest deformation.
     pub(crate) chord_rate: f64,
     /// Where each prescribed term's gradient goes in `lu`.
     dc_pos: Vec<[usize; MAX_COORDS]>,
+    /// Whether assembly writes every place of `lu` once (no clearing).
+    overwrite: bool,
     pub(crate) work: Vec<f64>,
     pub(crate) rhs: Vec<f64>,
     pub(crate) cache: Vec<FormEval>,
@@ -82,9 +93,11 @@ impl Kinematics {
     pub fn new(mech: &Mechanism) -> Kinematics {
         let plan = mech.dc_plan.get_or_init(|| {
             let lu = Lu::for_pattern(mech.n_moving(), &dc_pattern(mech));
-            DcPlan { dc_pos: dc_positions(mech, &lu), lu }
+            let dc_pos = dc_positions(mech, &lu);
+            let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
+            DcPlan { dc_pos, lu, overwrite }
         });
-        Self::with_lu(mech, plan.lu.clone(), plan.dc_pos.clone())
+        Self::with_lu(mech, plan.lu.clone(), plan.dc_pos.clone(), plan.overwrite)
     }
 
     /// As [`Self::new`], with D^c always stored dense: free motion replaces
@@ -92,10 +105,11 @@ impl Kinematics {
     pub(crate) fn dense(mech: &Mechanism) -> Kinematics {
         let lu = Lu::new(mech.n_moving());
         let dc_pos = dc_positions(mech, &lu);
-        Self::with_lu(mech, lu, dc_pos)
+        let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
+        Self::with_lu(mech, lu, dc_pos, overwrite)
     }
 
-    fn with_lu(mech: &Mechanism, lu: Lu, dc_pos: Vec<[usize; MAX_COORDS]>) -> Kinematics {
+    fn with_lu(mech: &Mechanism, lu: Lu, dc_pos: Vec<[usize; MAX_COORDS]>, overwrite: bool) -> Kinematics {
         let n = mech.n_moving();
         let n_dof = mech.n_dof();
         let n_pairs = n_dof * (n_dof + 1) / 2;
@@ -109,12 +123,16 @@ impl Kinematics {
             }
         }
         let n_d = mech.n_dependent();
+        let small_blocks = lu.all_small_blocks();
         Kinematics {
             n,
             n_dof,
             dc_pos,
+            overwrite,
             lu,
             factored: false,
+            assembled: false,
+            small_blocks,
             chord_rate: 0.05,
             // Two right-hand sides at once need twice n (`Lu::solve_two`).
             work: vec![0.0; 2 * n],
@@ -173,24 +191,43 @@ impl Kinematics {
     /// evaluation is reused when it went to first order, and repeated to
     /// first order otherwise.
     pub(crate) fn factor_here(&mut self, mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
+        self.assemble_here(mech, state)?;
+        self.factor()
+    }
+
+    /// As [`Self::factor_here`] without the factorisation: `lu` holds D^c
+    /// as assembled, for `Lu::solve_assembled` (blocks of one and two).
+    pub(crate) fn assemble_here(&mut self, mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
         if self.evaluated < Order::First {
             self.evaluate(mech, state)?;
         }
         self.assemble(mech);
-        self.factor()
+        Ok(())
     }
 
     /// Writes D^c from the cache into the factorisation's storage.
     pub(crate) fn assemble(&mut self, mech: &Mechanism) {
         self.factored = false;
-        fill_dc(mech, &self.cache, &self.dc_pos, &mut self.lu);
+        self.assembled = true;
+        fill_dc(mech, &self.cache, &self.dc_pos, self.overwrite, &mut self.lu);
     }
 
     /// Factorises the assembled D^c.
     pub(crate) fn factor(&mut self) -> Result<(), SolveError> {
+        // The factors overwrite D^c, even when they fail.
+        self.assembled = false;
         self.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
         self.factored = true;
         Ok(())
+    }
+
+    /// Factorises the assembled D^c with row `row` replaced by the unit row
+    /// e_col (a temporary input, section 5.5.3); `factored` stays false,
+    /// as these are not the factors of D^c.
+    pub(crate) fn factor_with_unit_row(&mut self, row: usize, col: usize) -> Result<(), SolveError> {
+        self.assembled = false;
+        self.lu.set_unit_row(row, col);
+        self.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })
     }
 
     /// Computes det(D^c), the transfer functions of the moving co-ordinates

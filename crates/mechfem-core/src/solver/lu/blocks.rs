@@ -35,6 +35,8 @@ pub(super) struct Blocks {
     inv_diag: Vec<f64>,
     scale: Vec<f64>,
     order_sign: f64,
+    /// Whether every block is dense and of size one or two.
+    all_small: bool,
 }
 
 /// A diagonal block: reordered rows and columns `start..end`, its storage
@@ -108,6 +110,7 @@ impl Blocks {
             left_ptr.push(left_cols.len());
         }
         let order_sign = parity(&row_new) * parity(&col_new);
+        let all_small = blocks.iter().all(|b| b.band.is_none() && b.n() <= 2);
         Blocks {
             n,
             a: vec![0.0; base + left_cols.len()],
@@ -123,6 +126,7 @@ impl Blocks {
             inv_diag: vec![0.0; n],
             scale: vec![0.0; n],
             order_sign,
+            all_small,
         }
     }
 
@@ -171,24 +175,27 @@ impl Blocks {
     /// entries left of it times the solution found so far. `work` holds n
     /// values.
     pub(super) fn solve(&self, b: &mut [f64], work: &mut [f64]) {
-        self.solve_k([b], work);
+        self.solve_k::<1, false>([b], work);
     }
 
     /// [`Self::solve`] for two right-hand sides at once; `work` holds 2n
     /// values.
     pub(super) fn solve_two(&self, b: &mut [f64], c: &mut [f64], work: &mut [f64]) {
-        self.solve_k([b, c], work);
+        self.solve_k::<2, false>([b, c], work);
     }
 
     /// The solve for K right-hand sides together. Its time goes into the
     /// chain from block to block (each waits for the unknowns before it),
     /// so independent right-hand sides in one pass overlap their chains;
-    /// blocks of one and two are solved inline, without a call.
-    fn solve_k<const K: usize>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) {
+    /// blocks of one and two are solved inline, without a call. `ASSEMBLED`:
+    /// the blocks are as assembled, not factorised, and all of one or two;
+    /// returns whether none was singular (always true otherwise).
+    fn solve_k<const K: usize, const ASSEMBLED: bool>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) -> bool {
         let n = self.n;
         if n == 0 {
-            return;
+            return true;
         }
+        let mut regular = true;
         let mut chunks = work.chunks_exact_mut(n);
         let mut z: [&mut [f64]; K] = std::array::from_fn(|_| chunks.next().expect("K n values of workspace"));
         for (zk, bk) in z.iter_mut().zip(rhs.iter()) {
@@ -212,6 +219,24 @@ impl Blocks {
                 }
             }
             match (&blk.band, e - s) {
+                (None, 1) if ASSEMBLED => {
+                    let p = self.a[blk.base];
+                    regular &= p.abs() > 0.0;
+                    for zk in z.iter_mut() {
+                        zk[s] /= p;
+                    }
+                }
+                (None, 2) if ASSEMBLED => {
+                    let a = &self.a[blk.base..blk.base + 4];
+                    let det = a[0] * a[3] - a[1] * a[2];
+                    let floor = 2.0 * f64::EPSILON * a[0].abs().max(a[2].abs()) * a[1].abs().max(a[3].abs());
+                    regular &= det.abs() > floor;
+                    let inv = 1.0 / det;
+                    for zk in z.iter_mut() {
+                        let (b0, b1) = (zk[s], zk[s + 1]);
+                        [zk[s], zk[s + 1]] = [(b0 * a[3] - a[1] * b1) * inv, (a[0] * b1 - a[2] * b0) * inv];
+                    }
+                }
                 (None, 1) => {
                     let d = self.inv_diag[s];
                     for zk in z.iter_mut() {
@@ -244,6 +269,23 @@ impl Blocks {
                 bk[j] = zk[c];
             }
         }
+        regular
+    }
+
+    /// Whether every block is dense and of size one or two.
+    pub(super) fn all_small(&self) -> bool {
+        self.all_small
+    }
+
+    /// Solves with the matrix as assembled, not factorised, when every
+    /// block is of one or two (see [`Self::all_small`]): each block by
+    /// Cramer's rule. False when a block is singular, by the test of the
+    /// factorisation: a 2 x 2 block's determinant is the product of its
+    /// two pivots, which must each exceed 2 eps times their column's
+    /// largest entry.
+    pub(super) fn solve_assembled(&self, b: &mut [f64], work: &mut [f64]) -> bool {
+        debug_assert!(self.all_small(), "only blocks of one and two are solved unfactorised");
+        self.solve_k::<1, true>([b], work)
     }
 
     pub(super) fn det(&self) -> f64 {
