@@ -198,11 +198,10 @@ fn a_driven_motion_stops_when_its_observer_asks() {
 
 #[test]
 fn a_run_of_positions_only_matches_the_closed_form_at_fine_and_coarse_steps() {
-    // Positions only predict by extrapolation and refine the positions
-    // they keep for it with D^c as assembled (its blocks are all 2 x 2:
-    // crank pin, dyad, coupler point), solved by Cramer's rule, and only
-    // now and then anew: at every step size the positions must still be
-    // exact.
+    // Positions only predict by extrapolation and factorise D^c only now
+    // and then: at every step size the positions must still be exact. Its
+    // blocks are all 2 x 2 (crank pin, dyad, coupler point), so that it is
+    // solved by Cramer's rule, here and in every test of this file.
     let theta0 = 0.3;
     assert_eq!(Kinematics::new(&model(theta0, 0.0).0).block_sizes(), vec![2, 2, 2]);
     let x0: Vec<Quantity> = (4..10).map(Quantity::X0).collect();

@@ -19,12 +19,9 @@
 //! factorisation at hand (one solve, no evaluation); the position itself is
 //! the one that was checked. A run of positions only has no factorisation
 //! at every position: it keeps one for as long as it refines well enough
-//! ([`Renewal`]). Where D^c splits into blocks of one and two (sliders and
-//! dyads), it keeps D^c as assembled instead and solves the refinement by
-//! Cramer's rule block by block (`Lu::solve_assembled`): for a matrix
-//! solved once or twice, cheaper than factorising it. A position predicted
-//! so well that it needs no refining is not kept at all: the extrapolation
-//! already passes through it (see [`Stepper::remember`]). With transfer functions, the refinement is
+//! ([`Renewal`]). A position predicted so well that it needs no refining
+//! is not kept at all: the extrapolation already passes through it (see
+//! [`Stepper::remember`]). With transfer functions, the refinement is
 //! solved in one pass with x' (`Lu::solve_two`).
 
 use super::history::History;
@@ -154,11 +151,7 @@ impl Stepper {
             // A run of positions only computes D^c only where it must.
             let renew = self.renewal.renew(info, self.extrapolated, refine);
             if renew {
-                refine &= if kin.small_blocks {
-                    kin.assemble_here(mech, state).is_ok()
-                } else {
-                    kin.factor_here(mech, state).is_ok()
-                };
+                refine &= kin.factor_here(mech, state).is_ok();
             }
             self.renewed = renew;
         }
@@ -166,13 +159,9 @@ impl Stepper {
             hist.skip();
             return;
         }
-        refine &= kin.factored || kin.assembled;
+        refine &= kin.factored;
         if refine && self.order.is_none() {
-            if kin.assembled {
-                refine = kin.lu.solve_assembled(&mut self.residual, &mut kin.work);
-            } else {
-                kin.lu.solve(&mut self.residual, &mut kin.work);
-            }
+            kin.lu.solve(&mut self.residual, &mut kin.work);
         }
         for ((r, &i), &dx) in self.refined.iter_mut().zip(mech.moving_coords()).zip(&self.residual) {
             *r = if refine { state.x[i] - dx } else { state.x[i] };

@@ -43,11 +43,6 @@ pub struct Kinematics {
     /// Whether `lu` holds the factors of D^c (no row replaced) at the
     /// current or a recent position.
     pub(crate) factored: bool,
-    /// Whether `lu` holds D^c as assembled at the current or a recent
-    /// position, not factorised.
-    pub(crate) assembled: bool,
-    /// Whether D^c splits into blocks of one and two only.
-    pub(crate) small_blocks: bool,
     /// How much the last chord step of a Newton correction shrank the
     /// largest deformation.
     pub(crate) chord_rate: f64,
@@ -123,7 +118,6 @@ impl Kinematics {
             }
         }
         let n_d = mech.n_dependent();
-        let small_blocks = lu.all_small_blocks();
         Kinematics {
             n,
             n_dof,
@@ -131,8 +125,6 @@ impl Kinematics {
             overwrite,
             lu,
             factored: false,
-            assembled: false,
-            small_blocks,
             chord_rate: 0.05,
             // Two right-hand sides at once need twice n (`Lu::solve_two`).
             work: vec![0.0; 2 * n],
@@ -191,31 +183,21 @@ impl Kinematics {
     /// evaluation is reused when it went to first order, and repeated to
     /// first order otherwise.
     pub(crate) fn factor_here(&mut self, mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
-        self.assemble_here(mech, state)?;
-        self.factor()
-    }
-
-    /// As [`Self::factor_here`] without the factorisation: `lu` holds D^c
-    /// as assembled, for `Lu::solve_assembled` (blocks of one and two).
-    pub(crate) fn assemble_here(&mut self, mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
         if self.evaluated < Order::First {
             self.evaluate(mech, state)?;
         }
         self.assemble(mech);
-        Ok(())
+        self.factor()
     }
 
     /// Writes D^c from the cache into the factorisation's storage.
     pub(crate) fn assemble(&mut self, mech: &Mechanism) {
         self.factored = false;
-        self.assembled = true;
         fill_dc(mech, &self.cache, &self.dc_pos, self.overwrite, &mut self.lu);
     }
 
     /// Factorises the assembled D^c.
     pub(crate) fn factor(&mut self) -> Result<(), SolveError> {
-        // The factors overwrite D^c, even when they fail.
-        self.assembled = false;
         self.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })?;
         self.factored = true;
         Ok(())
@@ -225,7 +207,6 @@ impl Kinematics {
     /// e_col (a temporary input, section 5.5.3); `factored` stays false,
     /// as these are not the factors of D^c.
     pub(crate) fn factor_with_unit_row(&mut self, row: usize, col: usize) -> Result<(), SolveError> {
-        self.assembled = false;
         self.lu.set_unit_row(row, col);
         self.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })
     }

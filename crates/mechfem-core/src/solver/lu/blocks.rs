@@ -8,7 +8,7 @@
 //! block is.
 
 use super::dense::{self, Factors};
-use super::{parity, Lu, SingularPivot};
+use super::{is_zero_pivot, parity, Lu, SingularPivot};
 use crate::solver::ordering::BlockOrder;
 
 #[derive(Debug, Clone)]
@@ -37,6 +37,12 @@ pub(super) struct Blocks {
     order_sign: f64,
     /// Whether every block is dense and of size one or two.
     all_small: bool,
+    /// Whether the last factorisation left every block as assembled, with
+    /// the reciprocal of its determinant in `inv_diag` at its first row, for
+    /// Cramer's rule (see [`Self::factor`]).
+    pub(super) cramer: bool,
+    /// det of the whole matrix from that factorisation.
+    cramer_det: f64,
 }
 
 /// A diagonal block: reordered rows and columns `start..end`, its storage
@@ -127,6 +133,8 @@ impl Blocks {
             scale: vec![0.0; n],
             order_sign,
             all_small,
+            cramer: false,
+            cramer_det: f64::NAN,
         }
     }
 
@@ -146,8 +154,18 @@ impl Blocks {
         Some(self.left_base + range.start + k)
     }
 
-    /// Factorises every block.
+    /// Factorises every block. Blocks of one and two only (the sliders and
+    /// dyads of a mechanism made of them) are left as they are and solved
+    /// by Cramer's rule: their determinants are all a factorisation needs,
+    /// and a block's solve is then two products and a difference per
+    /// unknown, where the block solve's time goes into the chain from
+    /// block to block. A block that fails [`Self::cramer`]'s test is
+    /// factorised after all, which names the column that failed.
     pub(super) fn factor(&mut self) -> Result<(), SingularPivot> {
+        self.cramer = self.all_small && self.cramer();
+        if self.cramer {
+            return Ok(());
+        }
         for blk in &mut self.blocks {
             let (s, e, m) = (blk.start, blk.end, blk.n());
             let storage = &mut self.a[blk.base..blk.base + blk.len()];
@@ -175,27 +193,34 @@ impl Blocks {
     /// entries left of it times the solution found so far. `work` holds n
     /// values.
     pub(super) fn solve(&self, b: &mut [f64], work: &mut [f64]) {
-        self.solve_k::<1, false>([b], work);
+        if self.cramer {
+            self.solve_k::<1, true>([b], work);
+        } else {
+            self.solve_k::<1, false>([b], work);
+        }
     }
 
     /// [`Self::solve`] for two right-hand sides at once; `work` holds 2n
     /// values.
     pub(super) fn solve_two(&self, b: &mut [f64], c: &mut [f64], work: &mut [f64]) {
-        self.solve_k::<2, false>([b, c], work);
+        if self.cramer {
+            self.solve_k::<2, true>([b, c], work);
+        } else {
+            self.solve_k::<2, false>([b, c], work);
+        }
     }
 
     /// The solve for K right-hand sides together. Its time goes into the
     /// chain from block to block (each waits for the unknowns before it),
     /// so independent right-hand sides in one pass overlap their chains;
-    /// blocks of one and two are solved inline, without a call. `ASSEMBLED`:
-    /// the blocks are as assembled, not factorised, and all of one or two;
-    /// returns whether none was singular (always true otherwise).
-    fn solve_k<const K: usize, const ASSEMBLED: bool>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) -> bool {
+    /// blocks of one and two are solved inline, without a call. `CRAMER`:
+    /// whether the blocks were left for Cramer's rule (see [`Self::factor`]),
+    /// a separate instance so that no block asks again.
+    fn solve_k<const K: usize, const CRAMER: bool>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) {
         let n = self.n;
         if n == 0 {
-            return true;
+            return;
         }
-        let mut regular = true;
         let mut chunks = work.chunks_exact_mut(n);
         let mut z: [&mut [f64]; K] = std::array::from_fn(|_| chunks.next().expect("K n values of workspace"));
         for (zk, bk) in z.iter_mut().zip(rhs.iter()) {
@@ -219,19 +244,15 @@ impl Blocks {
                 }
             }
             match (&blk.band, e - s) {
-                (None, 1) if ASSEMBLED => {
-                    let p = self.a[blk.base];
-                    regular &= p.abs() > 0.0;
+                // Cramer's rule on the block as assembled.
+                (None, 1) if CRAMER => {
+                    let inv = self.inv_diag[s];
                     for zk in z.iter_mut() {
-                        zk[s] /= p;
+                        zk[s] *= inv;
                     }
                 }
-                (None, 2) if ASSEMBLED => {
-                    let a = &self.a[blk.base..blk.base + 4];
-                    let det = a[0] * a[3] - a[1] * a[2];
-                    let floor = 2.0 * f64::EPSILON * a[0].abs().max(a[2].abs()) * a[1].abs().max(a[3].abs());
-                    regular &= det.abs() > floor;
-                    let inv = 1.0 / det;
+                (None, 2) if CRAMER => {
+                    let (a, inv) = (&self.a[blk.base..blk.base + 4], self.inv_diag[s]);
                     for zk in z.iter_mut() {
                         let (b0, b1) = (zk[s], zk[s + 1]);
                         [zk[s], zk[s + 1]] = [(b0 * a[3] - a[1] * b1) * inv, (a[0] * b1 - a[2] * b0) * inv];
@@ -269,26 +290,46 @@ impl Blocks {
                 bk[j] = zk[c];
             }
         }
-        regular
     }
 
-    /// Whether every block is dense and of size one or two.
-    pub(super) fn all_small(&self) -> bool {
-        self.all_small
-    }
-
-    /// Solves with the matrix as assembled, not factorised, when every
-    /// block is of one or two (see [`Self::all_small`]): each block by
-    /// Cramer's rule. False when a block is singular, by the test of the
-    /// factorisation: a 2 x 2 block's determinant is the product of its
-    /// two pivots, which must each exceed 2 eps times their column's
-    /// largest entry.
-    pub(super) fn solve_assembled(&self, b: &mut [f64], work: &mut [f64]) -> bool {
-        debug_assert!(self.all_small(), "only blocks of one and two are solved unfactorised");
-        self.solve_k::<1, true>([b], work)
+    /// The determinant of every block of one or two as assembled, its
+    /// reciprocal kept for the solves, and det of the whole matrix; false
+    /// when a block counts as singular by the test of the factorisation (a
+    /// 2 x 2 block's determinant is the product of its two pivots, which
+    /// must each exceed 2 eps times the largest entry of their column).
+    fn cramer(&mut self) -> bool {
+        let mut det = self.order_sign;
+        for blk in &self.blocks {
+            let s = blk.start;
+            let d = if blk.n() == 1 {
+                let p = self.a[blk.base];
+                if is_zero_pivot(p.abs(), 1, p.abs()) {
+                    return false;
+                }
+                p
+            } else {
+                let a = &self.a[blk.base..blk.base + 4];
+                let d = a[0] * a[3] - a[1] * a[2];
+                // The pivots' product against that of their columns' scales
+                // (compared, not `f64::max`, which minds NaN at thrice the
+                // cost: a NaN entry makes d NaN, which fails anyway).
+                let larger = |x: f64, y: f64| if x.abs() > y.abs() { x.abs() } else { y.abs() };
+                if is_zero_pivot(d.abs(), 2, larger(a[0], a[2]) * larger(a[1], a[3])) {
+                    return false;
+                }
+                d
+            };
+            self.inv_diag[s] = 1.0 / d;
+            det *= d;
+        }
+        self.cramer_det = det;
+        true
     }
 
     pub(super) fn det(&self) -> f64 {
+        if self.cramer {
+            return self.cramer_det;
+        }
         self.blocks.iter().fold(self.order_sign, |p, blk| {
             p * match &blk.band {
                 Some(lu) => lu.det(),

@@ -216,26 +216,6 @@ impl Lu {
         }
     }
 
-    /// Whether [`Self::solve_assembled`] applies: the matrix is split into
-    /// blocks, every one dense and of size one or two (the sliders and
-    /// dyads of a mechanism built from them).
-    pub fn all_small_blocks(&self) -> bool {
-        matches!(&self.store, Store::Blocks(b) if b.all_small())
-    }
-
-    /// Solves A y = b in place with A as assembled, without factorising it,
-    /// where [`Self::all_small_blocks`] (each block by Cramer's rule): for
-    /// a matrix solved once, cheaper than [`Self::factor`] and
-    /// [`Self::solve`]. False when a block is singular (as [`Self::factor`]
-    /// judges it), or when the storage is not of such blocks; `work` holds
-    /// at least n values.
-    pub fn solve_assembled(&self, b: &mut [f64], work: &mut [f64]) -> bool {
-        match &self.store {
-            Store::Blocks(m) if m.all_small() => m.solve_assembled(b, work),
-            _ => false,
-        }
-    }
-
     /// Determinant from the factors.
     pub fn det(&self) -> f64 {
         match &self.store {
@@ -457,52 +437,57 @@ mod tests {
         assert!(s.column == col(1) || s.column == col(2), "{s:?}");
     }
 
+    /// Whether the last factorisation left the blocks for Cramer's rule.
+    fn by_cramer(lu: &Lu) -> bool {
+        matches!(&lu.store, Store::Blocks(b) if b.cramer)
+    }
+
     #[test]
-    fn blocks_of_one_and_two_are_solved_as_assembled() {
+    fn blocks_of_one_and_two_are_solved_by_cramers_rule() {
         // Blocks of 1, 2, 2 and 1 (a slider, two dyads, a gear), with
         // entries left of them; rows and columns scrambled; a zero diagonal
-        // entry in a 2 x 2 block, which needs pivoting when factorised.
+        // entry in a 2 x 2 block, which LU would have to pivot.
         let mut entries = vec![(0, 0, 2.5), (1, 1, 0.0), (1, 2, 1.5), (2, 1, -0.7), (2, 2, 0.4), (1, 0, 3.0)];
         entries.extend([(3, 3, 1e-3), (3, 4, 2.0), (4, 3, 0.5), (4, 4, -1.0), (3, 2, 0.25), (4, 0, -2.0)]);
         entries.extend([(5, 5, -4.0), (5, 3, 0.9), (5, 1, 0.6)]);
         let n = 6;
         let (row, col) = (|i: usize| (i * 5 + 2) % n, |j: usize| (j * 5 + 1) % n);
         let entries: Vec<_> = entries.into_iter().map(|(i, j, v)| (row(i), col(j), v)).collect();
-        let (split, mut dense) = filled(n, &entries);
+        let (mut split, mut dense) = filled(n, &entries);
         assert_eq!(split.block_sizes(), vec![1, 2, 2, 1]);
-        assert!(split.all_small_blocks() && !dense.all_small_blocks());
-        dense.factor().unwrap();
-        let rhs: Vec<f64> = (0..n).map(|i| (0.7 * i as f64).sin() + 0.1).collect();
-        let (mut y, mut want, mut w) = (rhs.clone(), rhs.clone(), vec![0.0; n]);
-        assert!(split.solve_assembled(&mut y, &mut w));
-        dense.solve(&mut want, &mut w);
-        for (a, b) in y.iter().zip(&want) {
-            assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{a} vs {b}");
-        }
-        // Solving leaves the assembled matrix as it was.
+        agree_after_factoring(&mut split, &mut dense);
+        assert!(by_cramer(&split));
+        // The blocks are left as assembled.
         assert!(entries.iter().all(|&(i, j, v)| split.get(i, j) == v));
-        // Dense storage, or a block of three, is not solved this way.
-        assert!(!dense.solve_assembled(&mut y, &mut w));
-        let (three, _) = filled(3, &[(0, 0, 1.0), (0, 1, 1.0), (1, 1, 1.0), (1, 2, 1.0), (2, 0, 1.0), (2, 2, 1.0)]);
-        assert!(!three.all_small_blocks() && !three.solve_assembled(&mut y, &mut w));
+        // A block of three is factorised.
+        let mut three = filled(3, &[(0, 0, 1.0), (0, 1, 1.0), (1, 1, 1.0), (1, 2, 1.0), (2, 0, 1.0), (2, 2, 1.0)]).0;
+        three.factor().unwrap();
+        assert!(!by_cramer(&three));
     }
 
     #[test]
-    fn a_singular_small_block_is_refused_unfactorised() {
+    fn a_singular_small_block_is_reported_in_original_columns() {
+        // A slider (column 0) and a dyad (columns 1, 2) whose rows are
+        // [2, 4] and [1, d]: singular at d = 2.
         let dyad = |d: f64| {
-            let (split, _) = filled(3, &[(0, 0, 1.0), (1, 1, 2.0), (1, 2, 4.0), (2, 1, 1.0), (2, 2, d), (2, 0, 1.0)]);
-            assert_eq!(split.block_sizes(), vec![1, 2]);
-            split.solve_assembled(&mut [1.0, 1.0, 1.0], &mut [0.0; 3])
+            let mut lu = filled(3, &[(0, 0, 1.0), (1, 1, 2.0), (1, 2, 4.0), (2, 1, 1.0), (2, 2, d), (2, 0, 1.0)]).0;
+            assert_eq!(lu.block_sizes(), vec![1, 2]);
+            lu.factor().map(|()| by_cramer(&lu))
         };
         // The factorisation's test: nearly dependent rows pass, dependent
-        // ones and NaN do not.
-        assert!(dyad(2.0 + 1e-12));
-        assert!(!dyad(2.0) && !dyad(2.0 + 1e-15) && !dyad(f64::NAN));
+        // ones and NaN do not, and the column is named.
+        assert_eq!(dyad(2.0 + 1e-12), Ok(true));
+        for d in [2.0, 2.0 + 1e-15, f64::NAN] {
+            let s = dyad(d).unwrap_err();
+            assert!(s.column == 1 || s.column == 2, "{d}: {s:?}");
+        }
         let slider = |p: f64| {
-            let (split, _) = filled(2, &[(0, 0, p), (1, 1, 1.0), (1, 0, 1.0)]);
-            split.solve_assembled(&mut [1.0, 1.0], &mut [0.0; 2])
+            let mut lu = filled(2, &[(0, 0, p), (1, 1, 1.0), (1, 0, 1.0)]).0;
+            lu.factor()
         };
-        assert!(slider(1e-300) && !slider(0.0) && !slider(f64::NAN));
+        assert!(slider(1e-300).is_ok());
+        assert_eq!(slider(0.0).unwrap_err().column, 0);
+        assert_eq!(slider(f64::INFINITY).unwrap_err().column, 0);
     }
 
     #[test]
