@@ -2,7 +2,8 @@
 //! [`block_order`](crate::solver::ordering::block_order)) so that every row
 //! touches only its own diagonal block and earlier ones. Each diagonal
 //! block is factorised on its own: in place when dense, through an [`Lu`] of
-//! its own when it is large enough for a band. The entries left of the
+//! its own when it is large enough for a band; when every block is of one
+//! or two, only by its determinant, for Cramer's rule. The entries left of the
 //! blocks are kept row by row and only enter the solves. det(D^c) is the
 //! product of the blocks' determinants, so D^c is singular exactly when a
 //! block is.
