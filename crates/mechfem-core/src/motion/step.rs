@@ -57,9 +57,10 @@ pub(crate) struct Stepper {
     extrapolated: bool,
     /// Positions only: when D^c is factorised afresh.
     renewal: Renewal,
-    /// Positions only: whether D^c was factorised at the last position, so
-    /// that it probably will be at the next one too (evaluate it there).
-    renewed: bool,
+    /// Positions only: whether D^c will probably be factorised at the next
+    /// position (so evaluate it there with the values): the last one was
+    /// refined, and the factorisation will be old enough.
+    renewal_due: bool,
 }
 
 impl Stepper {
@@ -86,7 +87,7 @@ impl Stepper {
             use_history: order != Some(TransferOrder::Second),
             extrapolated: false,
             renewal: Renewal { age: 0, max_age: 1, clean: 0 },
-            renewed: false,
+            renewal_due: false,
         }
     }
 
@@ -153,7 +154,7 @@ impl Stepper {
             if renew {
                 refine &= kin.factor_here(mech, state).is_ok();
             }
-            self.renewed = renew;
+            self.renewal_due = wanted && self.renewal.due_next();
         }
         if !wanted && self.extrapolated && info.iterations == 0 && hist.skipped() < MAX_SKIPPED {
             hist.skip();
@@ -255,8 +256,10 @@ impl Stepper {
         }
         let predicted_sq = self.predict(mech, state, kin);
         // A run of positions only needs D^c at the predicted point only if
-        // that point is not accepted as it is, as it usually was last time.
-        let first = if self.order.is_none() && self.last_iterations == 0 && !self.renewed {
+        // that point is not accepted as it is, as it usually was last time,
+        // or if the factorisation is due for renewal there (evaluated now,
+        // not once more after the check).
+        let first = if self.order.is_none() && self.last_iterations == 0 && !self.renewal_due {
             Order::Value
         } else {
             Order::First
@@ -374,6 +377,11 @@ struct Renewal {
 }
 
 impl Renewal {
+    /// Whether the next position renews the factorisation if it must refine.
+    fn due_next(&self) -> bool {
+        self.age + 1 >= self.max_age
+    }
+
     /// Whether to factorise D^c at the position just accepted, after a
     /// correction `info` of a prediction that was `extrapolated`, to
     /// `refine` it for the history.
@@ -416,6 +424,8 @@ mod tests {
         assert!(!r.renew(passed, true, true));
         assert_eq!(r.max_age, 2);
         assert!(r.renew(passed, true, true) && !r.renew(passed, true, true) && r.renew(passed, true, true));
+        // Which the stepper foresees, to evaluate D^c with the values.
+        assert!(!r.due_next() && !r.renew(passed, true, true) && r.due_next() && r.renew(passed, true, true));
         // Nothing to refine: no factorisation, however old.
         assert!((0..10).all(|_| !r.renew(passed, true, false)));
         // A prediction that needed a correction with the old factorisation

@@ -36,14 +36,36 @@ pub(super) struct Blocks {
     inv_diag: Vec<f64>,
     scale: Vec<f64>,
     order_sign: f64,
-    /// Whether every block is dense and of size one or two.
-    all_small: bool,
+    /// Every block in original rows and columns when all are dense and of
+    /// size one or two (empty otherwise), for the solves by Cramer's rule.
+    small: Vec<Small>,
+    /// The original column of every entry left of the blocks.
+    left_old: Vec<usize>,
     /// Whether the last factorisation left every block as assembled, with
     /// the reciprocal of its determinant in `inv_diag` at its first row, for
     /// Cramer's rule (see [`Self::factor`]).
     pub(super) cramer: bool,
     /// det of the whole matrix from that factorisation.
     cramer_det: f64,
+}
+
+/// A block of one or two in the original numbering: Cramer's rule reads
+/// the right-hand side and writes the solution in place, without the
+/// passes into and out of the block order (a good part of the solve of a
+/// mechanism of sliders and dyads, whose blocks are all of one or two).
+#[derive(Debug, Clone)]
+struct Small {
+    /// Original rows and columns; a block of one repeats its own.
+    rows: [usize; 2],
+    cols: [usize; 2],
+    two: bool,
+    /// Its first reordered row (where its reciprocal determinant is) and
+    /// its storage.
+    start: usize,
+    base: usize,
+    /// Its rows' entries left of the block: `ptr[i]..ptr[i + 1]` after
+    /// `left_base` in `a` (columns in `left_old`).
+    ptr: [usize; 3],
 }
 
 /// A diagonal block: reordered rows and columns `start..end`, its storage
@@ -117,7 +139,28 @@ impl Blocks {
             left_ptr.push(left_cols.len());
         }
         let order_sign = parity(&row_new) * parity(&col_new);
+        let mut row_old = vec![0; n];
+        for (old, &new) in row_new.iter().enumerate() {
+            row_old[new] = old;
+        }
         let all_small = blocks.iter().all(|b| b.band.is_none() && b.n() <= 2);
+        let small = if all_small {
+            let last = |b: &Block| b.end - 1;
+            blocks
+                .iter()
+                .map(|b| Small {
+                    rows: [row_old[b.start], row_old[last(b)]],
+                    cols: [col_old[b.start], col_old[last(b)]],
+                    two: b.n() == 2,
+                    start: b.start,
+                    base: b.base,
+                    ptr: [left_ptr[b.start], left_ptr[b.start + 1], left_ptr[b.end]],
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let left_old = left_cols.iter().map(|&c| col_old[c]).collect();
         Blocks {
             n,
             a: vec![0.0; base + left_cols.len()],
@@ -133,7 +176,8 @@ impl Blocks {
             inv_diag: vec![0.0; n],
             scale: vec![0.0; n],
             order_sign,
-            all_small,
+            small,
+            left_old,
             cramer: false,
             cramer_det: f64::NAN,
         }
@@ -163,7 +207,7 @@ impl Blocks {
     /// block to block. A block that fails [`Self::cramer`]'s test is
     /// factorised after all, which names the column that failed.
     pub(super) fn factor(&mut self) -> Result<(), SingularPivot> {
-        self.cramer = self.all_small && self.cramer();
+        self.cramer = !self.small.is_empty() && self.cramer();
         if self.cramer {
             return Ok(());
         }
@@ -195,9 +239,9 @@ impl Blocks {
     /// values.
     pub(super) fn solve(&self, b: &mut [f64], work: &mut [f64]) {
         if self.cramer {
-            self.solve_k::<1, true>([b], work);
+            self.solve_small([b], work);
         } else {
-            self.solve_k::<1, false>([b], work);
+            self.solve_k([b], work);
         }
     }
 
@@ -205,19 +249,17 @@ impl Blocks {
     /// values.
     pub(super) fn solve_two(&self, b: &mut [f64], c: &mut [f64], work: &mut [f64]) {
         if self.cramer {
-            self.solve_k::<2, true>([b, c], work);
+            self.solve_small([b, c], work);
         } else {
-            self.solve_k::<2, false>([b, c], work);
+            self.solve_k([b, c], work);
         }
     }
 
     /// The solve for K right-hand sides together. Its time goes into the
     /// chain from block to block (each waits for the unknowns before it),
     /// so independent right-hand sides in one pass overlap their chains;
-    /// blocks of one and two are solved inline, without a call. `CRAMER`:
-    /// whether the blocks were left for Cramer's rule (see [`Self::factor`]),
-    /// a separate instance so that no block asks again.
-    fn solve_k<const K: usize, const CRAMER: bool>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) {
+    /// blocks of one and two are solved inline, without a call.
+    fn solve_k<const K: usize>(&self, mut rhs: [&mut [f64]; K], work: &mut [f64]) {
         let n = self.n;
         if n == 0 {
             return;
@@ -245,20 +287,6 @@ impl Blocks {
                 }
             }
             match (&blk.band, e - s) {
-                // Cramer's rule on the block as assembled.
-                (None, 1) if CRAMER => {
-                    let inv = self.inv_diag[s];
-                    for zk in z.iter_mut() {
-                        zk[s] *= inv;
-                    }
-                }
-                (None, 2) if CRAMER => {
-                    let (a, inv) = (&self.a[blk.base..blk.base + 4], self.inv_diag[s]);
-                    for zk in z.iter_mut() {
-                        let (b0, b1) = (zk[s], zk[s + 1]);
-                        [zk[s], zk[s + 1]] = [(b0 * a[3] - a[1] * b1) * inv, (a[0] * b1 - a[2] * b0) * inv];
-                    }
-                }
                 (None, 1) => {
                     let d = self.inv_diag[s];
                     for zk in z.iter_mut() {
@@ -289,6 +317,48 @@ impl Blocks {
         for (zk, bk) in z.iter().zip(rhs.iter_mut()) {
             for (j, &c) in self.col_new.iter().enumerate() {
                 bk[j] = zk[c];
+            }
+        }
+    }
+
+    /// [`Self::solve_k`] by Cramer's rule on blocks left as assembled (see
+    /// [`Self::factor`]), in the original numbering: the right-hand sides
+    /// are copied to `work` (K n values), and each block's unknowns are
+    /// written in place as soon as they are known, for the blocks after it.
+    fn solve_small<const K: usize>(&self, mut x: [&mut [f64]; K], work: &mut [f64]) {
+        let n = self.n;
+        let mut chunks = work.chunks_exact_mut(n.max(1));
+        let mut b: [&mut [f64]; K] = std::array::from_fn(|_| chunks.next().expect("K n values of workspace"));
+        for (bk, xk) in b.iter_mut().zip(x.iter()) {
+            bk[..n].copy_from_slice(&xk[..n]);
+        }
+        let left = &self.a[self.left_base..];
+        for blk in &self.small {
+            // A row's right-hand side less its entries left of the block
+            // times the unknowns found so far.
+            let reduced = |i: usize| -> [f64; K] {
+                let mut v: [f64; K] = std::array::from_fn(|k| b[k][blk.rows[i]]);
+                let range = blk.ptr[i]..blk.ptr[i + 1];
+                for (&c, &l) in self.left_old[range.clone()].iter().zip(&left[range]) {
+                    for (vk, xk) in v.iter_mut().zip(x.iter()) {
+                        *vk -= l * xk[c];
+                    }
+                }
+                v
+            };
+            let inv = self.inv_diag[blk.start];
+            let v0 = reduced(0);
+            if blk.two {
+                let v1 = reduced(1);
+                let a = &self.a[blk.base..blk.base + 4];
+                for ((xk, b0), b1) in x.iter_mut().zip(v0).zip(v1) {
+                    xk[blk.cols[0]] = (b0 * a[3] - a[1] * b1) * inv;
+                    xk[blk.cols[1]] = (a[0] * b1 - a[2] * b0) * inv;
+                }
+            } else {
+                for (xk, b0) in x.iter_mut().zip(v0) {
+                    xk[blk.cols[0]] = b0 * inv;
+                }
             }
         }
     }
