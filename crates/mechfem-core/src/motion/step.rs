@@ -58,9 +58,14 @@ pub(crate) struct Stepper {
     /// Positions only: when D^c is factorised afresh.
     renewal: Renewal,
     /// Positions only: whether D^c will probably be factorised at the next
-    /// position (so evaluate it there with the values): the last one was
-    /// refined, and the factorisation will be old enough.
+    /// position (so evaluate it there with the values): one of the last two
+    /// was refined (at coarse steps most are; at fine ones, where few are,
+    /// evaluating D^c at every position after one refined would cost more
+    /// than evaluating the few renewals twice), and the factorisation will
+    /// be old enough.
     renewal_due: bool,
+    /// Positions only: whether the last position was refined.
+    last_refined: bool,
 }
 
 impl Stepper {
@@ -88,6 +93,7 @@ impl Stepper {
             extrapolated: false,
             renewal: Renewal { age: 0, max_age: 1, clean: 0 },
             renewal_due: false,
+            last_refined: false,
         }
     }
 
@@ -154,7 +160,8 @@ impl Stepper {
             if renew {
                 refine &= kin.factor_here(mech, state).is_ok();
             }
-            self.renewal_due = wanted && self.renewal.due_next();
+            self.renewal_due = (wanted || self.last_refined) && self.renewal.due_next();
+            self.last_refined = wanted;
         }
         if !wanted && self.extrapolated && info.iterations == 0 && hist.skipped() < MAX_SKIPPED {
             hist.skip();
