@@ -34,6 +34,15 @@ pub(crate) struct DcPlan {
     overwrite: bool,
 }
 
+impl DcPlan {
+    /// The places of every term's gradient in `lu`'s storage.
+    fn for_lu(mech: &Mechanism, lu: Lu) -> DcPlan {
+        let dc_pos = dc_positions(mech, &lu);
+        let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
+        DcPlan { lu, dc_pos, overwrite }
+    }
+}
+
 /// Workspace and results of the analysis at one position.
 #[derive(Debug, Clone)]
 pub struct Kinematics {
@@ -86,25 +95,19 @@ impl Kinematics {
     /// other, a large block as a band when it can be ordered into a narrow
     /// one, anything else dense (see [`Lu::for_pattern`]).
     pub fn new(mech: &Mechanism) -> Kinematics {
-        let plan = mech.dc_plan.get_or_init(|| {
-            let lu = Lu::for_pattern(mech.n_moving(), &dc_pattern(mech));
-            let dc_pos = dc_positions(mech, &lu);
-            let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
-            DcPlan { dc_pos, lu, overwrite }
-        });
-        Self::with_lu(mech, plan.lu.clone(), plan.dc_pos.clone(), plan.overwrite)
+        let plan =
+            mech.dc_plan.get_or_init(|| DcPlan::for_lu(mech, Lu::for_pattern(mech.n_moving(), &dc_pattern(mech))));
+        Self::with_plan(mech, plan.clone())
     }
 
     /// As [`Self::new`], with D^c always stored dense: free motion replaces
     /// a row of D^c by a unit row anywhere, which a band may not hold.
     pub(crate) fn dense(mech: &Mechanism) -> Kinematics {
-        let lu = Lu::new(mech.n_moving());
-        let dc_pos = dc_positions(mech, &lu);
-        let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
-        Self::with_lu(mech, lu, dc_pos, overwrite)
+        Self::with_plan(mech, DcPlan::for_lu(mech, Lu::new(mech.n_moving())))
     }
 
-    fn with_lu(mech: &Mechanism, lu: Lu, dc_pos: Vec<[usize; MAX_COORDS]>, overwrite: bool) -> Kinematics {
+    fn with_plan(mech: &Mechanism, plan: DcPlan) -> Kinematics {
+        let DcPlan { lu, dc_pos, overwrite } = plan;
         let n = mech.n_moving();
         let n_dof = mech.n_dof();
         let n_pairs = n_dof * (n_dof + 1) / 2;
