@@ -16,7 +16,18 @@ from mechfem import Mechanism, Motion
 from test_model_api import supply
 
 EXAMPLE_DECKS = sorted((ROOT / "examples").rglob("*.mec"))
+# The valid decks of the deck reader with masses and loads (DYN ANA), beside the examples.
+DYNAMIC_DECKS = sorted(
+    p
+    for p in (ROOT / "crates" / "mechfem-deck" / "tests" / "decks" / "valid").glob("*.mec")
+    if p.read_text().lstrip().upper().startswith("DYN ANA")
+)
+DECKS = EXAMPLE_DECKS + [p for p in DYNAMIC_DECKS if p not in EXAMPLE_DECKS]
 RTOL = 1e-12
+
+
+def deck_id(path: Path) -> str:
+    return str(path.relative_to(ROOT / "examples" if path.is_relative_to(ROOT / "examples") else ROOT))
 
 
 def same(a: npt.NDArray[np.float64], b: npt.NDArray[np.float64]) -> bool:
@@ -28,10 +39,10 @@ def same(a: npt.NDArray[np.float64], b: npt.NDArray[np.float64]) -> bool:
 
 
 def test_there_are_example_decks() -> None:
-    assert len(EXAMPLE_DECKS) >= 2
+    assert len(EXAMPLE_DECKS) >= 2 and len(DYNAMIC_DECKS) >= 2
 
 
-@pytest.mark.parametrize("deck", EXAMPLE_DECKS, ids=lambda p: str(p.relative_to(ROOT / "examples")))
+@pytest.mark.parametrize("deck", DECKS, ids=deck_id)
 def test_example_deck_read_into_the_api_gives_the_deck_results(deck: Path) -> None:
     try:
         ref = mechfem.run_deck(deck)
@@ -48,18 +59,24 @@ def test_example_deck_read_into_the_api_gives_the_deck_results(deck: Path) -> No
     for number, values in ref.buffers.items():
         assert same(r.buffers[number], values), f"buffer {number}"
     assert same(r.coords, ref.coords) and same(r.time, ref.time) and same(r.det, ref.det)
+    # The masses and loads came along: the same inverse dynamics.
+    assert r.dynamic == (ref.model.mode == "DYN ANA") == (m.loads is not None)
+    if ref.dynamic is not None:
+        assert same(r.drive_torque(1)[:, None], ref.dynamic.drive[:, :1]) and same(r.power(), ref.dynamic.power)
+        assert same(r.energy().kinetic, ref.dynamic.kinetic) and same(r.energy().potential, ref.dynamic.potential)
 
 
-@pytest.mark.parametrize("deck", EXAMPLE_DECKS, ids=lambda p: str(p.relative_to(ROOT / "examples")))
+@pytest.mark.parametrize("deck", DECKS, ids=deck_id)
 def test_example_deck_written_back_reads_as_the_same_model(deck: Path, tmp_path: Path) -> None:
     m = Mechanism.from_deck(deck)
     again = Mechanism.from_deck(m.save_deck(tmp_path / deck.name))
     assert again.to_deck() == m.to_deck()
     assert [e.type for e in again.elements] == [e.type for e in m.elements]
     assert [(r.name, r.kind, r.value) for r in again.rows] == [(r.name, r.kind, r.value) for r in m.rows]
+    assert [type(i) for i in again.loads or []] == [type(i) for i in m.loads or []]
 
 
-@pytest.mark.parametrize("deck", EXAMPLE_DECKS, ids=lambda p: str(p.relative_to(ROOT / "examples")))
+@pytest.mark.parametrize("deck", DECKS, ids=deck_id)
 def test_every_transfer_function_agrees_with_the_deck_within_its_accuracy(deck: Path) -> None:
     # With every transfer function computed (the default), positions are predicted otherwise than in a
     # run that needs only the first order: the results agree within the Newton tolerance.

@@ -17,6 +17,10 @@ or build a mechanism in Python with named points and elements (:class:`Mechanism
     r = m.run()
     r.output("out1", order=1)
 
+Masses and loads on a mechanism (:meth:`Mechanism.mass`, :meth:`Mechanism.gravity`, ...; see
+:mod:`mechfem.loads`) make its run an inverse dynamics: ``r.drive_torque()``, ``r.stress(row)``,
+``r.reaction(point)``, ``r.energy()``, ``r.power()``, ``r.mass_matrix()``.
+
 Deck mistakes raise :class:`DeckError`; a model that cannot reach position 1
 raises :class:`AssemblyError`, :class:`ConvergenceError` or
 :class:`LimitPositionError`; a run whose results would not fit in the memory

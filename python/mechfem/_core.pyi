@@ -5,7 +5,7 @@ Numbers that name things are the deck's, 1-based (destinations signed); position
 
 import os
 from collections.abc import Callable
-from typing import TypedDict
+from typing import NotRequired, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -105,6 +105,59 @@ class CoordDict(TypedDict):
     given: float
     adjusted: float
 
+class BodyDict(TypedDict):
+    element: float
+    """The element's number (a whole number, given as a float)."""
+    mass: float
+    u: float
+    v: float
+    inertia: float
+
+class PointMassDict(TypedDict):
+    x: float
+    """Co-ordinate numbers (whole numbers, given as floats)."""
+    y: float
+    mass: float
+
+class InertiaDict(TypedDict):
+    coord: float
+    """The co-ordinate's number (a whole number, given as a float)."""
+    inertia: float
+
+class ForceDict(TypedDict):
+    x: float
+    """Co-ordinate numbers (whole numbers, given as floats)."""
+    y: float
+    fx: float
+    fy: float
+
+class LoadDict(TypedDict):
+    dest: int
+    """The row: r > 0 prescribed, -k dependent."""
+    kind: str
+    """``LOAD``, ``LOADFUNC``, ``SPRING`` or ``MOTOR``; the keys below belong to one kind each."""
+    value: NotRequired[float]
+    rows: NotRequired[list[list[float]]]
+    """LOADFUNC: its table's rows ``[t, value]``."""
+    file: NotRequired[str | None]
+    """LOADFUNC: the file name as the deck gives it (from ``describe_deck_text``; None in a run's model echo)."""
+    k: NotRequired[float]
+    e0: NotRequired[float]
+    c: NotRequired[float]
+    t0: NotRequired[float]
+    w0: NotRequired[float]
+
+class DynamicsDict(TypedDict):
+    """The masses and loads of a DYN ANA deck, in the deck's numbering."""
+
+    gravity: list[float]
+    """``[gx, gy]`` (zero without GRAVITY)."""
+    bodies: list[BodyDict]
+    point_masses: list[PointMassDict]
+    inertias: list[InertiaDict]
+    forces: list[ForceDict]
+    loads: list[LoadDict]
+
 class ModelDict(TypedDict):
     elements: list[ElementDict]
     prescribed: list[RowDict]
@@ -112,6 +165,10 @@ class ModelDict(TypedDict):
     dofs: list[int]
     """For each DOF, its prescribed row."""
     coordinates: list[CoordDict]
+    mode: str
+    """``KIN ANA`` or ``DYN ANA``."""
+    dynamics: DynamicsDict | None
+    """The masses and loads (None for a KIN ANA deck)."""
 
 class BufferDict(TypedDict):
     number: int
@@ -148,6 +205,17 @@ class CheckDict(TypedDict):
     adjust: AdjustDict
     model: ModelDict
 
+class DynamicRunDict(TypedDict):
+    """The inverse dynamics of a DYN ANA run, per position."""
+
+    inputs: _F64
+    """positions x DOFs."""
+    drive: _F64
+    """positions x DOFs: the drive force or torque of each input."""
+    ekin: _F64
+    epot: _F64
+    power: _F64
+
 class RunDict(TypedDict):
     buffer_numbers: list[int]
     buffer_values: _F64
@@ -165,6 +233,8 @@ class RunDict(TypedDict):
     storage: StorageDict
     interrupted: bool
     """Ctrl-C stopped the run; the positions before it are here."""
+    dynamic: DynamicRunDict | None
+    """None for a KIN ANA deck."""
 
 def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
 def run_deck(
@@ -182,13 +252,18 @@ class TextRunDict(TypedDict):
     """positions x columns: the deck's buffers (in the order of ``buffer_numbers``), then every quantity in the
     layout of ``mechfem.analysis`` (N co-ordinates, D inputs, R rows = prescribed then dependent: D input values;
     per co-ordinate D first-order and D x D second-order transfer functions, velocity, acceleration; per row
-    value, D first-order, D x D second-order, velocity, acceleration), then time and det(D^c)."""
+    value, D first-order, D x D second-order, velocity, acceleration), then, when ``dynamic``, the inverse dynamics
+    (the stress of every prescribed row, the drive force of every input, the reaction on every co-ordinate (NaN for
+    a moving one), kinetic energy, potential energy, drive power, the D x D mass matrix row-major), then time and
+    det(D^c)."""
     coords: _F64
     """positions x co-ordinates."""
     n_coords: int
     n_dof: int
     n_prescribed: int
     n_dependent: int
+    dynamic: bool
+    """The deck has masses and loads (DYN ANA): the table holds the inverse dynamics."""
     report: ReportDict
     model: ModelDict
     storage: StorageDict
@@ -243,6 +318,10 @@ class DescribedDeckDict(TypedDict):
     max_iter: int
     motion: DescribedMotionDict | None
     storage: StorageDict
+    mode: str
+    """``KIN ANA`` or ``DYN ANA``."""
+    dynamics: DynamicsDict | None
+    """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
 
 def run_deck_text(
     text: str,

@@ -2,7 +2,9 @@
 
 Arrays have one entry per position (row k is position k + 1). Transfer functions are derivatives with
 respect to the inputs (``order=1``: d/d q_j, ``order=2``: d2/d q_j d q_m); with one input ``wrt`` may be
-left out. Points give two columns (x, y); co-ordinates, rows and outputs one.
+left out. Points give two columns (x, y); co-ordinates, rows and outputs one. A mechanism with masses or
+loads (:mod:`mechfem.loads`) also gives its inverse dynamics: drive forces and torques, stresses of the
+prescribed rows, reactions of the frame, energies, power and the mass matrix.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ import functools
 import importlib
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -24,6 +26,14 @@ if TYPE_CHECKING:
     from mechfem.model import Coordinate, FormParameter, InputKey, Mechanism, Point, Row
 
 FloatArray = npt.NDArray[np.float64]
+
+
+class Energy(NamedTuple):
+    """Energies at every position: ``kinetic`` T, ``potential`` V (gravity and springs) and ``total`` T + V."""
+
+    kinetic: FloatArray
+    potential: FloatArray
+    total: FloatArray
 
 
 class Analysis:
@@ -78,6 +88,14 @@ class Analysis:
         self._ve = rb[:, :, 1 + nd + sq]
         self._ae = rb[:, :, 2 + nd + sq]
         self._row_index = {r: k for k, r in enumerate(numbering.rows)}
+        self.dynamic = bool(d["dynamic"])
+        """True when the mechanism has masses or loads: the run computed its inverse dynamics."""
+        # After the rows: stresses of the prescribed rows, drives, reactions, T, V, power, mass matrix.
+        dyn = full[:, nd + n * cw + nr * rw :] if self.dynamic else np.zeros((p, 0))
+        npr, nn = d["n_prescribed"], nd + n + d["n_prescribed"]
+        self._sigma, self._drive, self._reaction = dyn[:, :npr], dyn[:, npr : npr + nd], dyn[:, npr + nd : nn]
+        self._energies = dyn[:, nn : nn + 3]
+        self._mass = dyn[:, nn + 3 : nn + 3 + sq].reshape(p, nd, nd) if self.dynamic else np.zeros((p, nd, nd))
 
     # The run as a deck run reports it is built when first asked for: a design study reads most variants
     # through their outputs only, and building it (the model echo, the report) costs more than the rest.
@@ -241,6 +259,70 @@ class Analysis:
         """The value of an input at every position (under free motion: where it went)."""
         return self.inputs[:, self._dof(name)].copy()
 
+    # -- inverse dynamics
+
+    def _dynamics(self, what: str) -> None:
+        if not self.dynamic:
+            raise ValueError(
+                f"the mechanism {self.mechanism.name!r} has no masses or loads, so its run computed no {what}: give "
+                "them with Mechanism.mass, point_mass, inertia, gravity, force, load, load_table, spring or motor"
+            )
+
+    def drive_torque(self, input: InputKey = None) -> FloatArray:
+        """The force or torque the drive of an input delivers at every position (the stress of its row), positive when
+        it does positive work as the input increases; ``input`` as ``wrt`` (it may be left out with one input)."""
+        self._dynamics("drive torques")
+        return self._drive[:, self._dof(input)].copy()
+
+    def stress(self, row: str | Row | FormParameter) -> FloatArray:
+        """The generalised stress of a prescribed row (or input): the force or torque its constraint applies in the
+        direction of increasing value, e.g. the axial force of a bar of prescribed length, positive when it pushes
+        its ends apart."""
+        from mechfem.model import Row
+
+        self._dynamics("stresses")
+        obj = self._lookup(row)
+        if not isinstance(obj, Row):
+            raise TypeError(f"{row!r} is not a row")
+        dest = self.numbering.row_dest[obj]
+        if dest < 0:
+            raise KeyError(f"{obj.name!r} is an output, which carries no stress: only prescribed rows and inputs do")
+        return self._sigma[:, dest - 1].copy()
+
+    def reaction(self, point_or_coordinate: str | Point | Coordinate) -> FloatArray:
+        """The force the frame applies at a fixed point (positions x 2: x, y) or on one fixed co-ordinate."""
+        from mechfem.model import Coordinate, Point
+
+        self._dynamics("reactions")
+        obj = self._lookup(point_or_coordinate)
+        coords = [obj.x, obj.y] if isinstance(obj, Point) else [obj] if isinstance(obj, Coordinate) else None
+        if coords is None:
+            raise TypeError(f"{point_or_coordinate!r} is not a point or co-ordinate")
+        moving = [c.name for c in coords if not c.fixed]
+        if moving:
+            fixed = [c.name for c in coords if c.fixed]
+            hint = f"; ask for the fixed one, reaction({fixed[0]!r})" if fixed else ""
+            raise KeyError(f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}")
+        out = self._reaction[:, [self._column(c) for c in coords]].copy()
+        return out if isinstance(obj, Point) else out[:, 0]
+
+    def energy(self) -> Energy:
+        """Kinetic, potential (gravity and springs) and total energy at every position."""
+        self._dynamics("energies")
+        t, v = self._energies[:, 0].copy(), self._energies[:, 1].copy()
+        return Energy(t, v, t + v)
+
+    def power(self) -> FloatArray:
+        """The power the drives deliver at every position (the sum of drive torque times input speed)."""
+        self._dynamics("power")
+        return self._energies[:, 2].copy()
+
+    def mass_matrix(self) -> FloatArray:
+        """The mass matrix M(q) in the inputs at every position (positions x D x D; kinetic energy
+        ``T = 1/2 qdot^T M qdot``)."""
+        self._dynamics("mass matrix")
+        return self._mass.copy()
+
     # -- tables
 
     def table(self, coordinates: bool = True) -> dict[str, FloatArray]:
@@ -298,6 +380,10 @@ class Analysis:
         d["time"], d["det"] = self.time, self.det
         d["kx1_coords"] = list(range(1, self.coords.shape[1] + 1)) if nd else []
         d["kx1_values"] = self._kx1[:, :, 0] if nd else np.zeros((self.positions, 0))
+        d["dynamic"] = None
+        if self.dynamic:
+            t, v, power = self._energies.T
+            d["dynamic"] = {"inputs": self.inputs, "drive": self._drive, "ekin": t, "epot": v, "power": power}
         return run_result(Path(self.path), d)  # type: ignore[arg-type]
 
     def plot(self, *outputs: str, **options: Any) -> Any:

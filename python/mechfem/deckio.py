@@ -22,7 +22,7 @@ from typing import Literal
 
 import numpy as np
 
-from mechfem import _core
+from mechfem import _core, loads
 from mechfem.analysis import Analysis
 from mechfem.errors import AssemblyError, DeckError, LimitPositionError, MechfemError, RunInterrupted
 from mechfem.limits import memory_limit
@@ -39,7 +39,6 @@ from mechfem.model import (
     InputMotion,
     Mechanism,
     Motion,
-    Picture,
     Point,
     Ref,
     Row,
@@ -49,6 +48,7 @@ from mechfem.model import (
     To,
 )
 from mechfem.output import atomic_text
+from mechfem.storage import from_described
 
 DEFAULT_ACCURACY = 1e-10
 DEFAULT_MAX_ITER = 25
@@ -210,7 +210,7 @@ def write(
     nb = number_model(mech)
     out = _Lines()
     out.add(f"; written by mechfem from the Python model '{mech.name}'")
-    out.add("KIN ANA")
+    out.add("KIN ANA" if mech.loads is None else "DYN ANA")
     out.add("TOPOLOGY")
     for k, e in enumerate(nb.elements, 1):
         nums = " ".join(str(nb.coord_number[c]) for c in e.coordinates)
@@ -239,6 +239,10 @@ def write(
             out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name), r.name)
 
     tables: dict[str, str] = {}
+    if mech.loads is not None:
+        out.add("DYNAMICS")
+        for text, note, comment in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
+            out.add(text, note, comment)
     if motion is not None:
         per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
         for key, im in motion.inputs.items():
@@ -265,7 +269,7 @@ def write(
                 file = im.file or f"{_file_stem(mech.name)}_input{j}.dat"
                 if any(ch.isspace() or ch == ";" for ch in file):
                     raise ValueError(f"a MOV_FUNC file name cannot hold blanks or ';': {file!r}")
-                tables[file] = _table_text(im.rows(motion.dt), name)
+                loads.add_table(tables, file, _table_text(im.rows(motion.dt), name))
                 out.add(f"MOV_FUNC {j} {file}", note, name)
             else:
                 raise TypeError(f"not an input motion: {im!r}")
@@ -566,13 +570,6 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             None if tol == DEFAULT_ACCURACY else tol,
             None if max_iter == DEFAULT_MAX_ITER else max_iter,
         )
-    m.storage = _storage(d["storage"], nb)
-    return m
-
-
-def _storage(s: _core.StorageDict, nb: Numbering) -> Storage | None:
-    if not (s["buffers"] or s["printbuf"] is not None or s["savedata"] or s["animate"] or s["pictures"]):
-        return None
 
     def name(kind: str, v: int) -> Ref:
         if kind == "i":
@@ -581,28 +578,9 @@ def _storage(s: _core.StorageDict, nb: Numbering) -> Storage | None:
             return nb.prescribed[v - 1].name if v > 0 else nb.dependent[-v - 1].name
         return nb.inputs[v - 1].name
 
-    buffers: list[tuple[int, str, tuple[Ref, ...]]] = []
-    for b in s["buffers"]:
-        kinds = BUFFER_ARGS[b["keyword"]]
-        buffers.append((b["number"], b["keyword"], tuple(name(k, v) for k, v in zip(kinds, b["args"], strict=False))))
-    pictures = []
-    for p in s["pictures"]:
-        plots: list[tuple[str, Ref, Ref]] = []
-        for q in p["plots"]:
-            if q["keyword"] == "PLOTHODO":
-                plots.append((q["keyword"], name("i", q["a"]), name("i", q["b"])))
-            else:
-                plots.append((q["keyword"], q["a"], q["b"]))
-        pictures.append(Picture(p["title"], plots))
-    printbuf = s["printbuf"]
-    return Storage(buffers, None if printbuf is None else list(printbuf), list(s["savedata"]), s["animate"], pictures)
-
-
-def png(mech: Mechanism) -> bytes | None:
-    """The mechanism at position 1 as a PNG image (for Jupyter), or None when it cannot be drawn."""
-    from mechfem import figures
-
-    return figures.mechanism_png(mech)
+    m.storage = from_described(d["storage"], name)
+    loads.read(m, nb, d.get("dynamics"))
+    return m
 
 
 __all__ = ["DeckText", "Numbering", "read", "read_text", "run", "save", "translate", "write", "FORMS"]

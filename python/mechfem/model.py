@@ -26,20 +26,34 @@ factor-weighted sum) are written with ``+``, ``-`` and ``*`` and passed to
 from __future__ import annotations
 
 import copy
-import math
 import os
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias, Union
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
-import numpy as np
 import numpy.typing as npt
+
+from mechfem.checks import check_name, finite
+from mechfem.motion import MAX_ITER, By, Free, InputKey, InputMotion, Motion, Table, To
+from mechfem.storage import BUFFER_ARGS, Picture, Ref, Storage
 
 if TYPE_CHECKING:
     from mechfem.analysis import Analysis
-
-FloatArray = npt.NDArray[np.float64]
+    from mechfem.loads import (
+        Body,
+        Force,
+        Gravity,
+        Inertia,
+        Load,
+        Loads,
+        LoadTable,
+        Motor,
+        PointMass,
+        PointRef,
+        RowRef,
+        Spring,
+    )
 
 FORMS: dict[str, tuple[str, ...]] = {
     "BIN": ("LENL", "ANGB"),
@@ -80,23 +94,6 @@ ATTRIBUTES: dict[str, str] = {
     "COOR": "value",
 }
 """The Python attribute of each form parameter (``bar.length`` is ``LENL``)."""
-
-MAX_ITER = 1000
-"""The most Newton iterations per position a motion may allow (MAXITER of the deck reader)."""
-
-
-def _finite(value: float, what: str) -> float:
-    v = float(value)
-    if not math.isfinite(v):
-        raise ValueError(f"{what} must be a finite number, not {value!r}")
-    return v
-
-
-def _check_name(name: str) -> str:
-    if not isinstance(name, str) or not name or name != name.strip() or any(c in name for c in "\r\n\t"):
-        raise ValueError(f"a name must be a non-empty string without surrounding blanks or line breaks: {name!r}")
-    return name
-
 
 # --- co-ordinates and points -------------------------------------------------------------------------------------
 
@@ -165,7 +162,7 @@ class _Expr:
     def __mul__(self, factor: float) -> Combination:
         if isinstance(factor, _Expr) or not isinstance(factor, int | float):
             return NotImplemented
-        f = _finite(factor, "a factor")
+        f = finite(factor, "a factor")
         return Combination(tuple((f * g, p) for g, p in self.terms()))
 
     __rmul__ = __mul__
@@ -369,258 +366,6 @@ class Element:
         return f"Element({self.name!r}, {self.type}: {names})"
 
 
-# --- input motion --------------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class By:
-    """Equidistant steps that change the input by ``delta`` in total (MOV_RELE)."""
-
-    delta: float
-
-
-@dataclass(frozen=True)
-class To:
-    """Equidistant steps from the input's value at position 1 to ``end`` (MOV_ABSE)."""
-
-    end: float
-
-
-@dataclass(frozen=True)
-class Free:
-    """Free motion through limit positions with step ``ds`` in co-ordinate space (MOV_FREE; one input only)."""
-
-    ds: float
-
-
-@dataclass(frozen=True, eq=False)
-class Table:
-    """The input's value (and velocity, acceleration) at every position (MOV_FUNC).
-
-    ``time`` defaults to ``k * dt``, velocities and accelerations to 0. ``file`` is the file name a
-    deck written by :meth:`Mechanism.save_deck` uses for it.
-    """
-
-    values: FloatArray
-    velocities: FloatArray | None = None
-    accelerations: FloatArray | None = None
-    time: FloatArray | None = None
-    file: str | None = None
-
-    def rows(self, dt: float) -> FloatArray:
-        """The four columns ``t value velocity acceleration``, one row per position."""
-        v = np.asarray(self.values, dtype=np.float64)
-        n = v.shape[0]
-
-        def column(a: npt.ArrayLike | None, default: FloatArray) -> FloatArray:
-            if a is None:
-                return default
-            out = np.asarray(a, dtype=np.float64)
-            if out.shape != (n,):
-                raise ValueError(f"a motion table needs {n} values per column, one per position, got {out.shape}")
-            return out
-
-        zero = np.zeros(n)
-        t = column(self.time, dt * np.arange(n, dtype=np.float64))
-        return np.column_stack([t, v, column(self.velocities, zero), column(self.accelerations, zero)])
-
-
-InputMotion: TypeAlias = By | To | Free | Table
-InputKey: TypeAlias = Union[str, int, "Row", FormParameter, None]
-"""An input named by its name, its DOF number (1-based), its row or form parameter; None: the only input."""
-
-
-@dataclass(frozen=True)
-class Motion:
-    """The input motion: ``steps`` steps (``steps + 1`` positions) of ``dt`` each, and one motion per input.
-
-    Build it with :meth:`by`, :meth:`to`, :meth:`free` or :meth:`table`, or give ``inputs`` (input
-    name, DOF number or None for the only input -> :class:`By`, :class:`To`, :class:`Free` or
-    :class:`Table`). ``accuracy`` and ``max_iter`` set the Newton tolerance and iteration limit
-    (deck keywords ACCURACY, MAXITER; default 1e-10 and 25).
-    """
-
-    steps: int
-    inputs: Mapping[InputKey, InputMotion]
-    dt: float = 1.0
-    accuracy: float | None = None
-    max_iter: int | None = None
-
-    def __post_init__(self) -> None:
-        if int(self.steps) != self.steps or self.steps < 1:
-            raise ValueError(f"a motion needs at least one step, got {self.steps!r}")
-        if not self.dt > 0:
-            raise ValueError(f"the time per step must be positive, got {self.dt!r}")
-        if self.max_iter is not None and not 1 <= self.max_iter <= MAX_ITER:
-            raise ValueError(f"max_iter must be from 1 to {MAX_ITER} (as MAXITER in a deck), got {self.max_iter!r}")
-        for key, im in self.inputs.items():
-            if isinstance(im, Table) and len(np.asarray(im.values)) != self.steps + 1:
-                raise ValueError(
-                    f"the table of input {key!r} has {len(np.asarray(im.values))} values; {self.steps} steps "
-                    f"make {self.steps + 1} positions"
-                )
-
-    @staticmethod
-    def _per_input(
-        value: float | Mapping[InputKey, float], make: Callable[[float], InputMotion]
-    ) -> dict[InputKey, InputMotion]:
-        if isinstance(value, Mapping):
-            return {k: make(_finite(v, "a motion value")) for k, v in value.items()}
-        return {None: make(_finite(value, "a motion value"))}
-
-    @classmethod
-    def by(
-        cls,
-        steps: int,
-        delta: float | Mapping[InputKey, float],
-        dt: float = 1.0,
-        *,
-        accuracy: float | None = None,
-        max_iter: int | None = None,
-    ) -> Motion:
-        """Equidistant steps changing the input by ``delta`` (a mapping for several inputs)."""
-        return cls(steps, cls._per_input(delta, By), dt, accuracy, max_iter)
-
-    @classmethod
-    def to(
-        cls,
-        steps: int,
-        end: float | Mapping[InputKey, float],
-        dt: float = 1.0,
-        *,
-        accuracy: float | None = None,
-        max_iter: int | None = None,
-    ) -> Motion:
-        """Equidistant steps from position 1 to ``end`` (a mapping for several inputs)."""
-        return cls(steps, cls._per_input(end, To), dt, accuracy, max_iter)
-
-    @classmethod
-    def free(
-        cls,
-        steps: int,
-        ds: float,
-        dt: float = 1.0,
-        *,
-        accuracy: float | None = None,
-        max_iter: int | None = None,
-    ) -> Motion:
-        """Free motion of a one-input mechanism: ``steps`` steps of length ``ds`` in co-ordinate space."""
-        return cls(steps, {None: Free(_finite(ds, "ds"))}, dt, accuracy, max_iter)
-
-    @classmethod
-    def table(
-        cls,
-        values: npt.ArrayLike | Mapping[InputKey, npt.ArrayLike],
-        velocities: npt.ArrayLike | Mapping[InputKey, npt.ArrayLike] | None = None,
-        accelerations: npt.ArrayLike | Mapping[InputKey, npt.ArrayLike] | None = None,
-        time: npt.ArrayLike | None = None,
-        dt: float = 1.0,
-        *,
-        accuracy: float | None = None,
-        max_iter: int | None = None,
-    ) -> Motion:
-        """The inputs' values at every position (one array per input; a mapping for several inputs),
-        optionally with velocities and accelerations (for velocity and acceleration results) and times."""
-
-        def per(a: object) -> dict[InputKey, FloatArray | None]:
-            if a is None:
-                return {}
-            if isinstance(a, Mapping):
-                return {k: np.asarray(v, dtype=np.float64) for k, v in a.items()}
-            return {None: np.asarray(a, dtype=np.float64)}
-
-        vals, vels, accs = per(values), per(velocities), per(accelerations)
-        t = None if time is None else np.asarray(time, dtype=np.float64)
-        if not vals:
-            raise ValueError("a motion table needs values")
-        lengths = {len(v) for v in vals.values() if v is not None}
-        if len(lengths) != 1:
-            raise ValueError(f"every input needs the same number of values, got {sorted(lengths)}")
-        n = lengths.pop()
-        inputs: dict[InputKey, InputMotion] = {}
-        for key, v in vals.items():
-            assert v is not None
-            inputs[key] = Table(v, vels.get(key), accs.get(key), t)
-        return cls(n - 1, inputs, dt, accuracy, max_iter)
-
-
-# --- storage -------------------------------------------------------------------------------------------------------
-
-
-Ref: TypeAlias = int | str | Coordinate | Point | FormParameter | Row
-"""Something a buffer or plot refers to: a deck number, a name, or the object itself."""
-
-BUFFER_ARGS: dict[str, str] = {
-    "BUFINP": "j",
-    "BUFTIME": "",
-    "BUFX0": "i",
-    "BUFKX1": "ij",
-    "BUFKX2": "ijm",
-    "BUFVX": "i",
-    "BUFAX": "i",
-    "BUFE0": "r",
-    "BUFKE1": "rj",
-    "BUFKE2": "rjm",
-    "BUFVE": "r",
-    "BUFAE": "r",
-    "BUFDET": "",
-}
-"""The arguments of each BUF keyword before the buffer number.
-
-``i`` a co-ordinate, ``r`` a row, ``j`` and ``m`` an input."""
-
-
-@dataclass
-class Picture:
-    """One picture (BEGINPIC ... ENDPIC): plots ``(keyword, a, b)``; PLOTHODO takes a point or two co-ordinates."""
-
-    title: str = ""
-    plots: list[tuple[str, Ref, Ref]] = field(default_factory=list)
-
-
-@dataclass
-class Storage:
-    """The STORAGE block: buffers (one value per position), and what to do with them.
-
-    Buffers are ``(number, keyword, args)``; an argument is a name, an object of the model or a deck
-    number (see :data:`BUFFER_ARGS`). ``printbuf`` None writes no table, an empty list all buffers.
-    """
-
-    buffers: list[tuple[int, str, tuple[Ref, ...]]] = field(default_factory=list)
-    printbuf: list[int] | None = None
-    savedata: list[int] = field(default_factory=list)
-    animate: str | None = None
-    pictures: list[Picture] = field(default_factory=list)
-
-    def buffer(self, number: int, keyword: str, *args: Ref) -> Storage:
-        """Adds buffer ``number`` holding ``keyword args`` (e.g. ``101, "BUFKE1", "delta", "alpha"``)."""
-        kw = keyword.upper()
-        if kw not in BUFFER_ARGS:
-            raise ValueError(f"unknown buffer keyword {keyword!r}; one of {', '.join(BUFFER_ARGS)}")
-        wanted = BUFFER_ARGS[kw]
-        if not (len(wanted) == len(args) or (wanted.endswith("m") and len(args) == len(wanted) - 1)):
-            raise ValueError(f"{kw} takes {len(wanted)} argument(s) ({' '.join(wanted)}), got {len(args)}")
-        if number in (b[0] for b in self.buffers):
-            raise ValueError(f"buffer {number} is defined twice")
-        self.buffers.append((int(number), kw, tuple(args)))
-        return self
-
-    def picture(self, title: str = "", *plots: tuple[str, Ref] | tuple[str, Ref, Ref]) -> Storage:
-        """Adds a picture; a plot is ``("PLOTFUNC", bx, by)``, ``("PLOTCURV", bx, by)`` or ``("PLOTHODO", point)``."""
-        out: list[tuple[str, Ref, Ref]] = []
-        for p in plots:
-            kw = p[0].upper()
-            if kw == "PLOTHODO" and len(p) == 2:
-                pt = p[1]
-                out.append((kw, pt, pt))
-            elif len(p) == 3 and kw in ("PLOTFUNC", "PLOTCURV", "PLOTHODO"):
-                out.append((kw, p[1], p[2]))
-            else:
-                raise ValueError(f"not a plot: {p!r}")
-        self.pictures.append(Picture(title, out))
-        return self
-
-
 # --- the mechanism -------------------------------------------------------------------------------------------------
 
 
@@ -630,13 +375,13 @@ def _role_row(fp: FormParameter, role: Role) -> Row | None:
     if isinstance(role, Keep):
         return Row(fp.label, "prescribed", fp.terms(), None, True)
     if isinstance(role, Driven):
-        start = None if role.start is None else _finite(role.start, f"the start value of {fp.label}")
+        start = None if role.start is None else finite(role.start, f"the start value of {fp.label}")
         return Row(role.name or fp.label, "input", fp.terms(), start, True)
     if isinstance(role, Output):
         return Row(role.name, "output", fp.terms(), None, True)
     if isinstance(role, bool) or not isinstance(role, int | float):
         raise TypeError(f"{fp.label}: expected a number, Keep(), Driven(), Output(name) or None, got {role!r}")
-    return Row(fp.label, "prescribed", fp.terms(), _finite(role, fp.label), True)
+    return Row(fp.label, "prescribed", fp.terms(), finite(role, fp.label), True)
 
 
 class Mechanism:
@@ -644,23 +389,25 @@ class Mechanism:
     inputs and outputs.
 
     ``motion`` and ``storage`` are the defaults :meth:`run` and :meth:`to_deck` use (set by
-    :meth:`from_deck` to the deck's own).
+    :meth:`from_deck` to the deck's own). ``loads`` holds the masses and loads (None without any: a
+    kinematic model, mode ``KIN ANA``; with them its deck is a ``DYN ANA`` one).
     """
 
     def __init__(self, name: str = "mechanism") -> None:
-        self.name = _check_name(name)
+        self.name = check_name(name)
         self.coordinates: list[Coordinate] = []
         self.points: list[Point] = []
         self.elements: list[Element] = []
         self.rows: list[Row] = []
         self.motion: Motion | None = None
         self.storage: Storage | None = None
+        self.loads: Loads | None = None
         self._names: dict[str, object] = {}
 
     # -- names
 
     def _check_free(self, name: str) -> None:
-        _check_name(name)
+        check_name(name)
         if name in self._names:
             raise ValueError(f"the name {name!r} is already used by {self._names[name]!r}")
 
@@ -710,7 +457,7 @@ class Mechanism:
     def _coordinate(
         self, name: str, value: float, fixed: bool, kind: Literal["x", "y", "angle", "scalar"]
     ) -> Coordinate:
-        c = Coordinate(name, _finite(value, f"the value of {name!r}"), bool(fixed), kind)
+        c = Coordinate(name, finite(value, f"the value of {name!r}"), bool(fixed), kind)
         self._claim(name, c)
         self.coordinates.append(c)
         return c
@@ -960,7 +707,7 @@ class Mechanism:
     def _row(
         self, name: str, kind: Literal["prescribed", "input", "output"], expr: Expression, value: float | None
     ) -> Row:
-        v = None if value is None else _finite(value, f"the value of {name!r}")
+        v = None if value is None else finite(value, f"the value of {name!r}")
         r = Row(name, kind, self._terms(expr), v)
         self._claim(name, r)
         self.rows.append(r)
@@ -983,6 +730,68 @@ class Mechanism:
         """Computes a form parameter or a combination at every position, as the output ``name``."""
         return self._row(name, "output", expr, None)
 
+    # -- masses and loads (mechfem.loads): a mechanism with any of them runs inverse dynamics (DYN ANA)
+
+    def mass(self, element: Element | str, m: float, u: float = 0.0, v: float = 0.0, J: float = 0.0) -> Body:
+        """Makes ``element`` (BIN, HLF, TR1, TR2) a rigid body of mass ``m``, centre of mass at ``(u, v)`` in its frame
+        (origin at its first point; u along P->Q of BIN and TR2, along the angle co-ordinate of HLF and TR1) and
+        moment of inertia ``J`` about that centre."""
+        from mechfem import loads
+
+        return loads.add_mass(self, element, m, u, v, J)
+
+    def point_mass(self, point: PointRef, m: float) -> PointMass:
+        """A point mass ``m`` at ``point`` (or at two co-ordinates ``(x, y)``)."""
+        from mechfem import loads
+
+        return loads.add_point_mass(self, point, m)
+
+    def inertia(self, angle: Coordinate | str, J: float) -> Inertia:
+        """A rotational inertia ``J`` on an angle co-ordinate (a wheel of a gear pair or belt without an element)."""
+        from mechfem import loads
+
+        return loads.add_inertia(self, angle, J)
+
+    def gravity(self, gx: float, gy: float) -> Gravity:
+        """The acceleration of gravity, e.g. ``m.gravity(0, -9.81)`` (given again, it replaces the one before)."""
+        from mechfem import loads
+
+        return loads.add_gravity(self, gx, gy)
+
+    def force(self, point: PointRef, fx: float, fy: float) -> Force:
+        """A constant force ``(fx, fy)`` at ``point`` (or at two co-ordinates ``(x, y)``)."""
+        from mechfem import loads
+
+        return loads.add_force(self, point, fx, fy)
+
+    def load(self, row: RowRef, value: float) -> Load:
+        """A constant generalised force on a prescribed row, input or output (by name, row or form parameter): a
+        torque on an angle, a force along a length; it does the work ``value * d row``."""
+        from mechfem import loads
+
+        return loads.add_load(self, row, value)
+
+    def load_table(self, row: RowRef, t: npt.ArrayLike, values: npt.ArrayLike, *, file: str | None = None) -> LoadTable:
+        """A generalised force on ``row`` given at the times ``t``, linear between them, constant outside (a LOADFUNC
+        file written beside the deck, named ``file`` or ``<mechanism>_load<k>.dat``)."""
+        from mechfem import loads
+
+        return loads.add_load_table(self, row, t, values, file)
+
+    def spring(self, row: RowRef, k: float, free_value: float, damping: float = 0.0) -> Spring:
+        """A spring of stiffness ``k`` and free value ``free_value`` on ``row`` with a viscous damper ``damping``:
+        the generalised force ``-k (row - free_value) - damping * d(row)/dt``."""
+        from mechfem import loads
+
+        return loads.add_spring(self, row, k, free_value, damping)
+
+    def motor(self, row: RowRef, stall_torque: float, no_load_speed: float) -> Motor:
+        """A motor on ``row`` whose torque falls linearly with its speed:
+        ``stall_torque (1 - d(row)/dt / no_load_speed)``."""
+        from mechfem import loads
+
+        return loads.add_motor(self, row, stall_torque, no_load_speed)
+
     # -- values
 
     def set(self, name: str, value: float | tuple[float, float]) -> None:
@@ -1001,14 +810,14 @@ class Mechanism:
             if isinstance(obj, Point):
                 if not isinstance(value, tuple | list) or len(value) != 2:
                     raise TypeError(f"point {name!r} takes (x, y), got {value!r}")
-                out[obj.x] = _finite(value[0], f"{name}.x")
-                out[obj.y] = _finite(value[1], f"{name}.y")
+                out[obj.x] = finite(value[0], f"{name}.x")
+                out[obj.y] = finite(value[1], f"{name}.y")
             elif isinstance(obj, Coordinate):
-                out[obj] = _finite(value, name)  # type: ignore[arg-type]
+                out[obj] = finite(value, name)  # type: ignore[arg-type]
             elif isinstance(obj, Row):
                 if obj.kind == "output":
                     raise ValueError(f"{name!r} is an output: it has no prescribed value")
-                out[obj] = _finite(value, name)  # type: ignore[arg-type]
+                out[obj] = finite(value, name)  # type: ignore[arg-type]
             else:
                 raise TypeError(f"{name!r} is {obj!r}: only rows, co-ordinates and points have values")
         return out
@@ -1104,6 +913,40 @@ class Mechanism:
         return figures.mechanism_figure(self, names)
 
     def _repr_png_(self) -> bytes | None:
-        from mechfem import deckio
+        """The mechanism at position 1 as a PNG image (for Jupyter), or None when it cannot be drawn."""
+        from mechfem import figures
 
-        return deckio.png(self)
+        return figures.mechanism_png(self)
+
+
+# The input motion and the storage live in their own modules; they are named here too.
+__all__ = [
+    "ATTRIBUTES",
+    "BUFFER_ARGS",
+    "FORMS",
+    "MAX_ITER",
+    "SLOTS",
+    "By",
+    "Combination",
+    "Coordinate",
+    "Driven",
+    "Element",
+    "Expression",
+    "FormParameter",
+    "Free",
+    "InputKey",
+    "InputMotion",
+    "Keep",
+    "Mechanism",
+    "Motion",
+    "Output",
+    "Picture",
+    "Point",
+    "Ref",
+    "Role",
+    "Row",
+    "Slot",
+    "Storage",
+    "Table",
+    "To",
+]

@@ -16,6 +16,7 @@ from typing import TextIO
 
 import numpy as np
 
+from mechfem.inverse_dynamics import summary_lines
 from mechfem.result import Model, RunResult, Storage
 
 #: Buffers per table in the print file, so that a table fits an ordinary terminal or page.
@@ -100,6 +101,8 @@ def print_file_lines(result: RunResult) -> list[str]:
     out += model_lines(result.model)
     out += adjustment_lines(result)
     out += motion_lines(result)
+    if result.dynamic is not None:
+        out += summary_lines(result.dynamic, result.time)
     out += table_lines(result)
     out += limit_lines(result)
     if result.report.warnings:
@@ -138,6 +141,8 @@ def model_lines(model: Model) -> list[str]:
     for c in model.coordinates:
         kind = "XMOV" if c.moving else "XFIX"
         out.append(f"    {c.number:4d}  {kind}  {c.given:17.10g}  {c.adjusted:17.10g}")
+    if model.dynamics is not None:
+        out += model.dynamics.lines()
     out.append("")
     return out
 

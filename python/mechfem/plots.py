@@ -104,6 +104,20 @@ def describe_buffer(result: RunResult, b: Buffer) -> str:
             return f"acceleration of {eps(a[0])}"
         case "BUFDET":
             return "det(D^c)"
+        case "BUFSIG":
+            return f"stress of row {a[0]}" + formula(a[0])
+        case "BUFDRV":
+            return f"drive of input {a[0]}"
+        case "BUFREA":
+            return f"reaction on x{a[0]}"
+        case "BUFEKIN":
+            return "kinetic energy"
+        case "BUFEPOT":
+            return "potential energy"
+        case "BUFPOW":
+            return "drive power"
+        case "BUFMRED":
+            return f"mass matrix M({a[0]}, {a[1]})"
     return b.label()
 
 

@@ -145,7 +145,38 @@ def _pictures(result: RunResult, frames: np.ndarray) -> list[dict[str, Any]]:
                 }
             )
         out.append({"title": picture_title(result, index).replace("\n", " "), "panels": panels})
-    return out
+    return out + _dynamics_pictures(result, frames)
+
+
+def _dynamics_pictures(result: RunResult, frames: np.ndarray) -> list[dict[str, Any]]:
+    """A DYN deck's report always shows the drive forces and the energies, against input 1 for one input and
+    against time for several."""
+    dyn = result.dynamic
+    if dyn is None or dyn.drive.shape[1] == 0:
+        return []
+    nd = dyn.drive.shape[1]
+    x, xlabel = (dyn.inputs[:, 0], "input 1") if nd == 1 else (result.time, "time")
+
+    def panel(ylabel: str, series: list[tuple[str, Any]]) -> dict[str, Any]:
+        return {
+            "type": "function",
+            "xlabel": xlabel,
+            "ylabel": ylabel,
+            "series": [{"label": label, "x": _nums(x[frames]), "y": _nums(y[frames])} for label, y in series],
+            "hodographs": [],
+        }
+
+    drives = [(f"drive of input {j + 1}", dyn.drive[:, j]) for j in range(nd)]
+    energies = [
+        ("kinetic energy T", dyn.kinetic),
+        ("potential energy V", dyn.potential),
+        ("T + V", dyn.kinetic + dyn.potential),
+    ]
+    return [
+        {"title": f"drive force or torque against {xlabel}", "panels": [panel("drive force or torque", drives)]},
+        {"title": f"energies against {xlabel}", "panels": [panel("energy", energies)]},
+        {"title": f"drive power against {xlabel}", "panels": [panel("drive power", [("power", dyn.power)])]},
+    ]
 
 
 def report_data(result: RunResult) -> dict[str, Any]:

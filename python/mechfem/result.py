@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
+from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -338,6 +339,10 @@ class Model:
     dofs: list[int]
     """For DOF j (1-based, list index j - 1): the prescribed row that is its input."""
     coordinates: list[Coordinate]
+    mode: str = "KIN ANA"
+    """The deck's mode line."""
+    dynamics: DynamicsModel | None = None
+    """The masses and loads of a DYN deck."""
 
     @classmethod
     def from_core(cls, d: _core.ModelDict) -> Model:
@@ -354,6 +359,8 @@ class Model:
             dependent=[row(r) for r in d["dependent"]],
             dofs=list(d["dofs"]),
             coordinates=[Coordinate(c["number"], c["moving"], c["given"], c["adjusted"]) for c in d["coordinates"]],
+            mode=d.get("mode", "KIN ANA"),
+            dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
         )
 
     @property
@@ -452,6 +459,8 @@ class RunResult:
     kx1: dict[int, FloatArray] = field(default_factory=dict)
     """d x_i / d input 1 at every position, for the co-ordinates i named by PLOTHODO lines (for the hodographs;
     NaN where D^c is singular)."""
+    dynamic: DynamicSeries | None = None
+    """Drive forces, energies and power at every position of a DYN deck's run."""
 
     @property
     def positions(self) -> int:
@@ -505,6 +514,7 @@ def run_result(deck: Path, d: _core.RunDict) -> RunResult:
         model=model,
         storage=Storage.from_core(d["storage"]),
         kx1={n: np.ascontiguousarray(kx1[:, k]) for k, n in enumerate(d["kx1_coords"])},
+        dynamic=None if d.get("dynamic") is None else DynamicSeries.from_core(d["dynamic"]),  # type: ignore[arg-type]
     )
 
 

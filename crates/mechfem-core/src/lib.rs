@@ -14,6 +14,8 @@
 //!   second order (theory eqs. 5.16-5.32) at a position.
 //! * [`motion`]: the input motion program and the loop over positions, with
 //!   prediction, correction and automatic step subdivision.
+//! * [`dynamics`]: masses and loads, and inverse dynamics at a position
+//!   (stresses of the prescribed rows, drive forces, reactions, energies).
 //! * [`record`]: the quantities that can be recorded per position.
 //! * [`batch`]: many independent runs (the variants of a design study) on
 //!   every core.
@@ -22,6 +24,7 @@
 //! implements (numerical kinematics with finite elements).
 
 pub mod batch;
+pub mod dynamics;
 pub mod elements;
 pub mod error;
 pub mod model;
@@ -34,6 +37,6 @@ pub use error::{ElementError, ModelError, SolveError};
 pub use model::{Mechanism, MechanismBuilder, State, Term};
 pub use motion::{run, LimitKind, LimitPosition, Observer, PositionView, RunReport, Stop};
 pub use motion::{InputMotion, Motion};
-pub use record::{FormRef, Quantity, Recorder};
+pub use record::{record, FormRef, Quantity, Recorder};
 pub use solver::Params;
 pub use solver::{adjust, diagnose, AdjustInfo, Kinematics, Mobility, NewtonInfo, TransferOrder};

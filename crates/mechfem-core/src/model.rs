@@ -35,6 +35,16 @@ impl Term {
     }
 }
 
+/// A form parameter named by its destination: a prescribed row or a
+/// dependent form parameter.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FormRef {
+    /// Prescribed row r (0-based; deck destination r+1).
+    Prescribed(usize),
+    /// Dependent form parameter d (0-based; deck destination -(d+1)).
+    Dependent(usize),
+}
+
 /// An element placed in a model: its type and its co-ordinates.
 #[derive(Debug, Clone, Copy)]
 pub struct Placed {

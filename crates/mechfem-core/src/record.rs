@@ -1,14 +1,7 @@
 //! What can be recorded at every position: the quantities of the deck's
 //! buffer table, named with 0-based indices.
 
-/// A form parameter named by its destination.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum FormRef {
-    /// Prescribed row r (0-based; deck destination r+1).
-    Prescribed(usize),
-    /// Dependent form parameter d (0-based; deck destination -(d+1)).
-    Dependent(usize),
-}
+pub use crate::model::FormRef;
 
 /// One recordable quantity (one buffer of the deck).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -51,26 +44,47 @@ pub enum Quantity {
     Ae(FormRef),
     /// det(D^c) (BUFDET).
     Det,
+    /// Generalised stress sigma_r of prescribed row r (BUFSIG).
+    Sigma(usize),
+    /// Drive force or torque of DOF j, the stress of its input row (BUFDRV).
+    Drive(usize),
+    /// Reaction on fixed co-ordinate i (BUFREA).
+    Reaction(usize),
+    /// Kinetic energy T (BUFEKIN).
+    Ekin,
+    /// Potential energy V of gravity and springs (BUFEPOT).
+    Epot,
+    /// Power delivered by the drives (BUFPOW).
+    Power,
+    /// Entry (j, m) of the mass matrix in the degrees of freedom (BUFMRED).
+    Mred(usize, usize),
 }
 
+use crate::dynamics::InverseDynamics;
 use crate::motion::{Observer, PositionView};
 use crate::solver::TransferOrder;
 
 impl Quantity {
-    /// Whether the quantity is made from transfer functions (and so does
-    /// not exist at a limit position).
-    pub fn needs_transfer(&self) -> bool {
+    /// Whether the quantity is one of the dynamics (it needs a mass and load
+    /// model: [`Recorder::with_dynamics`]).
+    pub fn is_dynamic(&self) -> bool {
         matches!(
             self,
-            Quantity::Kx1 { .. }
-                | Quantity::Kx2 { .. }
-                | Quantity::Vx(_)
-                | Quantity::Ax(_)
-                | Quantity::Ke1(FormRef::Dependent(_), _)
-                | Quantity::Ke2(FormRef::Dependent(_), _, _)
-                | Quantity::Ve(FormRef::Dependent(_))
-                | Quantity::Ae(FormRef::Dependent(_))
+            Quantity::Sigma(_)
+                | Quantity::Drive(_)
+                | Quantity::Reaction(_)
+                | Quantity::Ekin
+                | Quantity::Epot
+                | Quantity::Power
+                | Quantity::Mred(..)
         )
+    }
+
+    /// Whether the quantity is made from transfer functions (and so does
+    /// not exist at a limit position): everything that needs them but
+    /// det(D^c) itself.
+    pub fn needs_transfer(&self) -> bool {
+        self.transfer_order().is_some() && *self != Quantity::Det
     }
 
     /// The transfer functions the quantity is made from: `None` for
@@ -87,7 +101,8 @@ impl Quantity {
             | Quantity::Ke1(FormRef::Prescribed(_), _)
             | Quantity::Ke2(FormRef::Prescribed(_), _, _)
             | Quantity::Ve(FormRef::Prescribed(_))
-            | Quantity::Ae(FormRef::Prescribed(_)) => None,
+            | Quantity::Ae(FormRef::Prescribed(_))
+            | Quantity::Epot => None,
             Quantity::Kx1 { .. }
             | Quantity::Vx(_)
             | Quantity::Ke1(FormRef::Dependent(_), _)
@@ -96,13 +111,20 @@ impl Quantity {
             Quantity::Kx2 { .. }
             | Quantity::Ax(_)
             | Quantity::Ke2(FormRef::Dependent(_), _, _)
-            | Quantity::Ae(FormRef::Dependent(_)) => Some(TransferOrder::Second),
+            | Quantity::Ae(FormRef::Dependent(_))
+            | Quantity::Sigma(_)
+            | Quantity::Drive(_)
+            | Quantity::Reaction(_)
+            | Quantity::Ekin
+            | Quantity::Power
+            | Quantity::Mred(..) => Some(TransferOrder::Second),
         }
     }
 
     /// The quantity's value at a position: NaN for a quantity that
     /// [needs transfer functions](Self::needs_transfer) at a position where
-    /// D^c is singular (a limit position, reported as such by the run).
+    /// D^c is singular (a limit position, reported as such by the run), and
+    /// for a [dynamic](Self::is_dynamic) one (see [`Self::dynamic_value`]).
     pub fn value(&self, v: &PositionView<'_>) -> f64 {
         let (mech, kin) = (v.mech, v.kin);
         let (qd, qdd) = (v.input_vel, v.input_acc);
@@ -133,8 +155,46 @@ impl Quantity {
             Quantity::Ae(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, |j| qdd[j]),
             Quantity::Ae(FormRef::Dependent(d)) => kin.dep_acceleration(d, qd, qdd),
             Quantity::Det => kin.det(),
+            _ => f64::NAN,
         }
     }
+
+    /// The value of a [dynamic](Self::is_dynamic) quantity from inverse
+    /// dynamics evaluated at the position (NaN for any other quantity).
+    pub fn dynamic_value(&self, mech: &crate::Mechanism, d: &InverseDynamics) -> f64 {
+        match *self {
+            Quantity::Sigma(r) => d.sigma(r),
+            Quantity::Drive(j) => d.drive(mech, j),
+            Quantity::Reaction(i) => d.reaction(mech, i),
+            Quantity::Ekin => d.kinetic_energy(),
+            Quantity::Epot => d.potential_energy(),
+            Quantity::Power => d.drive_power(),
+            Quantity::Mred(j, m) => d.mass_matrix_entry(mech, j, m),
+            _ => f64::NAN,
+        }
+    }
+}
+
+/// Appends the values of `quantities` at the position `view` to `out`; the
+/// dynamic ones from `dynamics`, evaluated here when any is asked for (NaN
+/// without it).
+pub fn record(
+    quantities: &[Quantity],
+    view: &PositionView<'_>,
+    dynamics: Option<&mut InverseDynamics>,
+    out: &mut Vec<f64>,
+) {
+    let dynamics = match dynamics {
+        Some(d) if quantities.iter().any(Quantity::is_dynamic) => {
+            d.evaluate(view);
+            Some(&*d)
+        }
+        _ => None,
+    };
+    out.extend(quantities.iter().map(|q| match dynamics {
+        Some(d) if q.is_dynamic() => q.dynamic_value(view.mech, d),
+        _ => q.value(view),
+    }));
 }
 
 /// An [`Observer`] that keeps chosen quantities, and optionally every
@@ -148,12 +208,21 @@ pub struct Recorder {
     /// Row-major: one row of N co-ordinates per position (when kept).
     coords: Vec<f64>,
     positions: usize,
+    /// Inverse dynamics, evaluated at every position when a dynamic
+    /// quantity is recorded.
+    dynamics: Option<Box<InverseDynamics>>,
 }
 
 impl Recorder {
     /// Records `quantities`, and all co-ordinates when `keep_coords`.
     pub fn new(quantities: Vec<Quantity>, keep_coords: bool) -> Recorder {
         Recorder { quantities, keep_coords, ..Recorder::default() }
+    }
+    /// Records the dynamic quantities from the mass and load model of
+    /// `dynamics` (without it they read NaN).
+    pub fn with_dynamics(mut self, dynamics: InverseDynamics) -> Recorder {
+        self.dynamics = Some(Box::new(dynamics));
+        self
     }
     /// Makes room for `positions` more positions of a model of `n_coords`
     /// co-ordinates, so that recording them allocates nothing more (and
@@ -199,9 +268,7 @@ impl Observer for Recorder {
     }
 
     fn position(&mut self, view: &PositionView<'_>) {
-        for q in &self.quantities {
-            self.data.push(q.value(view));
-        }
+        record(&self.quantities, view, self.dynamics.as_deref_mut(), &mut self.data);
         if self.keep_coords {
             self.coords.extend_from_slice(&view.state.x);
         }

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use mechfem_core::ElementType;
 
-use crate::diagnostic::{Diagnostic, DiagnosticKind, Span, Spanned};
+use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 
 /// A parsed deck.
@@ -18,13 +18,15 @@ use crate::keywords::Keyword;
 pub struct Deck {
     /// The file the deck was read from, as the caller named it.
     pub path: PathBuf,
-    /// The mode of the first line (always [`Mode::KinAna`] in a parsed deck:
-    /// other modes are refused).
+    /// The mode of the first line: [`Mode::KinAna`] or [`Mode::DynAna`] in a
+    /// parsed deck (the other modes are refused).
     pub mode: Spanned<Mode>,
     /// The TOPOLOGY block.
     pub topology: Topology,
     /// The GEOMETRY block.
     pub geometry: Geometry,
+    /// The DYNAMICS block: given exactly when the mode is [`Mode::DynAna`].
+    pub dynamics: Option<Dynamics>,
     /// The MOVEMENT block, if given.
     pub movement: Option<Movement>,
     /// The STORAGE block, if given.
@@ -65,6 +67,16 @@ pub(crate) fn diagnostic_at(
     })
 }
 
+/// The diagnostic for a `DYN ANA` deck without a DYNAMICS block, at the
+/// mode line's `span`.
+pub(crate) fn missing_dynamics(path: &Path, source: &[String], span: Span) -> Box<Diagnostic> {
+    diagnostic_at(path, source, DiagnosticKind::MissingBlock, span, "this DYN ANA deck has no DYNAMICS block")
+        .with_hint(
+            "add a DYNAMICS block after GEOMETRY with the masses and loads (MASS, PMASS, INERTIA, GRAVITY, FORCE, \
+             LOAD, LOADFUNC, SPRING, MOTOR), or change the mode line to `KIN ANA` for kinematics only",
+        )
+}
+
 /// The modes of the classic program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Mode {
@@ -72,7 +84,7 @@ pub enum Mode {
     KinAna,
     /// `KIN OPT`: kinematic optimisation (not supported).
     KinOpt,
-    /// `DYN ANA`: dynamic analysis (not supported).
+    /// `DYN ANA`: dynamic analysis (inverse dynamics of a prescribed motion).
     DynAna,
     /// `DYN SIM`: dynamic simulation (not supported).
     DynSim,
@@ -183,6 +195,132 @@ pub struct ParaDef {
     pub row: Spanned<i64>,
     /// Prescribed value.
     pub value: Spanned<f64>,
+}
+
+/// The DYNAMICS block (mode `DYN ANA`), compiled to a
+/// [`mechfem_core::dynamics::Dynamics`].
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Dynamics {
+    /// Line of the header.
+    pub line: usize,
+    /// `MASS` lines, in order.
+    pub masses: Vec<MassDef>,
+    /// `PMASS` lines, in order.
+    pub point_masses: Vec<PointMassDef>,
+    /// `INERTIA` lines, in order.
+    pub inertias: Vec<InertiaDef>,
+    /// `GRAVITY gx gy`, if given (at most once).
+    pub gravity: Option<GravityDef>,
+    /// `FORCE` lines, in order.
+    pub forces: Vec<ForceDef>,
+    /// `LOAD`, `LOADFUNC`, `SPRING` and `MOTOR` lines, in order.
+    pub loads: Vec<LoadDef>,
+}
+
+/// `MASS k m u v [J]`: element k is a rigid body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MassDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Element number k.
+    pub element: Spanned<i64>,
+    /// Mass m (not negative).
+    pub mass: Spanned<f64>,
+    /// Centre of mass along the element's u-axis.
+    pub u: Spanned<f64>,
+    /// Centre of mass along the element's v-axis.
+    pub v: Spanned<f64>,
+    /// Moment of inertia about the centre of mass, if given (0 otherwise; not negative).
+    pub inertia: Option<Spanned<f64>>,
+}
+
+/// `PMASS i j m`: a point mass.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointMassDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Co-ordinate number of the point's x.
+    pub x: Spanned<i64>,
+    /// Co-ordinate number of the point's y.
+    pub y: Spanned<i64>,
+    /// Mass m (not negative).
+    pub mass: Spanned<f64>,
+}
+
+/// `INERTIA i J`: a rotational inertia on an angle co-ordinate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InertiaDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Co-ordinate number i.
+    pub coord: Spanned<i64>,
+    /// Moment of inertia J (not negative).
+    pub inertia: Spanned<f64>,
+}
+
+/// `GRAVITY gx gy`
+#[derive(Debug, Clone, PartialEq)]
+pub struct GravityDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Acceleration of gravity along x.
+    pub gx: Spanned<f64>,
+    /// Acceleration of gravity along y.
+    pub gy: Spanned<f64>,
+}
+
+/// `FORCE i j fx fy`: a constant force at a point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForceDef {
+    /// Line of the definition.
+    pub line: usize,
+    /// Co-ordinate number of the point's x.
+    pub x: Spanned<i64>,
+    /// Co-ordinate number of the point's y.
+    pub y: Spanned<i64>,
+    /// Force along x.
+    pub fx: Spanned<f64>,
+    /// Force along y.
+    pub fy: Spanned<f64>,
+}
+
+/// `LOAD`, `LOADFUNC`, `SPRING` or `MOTOR`: a generalised force on a form
+/// parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// The keyword's own span (the line's first word, or where it is repeated).
+    pub keyword: Spanned<Keyword>,
+    /// Destination: `r > 0` prescribed row, `-k` dependent form parameter.
+    pub form: Spanned<i64>,
+    /// How the force depends on time and motion.
+    pub kind: LoadDefKind,
+}
+
+/// The four kinds of generalised force.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoadDefKind {
+    /// `LOAD r value`
+    Constant(Spanned<f64>),
+    /// `LOADFUNC r file` (file relative to the deck's folder).
+    Function(Spanned<String>),
+    /// `SPRING r k e0 [c]` (k and c not negative).
+    Spring {
+        /// Stiffness k.
+        k: Spanned<f64>,
+        /// Free value e0.
+        e0: Spanned<f64>,
+        /// Viscous damping c, if given (0 otherwise).
+        c: Option<Spanned<f64>>,
+    },
+    /// `MOTOR r T0 w0` (w0 not zero).
+    Motor {
+        /// Stall torque T0.
+        t0: Spanned<f64>,
+        /// No-load speed w0.
+        w0: Spanned<f64>,
+    },
 }
 
 /// The MOVEMENT block.

@@ -2,15 +2,20 @@
 //! outputs and the print file's echo of the model need.
 //!
 //! Fields that feed the computation ([`Buffer::quantity`],
-//! [`PlotItem::Hodograph`]) use the core's 0-based indices; fields meant
+//! [`PlotItem::Hodograph`], [`Compiled::dynamics`]) use the core's 0-based indices; fields meant
 //! for echoing the model ([`ElementInfo`], [`RowInfo`]) keep the deck's
 //! 1-based numbers.
 
+use mechfem_core::dynamics::Dynamics;
 use mechfem_core::{ElementType, Mechanism, Motion, Params, Quantity, State};
+
+use crate::ast::Mode;
 
 /// A compiled deck, ready to run.
 #[derive(Debug, Clone)]
 pub struct Compiled {
+    /// The mode of the deck: [`Mode::KinAna`] or [`Mode::DynAna`].
+    pub mode: Mode,
     /// The model (immutable).
     pub mechanism: Mechanism,
     /// The initial state: XFIX/XMOV values, and prescribed values from PARA
@@ -37,6 +42,9 @@ pub struct Compiled {
     pub prescribed: Vec<RowInfo>,
     /// The dependent form parameters 1..n_d.
     pub dependent: Vec<RowInfo>,
+    /// The masses and loads (0-based indices): `Some` exactly for a
+    /// [`Mode::DynAna`] deck.
+    pub dynamics: Option<Dynamics>,
 }
 
 /// One output buffer: one value per position.

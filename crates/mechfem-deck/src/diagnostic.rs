@@ -56,7 +56,7 @@ pub enum DiagnosticKind {
     Io,
     /// The first line is not a mode line.
     MissingMode,
-    /// A mode the program knows but does not run yet (KIN OPT, DYN ANA, DYN SIM).
+    /// A mode the program knows but does not run yet (KIN OPT, DYN SIM).
     UnsupportedMode,
     /// A mode line that names no known mode.
     UnknownMode,
@@ -68,8 +68,11 @@ pub enum DiagnosticKind {
     WrongBlock,
     /// A block header given twice.
     DuplicateBlock,
-    /// A required block (TOPOLOGY, GEOMETRY) is missing.
+    /// A required block (TOPOLOGY, GEOMETRY; DYNAMICS in a DYN ANA deck) is missing.
     MissingBlock,
+    /// A block or keyword that the deck's mode does not have (DYNAMICS or a
+    /// dynamics buffer in KIN ANA, MOV_FREE in DYN ANA).
+    WrongMode,
     /// Too few or too many arguments.
     ArgumentCount,
     /// An argument that should be a number is not one (also NaN, inf).
@@ -102,8 +105,10 @@ pub enum DiagnosticKind {
     CoordinateMissing,
     /// A declared co-ordinate that no element uses.
     CoordinateUnused,
-    /// FORM refers to an element that does not exist.
+    /// FORM or MASS refers to an element that does not exist.
     UnknownElement,
+    /// MASS on an element that has no frame to carry a body (GR1, GR2, RK1, RK2, BLT, CRD).
+    NoFrame,
     /// A form-parameter name that the element type does not have.
     UnknownFormName,
     /// A FORM destination of 0.
@@ -118,7 +123,8 @@ pub enum DiagnosticKind {
     NrdofTooLarge,
     /// The number of prescribed rows differs from the number of moving co-ordinates.
     NotSquare,
-    /// PARA, BUF... for a row or dependent form parameter that does not exist.
+    /// PARA, BUF..., LOAD, LOADFUNC, SPRING or MOTOR for a row or dependent
+    /// form parameter that does not exist.
     UnknownRow,
     /// PARA given twice for the same row.
     DuplicatePara,
@@ -132,6 +138,11 @@ pub enum DiagnosticKind {
     FreeMotionDof,
     /// A MOV_FUNC file with the wrong number of rows or a bad row.
     MotionFile,
+    /// A LOADFUNC file that cannot be read, is too large or empty, or has
+    /// a bad row or rows out of time order.
+    LoadFile,
+    /// BUFREA on a co-ordinate that moves (only fixed ones have a reaction).
+    NotFixed,
     /// A buffer number defined twice.
     DuplicateBuffer,
     /// PRINTBUF, SAVEDATA or PLOT* naming a buffer that is not defined.

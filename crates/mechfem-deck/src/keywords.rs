@@ -9,6 +9,8 @@ pub enum Block {
     Topology,
     /// Initial co-ordinates and prescribed values.
     Geometry,
+    /// Masses, loads and springs (mode `DYN ANA`).
+    Dynamics,
     /// Input motion and solver settings.
     Movement,
     /// Output buffers and what to do with them.
@@ -17,13 +19,14 @@ pub enum Block {
 
 impl Block {
     /// Every block, in the order of a deck.
-    pub const ALL: [Block; 4] = [Block::Topology, Block::Geometry, Block::Movement, Block::Storage];
+    pub const ALL: [Block; 5] = [Block::Topology, Block::Geometry, Block::Dynamics, Block::Movement, Block::Storage];
 
     /// The header word.
     pub fn name(self) -> &'static str {
         match self {
             Block::Topology => "TOPOLOGY",
             Block::Geometry => "GEOMETRY",
+            Block::Dynamics => "DYNAMICS",
             Block::Movement => "MOVEMENT",
             Block::Storage => "STORAGE",
         }
@@ -84,6 +87,15 @@ keywords! {
     Xfix "XFIX" Geometry 2 Some(2), "i value";
     Xmov "XMOV" Geometry 2 Some(2), "i value";
     Para "PARA" Geometry 2 Some(2), "row value";
+    Mass "MASS" Dynamics 4 Some(5), "k m u v [J]";
+    Pmass "PMASS" Dynamics 3 Some(3), "i j m";
+    Inertia "INERTIA" Dynamics 2 Some(2), "i J";
+    Gravity "GRAVITY" Dynamics 2 Some(2), "gx gy";
+    Force "FORCE" Dynamics 4 Some(4), "i j fx fy";
+    Load "LOAD" Dynamics 2 Some(2), "r value";
+    LoadFunc "LOADFUNC" Dynamics 2 Some(2), "r file";
+    Spring "SPRING" Dynamics 3 Some(4), "r k e0 [c]";
+    Motor "MOTOR" Dynamics 3 Some(3), "r T0 w0";
     Tstepe "TSTEPE" Movement 1 Some(2), "n [dt]";
     MovRele "MOV_RELE" Movement 2 Some(2), "j delta";
     MovAbse "MOV_ABSE" Movement 2 Some(2), "j end";
@@ -104,6 +116,13 @@ keywords! {
     BufVe "BUFVE" Storage 2 Some(2), "r b";
     BufAe "BUFAE" Storage 2 Some(2), "r b";
     BufDet "BUFDET" Storage 1 Some(1), "b";
+    BufSig "BUFSIG" Storage 2 Some(2), "r b";
+    BufDrv "BUFDRV" Storage 2 Some(2), "j b";
+    BufRea "BUFREA" Storage 2 Some(2), "i b";
+    BufEkin "BUFEKIN" Storage 1 Some(1), "b";
+    BufEpot "BUFEPOT" Storage 1 Some(1), "b";
+    BufPow "BUFPOW" Storage 1 Some(1), "b";
+    BufMred "BUFMRED" Storage 3 Some(3), "j m b";
     PrintBuf "PRINTBUF" Storage 0 None, "[b ...]";
     SaveData "SAVEDATA" Storage 1 None, "b ...";
     Animate "ANIMATE" Storage 1 Some(1), "name";
@@ -123,6 +142,21 @@ impl Keyword {
     /// The keywords of one block, in reference order.
     pub fn of_block(block: Block) -> impl Iterator<Item = Keyword> {
         Keyword::ALL.iter().copied().filter(move |k| k.block() == block)
+    }
+
+    /// Whether the keyword records a result of the dynamics (BUFSIG,
+    /// BUFDRV, ...), which only a dynamics mode computes.
+    pub fn is_dynamic_buffer(self) -> bool {
+        matches!(
+            self,
+            Keyword::BufSig
+                | Keyword::BufDrv
+                | Keyword::BufRea
+                | Keyword::BufEkin
+                | Keyword::BufEpot
+                | Keyword::BufPow
+                | Keyword::BufMred
+        )
     }
 
     /// The full usage line, `FORM s NAME k dest [f]`.
@@ -194,6 +228,10 @@ mod tests {
         assert_eq!(closest("xfx", all_words()), Some("XFIX"));
         assert_eq!(closest("MOV_REL", all_words()), Some("MOV_RELE"));
         assert_eq!(closest("PRINTBUFF", all_words()), Some("PRINTBUF"));
+        assert_eq!(closest("DYNAMIC", all_words()), Some("DYNAMICS"));
+        assert_eq!(closest("GRAVTY", all_words()), Some("GRAVITY"));
+        assert_eq!(closest("LOADFUNK", all_words()), Some("LOADFUNC"));
+        assert_eq!(closest("BUFMRD", all_words()), Some("BUFMRED"));
         assert_eq!(closest("BANANA", all_words()), None);
     }
 

@@ -1,11 +1,12 @@
 //! The keyword deck of mechfem: text in, a checked core model out.
 //!
-//! This crate reads the deck language of the classic RUNMEC program
-//! (`KIN ANA`, then the blocks TOPOLOGY, GEOMETRY, MOVEMENT, STORAGE) and
-//! turns it into what [`mechfem_core`] runs. It does **not** solve anything:
-//! no Newton iteration, no transfer functions, no output files. It only
-//! reads, checks and translates, and says precisely what is wrong when a
-//! deck does not fit.
+//! This crate reads the deck language of the classic RUNMEC program (the
+//! mode `KIN ANA` or `DYN ANA`, then the blocks TOPOLOGY, GEOMETRY,
+//! DYNAMICS, MOVEMENT, STORAGE) and turns it into what [`mechfem_core`]
+//! runs. It does **not** solve anything: no Newton iteration, no transfer
+//! functions, no dynamics, no output files. It only reads, checks and
+//! translates, and says precisely what is wrong when a deck does not fit.
+//! The modes `KIN OPT` and `DYN SIM` are recognised and refused.
 //!
 //! A tour, in the order data flows:
 //!
@@ -14,14 +15,18 @@
 //!   numbers (`-3.d-2`, `1.5D0`, `.5`); a line that starts with a number
 //!   repeats the previous keyword of its block, and a keyword alone on its
 //!   line (as `FORM` in the theory's tables) waits for such lines. What one
-//!   line can tell on its own is checked here.
+//!   line can tell on its own (with the mode line) is checked here: a
+//!   negative mass, a DYNAMICS block in a `KIN ANA` deck, MOV_FREE in a
+//!   `DYN ANA` deck.
 //! * [`compile`]: a [`Deck`] to a [`Compiled`] model: the core
 //!   [`mechfem_core::Mechanism`] and [`mechfem_core::State`] (PARA values in
 //!   `state.target`), the [`mechfem_core::Motion`] (MOV_FUNC files read
-//!   relative to the deck's folder), solver [`mechfem_core::Params`], the
-//!   output [`Buffer`]s, lists and [`Picture`]s, and a description of the
-//!   elements and rows for echoing the model. References between lines are
-//!   checked here.
+//!   relative to the deck's folder), solver [`mechfem_core::Params`], for
+//!   `DYN ANA` the masses and loads of the DYNAMICS block as a
+//!   [`mechfem_core::dynamics::Dynamics`] (LOADFUNC files read like MOV_FUNC
+//!   files), the output [`Buffer`]s, lists and [`Picture`]s, and a
+//!   description of the elements and rows for echoing the model. References
+//!   between lines are checked here.
 //! * [`load`]: both steps for a file.
 //! * [`Diagnostic`]: every mistake names the file, line and word, renders
 //!   like rustc (`error:`, ` --> file:line:col`, the line, a caret, a hint),
@@ -36,6 +41,15 @@
 //! let model = mechfem_deck::compile(&deck, std::path::Path::new(".")).unwrap();
 //! assert_eq!(model.mechanism.n_moving(), 2);
 //! assert_eq!(model.mechanism.n_dof(), 1);
+//!
+//! // A pendulum of mass 2 at the end of a bar of length 1, for inverse dynamics.
+//! let pendulum = "DYN ANA\nTOPOLOGY\nELEM 1 BIN 1 2 3 4\nFORM 1 LENL 1 1\n 2 ANGB 1 2\nNRDOF 1\n\
+//!                 GEOMETRY\nXFIX 1 0\n 2 0\nXMOV 3 1\n 4 0\nDYNAMICS\nMASS 1 2 1 0\nGRAVITY 0 -9.81\n";
+//! let deck = mechfem_deck::parse_str(pendulum, "pendulum.mec").unwrap();
+//! let model = mechfem_deck::compile(&deck, std::path::Path::new(".")).unwrap();
+//! let dynamics = model.dynamics.expect("a DYN ANA deck has dynamics");
+//! assert_eq!((dynamics.bodies[0].element, dynamics.bodies[0].mass), (0, 2.0));
+//! assert_eq!(dynamics.gravity, [0.0, -9.81]);
 //!
 //! let err = mechfem_deck::parse_str("KIN ANA\nTOPOLOGY\nELEM 1 BNI 1 2 3 4\n", "x.mec").unwrap_err();
 //! assert!(err.to_string().starts_with("error: unknown element type `BNI`"));
@@ -53,15 +67,15 @@ mod statements;
 
 use std::path::Path;
 
-pub use ast::Deck;
+pub use ast::{Deck, Mode};
 pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
 pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned};
 pub use keywords::{Block, Keyword};
 pub use parse::{parse_file, parse_str};
 
-/// Reads, checks and compiles the deck at `path`; MOV_FUNC files are read
-/// from the deck's folder.
+/// Reads, checks and compiles the deck at `path`; MOV_FUNC and LOADFUNC
+/// files are read from the deck's folder.
 pub fn load(path: impl AsRef<Path>) -> Result<Compiled, Diagnostics> {
     let path = path.as_ref();
     let deck = parse_file(path)?;

@@ -9,7 +9,9 @@
 use std::path::{Path, PathBuf};
 
 use crate::args::Source;
-use crate::ast::{Deck, Geometry, Mode, MotionDef, Movement, PictureDef, Storage, Topology, Tstepe};
+use crate::ast::{
+    missing_dynamics, Deck, Dynamics, Geometry, Mode, MotionDef, Movement, PictureDef, Storage, Topology, Tstepe,
+};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Hint, Span, Spanned};
 use crate::keywords::{all_words, closest, Block, Keyword};
 use crate::lexer::{lex, looks_numeric, Line, Word};
@@ -55,7 +57,7 @@ pub(crate) struct Parser<'a> {
     pub errors: Vec<Diagnostic>,
     mode: Option<Spanned<Mode>>,
     block: Option<Block>,
-    headers: [Option<usize>; 4],
+    headers: [Option<usize>; Block::ALL.len()],
     /// The keyword a line starting with a number repeats.
     previous: Option<Keyword>,
     /// The previous keyword line was refused: its repetitions are skipped.
@@ -64,6 +66,7 @@ pub(crate) struct Parser<'a> {
     pending: Option<(Keyword, Line)>,
     pub topology: Topology,
     pub geometry: Geometry,
+    pub dynamics: Dynamics,
     pub movement: MovementParts,
     pub storage: Storage,
     pub picture: Option<PictureDef>,
@@ -82,12 +85,13 @@ impl<'a> Parser<'a> {
             errors: Vec::new(),
             mode: None,
             block: None,
-            headers: [None; 4],
+            headers: [None; Block::ALL.len()],
             previous: None,
             poisoned: false,
             pending: None,
             topology: Topology::default(),
             geometry: Geometry::default(),
+            dynamics: Dynamics::default(),
             movement: MovementParts::default(),
             storage: Storage::default(),
             picture: None,
@@ -106,7 +110,7 @@ impl<'a> Parser<'a> {
         let mut lines = lines.iter();
         let Some(first) = lines.next() else { return };
         if self.mode_line(first) {
-            if self.mode.as_ref().is_some_and(|m| m.value != Mode::KinAna) {
+            if self.mode.as_ref().is_some_and(|m| !runs(m.value)) {
                 self.stopped = true;
                 return;
             }
@@ -149,7 +153,8 @@ impl<'a> Parser<'a> {
                     DiagnosticKind::UnknownMode,
                     first.span.to(last),
                     format!("unknown mode `{}`", text.join(" ")),
-                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis)",
+                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis) and `DYN ANA` \
+                     (inverse dynamics)",
                 );
                 return true;
             }
@@ -162,12 +167,12 @@ impl<'a> Parser<'a> {
                 "the mode line holds two words, such as `KIN ANA`",
             );
         }
-        if mode != Mode::KinAna {
+        if !runs(mode) {
             self.error(
                 DiagnosticKind::UnsupportedMode,
                 span,
                 format!("mode {} ({}) is not supported yet", mode.name(), mode.description()),
-                "mechfem runs kinematic analysis only: start the deck with `KIN ANA`",
+                "mechfem runs kinematic analysis and inverse dynamics: start the deck with `KIN ANA` or `DYN ANA`",
             );
         }
         self.mode = Some(Spanned::new(mode, span));
@@ -205,7 +210,10 @@ impl<'a> Parser<'a> {
                     let names: Vec<&str> = Keyword::of_block(b).map(Keyword::name).collect();
                     format!("the keywords of the {b} block are {}", names.join(", "))
                 }
-                None => "the deck has the blocks TOPOLOGY, GEOMETRY, MOVEMENT, STORAGE".to_string(),
+                None => {
+                    let names: Vec<&str> = Block::ALL.iter().map(|b| b.name()).collect();
+                    format!("the deck has the blocks {}", names.join(", "))
+                }
             },
         };
         self.error(DiagnosticKind::UnknownKeyword, word.span, format!("unknown keyword `{}`", word.text), hint);
@@ -274,9 +282,18 @@ impl<'a> Parser<'a> {
             match block {
                 Block::Topology => self.topology.line = line.number,
                 Block::Geometry => self.geometry.line = line.number,
+                Block::Dynamics => self.dynamics.line = line.number,
                 Block::Movement => self.movement.line = line.number,
                 Block::Storage => self.storage.line = line.number,
             }
+        }
+        if block == Block::Dynamics && self.mode.is_some_and(|m| m.value == Mode::KinAna) {
+            self.error(
+                DiagnosticKind::WrongMode,
+                line.words[0].span,
+                "a KIN ANA deck has no DYNAMICS block: masses and loads belong to the dynamics modes",
+                "change the mode line to `DYN ANA` for inverse dynamics, or remove the DYNAMICS block",
+            );
         }
         self.block = Some(block);
         self.previous = None;
@@ -350,6 +367,11 @@ impl<'a> Parser<'a> {
         }
     }
 
+    /// The deck's mode, once the mode line has been read.
+    pub(crate) fn mode(&self) -> Option<Mode> {
+        self.mode.map(|m| m.value)
+    }
+
     /// Records the line of a keyword that may appear once; errs when it
     /// was there before.
     pub(crate) fn once(&mut self, kw: Spanned<Keyword>) -> Result<(), Box<Diagnostic>> {
@@ -379,6 +401,11 @@ impl<'a> Parser<'a> {
                 self.errors.push(d);
             }
         }
+        if let Some(mode) = self.mode.filter(|m| m.value == Mode::DynAna) {
+            if self.headers[Block::Dynamics as usize].is_none() && !self.stopped {
+                self.errors.push(*missing_dynamics(path, self.src.lines, mode.span));
+            }
+        }
         self.errors.sort_by_key(|d| (d.line == 0, d.line));
         let (Some(mode), true) = (self.mode, self.errors.is_empty()) else {
             return Err(Diagnostics(self.errors));
@@ -395,11 +422,17 @@ impl<'a> Parser<'a> {
             mode,
             topology: self.topology,
             geometry: self.geometry,
+            dynamics: self.headers[Block::Dynamics as usize].map(|_| self.dynamics),
             movement,
             storage: self.headers[Block::Storage as usize].map(|_| self.storage),
             source: Vec::new(),
         })
     }
+}
+
+/// Whether mechfem runs decks of this mode.
+fn runs(mode: Mode) -> bool {
+    matches!(mode, Mode::KinAna | Mode::DynAna)
 }
 
 /// Number of blank characters at the start of a line.

@@ -2,8 +2,10 @@
 
 use mechfem_core::ElementType;
 
+use crate::args::Source;
 use crate::ast::{
-    BufDef, BufList, CoordDef, ElemDef, FormDef, MotionDef, MotionKind, ParaDef, PictureDef, PlotDef, Tstepe,
+    BufDef, BufList, CoordDef, ElemDef, ForceDef, FormDef, GravityDef, InertiaDef, LoadDef, LoadDefKind, MassDef, Mode,
+    MotionDef, MotionKind, ParaDef, PictureDef, PlotDef, PointMassDef, Tstepe,
 };
 use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::{Block, Keyword};
@@ -31,10 +33,14 @@ impl Parser<'_> {
             Block::Storage => self.check_picture(kw)?,
             _ => {}
         }
+        self.check_mode(kw)?;
         if kw.value == Keyword::Elem {
             return self.elem(line, args, repeated);
         }
         self.src.check_count(kw.value, line, args, repeated)?;
+        if kw.value.block() == Block::Dynamics {
+            return self.dynamics_statement(kw, line, args);
+        }
         // `check_count` guarantees the required arguments; `arg` still
         // refuses to index out of range.
         let arg =
@@ -283,6 +289,100 @@ impl Parser<'_> {
         Ok(())
     }
 
+    /// Refuses a keyword that the deck's mode does not have.
+    fn check_mode(&self, kw: Spanned<Keyword>) -> Result<(), Box<Diagnostic>> {
+        let k = kw.value;
+        let err = |message: String, hint: &str| {
+            Err(self.src.error(DiagnosticKind::WrongMode, kw.span, message).with_hint(hint))
+        };
+        match self.mode() {
+            Some(Mode::KinAna) if k.is_dynamic_buffer() => err(
+                format!("{k} records a result of the dynamics, which a KIN ANA deck does not compute"),
+                "change the mode line to `DYN ANA` and add a DYNAMICS block, or remove this line",
+            ),
+            Some(Mode::DynAna) if k == Keyword::MovFree => err(
+                "MOV_FREE cannot drive a DYN ANA deck: free motion has no timing, so no velocities or accelerations"
+                    .to_string(),
+                "prescribe the input in time with MOV_RELE, MOV_ABSE or MOV_FUNC; each of the n steps of TSTEPE n dt \
+                 takes the time dt",
+            ),
+            _ => Ok(()),
+        }
+    }
+
+    /// Reads one line of the DYNAMICS block (its argument count is checked).
+    fn dynamics_statement(&mut self, kw: Spanned<Keyword>, line: &Line, args: &[Word]) -> Result<(), Box<Diagnostic>> {
+        let arg =
+            |k: usize| args.get(k).ok_or_else(|| self.src.count_error(line, args, None, "missing argument".into()));
+        let line_no = line.number;
+        let src = &self.src;
+        const COORD: &str = "the co-ordinate number";
+        const INERTIA: &str = "the moment of inertia";
+        match kw.value {
+            Keyword::Mass => {
+                let element = src.whole(arg(0)?, "the element number")?;
+                let mass = not_negative(src, arg(1)?, "the mass", "give the body's mass, 0 or more")?;
+                let u = src.real(arg(2)?, "the centre of mass u")?;
+                let v = src.real(arg(3)?, "the centre of mass v")?;
+                let inertia = args.get(4).map(|w| not_negative(src, w, INERTIA, HINT_BODY_INERTIA)).transpose()?;
+                self.dynamics.masses.push(MassDef { line: line_no, element, mass, u, v, inertia });
+            }
+            Keyword::Pmass => {
+                let x = src.whole(arg(0)?, COORD)?;
+                let y = src.whole(arg(1)?, COORD)?;
+                let mass = not_negative(src, arg(2)?, "the mass", "give the point's mass, 0 or more")?;
+                self.dynamics.point_masses.push(PointMassDef { line: line_no, x, y, mass });
+            }
+            Keyword::Inertia => {
+                let coord = src.whole(arg(0)?, COORD)?;
+                let inertia = not_negative(src, arg(1)?, INERTIA, HINT_WHEEL_INERTIA)?;
+                self.dynamics.inertias.push(InertiaDef { line: line_no, coord, inertia });
+            }
+            Keyword::Gravity => {
+                let gx = src.real(arg(0)?, "the acceleration of gravity")?;
+                let gy = src.real(arg(1)?, "the acceleration of gravity")?;
+                self.once(kw)?;
+                self.dynamics.gravity = Some(GravityDef { line: line_no, gx, gy });
+            }
+            Keyword::Force => {
+                let x = src.whole(arg(0)?, COORD)?;
+                let y = src.whole(arg(1)?, COORD)?;
+                let fx = src.real(arg(2)?, "the force")?;
+                let fy = src.real(arg(3)?, "the force")?;
+                self.dynamics.forces.push(ForceDef { line: line_no, x, y, fx, fy });
+            }
+            _ => {
+                let form = src.whole(arg(0)?, "the form parameter's destination")?;
+                let kind = match kw.value {
+                    Keyword::Load => LoadDefKind::Constant(src.real(arg(1)?, "the load")?),
+                    Keyword::LoadFunc => {
+                        let file = arg(1)?;
+                        LoadDefKind::Function(Spanned::new(file.text.clone(), file.span))
+                    }
+                    // A negative stiffness or damping is refused: it is far more
+                    // often a slip of the sign than a model, and it makes the
+                    // equilibrium unstable (a negative damper feeds energy in).
+                    Keyword::Spring => LoadDefKind::Spring {
+                        k: not_negative(src, arg(1)?, "the spring's stiffness", HINT_STIFFNESS)?,
+                        e0: src.real(arg(2)?, "the free value")?,
+                        c: args.get(3).map(|w| not_negative(src, w, "the damping", HINT_DAMPING)).transpose()?,
+                    },
+                    _ => {
+                        let t0 = src.real(arg(1)?, "the stall torque")?;
+                        let w0 = src.real(arg(2)?, "the no-load speed")?;
+                        if w0.value == 0.0 {
+                            let message = "the no-load speed w0 of a motor must not be 0";
+                            return Err(src.error(DiagnosticKind::BadValue, w0.span, message).with_hint(HINT_MOTOR));
+                        }
+                        LoadDefKind::Motor { t0, w0 }
+                    }
+                };
+                self.dynamics.loads.push(LoadDef { line: line_no, keyword: kw, form, kind });
+            }
+        }
+        Ok(())
+    }
+
     fn check_tstepe_first(&mut self, kw: Spanned<Keyword>) -> Result<(), Box<Diagnostic>> {
         if kw.value == Keyword::Tstepe {
             // Even a refused TSTEPE line is in its place.
@@ -334,6 +434,26 @@ fn element_type(parser: &Parser<'_>, word: &Word) -> Result<ElementType, Box<Dia
         .with_hint(format!("element types are {}", names.join(", "))))
 }
 
+const HINT_BODY_INERTIA: &str = "give the moment of inertia about the centre of mass, 0 or more (default 0)";
+const HINT_WHEEL_INERTIA: &str = "give the moment of inertia about the angle's axis, 0 or more";
+const HINT_STIFFNESS: &str =
+    "give k, 0 or more: the spring's force -k (eps_r - e0) pulls eps_r back towards its free value e0";
+const HINT_DAMPING: &str = "give c, 0 or more: the damper's force -c d(eps_r)/dt works against the motion";
+const HINT_MOTOR: &str = "the motor's force T0 (1 - d(eps_r)/dt / w0) falls to zero at the speed w0: give that speed \
+                          (negative for a motor that runs backwards)";
+
+/// The word read as a number that must not be negative (a mass, an inertia,
+/// a stiffness).
+fn not_negative(src: &Source<'_>, w: &Word, what: &str, hint: &str) -> Result<Spanned<f64>, Box<Diagnostic>> {
+    let v = src.real(w, what)?;
+    if v.value < 0.0 {
+        return Err(src
+            .error(DiagnosticKind::BadValue, w.span, format!("{what} must not be negative, got {}", real(v.value)))
+            .with_hint(hint));
+    }
+    Ok(v)
+}
+
 /// What the arguments before the buffer number of a `BUF...` keyword mean.
 fn buffer_argument_names(kw: Keyword) -> &'static [&'static str] {
     const DOF: &str = "the DOF number";
@@ -345,6 +465,10 @@ fn buffer_argument_names(kw: Keyword) -> &'static [&'static str] {
         Keyword::BufKx1 | Keyword::BufKx2 => &[COORD, DOF, DOF],
         Keyword::BufE0 | Keyword::BufVe | Keyword::BufAe => &[FORM],
         Keyword::BufKe1 | Keyword::BufKe2 => &[FORM, DOF, DOF],
+        Keyword::BufSig => &["the prescribed row"],
+        Keyword::BufDrv => &[DOF],
+        Keyword::BufRea => &[COORD],
+        Keyword::BufMred => &[DOF, DOF],
         _ => &[],
     }
 }

@@ -5,8 +5,9 @@
 
 use std::path::{Path, PathBuf};
 
+use mechfem_core::dynamics::{Body, Force, Inertia, Load, LoadKind, PointMass};
 use mechfem_core::{FormRef, InputMotion, Quantity};
-use mechfem_deck::{load, Compiled, PlotItem};
+use mechfem_deck::{load, Compiled, Mode, PlotItem};
 
 /// Deck paths are relative to the crate folder (cargo's working directory
 /// for tests), so rendered diagnostics do not depend on the checkout.
@@ -82,6 +83,8 @@ fn every_snapshot_has_its_deck() {
 #[test]
 fn supply_mechanism_of_tables_5_1_to_5_3() {
     let c = valid("supply_mechanism.mec");
+    assert_eq!(c.mode, Mode::KinAna);
+    assert!(c.dynamics.is_none());
     let m = &c.mechanism;
     assert_eq!(m.n_coords(), 20);
     assert_eq!(m.n_moving(), 12);
@@ -202,4 +205,84 @@ fn free_motion_and_all_buffer_kinds() {
     assert_eq!(c.buffers.len(), 13);
     assert_eq!(c.printbuf, Some(vec![1, 2, 13]));
     assert!(matches!(c.pictures[0].items[0], PlotItem::Curve { x: 3, y: 4 }));
+}
+
+fn quantities(c: &Compiled) -> Vec<Quantity> {
+    c.buffers.iter().map(|b| b.quantity).collect()
+}
+
+#[test]
+fn pendulum_in_dyn_ana() {
+    let c = valid("pendulum.mec");
+    assert_eq!(c.mode, Mode::DynAna);
+    let d = c.dynamics.as_ref().expect("dynamics");
+    assert_eq!(d.bodies, [Body { element: 0, mass: 2.0, u: 1.0, v: 0.0, inertia: 0.01 }]);
+    assert_eq!(d.gravity, [0.0, -9.81]);
+    assert!(d.point_masses.is_empty() && d.inertias.is_empty() && d.forces.is_empty() && d.loads.is_empty());
+    assert_eq!(
+        quantities(&c),
+        [
+            Quantity::Time,
+            Quantity::Input(0),
+            Quantity::Sigma(0),
+            Quantity::Drive(0),
+            Quantity::Reaction(0),
+            Quantity::Reaction(1),
+            Quantity::Ekin,
+            Quantity::Epot,
+            Quantity::Power,
+            Quantity::Mred(0, 0),
+        ]
+    );
+    let motion = c.motion.as_ref().expect("motion");
+    assert_eq!((motion.steps, motion.dt), (36, 0.05));
+}
+
+#[test]
+fn slider_crank_with_every_kind_of_load() {
+    let c = valid("slider_crank.mec");
+    let d = c.dynamics.as_ref().expect("dynamics");
+    assert_eq!(
+        d.bodies,
+        [
+            Body { element: 0, mass: 0.5, u: 0.05, v: 0.0, inertia: 1e-3 },
+            Body { element: 1, mass: 1.2, u: 0.15, v: 0.0, inertia: 9e-3 },
+        ]
+    );
+    assert_eq!(d.point_masses, [PointMass { x: 4, y: 5, mass: 0.8 }]);
+    assert_eq!(d.forces, [Force { x: 4, y: 5, f: [-100.0, 0.0] }]);
+    assert_eq!(d.gravity, [0.0, -9.81]);
+    assert_eq!(
+        d.loads,
+        [
+            Load { form: FormRef::Prescribed(3), kind: LoadKind::Constant(2.0) },
+            Load { form: FormRef::Dependent(0), kind: LoadKind::Spring { k: 500.0, e0: 0.3, c: 2.0 } },
+            Load { form: FormRef::Prescribed(3), kind: LoadKind::Motor { t0: 10.0, w0: 200.0 } },
+        ]
+    );
+    assert_eq!(
+        quantities(&c)[1..8],
+        [
+            Quantity::Sigma(0),
+            Quantity::Sigma(1),
+            Quantity::Sigma(2),
+            Quantity::Drive(0),
+            Quantity::Reaction(0),
+            Quantity::Reaction(1),
+            Quantity::Ekin,
+        ]
+    );
+    assert_eq!(d.check(&c.mechanism), Ok(()));
+}
+
+#[test]
+fn load_from_a_file_without_movement() {
+    let c = valid("load_function.mec");
+    assert!(c.motion.is_none());
+    let d = c.dynamics.as_ref().expect("dynamics");
+    assert_eq!(d.bodies, [Body { element: 0, mass: 1.5, u: 0.0, v: 0.0, inertia: 0.02 }]);
+    assert_eq!(d.inertias, [Inertia { coord: 5, inertia: 0.08 }]);
+    let rows = vec![[0.0, 0.0], [0.5, 2.0], [0.5, 4.0], [2.0, 1.5]];
+    assert_eq!(d.loads, [Load { form: FormRef::Prescribed(1), kind: LoadKind::Table(rows) }]);
+    assert_eq!(quantities(&c), [Quantity::Sigma(0), Quantity::Drive(0), Quantity::Mred(0, 0)]);
 }

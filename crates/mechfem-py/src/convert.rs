@@ -2,6 +2,7 @@
 //! names a co-ordinate, row, element, DOF or position is converted to the
 //! deck's 1-based numbering here.
 
+use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::{AdjustInfo, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, PlotItem, RowInfo};
 use numpy::{PyArray1, PyArrayMethods};
@@ -143,6 +144,73 @@ pub fn model<'py>(
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("coordinates", coords)?;
+    d.set_item("mode", c.mode.name())?;
+    d.set_item("dynamics", c.dynamics.as_ref().map(|m| dynamics(py, m, &[])).transpose()?)?;
+    Ok(d)
+}
+
+/// The mass and load model as a dict, in the deck's numbering; `files`
+/// names the LOADFUNC file of each load, where known.
+pub fn dynamics<'py>(py: Python<'py>, m: &Dynamics, files: &[Option<String>]) -> PyResult<Bound<'py, PyDict>> {
+    let n = |i: usize| i + 1;
+    let d = PyDict::new(py);
+    d.set_item("gravity", m.gravity.to_vec())?;
+    let list = |items: Vec<Vec<(&str, f64)>>| -> PyResult<Vec<Bound<'py, PyDict>>> {
+        items
+            .into_iter()
+            .map(|fields| {
+                let e = PyDict::new(py);
+                for (k, v) in fields {
+                    e.set_item(k, v)?;
+                }
+                Ok(e)
+            })
+            .collect()
+    };
+    let bodies = m.bodies.iter().map(|b| {
+        vec![("element", n(b.element) as f64), ("mass", b.mass), ("u", b.u), ("v", b.v), ("inertia", b.inertia)]
+    });
+    d.set_item("bodies", list(bodies.collect())?)?;
+    let points = m.point_masses.iter().map(|p| vec![("x", n(p.x) as f64), ("y", n(p.y) as f64), ("mass", p.mass)]);
+    d.set_item("point_masses", list(points.collect())?)?;
+    let inertias = m.inertias.iter().map(|i| vec![("coord", n(i.coord) as f64), ("inertia", i.inertia)]);
+    d.set_item("inertias", list(inertias.collect())?)?;
+    let forces =
+        m.forces.iter().map(|f| vec![("x", n(f.x) as f64), ("y", n(f.y) as f64), ("fx", f.f[0]), ("fy", f.f[1])]);
+    d.set_item("forces", list(forces.collect())?)?;
+    let loads = m
+        .loads
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            let e = PyDict::new(py);
+            e.set_item("dest", dest(l.form))?;
+            match &l.kind {
+                LoadKind::Constant(q) => {
+                    e.set_item("kind", "LOAD")?;
+                    e.set_item("value", q)?;
+                }
+                LoadKind::Table(rows) => {
+                    e.set_item("kind", "LOADFUNC")?;
+                    e.set_item("rows", rows.iter().map(|r| r.to_vec()).collect::<Vec<_>>())?;
+                    e.set_item("file", files.get(k).cloned().flatten())?;
+                }
+                LoadKind::Spring { k, e0, c } => {
+                    e.set_item("kind", "SPRING")?;
+                    e.set_item("k", k)?;
+                    e.set_item("e0", e0)?;
+                    e.set_item("c", c)?;
+                }
+                LoadKind::Motor { t0, w0 } => {
+                    e.set_item("kind", "MOTOR")?;
+                    e.set_item("t0", t0)?;
+                    e.set_item("w0", w0)?;
+                }
+            }
+            Ok(e)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("loads", loads)?;
     Ok(d)
 }
 
@@ -171,6 +239,13 @@ fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
         Quantity::Ve(f) => ("BUFVE", vec![dest(f)]),
         Quantity::Ae(f) => ("BUFAE", vec![dest(f)]),
         Quantity::Det => ("BUFDET", vec![]),
+        Quantity::Sigma(r) => ("BUFSIG", vec![n(r)]),
+        Quantity::Drive(j) => ("BUFDRV", vec![n(j)]),
+        Quantity::Reaction(i) => ("BUFREA", vec![n(i)]),
+        Quantity::Ekin => ("BUFEKIN", vec![]),
+        Quantity::Epot => ("BUFEPOT", vec![]),
+        Quantity::Power => ("BUFPOW", vec![]),
+        Quantity::Mred(j, m) => ("BUFMRED", vec![n(j), n(m)]),
     }
 }
 

@@ -27,7 +27,7 @@ mod text;
 
 use std::path::{Path, PathBuf};
 
-use mechfem_core::{run, InputMotion, Motion, Quantity, RunReport};
+use mechfem_core::{run, InputMotion, Mechanism, Motion, Quantity, RunReport};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -55,6 +55,17 @@ fn hodograph_coords(c: &Compiled) -> Vec<usize> {
         }
     }
     out
+}
+
+/// What a DYN deck's run records beyond its buffers, for the print file's
+/// summary and the report's default charts: every input, every drive
+/// force, kinetic and potential energy and drive power.
+fn dynamic_quantities(mech: &Mechanism) -> Vec<Quantity> {
+    let nd = mech.n_dof();
+    let mut q: Vec<Quantity> = (0..nd).map(Quantity::Input).collect();
+    q.extend((0..nd).map(Quantity::Drive));
+    q.extend([Quantity::Ekin, Quantity::Epot, Quantity::Power]);
+    q
 }
 
 /// A finished run: the compiled deck, the recording and the report.
@@ -91,13 +102,17 @@ fn execute(
         m.apply_initial_inputs(&c.mechanism, &mut c.state);
     }
     let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
-    let extra: Vec<Quantity> = if with_motion && c.mechanism.n_dof() > 0 {
+    let mut extra: Vec<Quantity> = if with_motion && c.mechanism.n_dof() > 0 {
         hodograph_coords(&c).into_iter().map(|coord| Quantity::Kx1 { coord, j: 0 }).collect()
     } else {
         Vec::new()
     };
+    if c.dynamics.is_some() {
+        extra.extend(dynamic_quantities(&c.mechanism));
+    }
     let total = motion.map_or(0, |m| m.steps) + 1;
     let mut rec = Recording::new(&quantities, &extra, total, progress);
+    rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
     let n = c.mechanism.n_coords();
     if let Some(message) = errors::memory_refusal(total, rec.recorder.values_per_position(n), memory_limit) {
         return Err(ResourceError::new_err(message));
@@ -145,7 +160,9 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// them and then raises. A run whose results would take more than
 /// `memory_limit` bytes raises `ResourceError` before it starts.
 /// `kx1_values` holds d x_i / d input 1 of the co-ordinates `kx1_coords`
-/// that PLOTHODO lines name (for the hodographs).
+/// that PLOTHODO lines name (for the hodographs). For a DYN deck `dynamic`
+/// holds every input, every drive force, the kinetic and potential energy
+/// and the drive power per position (None otherwise).
 #[pyfunction]
 #[pyo3(signature = (path, progress=None, memory_limit=u64::MAX))]
 fn run_deck(
@@ -165,7 +182,9 @@ fn run_deck(
         (0..positions).flat_map(|k| data[k * width + from..k * width + to].iter().copied()).collect()
     };
     let values = block(0, nb);
-    let kx1_coords: Vec<usize> = if rec.n_extra > 0 { hodograph_coords(&c) } else { Vec::new() };
+    let n_dynamic = if c.dynamics.is_some() { dynamic_quantities(mech).len() } else { 0 };
+    let n_kx1 = rec.n_extra - n_dynamic;
+    let kx1_coords: Vec<usize> = if n_kx1 > 0 { hodograph_coords(&c) } else { Vec::new() };
     let coords = rec.recorder.coords();
 
     let d = PyDict::new(py);
@@ -175,7 +194,20 @@ fn run_deck(
     d.set_item("time", PyArray1::from_vec(py, column(nb)))?;
     d.set_item("det", PyArray1::from_vec(py, column(nb + 1)))?;
     d.set_item("kx1_coords", kx1_coords.iter().map(|i| i + 1).collect::<Vec<_>>())?;
-    d.set_item("kx1_values", convert::array2(py, block(nb + 2, width), positions, rec.n_extra)?)?;
+    d.set_item("kx1_values", convert::array2(py, block(nb + 2, nb + 2 + n_kx1), positions, n_kx1)?)?;
+    let dynamic = if n_dynamic > 0 {
+        let (nd, at) = (mech.n_dof(), nb + 2 + n_kx1);
+        let dd = PyDict::new(py);
+        dd.set_item("inputs", convert::array2(py, block(at, at + nd), positions, nd)?)?;
+        dd.set_item("drive", convert::array2(py, block(at + nd, at + 2 * nd), positions, nd)?)?;
+        dd.set_item("ekin", PyArray1::from_vec(py, column(at + 2 * nd)))?;
+        dd.set_item("epot", PyArray1::from_vec(py, column(at + 2 * nd + 1)))?;
+        dd.set_item("power", PyArray1::from_vec(py, column(at + 2 * nd + 2)))?;
+        Some(dd)
+    } else {
+        None
+    };
+    d.set_item("dynamic", dynamic)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     d.set_item("report", convert::report(py, mech, &report, steps)?)?;
     d.set_item("model", convert::model(py, &c, &given, &coords[..n], &rec.prescribed_at_1, &rec.dependent_at_1)?)?;

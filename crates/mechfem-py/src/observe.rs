@@ -4,7 +4,8 @@
 //! Python about every 1% of positions ([`Progress`], which the observer of
 //! deck-text runs shares).
 
-use mechfem_core::{Observer, PositionView, Quantity, Recorder, TransferOrder};
+use mechfem_core::dynamics::{Dynamics, InverseDynamics};
+use mechfem_core::{Mechanism, Observer, PositionView, Quantity, Recorder, TransferOrder};
 use pyo3::prelude::*;
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
@@ -73,6 +74,17 @@ impl Recording {
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
             progress: Progress::new(progress, total),
+        }
+    }
+}
+
+impl Recording {
+    /// Records the dynamic quantities with the mass and load model of a
+    /// DYN deck (checked when the deck was compiled).
+    pub fn with_dynamics(&mut self, mech: &Mechanism, dynamics: Option<&Dynamics>) {
+        if let Some(d) = dynamics {
+            let recorder = std::mem::take(&mut self.recorder);
+            self.recorder = recorder.with_dynamics(InverseDynamics::new(mech, d.clone()));
         }
     }
 }

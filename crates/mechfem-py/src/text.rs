@@ -14,9 +14,12 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use mechfem_core::dynamics::InverseDynamics;
 use mechfem_core::SolveError;
-use mechfem_core::{run, FormRef, InputMotion, Mechanism, Observer, PositionView, Quantity, RunReport, TransferOrder};
-use mechfem_deck::ast::MotionKind;
+use mechfem_core::{
+    record, run, FormRef, InputMotion, Mechanism, Observer, PositionView, Quantity, RunReport, TransferOrder,
+};
+use mechfem_deck::ast::{LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -40,8 +43,15 @@ pub fn compile_text(text: &str, path: &Path, base_dir: &Path) -> Result<Compiled
 ///   (row-major in j, m), velocity, acceleration;
 /// * per row: value, D first-order, D x D second-order, velocity, acceleration.
 ///
+/// With a mass and load model (`dynamic`), then:
+///
+/// * per prescribed row: its stress; per input: the drive force;
+/// * per co-ordinate: the reaction (NaN for a moving one);
+/// * kinetic and potential energy, drive power;
+/// * the D x D mass matrix, row-major.
+///
 /// Co-ordinate values are not in it: they are recorded separately.
-pub fn full_quantities(mech: &Mechanism) -> Vec<Quantity> {
+pub fn full_quantities(mech: &Mechanism, dynamic: bool) -> Vec<Quantity> {
     let nd = mech.n_dof();
     let pairs = || (0..nd).flat_map(move |j| (0..nd).map(move |m| (j, m)));
     let mut q: Vec<Quantity> = (0..nd).map(Quantity::Input).collect();
@@ -58,6 +68,13 @@ pub fn full_quantities(mech: &Mechanism) -> Vec<Quantity> {
         q.extend(pairs().map(|(j, m)| Quantity::Ke2(f, j, m)));
         q.extend([Quantity::Ve(f), Quantity::Ae(f)]);
     }
+    if dynamic {
+        q.extend((0..mech.n_prescribed()).map(Quantity::Sigma));
+        q.extend((0..nd).map(Quantity::Drive));
+        q.extend((0..mech.n_coords()).map(Quantity::Reaction));
+        q.extend([Quantity::Ekin, Quantity::Epot, Quantity::Power]);
+        q.extend(pairs().map(|(j, m)| Quantity::Mred(j, m)));
+    }
     q
 }
 
@@ -72,6 +89,8 @@ struct Watch<'a> {
     /// Row-major, positions x co-ordinates.
     coords: Vec<f64>,
     positions: usize,
+    /// Inverse dynamics of a DYN deck.
+    dynamics: Option<InverseDynamics>,
     /// The transfer functions to compute at every position.
     order: Option<TransferOrder>,
     cancel: &'a AtomicBool,
@@ -80,7 +99,7 @@ struct Watch<'a> {
 
 impl Observer for Watch<'_> {
     fn position(&mut self, view: &PositionView<'_>) {
-        self.table.extend(self.quantities.iter().map(|q| q.value(view)));
+        record(&self.quantities, view, self.dynamics.as_mut(), &mut self.table);
         self.coords.extend_from_slice(&view.state.x);
         self.positions += 1;
         if let Some(p) = self.progress.as_mut() {
@@ -105,6 +124,10 @@ impl Observer for Watch<'_> {
 /// order (for one input), so only runs that compute the same orders give the
 /// same numbers to the last bit.
 pub fn transfer_order(c: &Compiled, order: Option<u8>) -> PyResult<TransferOrder> {
+    // Inverse dynamics is made from the second order.
+    if c.dynamics.is_some() && matches!(order, None | Some(1 | 2)) {
+        return Ok(TransferOrder::Second);
+    }
     match order {
         None => Ok(c
             .buffers
@@ -171,7 +194,7 @@ pub fn execute(
     }
     let mut quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let n_buffers = quantities.len();
-    quantities.extend(full_quantities(&c.mechanism));
+    quantities.extend(full_quantities(&c.mechanism, c.dynamics.is_some()));
     quantities.extend([Quantity::Time, Quantity::Det]);
     let given = c.state.x.clone();
     let motion = if with_motion { c.motion.as_ref() } else { None };
@@ -185,6 +208,7 @@ pub fn execute(
         coords: Vec::with_capacity((steps + 1) * n),
         quantities,
         positions: 0,
+        dynamics: c.dynamics.as_ref().map(|d| InverseDynamics::new(&c.mechanism, d.clone())),
         order: Some(order),
         cancel,
         progress,
@@ -255,6 +279,7 @@ fn run_dict(py: Python<'_>, r: FullRun) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("n_dof", nd)?;
     d.set_item("n_prescribed", mech.n_prescribed())?;
     d.set_item("n_dependent", mech.n_dependent())?;
+    d.set_item("dynamic", r.compiled.dynamics.is_some())?;
     d.set_item("table", convert::array2(py, r.table, positions, r.width)?)?;
     d.set_item("coords", convert::array2(py, r.coords, positions, n)?)?;
     Ok(d)
@@ -355,7 +380,9 @@ pub fn run_deck_text<'py>(
 /// Reads and compiles the deck `text` without solving anything and returns
 /// what it declares: `coordinates`, `elements`, `prescribed` and `dependent`
 /// rows with their FORM terms, `dofs`, `motion` (None without a MOVEMENT
-/// block), `tol`, `max_iter` and `storage`. Numbers are the deck's own.
+/// block), `tol`, `max_iter`, `storage`, the `mode` and the `dynamics`
+/// (masses and loads, LOADFUNC tables with their file names; None for a
+/// KIN ANA deck). Numbers are the deck's own.
 #[pyfunction]
 pub fn describe_deck_text<'py>(
     py: Python<'py>,
@@ -432,5 +459,17 @@ pub fn describe_deck_text<'py>(
     };
     d.set_item("motion", motion)?;
     d.set_item("storage", convert::storage(py, &c)?)?;
+    // The LOADFUNC file of every load, in the order the loads were compiled (deck order).
+    let files: Vec<Option<String>> = deck.dynamics.as_ref().map_or_else(Vec::new, |dy| {
+        dy.loads
+            .iter()
+            .map(|l| match &l.kind {
+                LoadDefKind::Function(f) => Some(f.value.clone()),
+                _ => None,
+            })
+            .collect()
+    });
+    d.set_item("mode", c.mode.name())?;
+    d.set_item("dynamics", c.dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
     Ok(d)
 }

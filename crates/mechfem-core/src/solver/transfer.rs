@@ -64,7 +64,7 @@ pub struct Kinematics {
     pub(crate) cache: Vec<FormEval>,
     /// How far the last evaluation of the prescribed rows into `cache` went.
     evaluated: Order,
-    dep_cache: Vec<FormEval>,
+    pub(crate) dep_cache: Vec<FormEval>,
     pub(crate) row_values: Vec<f64>,
     det: f64,
     /// d x^c / d input_j, column j at `x1[j*n..]`.

@@ -2,10 +2,13 @@
 //! lines are checked here, and the core model is built.
 
 mod coordinates;
+mod dynamics;
 mod model;
 mod motion;
+mod refs;
 mod rows;
 mod storage;
+mod table;
 
 use std::path::Path;
 
@@ -13,27 +16,24 @@ use crate::ast::Deck;
 use crate::compiled::Compiled;
 use crate::diagnostic::Diagnostics;
 
-/// Compiles a parsed deck. `deck_dir` is the folder MOV_FUNC file names are
-/// relative to (the deck's own folder).
+/// Compiles a parsed deck. `deck_dir` is the folder MOV_FUNC and LOADFUNC
+/// file names are relative to (the deck's own folder).
 ///
 /// Checks every reference between lines (co-ordinates, elements, rows,
-/// DOFs, buffers), reads MOV_FUNC files, and builds the core model; the
-/// first mistake found is returned.
+/// DOFs, buffers), reads MOV_FUNC and LOADFUNC files, and builds the core
+/// model and, for `DYN ANA`, its masses and loads; the first mistake found
+/// is returned.
 pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let m = model::model(deck)?;
-    let n_dof = m.mechanism.n_dof();
-    let (motion, params) = motion::motion(deck, n_dof, deck_dir)?;
+    let sizes = refs::Sizes::of(&m.mechanism);
+    let dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
+    let (motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
     if let Some(mo) = &motion {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
-    let sizes = storage::Sizes {
-        n_coords: m.mechanism.n_coords(),
-        n_prescribed: m.mechanism.n_prescribed(),
-        n_dependent: m.mechanism.n_dependent(),
-        n_dof,
-    };
     let out = storage::outputs(deck, &sizes)?;
     Ok(Compiled {
+        mode: deck.mode.value,
         mechanism: m.mechanism,
         state: m.state,
         motion,
@@ -46,6 +46,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         elements: m.elements,
         prescribed: m.prescribed,
         dependent: m.dependent,
+        dynamics,
     })
 }
 

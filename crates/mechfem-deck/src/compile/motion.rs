@@ -1,14 +1,13 @@
 //! MOVEMENT to a core [`Motion`] and solver [`Params`]; MOV_FUNC files.
 
-use std::io::ErrorKind;
 use std::path::Path;
 
 use mechfem_core::{InputMotion, Mechanism, Motion, Params, State};
 
-use crate::args::Source;
-use crate::ast::{Deck, MotionDef, MotionKind};
+use super::table::{self, Layout};
+use crate::ast::{Deck, Mode, MotionDef, MotionKind};
 use crate::diagnostic::{dof_hint, real, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
-use crate::lexer::lex_line;
+use crate::keywords::Keyword;
 
 pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Option<Motion>, Params), Box<Diagnostic>> {
     let mut params = Params::default();
@@ -56,10 +55,12 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
         let j = k + 1;
         let Some(m) = m else {
             let width = deck.line_text(mv.line).trim_end().chars().count();
+            // Free motion has no timing, so the dynamics cannot use it.
+            let free = if deck.mode.value == Mode::DynAna { String::new() } else { format!(", `MOV_FREE {j} ds`") };
             return Err(deck
                 .error(DiagnosticKind::MissingMotion, Span::new(mv.line, 0, width), format!("DOF {j} has no motion"))
                 .with_hint(format!(
-                    "every DOF needs one motion: add one of `MOV_RELE {j} delta`, `MOV_ABSE {j} end`, `MOV_FUNC {j} file`, `MOV_FREE {j} ds`"
+                    "every DOF needs one motion: add one of `MOV_RELE {j} delta`, `MOV_ABSE {j} end`, `MOV_FUNC {j} file`{free}"
                 )));
         };
         inputs.push(match &m.kind {
@@ -111,69 +112,43 @@ pub(crate) fn check_rates(
 }
 
 /// Reads a MOV_FUNC file: one row `t value [velocity [acceleration]]` per
-/// position. Blank lines and comments (`;` or `#`) are skipped; numbers
-/// may be separated by blanks, tabs or commas and use Fortran's format.
+/// position (missing velocity and acceleration: 0).
 fn table(
     deck: &Deck,
     file: &Spanned<String>,
     deck_dir: &Path,
     expected: usize,
 ) -> Result<Vec<[f64; 4]>, Box<Diagnostic>> {
-    let path = deck_dir.join(&file.value);
-    let why = |e: std::io::Error| match e.kind() {
-        ErrorKind::NotFound => "it does not exist".to_string(),
-        ErrorKind::PermissionDenied => "permission denied".to_string(),
-        _ => e.to_string(),
+    let layout = Layout {
+        keyword: Keyword::MovFunc,
+        kind: DiagnosticKind::MotionFile,
+        columns: 2..=4,
+        names: &["the time", "the input value", "the velocity", "the acceleration"],
+        row: "write one row per position: t value [velocity [acceleration]]",
+        max_bytes: None,
     };
-    // A regular file only: a device such as /dev/zero, or a pipe, would be
-    // read without end.
-    let read = || match std::fs::metadata(&path).map_err(why)? {
-        meta if meta.is_dir() => Err("it is a folder".to_string()),
-        meta if !meta.is_file() => Err("it is not a regular file".to_string()),
-        _ => std::fs::read(&path).map_err(why),
-    };
-    let bytes = read().map_err(|why| {
-        deck.error(
-            DiagnosticKind::MotionFile,
-            file.span,
-            format!("cannot read the MOV_FUNC file `{}`: {why}", file.value),
-        )
-        .with_hint(format!("the file name is relative to the deck's folder; looked for {}", path.display()))
-    })?;
-    let text = String::from_utf8_lossy(&bytes);
-    let raw: Vec<String> = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
-    let src = Source { path: &path, lines: &raw };
-    let mut rows = Vec::new();
-    for (k, line) in raw.iter().enumerate() {
-        let cleaned: String =
-            line.split('#').next().unwrap_or("").chars().map(|c| if c == ',' { ' ' } else { c }).collect();
-        let Some(words) = lex_line(k + 1, &cleaned) else { continue };
-        let n = words.words.len();
-        if !(2..=4).contains(&n) {
-            let surplus = (n > 4).then_some(4);
-            let message = format!("a row of a MOV_FUNC file holds 2 to 4 numbers, this one has {n}");
-            return Err(src
-                .count_error(&words, &words.words, surplus, message)
-                .with_hint("write one row per position: t value [velocity [acceleration]]"));
-        }
-        let mut row = [0.0; 4];
-        const NAMES: [&str; 4] = ["the time", "the input value", "the velocity", "the acceleration"];
-        for (slot, (w, what)) in row.iter_mut().zip(words.words.iter().zip(NAMES)) {
-            *slot = src.real(w, what)?.value;
-        }
-        rows.push(row);
-    }
-    if rows.len() != expected {
+    let table = table::read(deck, file, deck_dir, &layout)?;
+    if table.rows.len() != expected {
         let steps = expected - 1;
         return Err(deck
             .error(
                 DiagnosticKind::MotionFile,
                 file.span,
-                format!("the MOV_FUNC file `{}` has {} rows, expected {expected}", file.value, rows.len()),
+                format!("the MOV_FUNC file `{}` has {} rows, expected {expected}", file.value, table.rows.len()),
             )
             .with_hint(format!(
                 "TSTEPE {steps} makes {expected} positions: give one row `t value [velocity [acceleration]]` for each"
             )));
     }
-    Ok(rows)
+    Ok(table
+        .rows
+        .iter()
+        .map(|(_, values)| {
+            let mut row = [0.0; 4];
+            for (slot, v) in row.iter_mut().zip(values) {
+                *slot = v.value;
+            }
+            row
+        })
+        .collect())
 }

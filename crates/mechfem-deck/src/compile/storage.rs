@@ -4,18 +4,11 @@ use std::collections::BTreeMap;
 
 use mechfem_core::{FormRef, Quantity};
 
+use super::refs::{coordinate, dof, form, Sizes};
 use crate::ast::{BufDef, BufList, Deck};
 use crate::compiled::{Buffer, Picture, PlotItem};
-use crate::diagnostic::{count, dof_hint, numbered, Diagnostic, DiagnosticKind, Hint, Spanned};
+use crate::diagnostic::{count, numbered, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::Keyword;
-
-/// The sizes that buffer definitions are checked against.
-pub(crate) struct Sizes {
-    pub n_coords: usize,
-    pub n_prescribed: usize,
-    pub n_dependent: usize,
-    pub n_dof: usize,
-}
 
 /// The compiled STORAGE block.
 #[derive(Default)]
@@ -126,64 +119,55 @@ fn quantity(deck: &Deck, sizes: &Sizes, def: &BufDef) -> Result<Quantity, Box<Di
         Keyword::BufKe2 => Quantity::Ke2(row(0)?, input(1)?, second(2)?),
         Keyword::BufVe => Quantity::Ve(row(0)?),
         Keyword::BufAe => Quantity::Ae(row(0)?),
+        Keyword::BufSig => Quantity::Sigma(a(0).map_or(Ok(0), |r| stressed_row(deck, sizes, kw, r))?),
+        Keyword::BufDrv => Quantity::Drive(input(0)?),
+        Keyword::BufRea => Quantity::Reaction(a(0).map_or(Ok(0), |i| fixed(deck, sizes, kw, i))?),
+        Keyword::BufEkin => Quantity::Ekin,
+        Keyword::BufEpot => Quantity::Epot,
+        Keyword::BufPow => Quantity::Power,
+        Keyword::BufMred => Quantity::Mred(input(0)?, input(1)?),
         _ => Quantity::Det,
     })
 }
 
-/// A co-ordinate number 1..N as a 0-based index.
-fn coordinate(deck: &Deck, sizes: &Sizes, kw: Keyword, i: &Spanned<i64>) -> Result<usize, Box<Diagnostic>> {
-    let n = sizes.n_coords;
-    match usize::try_from(i.value).ok().filter(|&v| (1..=n).contains(&v)) {
-        Some(v) => Ok(v - 1),
-        None => Err(deck
-            .error(
-                DiagnosticKind::CoordinateOutOfRange,
-                i.span,
-                format!(
-                    "{kw} names co-ordinate {}, but the model has {}",
-                    i.value,
-                    count(n, "co-ordinate", "co-ordinates")
-                ),
-            )
-            .with_hint(format!("co-ordinates are numbered {}", numbered(n, 1)))),
+/// A prescribed row 1..n_p (the rows that carry a stress) as a 0-based index.
+fn stressed_row(deck: &Deck, sizes: &Sizes, kw: Keyword, r: &Spanned<i64>) -> Result<usize, Box<Diagnostic>> {
+    let n_p = sizes.n_prescribed;
+    if let Some(k) = usize::try_from(r.value).ok().filter(|&k| (1..=n_p).contains(&k)) {
+        return Ok(k - 1);
     }
-}
-
-/// A DOF number 1..NRDOF as a 0-based index.
-fn dof(deck: &Deck, sizes: &Sizes, kw: Keyword, j: &Spanned<i64>) -> Result<usize, Box<Diagnostic>> {
-    let n = sizes.n_dof;
-    match usize::try_from(j.value).ok().filter(|&v| (1..=n).contains(&v)) {
-        Some(v) => Ok(v - 1),
-        None => Err(deck
-            .error(DiagnosticKind::UnknownDof, j.span, format!("{kw} names DOF {}, but NRDOF is {n}", j.value))
-            .with_hint(dof_hint(n))),
-    }
-}
-
-/// A destination: `r > 0` a prescribed row, `-k` a dependent form parameter.
-fn form(deck: &Deck, sizes: &Sizes, kw: Keyword, r: &Spanned<i64>) -> Result<FormRef, Box<Diagnostic>> {
-    let (n_p, n_d) = (sizes.n_prescribed, sizes.n_dependent);
-    let k = usize::try_from(r.value.unsigned_abs()).unwrap_or(usize::MAX);
-    let rows = count(n_p, "prescribed row", "prescribed rows");
-    let dependents = count(n_d, "dependent form parameter", "dependent form parameters");
-    let (ok, message) = if r.value > 0 {
-        (k <= n_p, format!("{kw} names prescribed row {}, but the model has {rows}", r.value))
-    } else if r.value < 0 {
-        (k <= n_d, format!("{kw} names dependent form parameter {}, but the model has {dependents}", r.value))
-    } else {
-        (false, format!("{kw} names destination 0, which is no form parameter"))
+    let message = match r.value {
+        0 => format!("{kw} names destination 0, which is no form parameter"),
+        v if v < 0 => format!("{kw} names dependent form parameter {v}, which carries no stress"),
+        v => format!(
+            "{kw} names prescribed row {v}, but the model has {}",
+            count(n_p, "prescribed row", "prescribed rows")
+        ),
     };
-    if !ok {
-        let hint = if n_d == 0 {
-            format!("name a prescribed row ({})", numbered(n_p, 1))
-        } else {
-            format!(
-                "name a prescribed row ({}) or a dependent form parameter ({})",
-                numbered(n_p, 1),
-                numbered(n_d, -1)
-            )
-        };
-        return Err(deck.error(DiagnosticKind::UnknownRow, r.span, message).with_hint(hint));
+    Err(deck
+        .error(DiagnosticKind::UnknownRow, r.span, message)
+        .with_hint(format!("the stresses belong to the prescribed rows ({}), the rows of D^c", numbered(n_p, 1))))
+}
+
+/// A fixed co-ordinate (the ones that have a reaction) as a 0-based index.
+fn fixed(deck: &Deck, sizes: &Sizes, kw: Keyword, i: &Spanned<i64>) -> Result<usize, Box<Diagnostic>> {
+    let k = coordinate(deck, sizes, kw, i)?;
+    if !sizes.moving.get(k).copied().unwrap_or(false) {
+        return Ok(k);
     }
-    Ok(if r.value > 0 { FormRef::Prescribed(k - 1) } else { FormRef::Dependent(k - 1) })
+    let fixed: Vec<String> =
+        (0..sizes.n_coords).filter(|&c| !sizes.moving[c]).take(12).map(|c| (c + 1).to_string()).collect();
+    let more = if sizes.moving.iter().filter(|m| !**m).count() > 12 { ", ..." } else { "" };
+    let hint = if fixed.is_empty() {
+        "only a fixed co-ordinate (XFIX) has a reaction, and this model has none".to_string()
+    } else {
+        format!("name a fixed co-ordinate (XFIX): {}{more}", fixed.join(", "))
+    };
+    Err(deck
+        .error(
+            DiagnosticKind::NotFixed,
+            i.span,
+            format!("{kw} names co-ordinate {}, which moves (XMOV): only a fixed co-ordinate has a reaction", i.value),
+        )
+        .with_hint(hint))
 }

@@ -88,7 +88,7 @@ const WORDS: &[&str] = &[
     "PARA", "TSTEPE", "MOV_RELE", "MOV_ABSE", "MOV_FUNC", "MOV_FREE", "ACCURACY", "MAXITER", "BUFINP", "BUFTIME",
     "BUFX0", "BUFKX2", "BUFAE", "BUFDET", "PRINTBUF", "SAVEDATA", "ANIMATE", "BEGINPIC", "ENDPIC", "PLOTFUNC",
     "PLOTHODO", "BIN", "TR2", "GR1", "BLT", "CRD", "LENL", "ANGB", "GEAR", "BELT", "COOR", ";", "\t", "Ä", "\u{0}",
-    "\r",
+    "\r", "DYNAMICS", "MASS", "PMASS", "GRAVITY", "LOADFUNC", "SPRING", "MOTOR", "BUFSIG", "BUFREA", "BUFMRED",
 ];
 
 /// How hostile a generated deck is.
@@ -596,7 +596,8 @@ pub fn run_checked(c: &Compiled, quantities: Vec<Quantity>, max_steps: usize) ->
 pub fn check_deck(text: &str, dir: &Path, max_steps: usize) -> Outcome {
     let Ok(c) = compile_text(text, dir) else { return Outcome::Rejected };
     let outcome = run_checked(&c, every_quantity(&c), max_steps);
-    let own: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
+    // The dynamics are the core's to check: a run here records kinematics only.
+    let own: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).filter(|q| !q.is_dynamic()).collect();
     let order = own.iter().map(Quantity::transfer_order).max().flatten();
     if order < Some(mechfem_core::TransferOrder::Second) {
         run_checked(&c, own, max_steps);

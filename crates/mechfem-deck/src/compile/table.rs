@@ -1,0 +1,127 @@
+//! Tables of numbers in files named by the deck (MOV_FUNC, LOADFUNC).
+//!
+//! One row per line, numbers in Fortran's format separated by blanks, tabs
+//! or commas; blank lines and comments (`;` or `#`) are skipped. File names
+//! are relative to the deck's folder.
+
+use std::io::{ErrorKind, Read};
+use std::ops::RangeInclusive;
+use std::path::{Path, PathBuf};
+
+use crate::args::Source;
+use crate::ast::{diagnostic_at, Deck};
+use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
+use crate::keywords::Keyword;
+use crate::lexer::lex_line;
+
+/// What a table file of a keyword must look like.
+pub(crate) struct Layout {
+    /// The keyword that names the file.
+    pub keyword: Keyword,
+    /// The diagnostic kind of a file that cannot be read or is too large
+    /// (a bad row is `ArgumentCount` or `NotANumber`, at the line of the file).
+    pub kind: DiagnosticKind,
+    /// How many numbers a row holds.
+    pub columns: RangeInclusive<usize>,
+    /// What each column is, for messages (`the time`, ...).
+    pub names: &'static [&'static str],
+    /// How a row is written, for the hint of a bad row.
+    pub row: &'static str,
+    /// The largest file read, with the hint for a larger one (`None`: any size).
+    pub max_bytes: Option<(u64, &'static str)>,
+}
+
+/// A table read from a file.
+pub(crate) struct Table {
+    /// The file, as it was looked up (deck folder joined with the name).
+    pub path: PathBuf,
+    /// Its lines, for diagnostics.
+    lines: Vec<String>,
+    /// The rows, with the line (1-based) each one is on.
+    pub rows: Vec<(usize, Vec<Spanned<f64>>)>,
+}
+
+impl Table {
+    /// A diagnostic pointing at `span` of the table's file.
+    pub fn error(&self, kind: DiagnosticKind, span: Span, message: impl Into<String>) -> Box<Diagnostic> {
+        diagnostic_at(&self.path, &self.lines, kind, span, message)
+    }
+}
+
+/// Reads the table file named by `file` (relative to `deck_dir`).
+pub(crate) fn read(
+    deck: &Deck,
+    file: &Spanned<String>,
+    deck_dir: &Path,
+    layout: &Layout,
+) -> Result<Table, Box<Diagnostic>> {
+    let kw = layout.keyword;
+    let path = deck_dir.join(&file.value);
+    let at_deck = |message: String| deck.error(layout.kind, file.span, message);
+    let bytes = bytes(&path, layout.max_bytes.map(|(max, _)| max)).map_err(|e| match (e, layout.max_bytes) {
+        (Refused::TooLarge, Some((max, hint))) => {
+            at_deck(format!("the {kw} file `{}` is larger than {} MiB", file.value, max >> 20)).with_hint(hint)
+        }
+        (Refused::TooLarge, None) => at_deck(format!("the {kw} file `{}` is too large", file.value)),
+        (Refused::Io(why), _) => at_deck(format!("cannot read the {kw} file `{}`: {why}", file.value))
+            .with_hint(format!("the file name is relative to the deck's folder; looked for {}", path.display())),
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let lines: Vec<String> = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
+    let src = Source { path: &path, lines: &lines };
+    let (min, max) = (*layout.columns.start(), *layout.columns.end());
+    let mut rows = Vec::new();
+    for (k, line) in lines.iter().enumerate() {
+        let cleaned: String =
+            line.split('#').next().unwrap_or("").chars().map(|c| if c == ',' { ' ' } else { c }).collect();
+        let Some(words) = lex_line(k + 1, &cleaned) else { continue };
+        let n = words.words.len();
+        if !layout.columns.contains(&n) {
+            let surplus = (n > max).then_some(max);
+            let holds = if min == max { min.to_string() } else { format!("{min} to {max}") };
+            let message = format!("a row of a {kw} file holds {holds} numbers, this one has {n}");
+            return Err(src.count_error(&words, &words.words, surplus, message).with_hint(layout.row));
+        }
+        let row =
+            words.words.iter().zip(layout.names).map(|(w, what)| src.real(w, what)).collect::<Result<Vec<_>, _>>()?;
+        rows.push((k + 1, row));
+    }
+    Ok(Table { path, lines, rows })
+}
+
+/// Why a file was not read.
+enum Refused {
+    Io(String),
+    TooLarge,
+}
+
+/// The bytes of a regular file, at most `max` of them.
+fn bytes(path: &Path, max: Option<u64>) -> Result<Vec<u8>, Refused> {
+    let why = |e: std::io::Error| {
+        Refused::Io(match e.kind() {
+            ErrorKind::NotFound => "it does not exist".to_string(),
+            ErrorKind::PermissionDenied => "permission denied".to_string(),
+            _ => e.to_string(),
+        })
+    };
+    // A regular file only: a device such as /dev/zero, or a pipe, would be
+    // read without end (and opening a pipe waits for a writer).
+    let meta = std::fs::metadata(path).map_err(why)?;
+    if meta.is_dir() {
+        return Err(Refused::Io("it is a folder".to_string()));
+    }
+    if !meta.is_file() {
+        return Err(Refused::Io("it is not a regular file".to_string()));
+    }
+    let Some(max) = max else { return std::fs::read(path).map_err(why) };
+    if meta.len() > max {
+        return Err(Refused::TooLarge);
+    }
+    // The file may have grown since: read one byte more than allowed to see.
+    let mut out = Vec::new();
+    std::fs::File::open(path).map_err(why)?.take(max + 1).read_to_end(&mut out).map_err(why)?;
+    if out.len() as u64 > max {
+        return Err(Refused::TooLarge);
+    }
+    Ok(out)
+}

@@ -1,0 +1,144 @@
+"""What a DYN ANA deck's run adds to its result: the mass and load model as compiled, the drive forces, energies
+and power at every position, and the figures a designer sizes a motor and a flywheel with.
+
+Numbers that name things are the deck's own (1-based, destinations signed).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class DynamicsModel:
+    """The DYNAMICS block as compiled: every item as a dict in deck numbering (``bodies``: element, mass, u, v,
+    inertia; ``point_masses``: x, y, mass; ``inertias``: coord, inertia; ``forces``: x, y, fx, fy; ``loads``: dest,
+    kind (LOAD, LOADFUNC, SPRING or MOTOR) and its numbers)."""
+
+    gravity: tuple[float, float]
+    bodies: list[dict[str, float]]
+    point_masses: list[dict[str, float]]
+    inertias: list[dict[str, float]]
+    forces: list[dict[str, float]]
+    loads: list[dict[str, Any]]
+
+    @classmethod
+    def from_core(cls, d: dict[str, Any]) -> DynamicsModel:
+        g = d["gravity"]
+        return cls(
+            gravity=(float(g[0]), float(g[1])),
+            bodies=list(d["bodies"]),
+            point_masses=list(d["point_masses"]),
+            inertias=list(d["inertias"]),
+            forces=list(d["forces"]),
+            loads=list(d["loads"]),
+        )
+
+    def lines(self) -> list[str]:
+        """The echo of the masses and loads in the print file."""
+        out = ["", "  masses and loads (DYNAMICS)"]
+        if self.gravity != (0.0, 0.0):
+            out.append(f"    GRAVITY   ({self.gravity[0]:.10g}, {self.gravity[1]:.10g})")
+        for b in self.bodies:
+            out.append(
+                f"    MASS      element {int(b['element'])}: m {b['mass']:.10g}, centre (u, v) = "
+                f"({b['u']:.10g}, {b['v']:.10g}), J {b['inertia']:.10g}"
+            )
+        for p in self.point_masses:
+            out.append(f"    PMASS     point (x{int(p['x'])}, y{int(p['y'])}): m {p['mass']:.10g}")
+        for i in self.inertias:
+            out.append(f"    INERTIA   co-ordinate {int(i['coord'])}: J {i['inertia']:.10g}")
+        for f in self.forces:
+            out.append(f"    FORCE     point (x{int(f['x'])}, y{int(f['y'])}): ({f['fx']:.10g}, {f['fy']:.10g})")
+        for ld in self.loads:
+            out.append(f"    {ld['kind']:<9} eps({ld['dest']}): {_load_text(ld)}")
+        return out
+
+
+def _load_text(ld: dict[str, Any]) -> str:
+    match ld["kind"]:
+        case "LOAD":
+            return f"constant {ld['value']:.10g}"
+        case "LOADFUNC":
+            return f"table of {len(ld['rows'])} rows, linear in time"
+        case "SPRING":
+            return f"stiffness {ld['k']:.10g}, free value {ld['e0']:.10g}, damping {ld['c']:.10g}"
+        case _:
+            return f"stall torque {ld['t0']:.10g}, no-load speed {ld['w0']:.10g}"
+
+
+@dataclass(frozen=True)
+class DynamicSeries:
+    """Inverse dynamics along the run, one row per position."""
+
+    inputs: FloatArray
+    """Input values, positions x DOFs."""
+    drive: FloatArray
+    """Drive force or torque of every DOF (the stress of its input row), positions x DOFs."""
+    kinetic: FloatArray
+    potential: FloatArray
+    """Potential energy of gravity and springs."""
+    power: FloatArray
+    """Power the drives deliver."""
+
+    @classmethod
+    def from_core(cls, d: dict[str, Any]) -> DynamicSeries:
+        def arr(key: str) -> FloatArray:
+            return np.asarray(d[key], dtype=np.float64)
+
+        return cls(arr("inputs"), arr("drive"), arr("ekin"), arr("epot"), arr("power"))
+
+
+def energy_fluctuation(time: FloatArray, power: FloatArray) -> float:
+    """The largest fluctuation of the work the drives deliver about its mean rate: the energy a flywheel must
+    absorb and give back to keep the drive at the mean power (NaN with fewer than two finite positions)."""
+    ok = np.isfinite(power) & np.isfinite(time)
+    t, p = time[ok], power[ok]
+    if t.size < 2 or t[-1] <= t[0]:
+        return float("nan")
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])
+    excess = work - work[-1] * (t - t[0]) / (t[-1] - t[0])
+    return float(excess.max() - excess.min())
+
+
+def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
+    """The print file's DYNAMICS section: the extreme drive forces and where they occur, the drives' work and mean
+    power, the energy a flywheel must absorb, and the range of the kinetic and potential energy."""
+    if series.drive.shape[0] == 0:
+        return []
+    out = ["DYNAMICS"]
+    for j in range(series.drive.shape[1]):
+        d = series.drive[:, j]
+        ok = np.isfinite(d)
+        if not ok.any():
+            out.append(f"  drive of DOF {j + 1}: not known at any position (limit positions only)")
+            continue
+        k_max, k_min = int(np.nanargmax(d)), int(np.nanargmin(d))
+        rms = float(np.sqrt(np.mean(d[ok] ** 2)))
+        out += [
+            f"  drive of DOF {j + 1}: largest {d[k_max]:.10g} at position {k_max + 1} "
+            f"(input {series.inputs[k_max, j]:.10g}),",
+            f"    smallest {d[k_min]:.10g} at position {k_min + 1} (input {series.inputs[k_min, j]:.10g}), "
+            f"root mean square {rms:.10g}",
+        ]
+    ok = np.isfinite(series.power) & np.isfinite(time)
+    t = time[ok]
+    if t.size > 1 and t[-1] > t[0]:
+        work = float(np.sum(0.5 * (series.power[ok][1:] + series.power[ok][:-1]) * np.diff(t)))
+        out.append(f"  work of the drives: {work:.10g}, mean drive power {work / (t[-1] - t[0]):.10g}")
+        out.append(
+            "  largest fluctuation of the drives' work about its mean (a flywheel's energy swing): "
+            f"{energy_fluctuation(time, series.power):.10g}"
+        )
+    for name, values in (("kinetic", series.kinetic), ("potential", series.potential)):
+        v = values[np.isfinite(values)]
+        if v.size:
+            out.append(f"  {name} energy: from {v.min():.10g} to {v.max():.10g}")
+    out.append("")
+    return out

@@ -1,0 +1,116 @@
+"""The STORAGE block of a :class:`~mechfem.Mechanism` with names: buffers and pictures."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, TypeAlias, Union
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from mechfem import _core
+    from mechfem.model import Coordinate, FormParameter, Point, Row
+
+Ref: TypeAlias = Union[int, str, "Coordinate", "Point", "FormParameter", "Row"]
+"""Something a buffer or plot refers to: a deck number, a name, or the object itself."""
+
+BUFFER_ARGS: dict[str, str] = {
+    "BUFINP": "j",
+    "BUFTIME": "",
+    "BUFX0": "i",
+    "BUFKX1": "ij",
+    "BUFKX2": "ijm",
+    "BUFVX": "i",
+    "BUFAX": "i",
+    "BUFE0": "r",
+    "BUFKE1": "rj",
+    "BUFKE2": "rjm",
+    "BUFVE": "r",
+    "BUFAE": "r",
+    "BUFDET": "",
+    "BUFSIG": "r",
+    "BUFDRV": "j",
+    "BUFREA": "i",
+    "BUFEKIN": "",
+    "BUFEPOT": "",
+    "BUFPOW": "",
+    "BUFMRED": "jj",
+}
+"""The arguments of each BUF keyword before the buffer number.
+
+``i`` a co-ordinate, ``r`` a row, ``j`` and ``m`` an input (a last ``m`` may be left out: it is then ``j``).
+BUFSIG takes a prescribed row, BUFREA a fixed co-ordinate; they and the other buffers of the dynamics
+(BUFDRV, BUFEKIN, BUFEPOT, BUFPOW, BUFMRED) need masses or loads on the mechanism (mode ``DYN ANA``)."""
+
+
+@dataclass
+class Picture:
+    """One picture (BEGINPIC ... ENDPIC): plots ``(keyword, a, b)``; PLOTHODO takes a point or two co-ordinates."""
+
+    title: str = ""
+    plots: list[tuple[str, Ref, Ref]] = field(default_factory=list)
+
+
+@dataclass
+class Storage:
+    """The STORAGE block: buffers (one value per position), and what to do with them.
+
+    Buffers are ``(number, keyword, args)``; an argument is a name, an object of the model or a deck
+    number (see :data:`BUFFER_ARGS`). ``printbuf`` None writes no table, an empty list all buffers.
+    """
+
+    buffers: list[tuple[int, str, tuple[Ref, ...]]] = field(default_factory=list)
+    printbuf: list[int] | None = None
+    savedata: list[int] = field(default_factory=list)
+    animate: str | None = None
+    pictures: list[Picture] = field(default_factory=list)
+
+    def buffer(self, number: int, keyword: str, *args: Ref) -> Storage:
+        """Adds buffer ``number`` holding ``keyword args`` (e.g. ``101, "BUFKE1", "delta", "alpha"``)."""
+        kw = keyword.upper()
+        if kw not in BUFFER_ARGS:
+            raise ValueError(f"unknown buffer keyword {keyword!r}; one of {', '.join(BUFFER_ARGS)}")
+        wanted = BUFFER_ARGS[kw]
+        if not (len(wanted) == len(args) or (wanted.endswith("m") and len(args) == len(wanted) - 1)):
+            raise ValueError(f"{kw} takes {len(wanted)} argument(s) ({' '.join(wanted)}), got {len(args)}")
+        if number in (b[0] for b in self.buffers):
+            raise ValueError(f"buffer {number} is defined twice")
+        self.buffers.append((int(number), kw, tuple(args)))
+        return self
+
+    def picture(self, title: str = "", *plots: tuple[str, Ref] | tuple[str, Ref, Ref]) -> Storage:
+        """Adds a picture; a plot is ``("PLOTFUNC", bx, by)``, ``("PLOTCURV", bx, by)`` or ``("PLOTHODO", point)``."""
+        out: list[tuple[str, Ref, Ref]] = []
+        for p in plots:
+            kw = p[0].upper()
+            if kw == "PLOTHODO" and len(p) == 2:
+                pt = p[1]
+                out.append((kw, pt, pt))
+            elif len(p) == 3 and kw in ("PLOTFUNC", "PLOTCURV", "PLOTHODO"):
+                out.append((kw, p[1], p[2]))
+            else:
+                raise ValueError(f"not a plot: {p!r}")
+        self.pictures.append(Picture(title, out))
+        return self
+
+
+def from_described(s: _core.StorageDict, name: Callable[[str, int], Ref]) -> Storage | None:
+    """The storage of a deck the reader described (None without one); ``name(kind, number)`` names a deck number of
+    a kind of :data:`BUFFER_ARGS` (``i`` co-ordinate, ``r`` row, ``j`` input)."""
+    if not (s["buffers"] or s["printbuf"] is not None or s["savedata"] or s["animate"] or s["pictures"]):
+        return None
+    buffers: list[tuple[int, str, tuple[Ref, ...]]] = []
+    for b in s["buffers"]:
+        kinds = BUFFER_ARGS[b["keyword"]]
+        buffers.append((b["number"], b["keyword"], tuple(name(k, v) for k, v in zip(kinds, b["args"], strict=False))))
+    pictures = []
+    for p in s["pictures"]:
+        plots: list[tuple[str, Ref, Ref]] = []
+        for q in p["plots"]:
+            if q["keyword"] == "PLOTHODO":
+                plots.append((q["keyword"], name("i", q["a"]), name("i", q["b"])))
+            else:
+                plots.append((q["keyword"], q["a"], q["b"]))
+        pictures.append(Picture(p["title"], plots))
+    printbuf = s["printbuf"]
+    return Storage(buffers, None if printbuf is None else list(printbuf), list(s["savedata"]), s["animate"], pictures)
