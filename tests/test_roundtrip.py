@@ -13,14 +13,22 @@ import pytest
 import mechfem
 from conftest import ROOT
 from mechfem import Mechanism, Motion
+from mechfem.model import Table
 from test_model_api import supply
 
+
+def mode(deck: Path) -> str:
+    """The deck's mode line (the first line that is not a comment)."""
+    lines = (line.split(";")[0].strip().upper() for line in deck.read_text().splitlines())
+    return next((line for line in lines if line), "")
+
+
 EXAMPLE_DECKS = sorted((ROOT / "examples").rglob("*.mec"))
-# The valid decks of the deck reader with masses and loads (DYN ANA), beside the examples.
+# The valid decks of the deck reader with masses and loads (DYN ANA, DYN SIM), beside the examples.
 DYNAMIC_DECKS = sorted(
     p
     for p in (ROOT / "crates" / "mechfem-deck" / "tests" / "decks" / "valid").glob("*.mec")
-    if p.read_text().lstrip().upper().startswith("DYN ANA")
+    if mode(p).startswith("DYN")
 )
 DECKS = EXAMPLE_DECKS + [p for p in DYNAMIC_DECKS if p not in EXAMPLE_DECKS]
 RTOL = 1e-12
@@ -40,6 +48,7 @@ def same(a: npt.NDArray[np.float64], b: npt.NDArray[np.float64]) -> bool:
 
 def test_there_are_example_decks() -> None:
     assert len(EXAMPLE_DECKS) >= 2 and len(DYNAMIC_DECKS) >= 2
+    assert any(mode(p) == "DYN SIM" for p in DYNAMIC_DECKS)
 
 
 @pytest.mark.parametrize("deck", DECKS, ids=deck_id)
@@ -59,8 +68,9 @@ def test_example_deck_read_into_the_api_gives_the_deck_results(deck: Path) -> No
     for number, values in ref.buffers.items():
         assert same(r.buffers[number], values), f"buffer {number}"
     assert same(r.coords, ref.coords) and same(r.time, ref.time) and same(r.det, ref.det)
-    # The masses and loads came along: the same inverse dynamics.
-    assert r.dynamic == (ref.model.mode == "DYN ANA") == (m.loads is not None)
+    # The masses and loads came along: the same inverse dynamics, and a simulation simulated alike.
+    assert r.dynamic == (ref.model.mode != "KIN ANA") == (m.loads is not None)
+    assert r.simulation == ref.simulation and (r.simulation is not None) == (ref.model.mode == "DYN SIM")
     if ref.dynamic is not None:
         assert same(r.drive_torque(1)[:, None], ref.dynamic.drive[:, :1]) and same(r.power(), ref.dynamic.power)
         assert same(r.energy().kinetic, ref.dynamic.kinetic) and same(r.energy().potential, ref.dynamic.potential)
@@ -74,6 +84,15 @@ def test_example_deck_written_back_reads_as_the_same_model(deck: Path, tmp_path:
     assert [e.type for e in again.elements] == [e.type for e in m.elements]
     assert [(r.name, r.kind, r.value) for r in again.rows] == [(r.name, r.kind, r.value) for r in m.rows]
     assert [type(i) for i in again.loads or []] == [type(i) for i in m.loads or []]
+    assert plain(again.motion) == plain(m.motion)
+
+
+def plain(motion: Motion | None) -> tuple[object, ...] | None:
+    """A motion as plain values (a table as its rows), to compare two of them."""
+    if motion is None:
+        return None
+    inputs = [(k, im.rows(motion.dt).tolist() if isinstance(im, Table) else im) for k, im in motion.inputs.items()]
+    return (motion.steps, motion.dt, motion.accuracy, motion.max_iter, motion.rtol, motion.atol, inputs)
 
 
 @pytest.mark.parametrize("deck", DECKS, ids=deck_id)

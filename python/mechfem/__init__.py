@@ -19,7 +19,8 @@ or build a mechanism in Python with named points and elements (:class:`Mechanism
 
 Masses and loads on a mechanism (:meth:`Mechanism.mass`, :meth:`Mechanism.gravity`, ...; see
 :mod:`mechfem.loads`) make its run an inverse dynamics: ``r.drive_torque()``, ``r.stress(row)``,
-``r.reaction(point)``, ``r.energy()``, ``r.power()``, ``r.mass_matrix()``.
+``r.reaction(point)``, ``r.energy()``, ``r.power()``, ``r.mass_matrix()``; with them,
+:meth:`Mechanism.simulate` finds the motion the forces make (a simulation, ``r.simulation``).
 
 Deck mistakes raise :class:`DeckError`; a model that cannot reach position 1
 raises :class:`AssemblyError`, :class:`ConvergenceError` or

@@ -62,8 +62,8 @@ class StopDict(TypedDict):
     inputs: list[float]
     last_inputs: list[float]
     kind: str
-    """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported`` or
-    ``not_computed``."""
+    """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
+    ``not_computed``, ``interrupted`` or ``simulation`` (the integrator of a simulation gave up)."""
     message: str
     limit: LimitDict | None
 
@@ -166,7 +166,7 @@ class ModelDict(TypedDict):
     """For each DOF, its prescribed row."""
     coordinates: list[CoordDict]
     mode: str
-    """``KIN ANA`` or ``DYN ANA``."""
+    """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None
     """The masses and loads (None for a KIN ANA deck)."""
 
@@ -205,6 +205,20 @@ class CheckDict(TypedDict):
     adjust: AdjustDict
     model: ModelDict
 
+class SimulationDict(TypedDict):
+    """What the integrator of a DYN SIM run did."""
+
+    method: str
+    rtol: float
+    atol: float
+    steps: int
+    """Steps accepted."""
+    rejected: int
+    evaluations: int
+    """Evaluations of the equations of motion (one Newton position each)."""
+    reached: float
+    """The time the integration reached."""
+
 class DynamicRunDict(TypedDict):
     """The inverse dynamics of a DYN ANA run, per position."""
 
@@ -235,6 +249,8 @@ class RunDict(TypedDict):
     """Ctrl-C stopped the run; the positions before it are here."""
     dynamic: DynamicRunDict | None
     """None for a KIN ANA deck."""
+    simulation: SimulationDict | None
+    """None unless the deck is a DYN SIM one."""
 
 def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
 def run_deck(
@@ -263,7 +279,9 @@ class TextRunDict(TypedDict):
     n_prescribed: int
     n_dependent: int
     dynamic: bool
-    """The deck has masses and loads (DYN ANA): the table holds the inverse dynamics."""
+    """The deck has masses and loads (DYN ANA, DYN SIM): the table holds the inverse dynamics."""
+    simulation: SimulationDict | None
+    """What the integrator did, for a DYN SIM deck whose motion was simulated; None otherwise."""
     report: ReportDict
     model: ModelDict
     storage: StorageDict
@@ -295,9 +313,9 @@ class DescribedRowDict(TypedDict):
 
 class DescribedInputDict(TypedDict):
     kind: str
-    """``by`` (MOV_RELE), ``to`` (MOV_ABSE), ``table`` (MOV_FUNC) or ``free`` (MOV_FREE)."""
+    """``by`` (MOV_RELE), ``to`` (MOV_ABSE), ``table`` (MOV_FUNC), ``free`` (MOV_FREE) or ``dynamic`` (MOV_DYN)."""
     value: float | None
-    """delta, end or ds; None for a table."""
+    """delta, end, ds or the initial speed v0; None for a table."""
     rows: list[list[float]] | None
     """A table's rows ``t value velocity acceleration``."""
     file: str | None
@@ -319,9 +337,11 @@ class DescribedDeckDict(TypedDict):
     motion: DescribedMotionDict | None
     storage: StorageDict
     mode: str
-    """``KIN ANA`` or ``DYN ANA``."""
+    """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None
     """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
+    inttol: NotRequired[list[float] | None]
+    """``[rtol, atol]`` of INTTOL; None (or absent) for a deck without INTTOL."""
 
 def run_deck_text(
     text: str,

@@ -4,7 +4,9 @@ Arrays have one entry per position (row k is position k + 1). Transfer functions
 respect to the inputs (``order=1``: d/d q_j, ``order=2``: d2/d q_j d q_m); with one input ``wrt`` may be
 left out. Points give two columns (x, y); co-ordinates, rows and outputs one. A mechanism with masses or
 loads (:mod:`mechfem.loads`) also gives its inverse dynamics: drive forces and torques, stresses of the
-prescribed rows, reactions of the frame, energies, power and the mass matrix.
+prescribed rows, reactions of the frame, energies, power and the mass matrix. A simulation
+(:meth:`~mechfem.Mechanism.simulate`) gives the same, along the motion the forces made, and
+:attr:`Analysis.simulation` says what its integrator did.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
+from mechfem.inverse_dynamics import Simulation
 from mechfem.result import Limit, RunReport, RunResult
 
 if TYPE_CHECKING:
@@ -90,6 +93,10 @@ class Analysis:
         self._row_index = {r: k for k, r in enumerate(numbering.rows)}
         self.dynamic = bool(d["dynamic"])
         """True when the mechanism has masses or loads: the run computed its inverse dynamics."""
+        sim = d.get("simulation")
+        self.simulation: Simulation | None = None if sim is None else Simulation.from_core(sim)  # type: ignore[arg-type]
+        """What the integrator of a simulation did (method, tolerances, steps, rejected steps, evaluations of the
+        equations of motion, the time reached); None for a run of a prescribed motion."""
         # After the rows: stresses of the prescribed rows, drives, reactions, T, V, power, mass matrix.
         dyn = full[:, nd + n * cw + nr * rw :] if self.dynamic else np.zeros((p, 0))
         npr, nn = d["n_prescribed"], nd + n + d["n_prescribed"]

@@ -32,6 +32,7 @@ from mechfem.model import (
     SLOTS,
     By,
     Coordinate,
+    Dynamic,
     Element,
     FormParameter,
     Free,
@@ -46,6 +47,7 @@ from mechfem.model import (
     Storage,
     Table,
     To,
+    input_dof,
 )
 from mechfem.output import atomic_text
 from mechfem.storage import from_described
@@ -94,23 +96,7 @@ class Numbering:
     def dof(self, key: InputKey) -> int:
         """The DOF number (1-based) of an input given by name, DOF number, row or form parameter (None: the only
         input)."""
-        inputs = self.inputs
-        if key is None:
-            if len(inputs) != 1:
-                names = ", ".join(repr(r.name) for r in inputs) or "none"
-                raise ValueError(f"the mechanism has {len(inputs)} inputs ({names}): say which one")
-            return 1
-        if isinstance(key, bool):
-            raise TypeError(f"not an input: {key!r}")
-        if isinstance(key, int):
-            if not 1 <= key <= len(inputs):
-                raise ValueError(f"input number {key} is out of range 1..{len(inputs)}")
-            return key
-        for j, r in enumerate(inputs, 1):
-            if key is r or r.name == key or (isinstance(key, FormParameter) and r.terms == ((1.0, key),)):
-                return j
-        names = ", ".join(repr(r.name) for r in inputs) or "none"
-        raise KeyError(f"{key!r} is not an input; the inputs are {names}")
+        return input_dof(key, self.inputs)
 
 
 def number_model(mech: Mechanism) -> Numbering:
@@ -141,6 +127,8 @@ class DeckText:
     numbering: Numbering
     tables: dict[str, str]
     """MOV_FUNC file name -> its text."""
+    simulated: list[str] = field(default_factory=list)
+    """The inputs that move under the forces (MOV_DYN)."""
 
 
 class _Lines:
@@ -210,7 +198,9 @@ def write(
     nb = number_model(mech)
     out = _Lines()
     out.add(f"; written by mechfem from the Python model '{mech.name}'")
-    out.add("KIN ANA" if mech.loads is None else "DYN ANA")
+    dynamic = [] if motion is None else [k for k, im in motion.inputs.items() if isinstance(im, Dynamic)]
+    simulated = [nb.inputs[nb.dof(k) - 1].name for k in dynamic]
+    out.add(loads.mode(mech, simulated))
     out.add("TOPOLOGY")
     for k, e in enumerate(nb.elements, 1):
         nums = " ".join(str(nb.coord_number[c]) for c in e.coordinates)
@@ -265,6 +255,8 @@ def write(
                 out.add(f"MOV_ABSE {j} {number(im.end)}", note, name)
             elif isinstance(im, Free):
                 out.add(f"MOV_FREE {j} {number(im.ds)}", note, name)
+            elif isinstance(im, Dynamic):
+                out.add(f"MOV_DYN {j} {number(im.v0)}", note, name)
             elif isinstance(im, Table):
                 file = im.file or f"{_file_stem(mech.name)}_input{j}.dat"
                 if any(ch.isspace() or ch == ";" for ch in file):
@@ -277,6 +269,11 @@ def write(
             out.add(f"ACCURACY {number(motion.accuracy)}", ("motion", "accuracy"))
         if motion.max_iter is not None:
             out.add(f"MAXITER {int(motion.max_iter)}", ("motion", "max_iter"))
+        if motion.rtol is not None or motion.atol is not None:
+            # INTTOL takes both; the one not given is ACCURACY, as the deck reader's default (at least 1e-13).
+            tol = max(motion.accuracy or DEFAULT_ACCURACY, 1e-13)
+            rtol, atol = (tol if v is None else v for v in (motion.rtol, motion.atol))
+            out.add(f"INTTOL {number(rtol)} {number(atol)}", ("motion", "rtol and atol"))
 
     if storage is not None:
         out.add("STORAGE")
@@ -308,7 +305,7 @@ def write(
                 out.add(f"{kw} {ab[0]} {ab[1]}", ("picture", pic.title))
             out.add("ENDPIC")
     out.add("END")
-    return DeckText("\n".join(out.lines) + "\n", f"{mech.name}.mec", out.notes, nb, tables)
+    return DeckText("\n".join(out.lines) + "\n", f"{mech.name}.mec", out.notes, nb, tables, simulated)
 
 
 def save(mech: Mechanism, path: Path, motion: Motion | None, storage: Storage | None) -> Path:
@@ -382,8 +379,10 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
             text += f"; co-ordinates named {', '.join(_coord_names(nb, coords))}"
         names = {"row_names": _row_names(nb, rows), "coord_names": _coord_names(nb, coords)}
         return _with(LimitPositionError(text), rows=rows, coords=coords, **names)
-    new_e = type(err)(names_in(str(err), nb))
-    return new_e
+    text = names_in(str(err), nb)
+    if deck.simulated and "MOV_DYN" in text:
+        text += f" (the inputs that move under the forces: {', '.join(map(repr, deck.simulated))})"
+    return type(err)(text)
 
 
 def names_in(text: str, nb: Numbering) -> str:
@@ -560,15 +559,20 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
                 inputs[key] = By(value)
             elif im["kind"] == "to":
                 inputs[key] = To(value)
+            elif im["kind"] == "dynamic":
+                inputs[key] = Dynamic(value)
             else:
                 inputs[key] = Free(value)
         tol, max_iter = d["tol"], d["max_iter"]
+        rtol, atol = d.get("inttol") or (None, None)
         m.motion = Motion(
             mv["steps"],
             inputs,
             mv["dt"],
             None if tol == DEFAULT_ACCURACY else tol,
             None if max_iter == DEFAULT_MAX_ITER else max_iter,
+            rtol,
+            atol,
         )
 
     def name(kind: str, v: int) -> Ref:

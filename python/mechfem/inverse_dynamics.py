@@ -1,5 +1,6 @@
-"""What a DYN ANA deck's run adds to its result: the mass and load model as compiled, the drive forces, energies
-and power at every position, and the figures a designer sizes a motor and a flywheel with.
+"""What a DYN ANA or DYN SIM deck's run adds to its result: the mass and load model as compiled, the drive forces,
+energies and power at every position, the figures a designer sizes a motor and a flywheel with, and what a
+simulation's integrator did.
 
 Numbers that name things are the deck's own (1-based, destinations signed).
 """
@@ -142,3 +143,57 @@ def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
             out.append(f"  {name} energy: from {v.min():.10g} to {v.max():.10g}")
     out.append("")
     return out
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """What the integrator of a DYN SIM run did."""
+
+    method: str
+    rtol: float
+    atol: float
+    steps: int
+    """Steps accepted."""
+    rejected: int
+    """Steps rejected (error estimate too large, or no position found)."""
+    evaluations: int
+    """Evaluations of the equations of motion (each one Newton position)."""
+    reached: float
+    """The time the simulation reached."""
+
+    @classmethod
+    def from_core(cls, d: dict[str, Any]) -> Simulation:
+        return cls(
+            str(d["method"]),
+            float(d["rtol"]),
+            float(d["atol"]),
+            int(d["steps"]),
+            int(d["rejected"]),
+            int(d["evaluations"]),
+            float(d["reached"]),
+        )
+
+    def lines(self, series: DynamicSeries | None, time: FloatArray) -> list[str]:
+        """The print file's SIMULATION section: the integrator and its work, and the energy balance at the end."""
+        out = [
+            "SIMULATION",
+            f"  integrator: {self.method}",
+            f"  tolerances: relative {self.rtol:.3g}, absolute {self.atol:.3g}",
+            f"  steps: {self.steps} accepted, {self.rejected} rejected; {self.evaluations} evaluations of the "
+            "equations of motion",
+            f"  time reached: {self.reached:.10g}",
+        ]
+        if series is not None and time.size > 1:
+            e = series.kinetic + series.potential
+            ok = np.isfinite(series.power) & np.isfinite(time)
+            p, t = series.power[ok], time[ok]
+            work = float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(t))) if t.size > 1 else 0.0
+            change = float(e[-1] - e[0])
+            out += [
+                "  energy balance from the first position to the last:",
+                f"    T + V: {e[0]:.10g} -> {e[-1]:.10g} (change {change:.10g})",
+                f"    work of the driven inputs (trapezoidal rule over the positions): {work:.10g}",
+                f"    work of the other loads (motors, dampers, forces, tables), the remainder: {change - work:.10g}",
+            ]
+        out.append("")
+        return out

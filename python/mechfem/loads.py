@@ -1,11 +1,13 @@
-"""Masses and loads of a :class:`~mechfem.Mechanism`: what makes its deck a ``DYN ANA`` one (inverse dynamics).
+"""Masses and loads of a :class:`~mechfem.Mechanism`: what makes its deck a ``DYN ANA`` one (inverse dynamics), or a
+``DYN SIM`` one when an input moves under the forces (a simulation, :meth:`~mechfem.Mechanism.simulate`).
 
 Each mass or load is a small frozen dataclass that holds the model's own objects (an element, a point,
 a co-ordinate, a row); :class:`Loads` keeps them in the order they were given, which is the order of
 the DYNAMICS block written for the mechanism (keywords in ``docs/deck.md``, mechanics in
 ``dynamics.md``). The ``add_*`` functions check what the :class:`~mechfem.Mechanism` methods
 (:meth:`~mechfem.Mechanism.mass`, ...) are given, with the model's names in every message;
-:func:`deck_lines` writes the block and :func:`read` reads a deck's block back into a mechanism.
+:func:`mode` chooses the deck's mode line, :func:`deck_lines` writes the block and :func:`read` reads a deck's
+block back into a mechanism.
 
 A generalised force acts on a row: a prescribed row or an input (its drive then delivers the rest) or
 an output (a dependent form parameter, e.g. a slider's position), named as everywhere in the API: by
@@ -14,7 +16,7 @@ name, by the row itself, or by a form parameter (or combination) that a row hold
 
 from __future__ import annotations
 
-from collections.abc import Iterator, MutableMapping
+from collections.abc import Iterator, MutableMapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeAlias, TypeVar
 
@@ -370,6 +372,18 @@ def _n(v: float) -> str:
     return repr(float(v))
 
 
+def mode(mech: Mechanism, simulated: Sequence[str]) -> str:
+    """The deck's mode line: ``KIN ANA`` without masses and loads, ``DYN SIM`` when the inputs ``simulated`` move
+    under the forces (MOV_DYN), else ``DYN ANA``."""
+    if mech.loads is None and simulated:
+        raise ValueError(
+            f"the motion lets {', '.join(map(repr, simulated))} of the mechanism {mech.name!r} move under the forces "
+            "(Dynamic), but the mechanism has no masses or loads to move it: give them with Mechanism.mass, "
+            "point_mass, inertia, gravity, force, load, spring or motor (a DYN SIM deck needs a DYNAMICS block)"
+        )
+    return "KIN ANA" if mech.loads is None else "DYN SIM" if simulated else "DYN ANA"
+
+
 def table_text(item: LoadTable) -> str:
     """The LOADFUNC file of a load table: rows ``t value``."""
     head = f"# load on {item.row.name}: t value, one row per time\n"
@@ -474,5 +488,6 @@ __all__ = [
     "Spring",
     "deck_lines",
     "find_row",
+    "mode",
     "read",
 ]

@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 import numpy.typing as npt
 
 from mechfem.checks import check_name, finite
-from mechfem.motion import MAX_ITER, By, Free, InputKey, InputMotion, Motion, Table, To
+from mechfem.motion import MAX_ITER, By, Dynamic, Free, InputKey, InputMotion, Motion, Table, To, input_dof, simulation
 from mechfem.storage import BUFFER_ARGS, Picture, Ref, Storage
 
 if TYPE_CHECKING:
@@ -390,7 +390,8 @@ class Mechanism:
 
     ``motion`` and ``storage`` are the defaults :meth:`run` and :meth:`to_deck` use (set by
     :meth:`from_deck` to the deck's own). ``loads`` holds the masses and loads (None without any: a
-    kinematic model, mode ``KIN ANA``; with them its deck is a ``DYN ANA`` one).
+    kinematic model, mode ``KIN ANA``; with them its deck is a ``DYN ANA`` one, or ``DYN SIM`` for
+    :meth:`simulate`).
     """
 
     def __init__(self, name: str = "mechanism") -> None:
@@ -730,7 +731,7 @@ class Mechanism:
         """Computes a form parameter or a combination at every position, as the output ``name``."""
         return self._row(name, "output", expr, None)
 
-    # -- masses and loads (mechfem.loads): a mechanism with any of them runs inverse dynamics (DYN ANA)
+    # -- masses and loads (mechfem.loads): inverse dynamics (DYN ANA) in a run, a simulation (DYN SIM) in simulate
 
     def mass(self, element: Element | str, m: float, u: float = 0.0, v: float = 0.0, J: float = 0.0) -> Body:
         """Makes ``element`` (BIN, HLF, TR1, TR2) a rigid body of mass ``m``, centre of mass at ``(u, v)`` in its frame
@@ -894,6 +895,32 @@ class Mechanism:
 
         return deckio.run(self, motion or self.motion, storage or self.storage, progress=progress, order=order)
 
+    def simulate(
+        self,
+        t_end: float,
+        steps: int,
+        v0: float | Mapping[InputKey, float] | None = None,
+        *,
+        drive: Mapping[InputKey, By | To | Table] | None = None,
+        rtol: float | None = None,
+        atol: float | None = None,
+        accuracy: float | None = None,
+        max_iter: int | None = None,
+        storage: Storage | None = None,
+        progress: bool | Callable[[int, int], object] | None = None,
+        order: int | None = 2,
+    ) -> Analysis:
+        """Simulates the motion under the masses and loads from time 0 to ``t_end`` (mode ``DYN SIM``), with results
+        at ``steps + 1`` positions ``t_end / steps`` apart: the inputs of ``drive`` (input -> :class:`By`,
+        :class:`To` or :class:`Table`) follow that motion, every other input moves under the forces from the speed
+        ``v0`` (a number for the only one, a mapping by input for several; None: from rest). ``rtol`` and ``atol``
+        are the integrator's tolerances (default ``accuracy``, 1e-10); the rest is as for :meth:`run`, whose
+        :class:`Analysis` it returns, with :attr:`Analysis.simulation` the integrator's work. A simulation that
+        stops early (a limit position, a step size that collapsed) returns the positions it reached and says why,
+        as a run does. The same as ``run(Motion.dynamic(...))`` with every input named."""
+        motion = simulation(self, t_end, steps, v0, drive, rtol=rtol, atol=atol, accuracy=accuracy, max_iter=max_iter)
+        return self.run(motion, storage, progress, order)
+
     def check(self, motion: Motion | None = None) -> Analysis:
         """Computes position 1 only (with the first values of a table motion, as a run would)."""
         from mechfem import deckio
@@ -930,6 +957,7 @@ __all__ = [
     "Combination",
     "Coordinate",
     "Driven",
+    "Dynamic",
     "Element",
     "Expression",
     "FormParameter",
@@ -949,4 +977,5 @@ __all__ = [
     "Storage",
     "Table",
     "To",
+    "input_dof",
 ]

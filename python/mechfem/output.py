@@ -101,6 +101,8 @@ def print_file_lines(result: RunResult) -> list[str]:
     out += model_lines(result.model)
     out += adjustment_lines(result)
     out += motion_lines(result)
+    if result.simulation is not None:
+        out += result.simulation.lines(result.dynamic, result.time)
     if result.dynamic is not None:
         out += summary_lines(result.dynamic, result.time)
     out += table_lines(result)

@@ -14,7 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
-from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel
+from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -114,7 +114,7 @@ class Stop:
     """Input values at the last good position."""
     kind: str
     """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
-    ``interrupted``."""
+    ``interrupted``, ``simulation`` (a simulation's integrator could not go on)."""
     message: str
     """The solver's own words."""
     limit: Limit | None
@@ -142,6 +142,12 @@ class Stop:
         )
         if self.kind == "interrupted":
             return f"The motion was interrupted after position {k} of {total}. {kept}"
+        if self.kind == "simulation":
+            return (
+                f"The simulation stopped after position {k} of {total}: {self.message}. {kept} "
+                "A collapsing step usually means a limit position (no position exists beyond it); a very stiff "
+                "spring or damper needs far more steps than its outputs: soften it, or loosen INTTOL."
+            )
         limit = self.limit
         if limit is not None and limit.kind == "input_limit" and len(self.inputs) == 1 == len(limit.inputs):
             return (
@@ -461,6 +467,8 @@ class RunResult:
     NaN where D^c is singular)."""
     dynamic: DynamicSeries | None = None
     """Drive forces, energies and power at every position of a DYN deck's run."""
+    simulation: Simulation | None = None
+    """What the integrator of a DYN SIM run did."""
 
     @property
     def positions(self) -> int:
@@ -515,6 +523,7 @@ def run_result(deck: Path, d: _core.RunDict) -> RunResult:
         storage=Storage.from_core(d["storage"]),
         kx1={n: np.ascontiguousarray(kx1[:, k]) for k, n in enumerate(d["kx1_coords"])},
         dynamic=None if d.get("dynamic") is None else DynamicSeries.from_core(d["dynamic"]),  # type: ignore[arg-type]
+        simulation=None if d.get("simulation") is None else Simulation.from_core(d["simulation"]),  # type: ignore[arg-type]
     )
 
 

@@ -156,4 +156,12 @@ pub enum SolveError {
     /// A computed value became NaN or infinite.
     #[error("a computed value is not finite")]
     NonFinite,
+    /// A simulation's integrator could not go on.
+    #[error("the simulation stopped at time {time}: {reason}")]
+    Simulation {
+        /// The time it reached.
+        time: f64,
+        /// Why it could not go on.
+        reason: &'static str,
+    },
 }

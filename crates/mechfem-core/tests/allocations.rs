@@ -78,3 +78,33 @@ fn allocations_do_not_grow_with_the_number_of_positions() {
         }
     }
 }
+
+/// Allocations of a simulation of the four-bar swinging from rest with its
+/// coupler as a body, 50 outputs, at tolerance `tol`.
+fn count_simulation(tol: f64) -> (usize, usize) {
+    use mechfem_core::dynamics::{simulate, Body, Dynamics, Integration};
+    let (mech, state) = fourbar();
+    let dynamics = Dynamics {
+        bodies: vec![Body { element: 1, mass: 2.0, u: 1.0, v: 0.5, inertia: 0.2 }],
+        gravity: [0.0, -9.81],
+        ..Dynamics::default()
+    };
+    let motion = Motion { steps: 50, dt: 0.02, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
+    let (mut s, mut touch) = (state.clone(), Touch(0.0, Some(TransferOrder::Second)));
+    let integration = Integration { rtol: tol, atol: tol };
+    let mut steps = 0;
+    let info = allocation_counter::measure(|| {
+        let report = simulate(&mech, &mut s, &motion, &Params::default(), &integration, &dynamics, &mut touch).unwrap();
+        assert!(report.run.stop.is_none());
+        steps = report.steps;
+    });
+    (info.count_total as usize, steps)
+}
+
+#[test]
+fn a_simulation_allocates_nothing_per_step() {
+    let (coarse, few_steps) = count_simulation(1e-6);
+    let (fine, many_steps) = count_simulation(1e-11);
+    assert!(many_steps > 3 * few_steps, "{few_steps} and {many_steps} steps");
+    assert_eq!(coarse, fine, "{coarse} allocations for {few_steps} steps, {fine} for {many_steps}");
+}

@@ -18,16 +18,17 @@ use crate::keywords::Keyword;
 pub struct Deck {
     /// The file the deck was read from, as the caller named it.
     pub path: PathBuf,
-    /// The mode of the first line: [`Mode::KinAna`] or [`Mode::DynAna`] in a
-    /// parsed deck (the other modes are refused).
+    /// The mode of the first line: [`Mode::KinAna`], [`Mode::DynAna`] or
+    /// [`Mode::DynSim`] in a parsed deck ([`Mode::KinOpt`] is refused).
     pub mode: Spanned<Mode>,
     /// The TOPOLOGY block.
     pub topology: Topology,
     /// The GEOMETRY block.
     pub geometry: Geometry,
-    /// The DYNAMICS block: given exactly when the mode is [`Mode::DynAna`].
+    /// The DYNAMICS block: given exactly when the mode has dynamics
+    /// ([`Mode::has_dynamics`]).
     pub dynamics: Option<Dynamics>,
-    /// The MOVEMENT block, if given.
+    /// The MOVEMENT block, if given (always in a [`Mode::DynSim`] deck).
     pub movement: Option<Movement>,
     /// The STORAGE block, if given.
     pub storage: Option<Storage>,
@@ -67,14 +68,24 @@ pub(crate) fn diagnostic_at(
     })
 }
 
-/// The diagnostic for a `DYN ANA` deck without a DYNAMICS block, at the
-/// mode line's `span`.
-pub(crate) fn missing_dynamics(path: &Path, source: &[String], span: Span) -> Box<Diagnostic> {
-    diagnostic_at(path, source, DiagnosticKind::MissingBlock, span, "this DYN ANA deck has no DYNAMICS block")
-        .with_hint(
-            "add a DYNAMICS block after GEOMETRY with the masses and loads (MASS, PMASS, INERTIA, GRAVITY, FORCE, \
+/// The diagnostic for a deck of dynamics (`DYN ANA`, `DYN SIM`) without a
+/// DYNAMICS block, at the mode line's `span`.
+pub(crate) fn missing_dynamics(path: &Path, source: &[String], mode: Mode, span: Span) -> Box<Diagnostic> {
+    let message = format!("this {} deck has no DYNAMICS block", mode.name());
+    diagnostic_at(path, source, DiagnosticKind::MissingBlock, span, message).with_hint(
+        "add a DYNAMICS block after GEOMETRY with the masses and loads (MASS, PMASS, INERTIA, GRAVITY, FORCE, \
              LOAD, LOADFUNC, SPRING, MOTOR), or change the mode line to `KIN ANA` for kinematics only",
-        )
+    )
+}
+
+/// The diagnostic for a `DYN SIM` deck without a MOVEMENT block, at the
+/// mode line's `span`.
+pub(crate) fn missing_movement(path: &Path, source: &[String], span: Span) -> Box<Diagnostic> {
+    let message = "this DYN SIM deck has no MOVEMENT block: a simulation needs its output times";
+    diagnostic_at(path, source, DiagnosticKind::MissingBlock, span, message).with_hint(
+        "add a MOVEMENT block with `TSTEPE n dt` (positions at t = 0, dt, ..., n dt) and, for every DOF j, \
+         `MOV_DYN j v0` to let the forces move it from the velocity v0, or MOV_RELE, MOV_ABSE or MOV_FUNC to drive it",
+    )
 }
 
 /// The modes of the classic program.
@@ -86,7 +97,8 @@ pub enum Mode {
     KinOpt,
     /// `DYN ANA`: dynamic analysis (inverse dynamics of a prescribed motion).
     DynAna,
-    /// `DYN SIM`: dynamic simulation (not supported).
+    /// `DYN SIM`: dynamic simulation (forward dynamics: the forces move the
+    /// DOFs given MOV_DYN).
     DynSim,
 }
 
@@ -99,6 +111,12 @@ impl Mode {
             Mode::DynAna => "DYN ANA",
             Mode::DynSim => "DYN SIM",
         }
+    }
+
+    /// Whether the mode computes dynamics (`DYN ANA`, `DYN SIM`): its deck
+    /// needs a DYNAMICS block.
+    pub fn has_dynamics(self) -> bool {
+        matches!(self, Mode::DynAna | Mode::DynSim)
     }
 
     /// What the mode does, in words.
@@ -197,7 +215,7 @@ pub struct ParaDef {
     pub value: Spanned<f64>,
 }
 
-/// The DYNAMICS block (mode `DYN ANA`), compiled to a
+/// The DYNAMICS block (modes `DYN ANA` and `DYN SIM`), compiled to a
 /// [`mechfem_core::dynamics::Dynamics`].
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Dynamics {
@@ -336,6 +354,19 @@ pub struct Movement {
     pub accuracy: Option<Spanned<f64>>,
     /// `MAXITER m`, if given (m >= 1).
     pub maxiter: Option<Spanned<i64>>,
+    /// `INTTOL rtol atol`, if given (mode `DYN SIM` only).
+    pub inttol: Option<IntTolDef>,
+}
+
+/// `INTTOL rtol atol`: the tolerances of the integrator of a simulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntTolDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// Relative tolerance (finite, positive).
+    pub rtol: Spanned<f64>,
+    /// Absolute tolerance (finite, positive).
+    pub atol: Spanned<f64>,
 }
 
 /// `TSTEPE n [dt]`
@@ -362,7 +393,7 @@ pub struct MotionDef {
     pub kind: MotionKind,
 }
 
-/// The four kinds of input motion.
+/// The five kinds of input motion.
 #[derive(Debug, Clone, PartialEq)]
 pub enum MotionKind {
     /// `MOV_RELE j delta`
@@ -373,6 +404,9 @@ pub enum MotionKind {
     Function(Spanned<String>),
     /// `MOV_FREE j ds`
     Free(Spanned<f64>),
+    /// `MOV_DYN j v0`: moved by the forces from the initial velocity v0
+    /// (mode `DYN SIM` only).
+    Dynamic(Spanned<f64>),
 }
 
 /// The STORAGE block.

@@ -6,7 +6,7 @@
 //! for echoing the model ([`ElementInfo`], [`RowInfo`]) keep the deck's
 //! 1-based numbers.
 
-use mechfem_core::dynamics::Dynamics;
+use mechfem_core::dynamics::{Dynamics, Integration};
 use mechfem_core::{ElementType, Mechanism, Motion, Params, Quantity, State};
 
 use crate::ast::Mode;
@@ -14,17 +14,24 @@ use crate::ast::Mode;
 /// A compiled deck, ready to run.
 #[derive(Debug, Clone)]
 pub struct Compiled {
-    /// The mode of the deck: [`Mode::KinAna`] or [`Mode::DynAna`].
+    /// The mode of the deck: [`Mode::KinAna`], [`Mode::DynAna`] or
+    /// [`Mode::DynSim`].
     pub mode: Mode,
     /// The model (immutable).
     pub mechanism: Mechanism,
     /// The initial state: XFIX/XMOV values, and prescribed values from PARA
     /// (rows without PARA hold their value at the given co-ordinates).
     pub state: State,
-    /// The input motion; `None` without a MOVEMENT block (position 1 only).
+    /// The input motion; `None` without a MOVEMENT block (position 1 only),
+    /// which a [`Mode::DynSim`] deck always has. Its DOFs given MOV_DYN are
+    /// [`mechfem_core::InputMotion::Dynamic`].
     pub motion: Option<Motion>,
     /// Solver settings (ACCURACY, MAXITER; defaults otherwise).
     pub params: Params,
+    /// The tolerances of a simulation's integrator: INTTOL's, else
+    /// [`Integration::from_accuracy`] of `params.tol` (ACCURACY or its
+    /// default). Set for every deck; only [`Mode::DynSim`] uses it.
+    pub integration: Integration,
     /// Buffer definitions, in deck order.
     pub buffers: Vec<Buffer>,
     /// Buffers to tabulate in the print file: `None` without PRINTBUF,
@@ -43,7 +50,7 @@ pub struct Compiled {
     /// The dependent form parameters 1..n_d.
     pub dependent: Vec<RowInfo>,
     /// The masses and loads (0-based indices): `Some` exactly for a
-    /// [`Mode::DynAna`] deck.
+    /// [`Mode::DynAna`] or [`Mode::DynSim`] deck.
     pub dynamics: Option<Dynamics>,
 }
 

@@ -56,7 +56,7 @@ pub enum DiagnosticKind {
     Io,
     /// The first line is not a mode line.
     MissingMode,
-    /// A mode the program knows but does not run yet (KIN OPT, DYN SIM).
+    /// A mode the program knows but does not run yet (KIN OPT).
     UnsupportedMode,
     /// A mode line that names no known mode.
     UnknownMode,
@@ -68,10 +68,12 @@ pub enum DiagnosticKind {
     WrongBlock,
     /// A block header given twice.
     DuplicateBlock,
-    /// A required block (TOPOLOGY, GEOMETRY; DYNAMICS in a DYN ANA deck) is missing.
+    /// A required block (TOPOLOGY, GEOMETRY; DYNAMICS in a DYN ANA or DYN SIM
+    /// deck; MOVEMENT in a DYN SIM deck) is missing.
     MissingBlock,
     /// A block or keyword that the deck's mode does not have (DYNAMICS or a
-    /// dynamics buffer in KIN ANA, MOV_FREE in DYN ANA).
+    /// dynamics buffer in KIN ANA, MOV_FREE in DYN ANA and DYN SIM, MOV_DYN
+    /// and INTTOL outside DYN SIM).
     WrongMode,
     /// Too few or too many arguments.
     ArgumentCount,
@@ -81,7 +83,7 @@ pub enum DiagnosticKind {
     NotAWholeNumber,
     /// A number too large to represent.
     NumberOutOfRange,
-    /// A value outside its allowed range (steps < 1, dt <= 0, ...).
+    /// A value outside its allowed range (steps < 1, dt <= 0, INTTOL <= 0, ...).
     BadValue,
     /// An element type name that is not in the catalogue.
     UnknownElementType,

@@ -9,7 +9,7 @@ pub enum Block {
     Topology,
     /// Initial co-ordinates and prescribed values.
     Geometry,
-    /// Masses, loads and springs (mode `DYN ANA`).
+    /// Masses, loads and springs (modes `DYN ANA` and `DYN SIM`).
     Dynamics,
     /// Input motion and solver settings.
     Movement,
@@ -101,8 +101,10 @@ keywords! {
     MovAbse "MOV_ABSE" Movement 2 Some(2), "j end";
     MovFunc "MOV_FUNC" Movement 2 Some(2), "j file";
     MovFree "MOV_FREE" Movement 2 Some(2), "j ds";
+    MovDyn "MOV_DYN" Movement 2 Some(2), "j v0";
     Accuracy "ACCURACY" Movement 1 Some(1), "tol";
     Maxiter "MAXITER" Movement 1 Some(1), "m";
+    Inttol "INTTOL" Movement 2 Some(2), "rtol atol";
     BufInp "BUFINP" Storage 2 Some(2), "j b";
     BufTime "BUFTIME" Storage 1 Some(1), "b";
     BufX0 "BUFX0" Storage 2 Some(2), "i b";
@@ -232,6 +234,8 @@ mod tests {
         assert_eq!(closest("GRAVTY", all_words()), Some("GRAVITY"));
         assert_eq!(closest("LOADFUNK", all_words()), Some("LOADFUNC"));
         assert_eq!(closest("BUFMRD", all_words()), Some("BUFMRED"));
+        assert_eq!(closest("MOV_DIN", all_words()), Some("MOV_DYN"));
+        assert_eq!(closest("INTOL", all_words()), Some("INTTOL"));
         assert_eq!(closest("BANANA", all_words()), None);
     }
 

@@ -1,12 +1,13 @@
 //! The keyword deck of mechfem: text in, a checked core model out.
 //!
 //! This crate reads the deck language of the classic RUNMEC program (the
-//! mode `KIN ANA` or `DYN ANA`, then the blocks TOPOLOGY, GEOMETRY,
-//! DYNAMICS, MOVEMENT, STORAGE) and turns it into what [`mechfem_core`]
-//! runs. It does **not** solve anything: no Newton iteration, no transfer
-//! functions, no dynamics, no output files. It only reads, checks and
-//! translates, and says precisely what is wrong when a deck does not fit.
-//! The modes `KIN OPT` and `DYN SIM` are recognised and refused.
+//! mode `KIN ANA`, `DYN ANA` or `DYN SIM`, then the blocks TOPOLOGY,
+//! GEOMETRY, DYNAMICS, MOVEMENT, STORAGE) and turns it into what
+//! [`mechfem_core`] runs. It does **not** solve anything: no Newton
+//! iteration, no transfer functions, no dynamics, no simulation, no output
+//! files. It only reads, checks and translates, and says precisely what is
+//! wrong when a deck does not fit. The mode `KIN OPT` is recognised and
+//! refused.
 //!
 //! A tour, in the order data flows:
 //!
@@ -17,16 +18,21 @@
 //!   line (as `FORM` in the theory's tables) waits for such lines. What one
 //!   line can tell on its own (with the mode line) is checked here: a
 //!   negative mass, a DYNAMICS block in a `KIN ANA` deck, MOV_FREE in a
-//!   `DYN ANA` deck.
+//!   `DYN ANA` or `DYN SIM` deck, MOV_DYN or INTTOL outside `DYN SIM`; so
+//!   is a block the mode requires (DYNAMICS for both dynamics modes,
+//!   MOVEMENT for `DYN SIM`).
 //! * [`compile`]: a [`Deck`] to a [`Compiled`] model: the core
 //!   [`mechfem_core::Mechanism`] and [`mechfem_core::State`] (PARA values in
 //!   `state.target`), the [`mechfem_core::Motion`] (MOV_FUNC files read
-//!   relative to the deck's folder), solver [`mechfem_core::Params`], for
-//!   `DYN ANA` the masses and loads of the DYNAMICS block as a
-//!   [`mechfem_core::dynamics::Dynamics`] (LOADFUNC files read like MOV_FUNC
-//!   files), the output [`Buffer`]s, lists and [`Picture`]s, and a
-//!   description of the elements and rows for echoing the model. References
-//!   between lines are checked here.
+//!   relative to the deck's folder; a DOF given `MOV_DYN j v0` becomes
+//!   [`mechfem_core::InputMotion::Dynamic`], moved by the forces in a
+//!   simulation), solver [`mechfem_core::Params`], the integrator's
+//!   [`mechfem_core::dynamics::Integration`] (`INTTOL rtol atol`, else both
+//!   from ACCURACY), for `DYN ANA` and `DYN SIM` the masses and loads of the
+//!   DYNAMICS block as a [`mechfem_core::dynamics::Dynamics`] (LOADFUNC files
+//!   read like MOV_FUNC files), the output [`Buffer`]s, lists and
+//!   [`Picture`]s, and a description of the elements and rows for echoing
+//!   the model. References between lines are checked here.
 //! * [`load`]: both steps for a file.
 //! * [`Diagnostic`]: every mistake names the file, line and word, renders
 //!   like rustc (`error:`, ` --> file:line:col`, the line, a caret, a hint),
@@ -50,6 +56,14 @@
 //! let dynamics = model.dynamics.expect("a DYN ANA deck has dynamics");
 //! assert_eq!((dynamics.bodies[0].element, dynamics.bodies[0].mass), (0, 2.0));
 //! assert_eq!(dynamics.gravity, [0.0, -9.81]);
+//!
+//! // The same pendulum released from rest, simulated for 2 s.
+//! let released = pendulum.replace("DYN ANA", "DYN SIM") + "MOVEMENT\nTSTEPE 200 0.01\nMOV_DYN 1 0\n";
+//! let deck = mechfem_deck::parse_str(&released, "released.mec").unwrap();
+//! let model = mechfem_deck::compile(&deck, std::path::Path::new(".")).unwrap();
+//! let motion = model.motion.expect("a DYN SIM deck has a motion");
+//! assert_eq!(motion.inputs, [mechfem_core::InputMotion::Dynamic { v0: 0.0 }]);
+//! assert_eq!(model.integration, mechfem_core::dynamics::Integration::from_accuracy(model.params.tol));
 //!
 //! let err = mechfem_deck::parse_str("KIN ANA\nTOPOLOGY\nELEM 1 BNI 1 2 3 4\n", "x.mec").unwrap_err();
 //! assert!(err.to_string().starts_with("error: unknown element type `BNI`"));

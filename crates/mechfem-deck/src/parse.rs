@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 
 use crate::args::Source;
 use crate::ast::{
-    missing_dynamics, Deck, Dynamics, Geometry, Mode, MotionDef, Movement, PictureDef, Storage, Topology, Tstepe,
+    missing_dynamics, missing_movement, Deck, Dynamics, Geometry, IntTolDef, Mode, MotionDef, Movement, PictureDef,
+    Storage, Topology, Tstepe,
 };
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Hint, Span, Spanned};
 use crate::keywords::{all_words, closest, Block, Keyword};
@@ -48,6 +49,7 @@ pub(crate) struct MovementParts {
     pub motions: Vec<MotionDef>,
     pub accuracy: Option<Spanned<f64>>,
     pub maxiter: Option<Spanned<i64>>,
+    pub inttol: Option<IntTolDef>,
     /// A missing or late TSTEPE has been reported.
     pub tstepe_reported: bool,
 }
@@ -153,8 +155,8 @@ impl<'a> Parser<'a> {
                     DiagnosticKind::UnknownMode,
                     first.span.to(last),
                     format!("unknown mode `{}`", text.join(" ")),
-                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis) and `DYN ANA` \
-                     (inverse dynamics)",
+                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis), `DYN ANA` \
+                     (inverse dynamics) and `DYN SIM` (forward dynamics, a simulation)",
                 );
                 return true;
             }
@@ -172,7 +174,8 @@ impl<'a> Parser<'a> {
                 DiagnosticKind::UnsupportedMode,
                 span,
                 format!("mode {} ({}) is not supported yet", mode.name(), mode.description()),
-                "mechfem runs kinematic analysis and inverse dynamics: start the deck with `KIN ANA` or `DYN ANA`",
+                "mechfem runs kinematic analysis, inverse dynamics and simulations: start the deck with `KIN ANA`, \
+                 `DYN ANA` or `DYN SIM`",
             );
         }
         self.mode = Some(Spanned::new(mode, span));
@@ -292,7 +295,8 @@ impl<'a> Parser<'a> {
                 DiagnosticKind::WrongMode,
                 line.words[0].span,
                 "a KIN ANA deck has no DYNAMICS block: masses and loads belong to the dynamics modes",
-                "change the mode line to `DYN ANA` for inverse dynamics, or remove the DYNAMICS block",
+                "change the mode line to `DYN ANA` for inverse dynamics or `DYN SIM` for a simulation, or remove the \
+                 DYNAMICS block",
             );
         }
         self.block = Some(block);
@@ -401,9 +405,12 @@ impl<'a> Parser<'a> {
                 self.errors.push(d);
             }
         }
-        if let Some(mode) = self.mode.filter(|m| m.value == Mode::DynAna) {
-            if self.headers[Block::Dynamics as usize].is_none() && !self.stopped {
-                self.errors.push(*missing_dynamics(path, self.src.lines, mode.span));
+        if let Some(mode) = self.mode.filter(|m| m.value.has_dynamics() && !self.stopped) {
+            if self.headers[Block::Dynamics as usize].is_none() {
+                self.errors.push(*missing_dynamics(path, self.src.lines, mode.value, mode.span));
+            }
+            if mode.value == Mode::DynSim && self.headers[Block::Movement as usize].is_none() {
+                self.errors.push(*missing_movement(path, self.src.lines, mode.span));
             }
         }
         self.errors.sort_by_key(|d| (d.line == 0, d.line));
@@ -412,9 +419,14 @@ impl<'a> Parser<'a> {
         };
         let m = self.movement;
         let movement = match (self.headers[Block::Movement as usize], m.tstepe) {
-            (Some(line), Some(tstepe)) => {
-                Some(Movement { line, tstepe, motions: m.motions, accuracy: m.accuracy, maxiter: m.maxiter })
-            }
+            (Some(line), Some(tstepe)) => Some(Movement {
+                line,
+                tstepe,
+                motions: m.motions,
+                accuracy: m.accuracy,
+                maxiter: m.maxiter,
+                inttol: m.inttol,
+            }),
             _ => None,
         };
         Ok(Deck {
@@ -432,7 +444,7 @@ impl<'a> Parser<'a> {
 
 /// Whether mechfem runs decks of this mode.
 fn runs(mode: Mode) -> bool {
-    matches!(mode, Mode::KinAna | Mode::DynAna)
+    matches!(mode, Mode::KinAna | Mode::DynAna | Mode::DynSim)
 }
 
 /// Number of blank characters at the start of a line.

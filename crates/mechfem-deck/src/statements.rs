@@ -4,8 +4,8 @@ use mechfem_core::ElementType;
 
 use crate::args::Source;
 use crate::ast::{
-    BufDef, BufList, CoordDef, ElemDef, ForceDef, FormDef, GravityDef, InertiaDef, LoadDef, LoadDefKind, MassDef, Mode,
-    MotionDef, MotionKind, ParaDef, PictureDef, PlotDef, PointMassDef, Tstepe,
+    BufDef, BufList, CoordDef, ElemDef, ForceDef, FormDef, GravityDef, InertiaDef, IntTolDef, LoadDef, LoadDefKind,
+    MassDef, Mode, MotionDef, MotionKind, ParaDef, PictureDef, PlotDef, PointMassDef, Tstepe,
 };
 use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::{Block, Keyword};
@@ -130,13 +130,14 @@ impl Parser<'_> {
                 self.once(kw)?;
                 self.movement.tstepe = Some(Tstepe { line: line_no, steps, dt });
             }
-            Keyword::MovRele | Keyword::MovAbse | Keyword::MovFunc | Keyword::MovFree => {
+            Keyword::MovRele | Keyword::MovAbse | Keyword::MovFunc | Keyword::MovFree | Keyword::MovDyn => {
                 let dof = src.whole(arg(0)?, "the DOF number")?;
                 let value = arg(1)?;
                 let kind = match kw.value {
                     Keyword::MovRele => MotionKind::Relative(src.real(value, "the total change")?),
                     Keyword::MovAbse => MotionKind::Absolute(src.real(value, "the end value")?),
                     Keyword::MovFunc => MotionKind::Function(Spanned::new(value.text.clone(), value.span)),
+                    Keyword::MovDyn => MotionKind::Dynamic(src.real(value, "the initial velocity")?),
                     _ => {
                         let ds = src.real(value, "the step length")?;
                         if ds.value == 0.0 {
@@ -188,6 +189,12 @@ impl Parser<'_> {
                 }
                 self.once(kw)?;
                 self.movement.maxiter = Some(m);
+            }
+            Keyword::Inttol => {
+                let rtol = tolerance(src, arg(0)?, "the relative tolerance rtol")?;
+                let atol = tolerance(src, arg(1)?, "the absolute tolerance atol")?;
+                self.once(kw)?;
+                self.movement.inttol = Some(IntTolDef { line: line_no, rtol, atol });
             }
             Keyword::PrintBuf | Keyword::SaveData => {
                 let buffers = args.iter().map(|w| src.buffer(w)).collect::<Result<Vec<_>, _>>()?;
@@ -295,16 +302,39 @@ impl Parser<'_> {
         let err = |message: String, hint: &str| {
             Err(self.src.error(DiagnosticKind::WrongMode, kw.span, message).with_hint(hint))
         };
-        match self.mode() {
-            Some(Mode::KinAna) if k.is_dynamic_buffer() => err(
+        let Some(mode) = self.mode() else { return Ok(()) };
+        let name = mode.name();
+        match mode {
+            Mode::KinAna if k.is_dynamic_buffer() => err(
                 format!("{k} records a result of the dynamics, which a KIN ANA deck does not compute"),
-                "change the mode line to `DYN ANA` and add a DYNAMICS block, or remove this line",
+                "change the mode line to `DYN ANA` (or `DYN SIM`) and add a DYNAMICS block, or remove this line",
             ),
-            Some(Mode::DynAna) if k == Keyword::MovFree => err(
-                "MOV_FREE cannot drive a DYN ANA deck: free motion has no timing, so no velocities or accelerations"
-                    .to_string(),
-                "prescribe the input in time with MOV_RELE, MOV_ABSE or MOV_FUNC; each of the n steps of TSTEPE n dt \
-                 takes the time dt",
+            _ if mode.has_dynamics() && k == Keyword::MovFree => err(
+                format!(
+                    "MOV_FREE cannot drive a {name} deck: free motion has no timing, so no velocities or accelerations"
+                ),
+                if mode == Mode::DynSim {
+                    "let the forces move the DOF with `MOV_DYN j v0`, or prescribe it in time with MOV_RELE, \
+                     MOV_ABSE or MOV_FUNC; each of the n steps of TSTEPE n dt takes the time dt"
+                } else {
+                    "prescribe the input in time with MOV_RELE, MOV_ABSE or MOV_FUNC; each of the n steps of \
+                     TSTEPE n dt takes the time dt"
+                },
+            ),
+            Mode::KinAna | Mode::DynAna if k == Keyword::MovDyn => err(
+                format!("MOV_DYN lets the forces move a DOF, which only a simulation does, not a {name} deck"),
+                if mode == Mode::KinAna {
+                    "change the mode line to `DYN SIM` and add a DYNAMICS block to simulate, or prescribe the input \
+                     with MOV_RELE, MOV_ABSE or MOV_FUNC"
+                } else {
+                    "change the mode line to `DYN SIM` to simulate, or prescribe the input with MOV_RELE, MOV_ABSE or \
+                     MOV_FUNC"
+                },
+            ),
+            Mode::KinAna | Mode::DynAna if k == Keyword::Inttol => err(
+                format!("INTTOL sets the tolerances of a simulation's integrator, which a {name} deck does not run"),
+                "remove this line (ACCURACY sets how closely Newton meets the prescribed values), or change the mode \
+                 line to `DYN SIM`",
             ),
             _ => Ok(()),
         }
@@ -450,6 +480,24 @@ fn not_negative(src: &Source<'_>, w: &Word, what: &str, hint: &str) -> Result<Sp
         return Err(src
             .error(DiagnosticKind::BadValue, w.span, format!("{what} must not be negative, got {}", real(v.value)))
             .with_hint(hint));
+    }
+    Ok(v)
+}
+
+/// The word read as a tolerance of the integrator: a positive number.
+fn tolerance(src: &Source<'_>, w: &Word, what: &str) -> Result<Spanned<f64>, Box<Diagnostic>> {
+    let v = src.real(w, what)?;
+    if v.value <= 0.0 {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                w.span,
+                format!("{what} of INTTOL must be positive, got {}", real(v.value)),
+            )
+            .with_hint(
+                "give `INTTOL rtol atol`, both positive: each step's estimated error in a DOF and its velocity stays \
+                 below atol + rtol * |value|, e.g. `INTTOL 1e-8 1e-10`",
+            ));
     }
     Ok(v)
 }

@@ -1,5 +1,6 @@
 //! The DYNAMICS block and the dynamics buffers: what a `DYN ANA` deck
 //! compiles to, with the core's 0-based indices, and what is refused.
+//! (`DYN SIM` and its MOVEMENT keywords: `tests/simulation.rs`.)
 
 use std::path::{Path, PathBuf};
 
@@ -142,11 +143,9 @@ fn a_dyn_ana_deck_without_movement_is_position_one_only() {
 }
 
 #[test]
-fn kin_opt_and_dyn_sim_stay_refused() {
-    for mode in ["KIN OPT", "DYN SIM"] {
-        let (kind, message, line) = first_error(&deck(mode, "DYNAMICS\n"), Path::new("."));
-        assert_eq!((kind, line), (DiagnosticKind::UnsupportedMode, 1), "{message}");
-    }
+fn kin_opt_stays_refused() {
+    let (kind, message, line) = first_error(&deck("KIN OPT", "DYNAMICS\n"), Path::new("."));
+    assert_eq!((kind, line), (DiagnosticKind::UnsupportedMode, 1), "{message}");
 }
 
 #[test]

@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use mechfem_core::dynamics::{Body, Force, Inertia, Load, LoadKind, PointMass};
+use mechfem_core::dynamics::{Body, Force, Inertia, Integration, Load, LoadKind, PointMass};
 use mechfem_core::{FormRef, InputMotion, Quantity};
 use mechfem_deck::{load, Compiled, Mode, PlotItem};
 
@@ -285,4 +285,46 @@ fn load_from_a_file_without_movement() {
     let rows = vec![[0.0, 0.0], [0.5, 2.0], [0.5, 4.0], [2.0, 1.5]];
     assert_eq!(d.loads, [Load { form: FormRef::Prescribed(1), kind: LoadKind::Table(rows) }]);
     assert_eq!(quantities(&c), [Quantity::Sigma(0), Quantity::Drive(0), Quantity::Mred(0, 0)]);
+}
+
+#[test]
+fn pendulum_released_from_rest_in_dyn_sim() {
+    let c = valid("pendulum_released.mec");
+    assert_eq!(c.mode, Mode::DynSim);
+    let d = c.dynamics.as_ref().expect("dynamics");
+    assert_eq!(d.point_masses, [PointMass { x: 2, y: 3, mass: 2.0 }]);
+    assert_eq!(d.gravity, [0.0, -9.81]);
+    assert!(d.bodies.is_empty() && d.loads.is_empty());
+    let motion = c.motion.as_ref().expect("motion");
+    assert_eq!((motion.steps, motion.dt), (240, 0.01));
+    assert_eq!(motion.inputs, [InputMotion::Dynamic { v0: 0.0 }]);
+    // Without INTTOL the integrator is as accurate as ACCURACY.
+    assert_eq!(c.params.tol, 1e-10);
+    assert_eq!(c.integration, Integration { rtol: 1e-10, atol: 1e-10 });
+    assert_eq!(quantities(&c)[5..], [Quantity::Sigma(0), Quantity::Ekin, Quantity::Epot]);
+}
+
+#[test]
+fn crank_and_pendulum_one_dof_driven_one_free() {
+    let c = valid("crank_and_pendulum.mec");
+    assert_eq!((c.mode, c.mechanism.n_dof()), (Mode::DynSim, 2));
+    let motion = c.motion.as_ref().expect("motion");
+    assert_eq!(
+        motion.inputs,
+        [InputMotion::Relative { delta: 4.0 * std::f64::consts::PI }, InputMotion::Dynamic { v0: 0.5 }]
+    );
+    assert_eq!(c.integration, Integration::from_accuracy(mechfem_core::Params::default().tol));
+    assert_eq!(quantities(&c)[3], Quantity::Drive(0));
+}
+
+#[test]
+fn motor_run_up_with_its_own_integrator_tolerances() {
+    let c = valid("motor_run_up.mec");
+    assert_eq!(c.mode, Mode::DynSim);
+    assert_eq!(c.motion.as_ref().expect("motion").inputs, [InputMotion::Dynamic { v0: 0.0 }]);
+    assert_eq!(c.params.tol, 1e-11);
+    assert_eq!(c.integration, Integration { rtol: 1e-9, atol: 1e-12 });
+    let d = c.dynamics.as_ref().expect("dynamics");
+    assert_eq!(d.loads[1], Load { form: FormRef::Prescribed(3), kind: LoadKind::Motor { t0: 20.0, w0: 200.0 } });
+    assert_eq!(d.check(&c.mechanism), Ok(()));
 }

@@ -281,6 +281,19 @@ fn an_overflowing_velocity_stops_the_run() {
     }
 }
 
+/// A simulation's motion is not the kinematic run's: `run` refuses it as
+/// unsupported, and the deck's position 1 is checked instead.
+#[test]
+fn a_simulation_deck_is_checked_at_position_one() {
+    let text = std::fs::read_to_string("tests/decks/valid/pendulum_released.mec").expect("deck");
+    assert_eq!(check_deck(&text, Path::new(DIR), MAX_STEPS), Outcome::Simulation);
+    let c = compile_text(&text, Path::new(DIR)).expect("the deck compiles");
+    let mut state = c.state.clone();
+    let mut rec = Recorder::new(Vec::new(), false);
+    let refused = mechfem_core::run(&c.mechanism, &mut state, c.motion.as_ref(), &c.params, &mut rec);
+    assert!(matches!(refused, Err(SolveError::Unsupported(_))), "{refused:?}");
+}
+
 /// Replays one fuzz input given by `HOSTILE_INPUT`, printing the deck.
 #[test]
 #[ignore = "replays the fuzz input named by HOSTILE_INPUT"]

@@ -2,7 +2,7 @@
 //! names a co-ordinate, row, element, DOF or position is converted to the
 //! deck's 1-based numbering here.
 
-use mechfem_core::dynamics::{Dynamics, LoadKind};
+use mechfem_core::dynamics::{Dynamics, LoadKind, SimReport};
 use mechfem_core::{AdjustInfo, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, PlotItem, RowInfo};
 use numpy::{PyArray1, PyArrayMethods};
@@ -295,5 +295,18 @@ pub fn storage<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyDict
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("pictures", pictures)?;
+    Ok(d)
+}
+
+/// What a simulation's integrator did.
+pub fn simulation<'py>(py: Python<'py>, s: &SimReport) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("method", "Dormand-Prince 5(4), step-size control, dense output")?;
+    d.set_item("rtol", s.integration.rtol)?;
+    d.set_item("atol", s.integration.atol)?;
+    d.set_item("steps", s.steps)?;
+    d.set_item("rejected", s.rejected)?;
+    d.set_item("evaluations", s.evaluations)?;
+    d.set_item("reached", s.reached)?;
     Ok(d)
 }

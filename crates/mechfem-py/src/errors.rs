@@ -107,6 +107,7 @@ pub fn kind(err: &SolveError) -> &'static str {
         SolveError::Unsupported(_) => "unsupported",
         SolveError::NonFinite => "non_finite",
         SolveError::Interrupted => "interrupted",
+        SolveError::Simulation { .. } => "simulation",
     }
 }
 
@@ -168,9 +169,10 @@ pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, e
             let _ = e.value(py).setattr("coords", coords);
             e
         }
-        SolveError::NoConvergence { .. } | SolveError::BranchJump { .. } | SolveError::NonFinite => {
-            ConvergenceError::new_err(message)
-        }
+        SolveError::NoConvergence { .. }
+        | SolveError::BranchJump { .. }
+        | SolveError::NonFinite
+        | SolveError::Simulation { .. } => ConvergenceError::new_err(message),
         SolveError::NotComputed | SolveError::Unsupported(_) | SolveError::Interrupted => {
             MechfemError::new_err(message)
         }

@@ -27,8 +27,9 @@ mod text;
 
 use std::path::{Path, PathBuf};
 
+use mechfem_core::dynamics::{simulate, SimReport};
 use mechfem_core::{run, InputMotion, Mechanism, Motion, Quantity, RunReport};
-use mechfem_deck::{Compiled, PlotItem};
+use mechfem_deck::{Compiled, Mode, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -74,6 +75,8 @@ struct Ran {
     given: Vec<f64>,
     rec: Recording,
     report: RunReport,
+    /// What the integrator of a simulation did.
+    sim: Option<SimReport>,
     /// Ctrl-C stopped the run; the positions before it are kept.
     interrupted: bool,
 }
@@ -119,10 +122,18 @@ fn execute(
     }
     rec.recorder.reserve(total, n);
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
-    let result = py.detach(|| run(mech, state, motion, params, &mut rec));
+    // A DYN SIM deck's motion is simulated; position 1 alone is computed as in any run.
+    let simulated = match (motion, &c.dynamics) {
+        (Some(m), Some(d)) if with_motion && c.mode == Mode::DynSim => Some((m, d, c.integration)),
+        _ => None,
+    };
+    let result = py.detach(|| match simulated {
+        Some((m, d, tol)) => simulate(mech, state, m, params, &tol, d, &mut rec).map(|s| (s.run.clone(), Some(s))),
+        None => run(mech, state, motion, params, &mut rec).map(|r| (r, None)),
+    });
     let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
     match result {
-        Ok(report) => Ok(Ran { compiled: c, given, rec, report, interrupted }),
+        Ok((report, sim)) => Ok(Ran { compiled: c, given, rec, report, sim, interrupted }),
         Err(e) => Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e)),
     }
 }
@@ -171,7 +182,7 @@ fn run_deck(
     progress: Option<Py<PyAny>>,
     memory_limit: u64,
 ) -> PyResult<Bound<'_, PyDict>> {
-    let Ran { compiled: c, given, rec, report, interrupted } =
+    let Ran { compiled: c, given, rec, report, sim, interrupted } =
         execute(py, load(py, &path)?, true, progress, memory_limit)?;
     let mech = &c.mechanism;
     let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
@@ -208,6 +219,7 @@ fn run_deck(
         None
     };
     d.set_item("dynamic", dynamic)?;
+    d.set_item("simulation", sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     d.set_item("report", convert::report(py, mech, &report, steps)?)?;
     d.set_item("model", convert::model(py, &c, &given, &coords[..n], &rec.prescribed_at_1, &rec.dependent_at_1)?)?;

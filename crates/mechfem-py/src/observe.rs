@@ -31,6 +31,8 @@ pub struct Progress {
     callback: Option<Py<PyAny>>,
     total: usize,
     stride: usize,
+    /// The most positions reported so far.
+    reported: usize,
     /// The first error raised by the callback or a signal handler; it stops
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
     /// so far are kept.
@@ -40,12 +42,27 @@ pub struct Progress {
 impl Progress {
     /// Progress over `total` positions.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        Progress { callback, total, stride: (total / 100).max(1), error: None }
+        Progress { callback, total, stride: (total / 100).max(1), reported: 0, error: None }
+    }
+
+    /// Reports that the share `share` (0 to 1) of the work is done, in
+    /// units of the positions.
+    pub fn report_share(&mut self, share: f64) {
+        let done = ((share * self.total as f64).floor() as usize).min(self.total);
+        // On the stride, where `report` reports.
+        let done = if done == self.total { done } else { done / self.stride * self.stride };
+        self.report(done);
     }
 
     /// Reports that `done` positions are computed, when that is a multiple
     /// of the stride or the last one, unless an error has stopped the run.
     pub fn report(&mut self, done: usize) {
+        // Never backwards: a simulation reports its integration first, then
+        // replays the positions it reached.
+        if done <= self.reported {
+            return;
+        }
+        self.reported = done;
         if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
             return;
         }
@@ -99,6 +116,11 @@ impl Observer for Recording {
         }
         self.recorder.position(view);
         self.progress.report(view.index + 1);
+    }
+
+    fn simulated(&mut self, time: f64, end: f64) {
+        let share = if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 };
+        self.progress.report_share(share);
     }
 
     fn stop_requested(&self) -> bool {

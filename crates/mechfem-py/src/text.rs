@@ -14,13 +14,13 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use mechfem_core::dynamics::InverseDynamics;
+use mechfem_core::dynamics::{simulate, InverseDynamics, SimReport};
 use mechfem_core::SolveError;
 use mechfem_core::{
     record, run, FormRef, InputMotion, Mechanism, Observer, PositionView, Quantity, RunReport, TransferOrder,
 };
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
-use mechfem_deck::{Compiled, Diagnostics};
+use mechfem_deck::{Compiled, Diagnostics, Mode};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -114,6 +114,12 @@ impl Observer for Watch<'_> {
     fn transfer_order(&self) -> Option<TransferOrder> {
         self.order
     }
+
+    fn simulated(&mut self, time: f64, end: f64) {
+        if let Some(p) = self.progress.as_mut() {
+            p.report_share(if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 });
+        }
+    }
 }
 
 /// The transfer functions a run computes: `Some(1)` first order, `Some(2)`
@@ -156,6 +162,8 @@ pub struct FullRun {
     pub n_buffers: usize,
     /// What the run did.
     pub report: RunReport,
+    /// What the integrator of a simulation did.
+    pub sim: Option<SimReport>,
     /// Steps the motion asked for.
     pub steps: usize,
     /// The co-ordinates as the deck gives them (before the adjustment of position 1).
@@ -213,10 +221,18 @@ pub fn execute(
         cancel,
         progress,
     };
-    let result = run(&c.mechanism, &mut c.state, motion, &c.params, &mut watch);
+    let simulated = match (motion, &c.dynamics) {
+        (Some(m), Some(d)) if c.mode == Mode::DynSim => Some((m, d)),
+        _ => None,
+    };
+    let result = match simulated {
+        Some((m, d)) => simulate(&c.mechanism, &mut c.state, m, &c.params, &c.integration, d, &mut watch)
+            .map(|s| (s.run.clone(), Some(s))),
+        None => run(&c.mechanism, &mut c.state, motion, &c.params, &mut watch).map(|r| (r, None)),
+    };
     let raised = watch.progress.and_then(|p| p.error);
     let outcome = match result {
-        Ok(report) => Outcome::Ran(Box::new(FullRun {
+        Ok((report, sim)) => Outcome::Ran(Box::new(FullRun {
             compiled: c,
             table: watch.table,
             coords: watch.coords,
@@ -224,6 +240,7 @@ pub fn execute(
             width,
             n_buffers,
             report,
+            sim,
             steps,
             given,
         })),
@@ -280,6 +297,7 @@ fn run_dict(py: Python<'_>, r: FullRun) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("n_prescribed", mech.n_prescribed())?;
     d.set_item("n_dependent", mech.n_dependent())?;
     d.set_item("dynamic", r.compiled.dynamics.is_some())?;
+    d.set_item("simulation", r.sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     d.set_item("table", convert::array2(py, r.table, positions, r.width)?)?;
     d.set_item("coords", convert::array2(py, r.coords, positions, n)?)?;
     Ok(d)
@@ -380,7 +398,8 @@ pub fn run_deck_text<'py>(
 /// Reads and compiles the deck `text` without solving anything and returns
 /// what it declares: `coordinates`, `elements`, `prescribed` and `dependent`
 /// rows with their FORM terms, `dofs`, `motion` (None without a MOVEMENT
-/// block), `tol`, `max_iter`, `storage`, the `mode` and the `dynamics`
+/// block), `tol`, `max_iter`, `storage`, `inttol` (INTTOL's rtol and atol,
+/// None without it), the `mode` and the `dynamics`
 /// (masses and loads, LOADFUNC tables with their file names; None for a
 /// KIN ANA deck). Numbers are the deck's own.
 #[pyfunction]
@@ -437,6 +456,7 @@ pub fn describe_deck_text<'py>(
                         InputMotion::Relative { delta } => ("by", Some(*delta)),
                         InputMotion::Absolute { end } => ("to", Some(*end)),
                         InputMotion::Free { ds } => ("free", Some(*ds)),
+                        InputMotion::Dynamic { v0 } => ("dynamic", Some(*v0)),
                         InputMotion::Table { .. } => ("table", None),
                     };
                     id.set_item("kind", kind)?;
@@ -469,6 +489,9 @@ pub fn describe_deck_text<'py>(
             })
             .collect()
     });
+    // INTTOL as the deck gives it (None without: the tolerances are then ACCURACY's).
+    let inttol = deck.movement.as_ref().and_then(|m| m.inttol.as_ref()).map(|t| vec![t.rtol.value, t.atol.value]);
+    d.set_item("inttol", inttol)?;
     d.set_item("mode", c.mode.name())?;
     d.set_item("dynamics", c.dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
     Ok(d)

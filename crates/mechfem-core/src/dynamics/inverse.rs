@@ -96,14 +96,45 @@ impl InverseDynamics {
     /// do not exist) only the potential energy is known; the rest reads
     /// NaN.
     pub fn evaluate(&mut self, v: &PositionView<'_>) {
-        let (mech, kin, x) = (v.mech, v.kin, &v.state.x[..]);
-        self.epot = self.potential(kin, x);
-        if kin.order() != Some(TransferOrder::Second) {
+        self.epot = self.potential(v.kin, &v.state.x);
+        if !self.balance(v) {
             for b in [&mut self.sigma, &mut self.f, &mut self.g, &mut self.dt_sigma, &mut self.mred] {
                 b.fill(f64::NAN);
             }
             (self.ekin, self.power, self.load_power) = (f64::NAN, f64::NAN, f64::NAN);
             return;
+        }
+        let (mech, x, qd) = (v.mech, &v.state.x[..], v.input_vel);
+        self.stresses(mech, v.kin);
+        self.ekin = self.kinetic(x);
+        self.power = (0..mech.n_dof()).map(|j| self.sigma[mech.input_row(j)] * qd[j]).sum();
+    }
+
+    /// What the equations of motion need at the position `v`: the drive
+    /// force of every DOF, written into `drives`, for the input
+    /// accelerations of the view, and the mass matrix
+    /// ([`Self::mass_matrix_entry`]); the stresses of the other rows are
+    /// not computed. The drive of DOF j is `x'_j . (f_in - f)`, column j of
+    /// F being x'_j. Returns false where the second-order transfer
+    /// functions are not known.
+    pub fn drives(&mut self, v: &PositionView<'_>, drives: &mut [f64]) -> bool {
+        if !self.balance(v) {
+            return false;
+        }
+        let nc = v.mech.n_coords();
+        for (j, d) in drives.iter_mut().enumerate() {
+            *d = self.x1[j * nc..(j + 1) * nc].iter().zip(&self.g).map(|(a, b)| a * b).sum();
+        }
+        true
+    }
+
+    /// Velocities, accelerations, f, f_in - f and the mass matrix at the
+    /// position `v`; false where its second-order transfer functions are
+    /// not known.
+    fn balance(&mut self, v: &PositionView<'_>) -> bool {
+        let (mech, kin, x) = (v.mech, v.kin, &v.state.x[..]);
+        if kin.order() != Some(TransferOrder::Second) {
+            return false;
         }
         let (nc, nd) = (mech.n_coords(), mech.n_dof());
         let (qd, qdd) = (v.input_vel, v.input_acc);
@@ -116,10 +147,8 @@ impl InverseDynamics {
         }
         self.applied(mech, kin, x, v.time, qd);
         self.inertia(x);
-        self.stresses(mech, kin);
-        self.ekin = self.kinetic(x);
-        self.power = (0..nd).map(|j| self.sigma[mech.input_row(j)] * qd[j]).sum();
         self.mass_matrix(x, nc, nd);
+        true
     }
 
     /// Value and rate of form parameter `form` at the position.

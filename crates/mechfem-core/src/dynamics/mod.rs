@@ -1,4 +1,5 @@
-//! Masses and loads on a mechanism, and inverse dynamics (mode `DYN ANA`).
+//! Masses and loads on a mechanism: inverse dynamics (mode `DYN ANA`) and
+//! forward simulation (mode `DYN SIM`).
 //!
 //! The dynamics need no constraint machinery of their own: the motion of
 //! every co-ordinate follows from the degrees of freedom through the
@@ -15,14 +16,18 @@
 //!   with dampers, motors).
 //! * [`InverseDynamics`] evaluates it at a position of a run: stresses,
 //!   drive forces, reactions, energies, drive power and the mass matrix.
+//! * [`simulate`] integrates the equations of motion of the degrees of
+//!   freedom that move under the forces (mode `DYN SIM`).
 //!
 //! Units are the user's, consistent (SI recommended); angles in radians.
 
 mod body;
 mod inverse;
+mod simulate;
 
 pub use body::Frame;
 pub use inverse::InverseDynamics;
+pub use simulate::{simulate, SimReport};
 
 use crate::elements::ElementType;
 use crate::model::{FormRef, Mechanism};
@@ -323,6 +328,33 @@ impl Dynamics {
             }
         }
         Ok(())
+    }
+}
+
+/// Settings of the integrator of a simulation (deck `INTTOL rtol atol`):
+/// each step's estimated local error in every free degree of freedom and
+/// its speed stays below `atol + rtol * |value|`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Integration {
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance.
+    pub atol: f64,
+}
+
+impl Integration {
+    /// Both tolerances at the Newton tolerance `tol` (deck ACCURACY), so
+    /// that the integrator is as accurate as the positions it moves
+    /// through; at least 1e-13, below which a step's rounding dominates.
+    pub fn from_accuracy(tol: f64) -> Integration {
+        let t = tol.max(1e-13);
+        Integration { rtol: t, atol: t }
+    }
+}
+
+impl Default for Integration {
+    fn default() -> Self {
+        Integration::from_accuracy(crate::Params::default().tol)
     }
 }
 

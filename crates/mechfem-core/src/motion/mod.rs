@@ -24,6 +24,12 @@ pub enum InputMotion {
         /// Euclidean step length of the moving co-ordinates.
         ds: f64,
     },
+    /// Moved by the forces, starting with velocity `v0` (MOV_DYN): only a
+    /// simulation ([`crate::dynamics::simulate`]) runs it.
+    Dynamic {
+        /// Initial velocity.
+        v0: f64,
+    },
 }
 
 /// A motion program: `steps` steps (positions 1..=steps+1), each `dt` long,
@@ -99,6 +105,14 @@ pub trait Observer {
     /// not computed read as NaN. The default is everything.
     fn transfer_order(&self) -> Option<TransferOrder> {
         Some(TransferOrder::Second)
+    }
+
+    /// Called by a simulation ([`crate::dynamics::simulate`]) after every
+    /// step of its integrator, which has then reached `time` of `end`:
+    /// before any position is observed, for progress reports. A run asked
+    /// to stop ([`Self::stop_requested`]) stops integrating too.
+    fn simulated(&mut self, time: f64, end: f64) {
+        let _ = (time, end);
     }
 }
 

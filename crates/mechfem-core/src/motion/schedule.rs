@@ -65,6 +65,11 @@ impl<'a> Schedule<'a> {
                 InputMotion::Free { .. } => {
                     return Err(SolveError::Unsupported("free motion cannot be mixed with driven inputs"))
                 }
+                InputMotion::Dynamic { .. } => {
+                    return Err(SolveError::Unsupported(
+                        "an input that moves under the forces (MOV_DYN) needs a simulation (DYN SIM)",
+                    ))
+                }
             };
             inputs.push(Input::Linear { start: start[j], delta, vel: delta / (n as f64 * motion.dt) });
         }

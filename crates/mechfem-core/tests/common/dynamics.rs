@@ -3,6 +3,8 @@
 //! load (on a TR1 crank with a flywheel, a TR2 coupler with a coupler
 //! point, a BIN rocker), numbered two ways.
 
+#![allow(dead_code)] // shared by the dynamics and simulation tests, each using a part
+
 use mechfem_core::dynamics::{Body, Dynamics, Force, Inertia, InverseDynamics, Load, LoadKind, PointMass};
 use mechfem_core::{
     run, ElementType, FormRef, Mechanism, MechanismBuilder, Motion, Observer, Params, PositionView, Quantity, Recorder,

@@ -8,7 +8,7 @@ use mechfem_core::Mechanism;
 
 use super::refs::{coordinate, form, Sizes};
 use super::table::{self, Layout};
-use crate::ast::{self, missing_dynamics, Deck, LoadDefKind, MassDef, Mode};
+use crate::ast::{self, missing_dynamics, Deck, LoadDefKind, MassDef};
 use crate::diagnostic::{count, numbered, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 
@@ -16,18 +16,20 @@ use crate::keywords::Keyword;
 /// most, and a larger file is more likely the wrong file.
 const MAX_LOAD_FILE: u64 = 8 << 20;
 
-/// The mass and load model of a `DYN ANA` deck (`None` for other modes).
+/// The mass and load model of a `DYN ANA` or `DYN SIM` deck (`None` for
+/// other modes).
 pub(crate) fn dynamics(
     deck: &Deck,
     mech: &Mechanism,
     sizes: &Sizes,
     deck_dir: &Path,
 ) -> Result<Option<Dynamics>, Box<Diagnostic>> {
-    if deck.mode.value != Mode::DynAna {
+    let mode = deck.mode.value;
+    if !mode.has_dynamics() {
         return Ok(None);
     }
     let Some(block) = &deck.dynamics else {
-        return Err(missing_dynamics(&deck.path, &deck.source, deck.mode.span));
+        return Err(missing_dynamics(&deck.path, &deck.source, mode, deck.mode.span));
     };
     let mut d = Dynamics::default();
     for m in &block.masses {

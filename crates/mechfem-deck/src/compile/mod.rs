@@ -21,13 +21,14 @@ use crate::diagnostic::Diagnostics;
 ///
 /// Checks every reference between lines (co-ordinates, elements, rows,
 /// DOFs, buffers), reads MOV_FUNC and LOADFUNC files, and builds the core
-/// model and, for `DYN ANA`, its masses and loads; the first mistake found
-/// is returned.
+/// model and, for `DYN ANA` and `DYN SIM`, its masses and loads; the first
+/// mistake found is returned.
 pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let m = model::model(deck)?;
     let sizes = refs::Sizes::of(&m.mechanism);
     let dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
     let (motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
+    let integration = motion::integration(deck, &params);
     if let Some(mo) = &motion {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
@@ -38,6 +39,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         state: m.state,
         motion,
         params,
+        integration,
         buffers: out.buffers,
         printbuf: out.printbuf,
         savedata: out.savedata,

@@ -1,17 +1,26 @@
-//! MOVEMENT to a core [`Motion`] and solver [`Params`]; MOV_FUNC files.
+//! MOVEMENT to a core [`Motion`], solver [`Params`] and the integrator's
+//! [`Integration`]; MOV_FUNC files.
 
 use std::path::Path;
 
+use mechfem_core::dynamics::Integration;
 use mechfem_core::{InputMotion, Mechanism, Motion, Params, State};
 
 use super::table::{self, Layout};
-use crate::ast::{Deck, Mode, MotionDef, MotionKind};
+use crate::ast::{missing_movement, Deck, Mode, MotionDef, MotionKind};
 use crate::diagnostic::{dof_hint, real, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 
 pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Option<Motion>, Params), Box<Diagnostic>> {
     let mut params = Params::default();
-    let Some(mv) = &deck.movement else { return Ok((None, params)) };
+    let Some(mv) = &deck.movement else {
+        // The parser reports this already; a simulation has nothing to do
+        // without output times.
+        if deck.mode.value == Mode::DynSim {
+            return Err(missing_movement(&deck.path, &deck.source, deck.mode.span));
+        }
+        return Ok((None, params));
+    };
     if let Some(tol) = &mv.accuracy {
         params.tol = tol.value;
     }
@@ -55,22 +64,38 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
         let j = k + 1;
         let Some(m) = m else {
             let width = deck.line_text(mv.line).trim_end().chars().count();
-            // Free motion has no timing, so the dynamics cannot use it.
-            let free = if deck.mode.value == Mode::DynAna { String::new() } else { format!(", `MOV_FREE {j} ds`") };
+            // Free motion has no timing, so the dynamics cannot use it; only
+            // a simulation lets the forces move a DOF.
+            let (dynamic, free) = match deck.mode.value {
+                Mode::DynSim => (format!("`MOV_DYN {j} v0`, "), String::new()),
+                Mode::DynAna => (String::new(), String::new()),
+                _ => (String::new(), format!(", `MOV_FREE {j} ds`")),
+            };
             return Err(deck
                 .error(DiagnosticKind::MissingMotion, Span::new(mv.line, 0, width), format!("DOF {j} has no motion"))
                 .with_hint(format!(
-                    "every DOF needs one motion: add one of `MOV_RELE {j} delta`, `MOV_ABSE {j} end`, `MOV_FUNC {j} file`{free}"
+                    "every DOF needs one motion: add one of {dynamic}`MOV_RELE {j} delta`, `MOV_ABSE {j} end`, \
+                     `MOV_FUNC {j} file`{free}"
                 )));
         };
         inputs.push(match &m.kind {
             MotionKind::Relative(d) => InputMotion::Relative { delta: d.value },
             MotionKind::Absolute(e) => InputMotion::Absolute { end: e.value },
             MotionKind::Free(ds) => InputMotion::Free { ds: ds.value },
+            MotionKind::Dynamic(v0) => InputMotion::Dynamic { v0: v0.value },
             MotionKind::Function(file) => InputMotion::Table { rows: table(deck, file, deck_dir, steps + 1)? },
         });
     }
     Ok((Some(Motion { steps, dt, inputs }), params))
+}
+
+/// The integrator's tolerances: INTTOL's, else both from the Newton
+/// tolerance `params.tol` (ACCURACY or its default).
+pub(crate) fn integration(deck: &Deck, params: &Params) -> Integration {
+    match deck.movement.as_ref().and_then(|mv| mv.inttol.as_ref()) {
+        Some(t) => Integration { rtol: t.rtol.value, atol: t.atol.value },
+        None => Integration::from_accuracy(params.tol),
+    }
 }
 
 /// Checks the velocity change / (n dt) of every MOV_RELE and MOV_ABSE
@@ -90,7 +115,7 @@ pub(crate) fn check_rates(
         let (word, change) = match &m.kind {
             MotionKind::Relative(delta) => (delta, delta.value),
             MotionKind::Absolute(end) => (end, end.value - state.target[mech.input_row(j)]),
-            MotionKind::Function(_) | MotionKind::Free(_) => continue,
+            MotionKind::Function(_) | MotionKind::Free(_) | MotionKind::Dynamic(_) => continue,
         };
         if !(change / time).is_finite() {
             return Err(deck

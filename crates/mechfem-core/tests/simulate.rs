@@ -1,0 +1,178 @@
+//! Forward dynamics checked against what must hold whatever the integrator:
+//! a pendulum's exact period at a large amplitude (complete elliptic
+//! integral), conservation of T + V over many swings of a four-bar with
+//! masses, the work-energy balance under a constant drive torque and a
+//! spring, and the round trip inverse -> forward dynamics.
+
+#[path = "common/dynamics.rs"]
+mod models;
+
+use mechfem_core::dynamics::{simulate, Body, Dynamics, Integration, InverseDynamics, Load, LoadKind, PointMass};
+use mechfem_core::{
+    run, ElementType, FormRef, InputMotion, Mechanism, MechanismBuilder, Motion, Params, Quantity, Recorder, State,
+    Term,
+};
+use std::f64::consts::PI;
+
+const G: f64 = 9.81;
+
+/// A pendulum P -> Q (length `l`) at angle `theta0` with a point mass at Q.
+fn pendulum(l: f64, theta0: f64, m: f64) -> (Mechanism, State, Dynamics) {
+    let mut b = MechanismBuilder::new();
+    let (xp, yp) = (b.fixed(0.0), b.fixed(0.0));
+    let (xq, yq) = (b.moving(l * theta0.cos()), b.moving(l * theta0.sin()));
+    let bar = b.element(ElementType::Bin, &[xp, yp, xq, yq]);
+    b.prescribe(&[Term::new(bar, 0)]);
+    b.input(&[Term::new(bar, 1)]);
+    let (mech, state) = b.build().unwrap();
+    let dynamics =
+        Dynamics { point_masses: vec![PointMass { x: xq, y: yq, mass: m }], gravity: [0.0, -G], ..Dynamics::default() };
+    (mech, state, dynamics)
+}
+
+/// K(k) by the arithmetic-geometric mean: K = pi / (2 agm(1, sqrt(1 - k^2))).
+fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
+    // The mean converges quadratically: a handful of rounds reach the last bit.
+    for _ in 0..40 {
+        (a, b) = (0.5 * (a + b), (a * b).sqrt());
+    }
+    PI / (2.0 * a)
+}
+
+fn tight() -> Integration {
+    Integration { rtol: 1e-12, atol: 1e-12 }
+}
+
+/// Simulates `steps` steps of `dt` with input 0 free from rest, recording `q`.
+fn free_run(
+    mech: &Mechanism,
+    state: &mut State,
+    dynamics: &Dynamics,
+    steps: usize,
+    dt: f64,
+    q: &[Quantity],
+) -> Vec<f64> {
+    let motion = Motion { steps, dt, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
+    let mut rec = Recorder::new(q.to_vec(), false).with_dynamics(InverseDynamics::new(mech, dynamics.clone()));
+    let params = Params { tol: 1e-12, ..Params::default() };
+    let report = simulate(mech, state, &motion, &params, &tight(), dynamics, &mut rec).unwrap();
+    assert!(report.run.stop.is_none(), "{:?}", report.run.stop);
+    assert_eq!(rec.positions(), steps + 1);
+    assert!(report.steps > 0 && report.evaluations > report.steps);
+    rec.data().to_vec()
+}
+
+/// Released from rest at 170 degrees from the bottom, the pendulum is back
+/// after the period `4 sqrt(l/g) K(sin(theta0/2))` and on the other side
+/// after half of it.
+#[test]
+fn pendulum_period_at_a_large_amplitude_is_exact() {
+    let (l, amplitude) = (0.8, 170f64.to_radians());
+    let theta0 = -PI / 2.0 + amplitude;
+    let period = 4.0 * (l / G).sqrt() * elliptic_k((amplitude / 2.0).sin());
+    let (mech, mut state, dynamics) = pendulum(l, theta0, 2.0);
+    let steps = 200;
+    let q = [Quantity::Input(0), Quantity::Ve(FormRef::Prescribed(1)), Quantity::Time];
+    let data = free_run(&mech, &mut state, &dynamics, steps, period / steps as f64, &q);
+    let at = |k: usize| &data[k * 3..k * 3 + 3];
+    assert!((at(steps)[2] - period).abs() < 1e-12 * period);
+    assert!((at(steps)[0] - theta0).abs() < 1e-8, "after a period: {} vs {theta0}", at(steps)[0]);
+    assert!(at(steps)[1].abs() < 1e-7 * (G / l).sqrt(), "speed after a period: {}", at(steps)[1]);
+    let other = -PI / 2.0 - amplitude;
+    assert!((at(steps / 2)[0] - other).abs() < 1e-8, "after half a period: {} vs {other}", at(steps / 2)[0]);
+}
+
+/// A four-bar with bodies on every link and a flywheel, released from rest
+/// under gravity without damping, keeps T + V through more than 20 swings.
+#[test]
+fn a_four_bar_swinging_under_gravity_keeps_its_energy() {
+    let model = models::fourbar(&models::Fourbar::default());
+    let dynamics = Dynamics { loads: vec![], forces: vec![], gravity: [0.0, -G], ..model.dynamics.clone() };
+    let mut state = model.state.clone();
+    let q = [Quantity::Ekin, Quantity::Epot, Quantity::Input(0)];
+    let data = free_run(&model.mech, &mut state, &dynamics, 8000, 0.01, &q);
+    let energy: Vec<f64> = data.chunks(3).map(|r| r[0] + r[1]).collect();
+    let swing =
+        data.chunks(3).map(|r| r[1]).fold(f64::MIN, f64::max) - data.chunks(3).map(|r| r[1]).fold(f64::MAX, f64::min);
+    assert!(swing > 1.0, "the four-bar must really swing: V varies by {swing}");
+    // Count the swings: sign changes of the crank's speed.
+    let angles: Vec<f64> = data.chunks(3).map(|r| r[2]).collect();
+    let turns = angles.windows(3).filter(|w| (w[1] - w[0]) * (w[2] - w[1]) < 0.0).count();
+    assert!(turns >= 40, "only {turns} turning points");
+    let drift = energy.iter().map(|e| (e - energy[0]).abs()).fold(0.0, f64::max);
+    assert!(drift < 1e-8 * swing, "T + V drifts by {drift} (swing of V {swing})");
+}
+
+/// A constant drive torque Q on the free crank of a slider-crank with a
+/// torsion spring, under gravity: T + V - Q (q - q0) stays constant.
+#[test]
+fn work_of_a_constant_torque_goes_into_the_energy() {
+    let sc = models::SliderCrank::default();
+    let (mech, mut state, mut dynamics) = models::slider_crank(&sc, 0.3);
+    dynamics.forces.clear();
+    let q0 = state.target[3];
+    let torque = 4.0;
+    dynamics.loads = vec![
+        Load { form: FormRef::Prescribed(3), kind: LoadKind::Constant(torque) },
+        // A torsion spring on the crank.
+        Load { form: FormRef::Prescribed(3), kind: LoadKind::Spring { k: 3.0, e0: 0.5, c: 0.0 } },
+    ];
+    let q = [Quantity::Ekin, Quantity::Epot, Quantity::Input(0)];
+    let data = free_run(&mech, &mut state, &dynamics, 500, 0.002, &q);
+    let balance: Vec<f64> = data.chunks(3).map(|r| r[0] + r[1] - torque * (r[2] - q0)).collect();
+    let work = data.chunks(3).map(|r| torque * (r[2] - q0)).fold(0.0, f64::max);
+    assert!(work > 10.0, "the torque must do real work: {work}");
+    let drift = balance.iter().map(|b| (b - balance[0]).abs()).fold(0.0, f64::max);
+    assert!(drift < 1e-8 * work, "T + V - W drifts by {drift} of {work}");
+}
+
+/// The drive torque inverse dynamics finds for a prescribed motion, applied
+/// as a tabulated load to the free input, reproduces that motion.
+#[test]
+fn inverse_then_forward_dynamics_gives_the_motion_back() {
+    let sc = models::SliderCrank::default();
+    let (mech, state, dynamics) = models::slider_crank(&sc, 0.3);
+    let (steps, dt) = (20000, 1e-5);
+    let (th0, w0, alpha) = (0.3, 8.0, 30.0);
+    let rows: Vec<[f64; 4]> = (0..=steps)
+        .map(|k| {
+            let t = k as f64 * dt;
+            [t, th0 + w0 * t + 0.5 * alpha * t * t, w0 + alpha * t, alpha]
+        })
+        .collect();
+    let prescribed = Motion { steps, dt, inputs: vec![InputMotion::Table { rows: rows.clone() }] };
+    let mut rec = Recorder::new(vec![Quantity::Time, Quantity::Drive(0)], false)
+        .with_dynamics(InverseDynamics::new(&mech, dynamics.clone()));
+    run(&mech, &mut state.clone(), Some(&prescribed), &Params::default(), &mut rec).unwrap();
+    let torque: Vec<[f64; 2]> = rec.data().chunks(2).map(|r| [r[0], r[1]]).collect();
+    let mut forward = dynamics.clone();
+    forward.loads.push(Load { form: FormRef::Prescribed(3), kind: LoadKind::Table(torque) });
+    let motion = Motion { steps: 40, dt: dt * 500.0, inputs: vec![InputMotion::Dynamic { v0: w0 }] };
+    let mut out = Recorder::new(vec![Quantity::Time, Quantity::Input(0)], false);
+    let mut s = state.clone();
+    let params = Params { tol: 1e-12, ..Params::default() };
+    let tol = Integration { rtol: 1e-10, atol: 1e-10 };
+    let report = simulate(&mech, &mut s, &motion, &params, &tol, &forward, &mut out).unwrap();
+    assert!(report.run.stop.is_none(), "{:?}", report.run.stop);
+    for r in out.data().chunks(2) {
+        let want = th0 + w0 * r[0] + 0.5 * alpha * r[0] * r[0];
+        // The torque is linear between its rows, within dt^2/8 |tau''| of
+        // the exact one: the motion agrees to that, integrated.
+        assert!((r[1] - want).abs() < 1e-7, "t {}: {} vs {want}", r[0], r[1]);
+    }
+}
+
+/// A mass that cannot move a free degree of freedom is refused before
+/// anything is integrated, and a body on the bar alone does move it.
+#[test]
+fn a_free_input_without_mass_is_refused() {
+    let (mech, mut state, mut dynamics) = pendulum(1.0, 0.3, 1.0);
+    dynamics.point_masses.clear();
+    let motion = Motion { steps: 10, dt: 0.01, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
+    let mut rec = Recorder::new(vec![Quantity::Input(0)], false);
+    let err = simulate(&mech, &mut state, &motion, &Params::default(), &tight(), &dynamics, &mut rec).unwrap_err();
+    assert!(err.to_string().contains("no mass"), "{err}");
+    dynamics.bodies.push(Body { element: 0, mass: 1.0, u: 0.5, v: 0.0, inertia: 0.0 });
+    simulate(&mech, &mut state, &motion, &Params::default(), &tight(), &dynamics, &mut rec).unwrap();
+}

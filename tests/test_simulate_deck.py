@@ -1,0 +1,145 @@
+"""DYN SIM decks through `mechfem run` and `mechfem.run_deck`: a pendulum released from rest against the exact
+period and the conservation of energy, the round trip inverse -> forward dynamics through a LOADFUNC file, the
+supply mechanism's run-up to its steady speed, and what the print file says of the integrator."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+import mechfem
+from conftest import ROOT, Cli
+
+G = 9.81
+SUPPLY = ROOT / "examples" / "supply" / "supply_sim.mec"
+RELEASED = ROOT / "crates" / "mechfem-deck" / "tests" / "decks" / "valid" / "pendulum_released.mec"
+
+
+def elliptic_k(k: float) -> float:
+    """The complete elliptic integral of the first kind, by the arithmetic-geometric mean."""
+    a, b = 1.0, math.sqrt(1.0 - k * k)
+    # The mean converges quadratically: a handful of rounds reach the last bit.
+    for _ in range(40):
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+    return math.pi / (2.0 * a)
+
+
+PENDULUM = """{mode}
+TOPOLOGY
+ELEM 1 BIN 1 2 3 4
+FORM 1 LENL 1 1
+     2 ANGB 1 2
+NRDOF 1
+GEOMETRY
+XFIX 1 0.0
+     2 0.0
+XMOV 3 {x!r}
+     4 {y!r}
+DYNAMICS
+PMASS 3 4 1.5
+GRAVITY 0 -9.81
+{loads}
+MOVEMENT
+TSTEPE {n} {dt!r}
+{motion}
+ACCURACY 1E-12
+STORAGE
+BUFTIME 1
+BUFINP 1 2
+BUFVE 2 3
+BUFDRV 1 4
+BUFEKIN 5
+BUFEPOT 6
+"""
+
+
+def pendulum(path: Path, mode: str, motion: str, n: int, dt: float, theta0: float, loads: str = "") -> Path:
+    length = 0.7
+    text = PENDULUM.format(
+        mode=mode,
+        x=length * math.cos(theta0),
+        y=length * math.sin(theta0),
+        loads=loads,
+        n=n,
+        dt=dt,
+        motion=motion,
+    )
+    path.write_text(text)
+    return path
+
+
+def test_a_released_pendulum_keeps_its_energy_and_its_exact_period(tmp_path: Path) -> None:
+    # Released from rest 150 degrees from the bottom: back after 4 sqrt(l/g) K(sin 75 deg).
+    amplitude, length = math.radians(150.0), 0.7
+    period = 4.0 * math.sqrt(length / G) * elliptic_k(math.sin(amplitude / 2.0))
+    theta0 = -math.pi / 2 + amplitude
+    n = 300
+    deck = pendulum(tmp_path / "p.mec", "DYN SIM", "MOV_DYN 1 0\nINTTOL 1E-12 1E-12", n, period / n, theta0)
+    r = mechfem.run_deck(deck)
+    assert r.report.complete and r.simulation is not None
+    assert abs(r.buffers[2][-1] - theta0) < 1e-8
+    assert abs(r.buffers[2][n // 2] - (-math.pi / 2 - amplitude)) < 1e-8
+    energy = r.buffers[5] + r.buffers[6]
+    assert np.abs(energy - energy[0]).max() < 1e-9 * np.abs(r.buffers[6]).max()
+    # The free input has no drive: the forces alone move it.
+    assert np.abs(r.buffers[4]).max() < 1e-6 * 1.5 * G * length
+
+
+def test_inverse_then_forward_dynamics_through_a_load_table(tmp_path: Path) -> None:
+    # DYN ANA finds the torque that swings the pendulum as theta(t) = theta0 + a sin(w t); DYN SIM with that
+    # torque as a LOADFUNC on the angle and the same start reproduces the swing.
+    theta0, amp, w, n, dt = -1.2, 0.8, 4.0, 4000, 2.5e-4
+    t = np.arange(n + 1) * dt
+    th = theta0 + amp * np.sin(w * t)
+    rows = np.column_stack([t, th, amp * w * np.cos(w * t), -amp * w * w * np.sin(w * t)])
+    np.savetxt(tmp_path / "swing.dat", rows, fmt="%.17g")
+    ana = mechfem.run_deck(pendulum(tmp_path / "ana.mec", "DYN ANA", "MOV_FUNC 1 swing.dat", n, dt, theta0))
+    assert ana.report.complete
+    np.savetxt(tmp_path / "torque.dat", np.column_stack([ana.buffers[1], ana.buffers[4]]), fmt="%.17g")
+    sim_deck = pendulum(
+        tmp_path / "sim.mec",
+        "DYN SIM",
+        f"MOV_DYN 1 {amp * w!r}\nINTTOL 1E-11 1E-11",
+        100,
+        n * dt / 100,
+        theta0,
+        loads="LOADFUNC 2 torque.dat",
+    )
+    sim = mechfem.run_deck(sim_deck)
+    assert sim.report.complete
+    want = theta0 + amp * np.sin(w * sim.buffers[1])
+    # The torque is linear between its rows: the swing comes back to within that interpolation's error.
+    np.testing.assert_allclose(sim.buffers[2], want, atol=1e-7)
+
+
+def test_supply_mechanism_runs_up_to_its_steady_speed(tmp_path: Path, cli: Cli) -> None:
+    proc = cli("run", SUPPLY, "-o", tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    r = mechfem.run_deck(SUPPLY)
+    assert r.report.complete
+    speed, time = r.buffers[101], r.buffers[98]
+    assert speed[0] == 0.0
+    # Steady running: the motor's torque 12 (1 - w/70) N m balances the brakes near 63 rad/s (about 600 strokes
+    # a minute), the flywheel holding the speed within a few per cent.
+    late = speed[time > 1.5]
+    assert 60.0 < late.mean() < 66.0
+    assert (late.max() - late.min()) / late.mean() < 0.06
+    prt = (tmp_path / "supply_sim.prt").read_text()
+    assert "SIMULATION\n  integrator: Dormand-Prince 5(4)" in prt
+    assert "tolerances: relative 1e-10, absolute 1e-10" in prt
+    assert "energy balance from the first position to the last" in prt
+
+
+def test_a_very_stiff_spring_stops_the_simulation_with_its_reason(tmp_path: Path) -> None:
+    # A torsion spring of 1e15 N m on the pendulum: oscillations far faster than the outputs. The integrator gives
+    # up after its step budget (2000 steps per output interval on average) instead of running for hours.
+    text = RELEASED.read_text().replace("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nSPRING 2 1E15 0 0.001")
+    deck = tmp_path / "stiff.mec"
+    deck.write_text(text)
+    r = mechfem.run_deck(deck)
+    stop = r.report.stop
+    assert stop is not None and stop.kind == "simulation"
+    assert "2000 steps per output interval" in stop.message
+    assert r.positions == stop.last_good >= 1
