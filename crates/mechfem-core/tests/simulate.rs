@@ -176,3 +176,36 @@ fn a_free_input_without_mass_is_refused() {
     dynamics.bodies.push(Body { element: 0, mass: 1.0, u: 0.5, v: 0.0, inertia: 0.0 });
     simulate(&mech, &mut state, &motion, &Params::default(), &tight(), &dynamics, &mut rec).unwrap();
 }
+
+/// A slider-crank whose slider is the free degree of freedom, pushed towards
+/// the outer dead centre: the slider cannot move the crank through it, and
+/// the simulation stops there with that reason instead of creeping on.
+#[test]
+fn a_free_input_stops_at_its_limit_position() {
+    use mechfem_core::dynamics::Force;
+    let (r, l, th) = (0.1f64, 0.3f64, 1.0f64);
+    let mut b = MechanismBuilder::new();
+    let (x0, y0, yb) = (b.fixed(0.0), b.fixed(0.0), b.fixed(0.0));
+    let (xa, ya) = (b.moving(r * th.cos()), b.moving(r * th.sin()));
+    let xb = b.moving(r * th.cos() + (l * l - (r * th.sin()).powi(2)).sqrt());
+    let crank = b.element(ElementType::Bin, &[x0, y0, xa, ya]);
+    let rod = b.element(ElementType::Bin, &[xa, ya, xb, yb]);
+    let slider = b.element(ElementType::Crd, &[xb]);
+    b.prescribe(&[Term::new(crank, 0)]);
+    b.prescribe(&[Term::new(rod, 0)]);
+    b.input(&[Term::new(slider, 0)]);
+    let (mech, mut state) = b.build().unwrap();
+    let dynamics = Dynamics {
+        bodies: vec![Body { element: crank, mass: 1.0, u: 0.05, v: 0.0, inertia: 1e-3 }],
+        point_masses: vec![PointMass { x: xb, y: yb, mass: 0.5 }],
+        forces: vec![Force { x: xb, y: yb, f: [50.0, 0.0] }],
+        ..Dynamics::default()
+    };
+    let motion = Motion { steps: 200, dt: 0.005, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
+    let mut rec = Recorder::new(vec![Quantity::Input(0)], false);
+    let report = simulate(&mech, &mut state, &motion, &Params::default(), &tight(), &dynamics, &mut rec).unwrap();
+    let stop = report.run.stop.expect("the slider cannot pass its dead centre");
+    assert!(stop.error.to_string().contains("limit position"), "{}", stop.error);
+    let reached = rec.data().iter().fold(f64::MIN, |m, &x| m.max(x));
+    assert!(reached < r + l && reached > r + l - 1e-2, "the slider stops just short of r + l: {reached}");
+}

@@ -115,7 +115,17 @@ struct Eom<'a> {
     evaluations: usize,
     /// Why the last evaluation failed, if it did.
     failure: Option<SolveError>,
+    /// The largest |det(D^c)| met so far.
+    det_max: f64,
+    /// Whether a stage ran into a limit position of a free DOF.
+    limit_met: bool,
 }
+
+/// |det(D^c)| below this share of the largest met so far is a limit position.
+const LIMIT_DET: f64 = 1e-6;
+
+const LIMIT_REASON: &str = "a limit position of a free degree of freedom (det(D^c) fell below 1e-6 of its largest \
+                            value): the DOF cannot move the mechanism through it (let another DOF move freely)";
 
 impl Eom<'_> {
     /// The free DOFs' accelerations at time `t`, free positions and speeds
@@ -148,6 +158,18 @@ impl Eom<'_> {
             // The transfer functions are those of another position now: no prediction from them.
             let _ = self.kin.transfer(mech, &mut self.state, TransferOrder::Second);
             return Err(e);
+        }
+        // A free DOF cannot move the mechanism through a limit position of
+        // its own: near one, D^c is nearly singular, the DOF's reduced mass
+        // grows without bound and the motion would creep towards the limit
+        // forever. Such a position counts as not found.
+        let det = self.kin.det().abs();
+        self.det_max = self.det_max.max(det);
+        if det < LIMIT_DET * self.det_max {
+            self.limit_met = true;
+            self.state.clone_from(&self.saved);
+            let _ = self.kin.transfer(mech, &mut self.state, TransferOrder::Second);
+            return Err(SolveError::Simulation { time: t, reason: LIMIT_REASON });
         }
         self.q_last.copy_from_slice(&self.q);
         self.evaluations += 1;
@@ -437,6 +459,8 @@ pub fn simulate(
         saved: state.clone(),
         evaluations: 0,
         failure: None,
+        det_max: 0.0,
+        limit_met: false,
     };
     let y0: Vec<f64> = free.iter().map(|&j| start[j]).chain(v0.iter().copied()).collect();
     // The free DOFs' accelerations at the start: a model they cannot move
@@ -472,7 +496,14 @@ pub fn simulate(
     // be the end of the interval when it stopped short).
     let mut tables: Vec<Vec<[f64; 4]>> = vec![Vec::with_capacity(times.len()); nd];
     let mut acc = vec![0.0; nf];
-    let mut stop_error = out.error;
+    // Steps cut down again and again at a limit position end as a collapse
+    // or as apparent stiffness: the limit is the reason.
+    let mut stop_error = match out.error {
+        Some(SolveError::Simulation { time, .. }) if eom.limit_met => {
+            Some(SolveError::Simulation { time, reason: LIMIT_REASON })
+        }
+        e => e,
+    };
     // The outputs are visited from the start again, each position found
     // from the one before.
     eom.restart(state, &start);
