@@ -96,14 +96,20 @@ class DynamicSeries:
         return cls(arr("inputs"), arr("drive"), arr("ekin"), arr("epot"), arr("power"))
 
 
+def drive_work(time: FloatArray, power: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The times where the drive power is known and the drives' work from the first of them to each, by the
+    trapezoidal rule."""
+    ok = np.isfinite(power) & np.isfinite(time)
+    t, p = time[ok], power[ok]
+    return t, np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])[: t.size]
+
+
 def energy_fluctuation(time: FloatArray, power: FloatArray) -> float:
     """The largest fluctuation of the work the drives deliver about its mean rate: the energy a flywheel must
     absorb and give back to keep the drive at the mean power (NaN with fewer than two finite positions)."""
-    ok = np.isfinite(power) & np.isfinite(time)
-    t, p = time[ok], power[ok]
+    t, work = drive_work(time, power)
     if t.size < 2 or t[-1] <= t[0]:
         return float("nan")
-    work = np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])
     excess = work - work[-1] * (t - t[0]) / (t[-1] - t[0])
     return float(excess.max() - excess.min())
 
@@ -128,10 +134,9 @@ def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
             f"    smallest {d[k_min]:.10g} at position {k_min + 1} (input {series.inputs[k_min, j]:.10g}), "
             f"root mean square {rms:.10g}",
         ]
-    ok = np.isfinite(series.power) & np.isfinite(time)
-    t = time[ok]
+    t, w = drive_work(time, series.power)
     if t.size > 1 and t[-1] > t[0]:
-        work = float(np.sum(0.5 * (series.power[ok][1:] + series.power[ok][:-1]) * np.diff(t)))
+        work = float(w[-1])
         out.append(f"  work of the drives: {work:.10g}, mean drive power {work / (t[-1] - t[0]):.10g}")
         out.append(
             "  largest fluctuation of the drives' work about its mean (a flywheel's energy swing): "
@@ -185,9 +190,8 @@ class Simulation:
         ]
         if series is not None and time.size > 1:
             e = series.kinetic + series.potential
-            ok = np.isfinite(series.power) & np.isfinite(time)
-            p, t = series.power[ok], time[ok]
-            work = float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(t))) if t.size > 1 else 0.0
+            w = drive_work(time, series.power)[1]
+            work = float(w[-1]) if w.size else 0.0
             change = float(e[-1] - e[0])
             out += [
                 "  energy balance from the first position to the last:",

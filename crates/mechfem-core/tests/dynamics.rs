@@ -7,8 +7,8 @@
 #[path = "common/dynamics.rs"]
 mod models;
 
-use mechfem_core::dynamics::{Body, Dynamics, PointMass};
-use mechfem_core::{run, ElementType, InputMotion, MechanismBuilder, Motion, Params, Quantity, Recorder, Term};
+use mechfem_core::dynamics::{Body, Dynamics};
+use mechfem_core::{run, InputMotion, Motion, Params, Quantity, Recorder};
 use models::{fourbar, run_dynamics, slider_crank, Fourbar, SliderCrank};
 use std::f64::consts::PI;
 
@@ -27,20 +27,13 @@ fn close(a: f64, b: f64, scale: f64, tol: f64) -> bool {
 fn pendulum_matches_its_closed_form() {
     let (l, m, theta0, amp, w): (f64, f64, f64, f64, f64) = (0.8, 2.5, -1.2, 0.9, 3.0);
     for on_body in [false, true] {
-        let mut b = MechanismBuilder::new();
-        let (xp, yp) = (b.fixed(0.0), b.fixed(0.0));
-        let (xq, yq) = (b.moving(l * theta0.cos()), b.moving(l * theta0.sin()));
-        let bar = b.element(ElementType::Bin, &[xp, yp, xq, yq]);
-        b.prescribe(&[Term::new(bar, 0)]);
-        b.input(&[Term::new(bar, 1)]);
-        let (mech, mut state) = b.build().unwrap();
+        let (mech, mut state, mut dynamics) = models::pendulum(l, theta0, m);
+        let (xp, yp, bar) = (0, 1, 0);
         // The same mass as a point at Q, or as a body on the bar with its centre at Q.
-        let dynamics = Dynamics {
-            point_masses: if on_body { vec![] } else { vec![PointMass { x: xq, y: yq, mass: m }] },
-            bodies: if on_body { vec![Body { element: bar, mass: m, u: l, v: 0.0, inertia: 0.0 }] } else { vec![] },
-            gravity: [0.0, -G],
-            ..Dynamics::default()
-        };
+        if on_body {
+            dynamics.point_masses.clear();
+            dynamics.bodies.push(Body { element: bar, mass: m, u: l, v: 0.0, inertia: 0.0 });
+        }
         let steps = 200;
         let dt = 2.0 * PI / w / steps as f64;
         let rows = (0..=steps)

@@ -16,20 +16,6 @@ use std::f64::consts::PI;
 
 const G: f64 = 9.81;
 
-/// A pendulum P -> Q (length `l`) at angle `theta0` with a point mass at Q.
-fn pendulum(l: f64, theta0: f64, m: f64) -> (Mechanism, State, Dynamics) {
-    let mut b = MechanismBuilder::new();
-    let (xp, yp) = (b.fixed(0.0), b.fixed(0.0));
-    let (xq, yq) = (b.moving(l * theta0.cos()), b.moving(l * theta0.sin()));
-    let bar = b.element(ElementType::Bin, &[xp, yp, xq, yq]);
-    b.prescribe(&[Term::new(bar, 0)]);
-    b.input(&[Term::new(bar, 1)]);
-    let (mech, state) = b.build().unwrap();
-    let dynamics =
-        Dynamics { point_masses: vec![PointMass { x: xq, y: yq, mass: m }], gravity: [0.0, -G], ..Dynamics::default() };
-    (mech, state, dynamics)
-}
-
 /// K(k) by the arithmetic-geometric mean: K = pi / (2 agm(1, sqrt(1 - k^2))).
 fn elliptic_k(k: f64) -> f64 {
     let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
@@ -71,7 +57,7 @@ fn pendulum_period_at_a_large_amplitude_is_exact() {
     let (l, amplitude) = (0.8, 170f64.to_radians());
     let theta0 = -PI / 2.0 + amplitude;
     let period = 4.0 * (l / G).sqrt() * elliptic_k((amplitude / 2.0).sin());
-    let (mech, mut state, dynamics) = pendulum(l, theta0, 2.0);
+    let (mech, mut state, dynamics) = models::pendulum(l, theta0, 2.0);
     let steps = 200;
     let q = [Quantity::Input(0), Quantity::Ve(FormRef::Prescribed(1)), Quantity::Time];
     let data = free_run(&mech, &mut state, &dynamics, steps, period / steps as f64, &q);
@@ -167,7 +153,7 @@ fn inverse_then_forward_dynamics_gives_the_motion_back() {
 /// anything is integrated, and a body on the bar alone does move it.
 #[test]
 fn a_free_input_without_mass_is_refused() {
-    let (mech, mut state, mut dynamics) = pendulum(1.0, 0.3, 1.0);
+    let (mech, mut state, mut dynamics) = models::pendulum(1.0, 0.3, 1.0);
     dynamics.point_masses.clear();
     let motion = Motion { steps: 10, dt: 0.01, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
     let mut rec = Recorder::new(vec![Quantity::Input(0)], false);

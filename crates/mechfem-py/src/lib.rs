@@ -27,9 +27,9 @@ mod text;
 
 use std::path::{Path, PathBuf};
 
-use mechfem_core::dynamics::{simulate, SimReport};
-use mechfem_core::{run, InputMotion, Mechanism, Motion, Quantity, RunReport};
-use mechfem_deck::{Compiled, Mode, PlotItem};
+use mechfem_core::dynamics::SimReport;
+use mechfem_core::{InputMotion, Mechanism, Motion, Quantity, RunReport};
+use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -122,15 +122,8 @@ fn execute(
     }
     rec.recorder.reserve(total, n);
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
-    // A DYN SIM deck's motion is simulated; position 1 alone is computed as in any run.
-    let simulated = match (motion, &c.dynamics) {
-        (Some(m), Some(d)) if with_motion && c.mode == Mode::DynSim => Some((m, d, c.integration)),
-        _ => None,
-    };
-    let result = py.detach(|| match simulated {
-        Some((m, d, tol)) => simulate(mech, state, m, params, &tol, d, &mut rec).map(|s| (s.run.clone(), Some(s))),
-        None => run(mech, state, motion, params, &mut rec).map(|r| (r, None)),
-    });
+    let sim = text::simulation(c.mode, c.dynamics.as_ref(), &c.integration);
+    let result = py.detach(|| text::move_through(mech, state, motion, params, sim, &mut rec));
     let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
     match result {
         Ok((report, sim)) => Ok(Ran { compiled: c, given, rec, report, sim, interrupted }),

@@ -14,10 +14,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use mechfem_core::dynamics::{simulate, InverseDynamics, SimReport};
+use mechfem_core::dynamics::{simulate, Dynamics, Integration, InverseDynamics, SimReport};
 use mechfem_core::SolveError;
 use mechfem_core::{
-    record, run, FormRef, InputMotion, Mechanism, Observer, PositionView, Quantity, RunReport, TransferOrder,
+    record, run, FormRef, InputMotion, Mechanism, Motion, Observer, Params, PositionView, Quantity, RunReport, State,
+    TransferOrder,
 };
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostics, Mode};
@@ -146,6 +147,34 @@ pub fn transfer_order(c: &Compiled, order: Option<u8>) -> PyResult<TransferOrder
     }
 }
 
+/// The masses and loads and the tolerances of a DYN SIM deck, whose motion
+/// is simulated; None for any other deck.
+pub fn simulation<'a>(
+    mode: Mode,
+    dynamics: Option<&'a Dynamics>,
+    integration: &'a Integration,
+) -> Option<(&'a Dynamics, &'a Integration)> {
+    Some((dynamics.filter(|_| mode == Mode::DynSim)?, integration))
+}
+
+/// Moves the mechanism through `motion` (position 1 alone without one):
+/// simulated with `simulation` ([`simulation`]), run otherwise.
+pub fn move_through(
+    mech: &Mechanism,
+    state: &mut State,
+    motion: Option<&Motion>,
+    params: &Params,
+    simulation: Option<(&Dynamics, &Integration)>,
+    observer: &mut dyn Observer,
+) -> Result<(RunReport, Option<SimReport>), SolveError> {
+    match (motion, simulation) {
+        (Some(m), Some((d, tol))) => {
+            simulate(mech, state, m, params, tol, d, observer).map(|s| (s.run.clone(), Some(s)))
+        }
+        _ => run(mech, state, motion, params, observer).map(|r| (r, None)),
+    }
+}
+
 /// A finished run with everything recorded.
 pub struct FullRun {
     /// The compiled deck, state at the last position.
@@ -221,15 +250,8 @@ pub fn execute(
         cancel,
         progress,
     };
-    let simulated = match (motion, &c.dynamics) {
-        (Some(m), Some(d)) if c.mode == Mode::DynSim => Some((m, d)),
-        _ => None,
-    };
-    let result = match simulated {
-        Some((m, d)) => simulate(&c.mechanism, &mut c.state, m, &c.params, &c.integration, d, &mut watch)
-            .map(|s| (s.run.clone(), Some(s))),
-        None => run(&c.mechanism, &mut c.state, motion, &c.params, &mut watch).map(|r| (r, None)),
-    };
+    let sim = simulation(c.mode, c.dynamics.as_ref(), &c.integration);
+    let result = move_through(&c.mechanism, &mut c.state, motion, &c.params, sim, &mut watch);
     let raised = watch.progress.and_then(|p| p.error);
     let outcome = match result {
         Ok((report, sim)) => Outcome::Ran(Box::new(FullRun {

@@ -305,3 +305,19 @@ pub fn load_power(model: &FourbarModel, motion: &Motion) -> Vec<f64> {
     run(&model.mech, &mut state, Some(motion), &Params::default(), &mut obs).unwrap();
     obs.1
 }
+
+/// A pendulum P -> Q (length `l`, P fixed at the origin, co-ordinates xP yP
+/// xQ yQ = 0..4, the bar element 0) at angle `theta0`, its length row 0
+/// and its angle the input, with a point mass `m` at Q and gravity.
+pub fn pendulum(l: f64, theta0: f64, m: f64) -> (Mechanism, State, Dynamics) {
+    let mut b = MechanismBuilder::new();
+    let (xp, yp) = (b.fixed(0.0), b.fixed(0.0));
+    let (xq, yq) = (b.moving(l * theta0.cos()), b.moving(l * theta0.sin()));
+    let bar = b.element(ElementType::Bin, &[xp, yp, xq, yq]);
+    b.prescribe(&[Term::new(bar, 0)]);
+    b.input(&[Term::new(bar, 1)]);
+    let (mech, state) = b.build().unwrap();
+    let dynamics =
+        Dynamics { point_masses: vec![PointMass { x: xq, y: yq, mass: m }], gravity: [0.0, -G], ..Dynamics::default() };
+    (mech, state, dynamics)
+}
