@@ -39,4 +39,4 @@ pub use motion::{run, LimitKind, LimitPosition, Observer, PositionView, RunRepor
 pub use motion::{InputMotion, Motion};
 pub use record::{record, FormRef, Quantity, Recorder};
 pub use solver::Params;
-pub use solver::{adjust, diagnose, AdjustInfo, Kinematics, Mobility, NewtonInfo, TransferOrder};
+pub use solver::{adjust, diagnose, AdjustInfo, DesignVar, Kinematics, Mobility, NewtonInfo, TransferOrder};
