@@ -24,6 +24,7 @@
 //! implements (numerical kinematics with finite elements).
 
 pub mod batch;
+pub mod design;
 pub mod dynamics;
 pub mod elements;
 pub mod error;
@@ -39,4 +40,6 @@ pub use motion::{run, LimitKind, LimitPosition, Observer, PositionView, RunRepor
 pub use motion::{InputMotion, Motion};
 pub use record::{record, FormRef, Quantity, Recorder};
 pub use solver::Params;
-pub use solver::{adjust, diagnose, AdjustInfo, DesignVar, Kinematics, Mobility, NewtonInfo, TransferOrder};
+pub use solver::{
+    adjust, diagnose, AdjustInfo, DesignError, DesignVar, Kinematics, Mobility, NewtonInfo, Sensitivity, TransferOrder,
+};

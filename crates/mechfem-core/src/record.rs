@@ -62,7 +62,7 @@ pub enum Quantity {
 
 use crate::dynamics::InverseDynamics;
 use crate::motion::{Observer, PositionView};
-use crate::solver::TransferOrder;
+use crate::solver::{DesignVar, Sensitivity, TransferOrder};
 
 impl Quantity {
     /// Whether the quantity is one of the dynamics (it needs a mass and load
@@ -155,6 +155,81 @@ impl Quantity {
             Quantity::Ae(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, |j| qdd[j]),
             Quantity::Ae(FormRef::Dependent(d)) => kin.dep_acceleration(d, qd, qdd),
             Quantity::Det => kin.det(),
+            _ => f64::NAN,
+        }
+    }
+
+    /// The quantity's derivative with respect to design variable `var` of
+    /// `s` (computed at this position, [`Sensitivity::compute`]): NaN for
+    /// det(D^c), time and the dynamics, which have none, and for a quantity
+    /// made from transfer functions that were not computed.
+    pub fn sensitivity(&self, v: &PositionView<'_>, s: &Sensitivity, var: usize) -> f64 {
+        let mech = v.mech;
+        let (qd, qdd) = (v.input_vel, v.input_acc);
+        let nd = mech.n_dof();
+        let order = s.order();
+        if order.is_none()
+            || (self.transfer_order() == Some(TransferOrder::Second) && order != Some(TransferOrder::Second))
+        {
+            return f64::NAN;
+        }
+        // The variable's own row: an input's start moves the input by the
+        // factor of `Sensitivity::scale_input`, which `dx` of the input's
+        // co-ordinate direction already carries; a constant row is itself.
+        let own_row = |r: usize| match s.vars()[var] {
+            DesignVar::Row(rv) if rv == r => 1.0,
+            _ => 0.0,
+        };
+        let input_scale = |j: usize| {
+            let r = mech.input_row(j);
+            // The input's value moves by the same factor as its co-ordinates.
+            if own_row(r) == 0.0 {
+                0.0
+            } else {
+                s.input_factor(var)
+            }
+        };
+        let input_of = |r: usize| (0..nd).find(|&j| mech.input_row(j) == r);
+        let dvel = |j: usize| s.input_rate(j, var);
+        match *self {
+            Quantity::Input(j) => input_scale(j),
+            Quantity::X0(i) => s.dx(i, var),
+            Quantity::Kx1 { coord, j } => s.dx1(coord, j, var),
+            Quantity::Kx2 { coord, j, m } => s.dx2(coord, j, m, var),
+            Quantity::Vx(i) => (0..nd).map(|j| s.dx1(i, j, var) * qd[j] + v.kin.dx(mech, i, j) * dvel(j)).sum(),
+            Quantity::Ax(i) => {
+                let mut a = 0.0;
+                for j in 0..nd {
+                    a += s.dx1(i, j, var) * qdd[j];
+                    for m in 0..nd {
+                        a += s.dx2(i, j, m, var) * qd[j] * qd[m] + 2.0 * v.kin.d2x(mech, i, j, m) * dvel(j) * qd[m];
+                    }
+                }
+                a
+            }
+            Quantity::E0(FormRef::Prescribed(r)) => match input_of(r) {
+                Some(j) => input_scale(j),
+                None => own_row(r),
+            },
+            Quantity::E0(FormRef::Dependent(d)) => s.dep(d, var),
+            Quantity::Ke1(FormRef::Prescribed(_), _) | Quantity::Ke2(FormRef::Prescribed(_), _, _) => 0.0,
+            Quantity::Ke1(FormRef::Dependent(d), j) => s.dep1(d, j, var),
+            Quantity::Ke2(FormRef::Dependent(d), j, m) => s.dep2(d, j, m, var),
+            Quantity::Ve(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, dvel),
+            Quantity::Ae(FormRef::Prescribed(_)) => 0.0,
+            Quantity::Ve(FormRef::Dependent(d)) => {
+                (0..nd).map(|j| s.dep1(d, j, var) * qd[j] + v.kin.dep1(d, j) * dvel(j)).sum()
+            }
+            Quantity::Ae(FormRef::Dependent(d)) => {
+                let mut a = 0.0;
+                for j in 0..nd {
+                    a += s.dep1(d, j, var) * qdd[j];
+                    for m in 0..nd {
+                        a += s.dep2(d, j, m, var) * qd[j] * qd[m] + 2.0 * v.kin.dep2(d, j, m) * dvel(j) * qd[m];
+                    }
+                }
+                a
+            }
             _ => f64::NAN,
         }
     }

@@ -117,6 +117,21 @@ pub trait Observer {
 }
 
 impl Motion {
+    /// How input j's value and velocity at position `index` (0-based)
+    /// change per unit of its start value (its prescribed value at position
+    /// 1): (1, 0) for steps of a fixed size (MOV_RELE); (1 - k/n, -1/(n dt))
+    /// for steps to a fixed end (MOV_ABSE); (0, 0) where the start does not
+    /// move the input (a motion table, free or dynamic motion).
+    pub fn start_rates(&self, j: usize, index: usize) -> (f64, f64) {
+        let n = self.steps as f64;
+        match self.inputs.get(j) {
+            Some(InputMotion::Relative { .. }) => (1.0, 0.0),
+            Some(InputMotion::Absolute { .. }) if self.steps == 0 => (1.0, 0.0),
+            Some(InputMotion::Absolute { .. }) => (1.0 - index as f64 / n, -1.0 / (n * self.dt)),
+            _ => (0.0, 0.0),
+        }
+    }
+
     /// Sets the inputs that a motion table fixes at position 1 (its first
     /// row), overriding their prescribed values. [`run`] does this itself;
     /// call it to compute position 1 alone the way a run would.

@@ -9,13 +9,13 @@ pub mod assemble;
 pub mod lu;
 pub mod mobility;
 pub mod newton;
-mod sensitivity;
 mod ordering;
+pub mod sensitivity;
 pub mod transfer;
 
 pub use mobility::{diagnose, Mobility};
 pub use newton::{adjust, correct, correct_with, AdjustInfo, NewtonInfo, TempInput};
-pub use sensitivity::DesignVar;
+pub use sensitivity::{DesignError, DesignVar, Sensitivity};
 pub use transfer::{Kinematics, TransferOrder};
 
 /// Tuning knobs of the position analysis.

@@ -1,0 +1,83 @@
+//! A design evaluated for an optimiser: the extrema of the supply
+//! mechanism's output (its dead positions) located to full precision, and
+//! the sensitivities of what is taken there against central differences.
+
+use mechfem_core::design::{evaluate, ExtremumSpec};
+use mechfem_core::{DesignVar, FormRef, Params, Quantity, State};
+
+fn supply() -> mechfem_deck::Compiled {
+    mechfem_deck::load(format!("{}/../../examples/supply/supply.mec", env!("CARGO_MANIFEST_DIR"))).unwrap()
+}
+
+const OUT: FormRef = FormRef::Dependent(0);
+
+fn at(c: &mechfem_deck::Compiled, vars: &[DesignVar], values: &[f64]) -> mechfem_core::design::DesignRun {
+    let mut state: State = c.state.clone();
+    for (v, x) in vars.iter().zip(values) {
+        match *v {
+            DesignVar::Row(r) => state.target[r] = *x,
+            DesignVar::Fixed(i) => state.x[i] = *x,
+        }
+    }
+    let spec = [
+        ExtremumSpec { quantity: Quantity::Ke2(OUT, 0, 0), reference: Quantity::E0(OUT) },
+        ExtremumSpec { quantity: Quantity::E0(OUT), reference: Quantity::E0(OUT) },
+    ];
+    let params = Params { tol: 1e-13, ..Params::default() };
+    let q = [Quantity::Ke2(OUT, 0, 0), Quantity::E0(OUT)];
+    evaluate(&c.mechanism, &mut state, c.motion.as_ref().unwrap(), &params, vars, &q, &spec).unwrap()
+}
+
+#[test]
+fn dead_positions_of_the_supply_mechanism() {
+    let c = supply();
+    let kappa = DesignVar::Row(4);
+    let r = at(&c, &[kappa], &[-5.17514]);
+    // Two dead positions per turn, each found once for each spec.
+    assert_eq!(r.extrema.len(), 4, "{:?}", r.extrema);
+    let max_tf2 = (0..r.positions).map(|p| r.values[p * 2].abs()).fold(0.0, f64::max);
+    for e in r.extrema.iter().filter(|e| e.spec == 0) {
+        // The printed design has almost no acceleration at its dead positions.
+        assert!(e.value.abs() < 0.02 * max_tf2, "{e:?} against a largest {max_tf2}");
+    }
+    // The extremum's value is the largest or smallest of the output anywhere.
+    let outs: Vec<f64> = (0..r.positions).map(|p| r.values[p * 2 + 1]).collect();
+    let (lo, hi) = outs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    for e in r.extrema.iter().filter(|e| e.spec == 1) {
+        assert!(e.value >= hi - 1e-12 || e.value <= lo + 1e-12, "{e:?} not beyond [{lo}, {hi}]");
+    }
+}
+
+#[test]
+fn extremum_sensitivities_against_central_differences() {
+    let c = supply();
+    // kappa, a coupler length, a frame pivot's x and the input's start.
+    let vars = [DesignVar::Row(4), DesignVar::Row(6), DesignVar::Fixed(4), DesignVar::Row(11)];
+    let x0: Vec<f64> = vec![-5.25, 0.71771, 1.04091, 0.0];
+    let base = at(&c, &vars, &x0);
+    for (v, _) in vars.iter().enumerate() {
+        let h = 1e-5 * x0[v].abs().max(1.0);
+        let mut plus = x0.clone();
+        plus[v] += h;
+        let mut minus = x0.clone();
+        minus[v] -= h;
+        let (p, m) = (at(&c, &vars, &plus), at(&c, &vars, &minus));
+        assert_eq!(p.extrema.len(), base.extrema.len());
+        for (k, e) in base.extrema.iter().enumerate() {
+            let fd = (p.extrema[k].value - m.extrema[k].value) / (2.0 * h);
+            let size = 1.0 + e.value.abs() + e.gradient[v].abs();
+            assert!(
+                (fd - e.gradient[v]).abs() < 1e-6 * size,
+                "{:?} at extremum {k}: finite difference {fd}, sensitivity {}",
+                vars[v],
+                e.gradient[v]
+            );
+        }
+        // And at every position.
+        for q in 0..base.values.len() {
+            let fd = (p.values[q] - m.values[q]) / (2.0 * h);
+            let g = base.gradient[q * vars.len() + v];
+            assert!((fd - g).abs() < 1e-6 * (1.0 + g.abs() + base.values[q].abs()), "{:?}: {fd} vs {g}", vars[v]);
+        }
+    }
+}
