@@ -13,13 +13,16 @@ use mechfem_core::ElementType;
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 
+mod optimise;
+
+pub use optimise::{BoundDef, ObjectiveDef, Optimise, TargetDef, TargetDefKind, VaryDef};
+
 /// A parsed deck.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Deck {
     /// The file the deck was read from, as the caller named it.
     pub path: PathBuf,
-    /// The mode of the first line: [`Mode::KinAna`], [`Mode::DynAna`] or
-    /// [`Mode::DynSim`] in a parsed deck ([`Mode::KinOpt`] is refused).
+    /// The mode of the first line.
     pub mode: Spanned<Mode>,
     /// The TOPOLOGY block.
     pub topology: Topology,
@@ -28,8 +31,11 @@ pub struct Deck {
     /// The DYNAMICS block: given exactly when the mode has dynamics
     /// ([`Mode::has_dynamics`]).
     pub dynamics: Option<Dynamics>,
-    /// The MOVEMENT block, if given (always in a [`Mode::DynSim`] deck).
+    /// The MOVEMENT block, if given (always in a [`Mode::DynSim`] or
+    /// [`Mode::KinOpt`] deck).
     pub movement: Option<Movement>,
+    /// The OPTIMISE block: given exactly in a [`Mode::KinOpt`] deck.
+    pub optimise: Option<Optimise>,
     /// The STORAGE block, if given.
     pub storage: Option<Storage>,
     /// The raw lines of the file, for diagnostics.
@@ -78,13 +84,34 @@ pub(crate) fn missing_dynamics(path: &Path, source: &[String], mode: Mode, span:
     )
 }
 
-/// The diagnostic for a `DYN SIM` deck without a MOVEMENT block, at the
+/// The diagnostic for a deck whose mode needs a MOVEMENT block (`DYN SIM`,
+/// `KIN OPT`) without one, at the mode line's `span`.
+pub(crate) fn missing_movement(path: &Path, source: &[String], mode: Mode, span: Span) -> Box<Diagnostic> {
+    let (message, hint) = if mode == Mode::KinOpt {
+        (
+            "this KIN OPT deck has no MOVEMENT block: the motion gives the positions at which the design is judged",
+            "add a MOVEMENT block with `TSTEPE n [dt]` and, for every DOF j, a driven motion: `MOV_RELE j delta`, \
+             `MOV_ABSE j end` or `MOV_FUNC j file`",
+        )
+    } else {
+        (
+            "this DYN SIM deck has no MOVEMENT block: a simulation needs its output times",
+            "add a MOVEMENT block with `TSTEPE n dt` (positions at t = 0, dt, ..., n dt) and, for every DOF j, \
+             `MOV_DYN j v0` to let the forces move it from the velocity v0, or MOV_RELE, MOV_ABSE or MOV_FUNC to \
+             drive it",
+        )
+    };
+    diagnostic_at(path, source, DiagnosticKind::MissingBlock, span, message).with_hint(hint)
+}
+
+/// The diagnostic for a `KIN OPT` deck without an OPTIMISE block, at the
 /// mode line's `span`.
-pub(crate) fn missing_movement(path: &Path, source: &[String], span: Span) -> Box<Diagnostic> {
-    let message = "this DYN SIM deck has no MOVEMENT block: a simulation needs its output times";
+pub(crate) fn missing_optimise(path: &Path, source: &[String], span: Span) -> Box<Diagnostic> {
+    let message = "this KIN OPT deck has no OPTIMISE block";
     diagnostic_at(path, source, DiagnosticKind::MissingBlock, span, message).with_hint(
-        "add a MOVEMENT block with `TSTEPE n dt` (positions at t = 0, dt, ..., n dt) and, for every DOF j, \
-         `MOV_DYN j v0` to let the forces move it from the velocity v0, or MOV_RELE, MOV_ABSE or MOV_FUNC to drive it",
+        "add an OPTIMISE block with the design variables (`VARY r lo hi`, `VARYX i lo hi`) and what to achieve \
+         (TARGET, TARGETAT, TARGETEXT, MINIMISE or MAXIMISE), or change the mode line to `KIN ANA` to analyse the \
+         mechanism as it is",
     )
 }
 
@@ -93,7 +120,8 @@ pub(crate) fn missing_movement(path: &Path, source: &[String], span: Span) -> Bo
 pub enum Mode {
     /// `KIN ANA`: kinematic analysis.
     KinAna,
-    /// `KIN OPT`: kinematic optimisation (not supported).
+    /// `KIN OPT`: kinematic optimisation (design variables changed until
+    /// the motion meets targets or an objective; the OPTIMISE block).
     KinOpt,
     /// `DYN ANA`: dynamic analysis (inverse dynamics of a prescribed motion).
     DynAna,

@@ -10,12 +10,12 @@ use mechfem_core::dynamics::{Dynamics, Integration};
 use mechfem_core::{ElementType, Mechanism, Motion, Params, Quantity, State};
 
 use crate::ast::Mode;
+use crate::optimise::Optimise;
 
 /// A compiled deck, ready to run.
 #[derive(Debug, Clone)]
 pub struct Compiled {
-    /// The mode of the deck: [`Mode::KinAna`], [`Mode::DynAna`] or
-    /// [`Mode::DynSim`].
+    /// The mode of the deck.
     pub mode: Mode,
     /// The model (immutable).
     pub mechanism: Mechanism,
@@ -23,7 +23,7 @@ pub struct Compiled {
     /// (rows without PARA hold their value at the given co-ordinates).
     pub state: State,
     /// The input motion; `None` without a MOVEMENT block (position 1 only),
-    /// which a [`Mode::DynSim`] deck always has. Its DOFs given MOV_DYN are
+    /// which a [`Mode::DynSim`] or [`Mode::KinOpt`] deck always has. Its DOFs given MOV_DYN are
     /// [`mechfem_core::InputMotion::Dynamic`].
     pub motion: Option<Motion>,
     /// Solver settings (ACCURACY, MAXITER; defaults otherwise).
@@ -32,7 +32,7 @@ pub struct Compiled {
     /// [`Integration::from_accuracy`] of `params.tol` (ACCURACY or its
     /// default). Set for every deck; only [`Mode::DynSim`] uses it.
     pub integration: Integration,
-    /// Buffer definitions, in deck order.
+    /// Buffer definitions of STORAGE and OPTIMISE, in deck order.
     pub buffers: Vec<Buffer>,
     /// Buffers to tabulate in the print file: `None` without PRINTBUF,
     /// `Some(empty)` for all buffers.
@@ -52,6 +52,9 @@ pub struct Compiled {
     /// The masses and loads (0-based indices): `Some` exactly for a
     /// [`Mode::DynAna`] or [`Mode::DynSim`] deck.
     pub dynamics: Option<Dynamics>,
+    /// The design variables, targets, bounds and objective of the OPTIMISE
+    /// block: `Some` exactly for a [`Mode::KinOpt`] deck.
+    pub optimise: Option<Optimise>,
 }
 
 /// One output buffer: one value per position.

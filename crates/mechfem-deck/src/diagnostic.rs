@@ -56,8 +56,6 @@ pub enum DiagnosticKind {
     Io,
     /// The first line is not a mode line.
     MissingMode,
-    /// A mode the program knows but does not run yet (KIN OPT).
-    UnsupportedMode,
     /// A mode line that names no known mode.
     UnknownMode,
     /// A word in keyword position that is no keyword.
@@ -69,11 +67,13 @@ pub enum DiagnosticKind {
     /// A block header given twice.
     DuplicateBlock,
     /// A required block (TOPOLOGY, GEOMETRY; DYNAMICS in a DYN ANA or DYN SIM
-    /// deck; MOVEMENT in a DYN SIM deck) is missing.
+    /// deck; MOVEMENT in a DYN SIM or KIN OPT deck; OPTIMISE in a KIN OPT
+    /// deck) is missing.
     MissingBlock,
     /// A block or keyword that the deck's mode does not have (DYNAMICS or a
-    /// dynamics buffer in KIN ANA, MOV_FREE in DYN ANA and DYN SIM, MOV_DYN
-    /// and INTTOL outside DYN SIM).
+    /// dynamics buffer in KIN ANA and KIN OPT, OPTIMISE outside KIN OPT,
+    /// MOV_FREE in DYN ANA, DYN SIM and KIN OPT, MOV_DYN and INTTOL outside
+    /// DYN SIM).
     WrongMode,
     /// Too few or too many arguments.
     ArgumentCount,
@@ -83,13 +83,16 @@ pub enum DiagnosticKind {
     NotAWholeNumber,
     /// A number too large to represent.
     NumberOutOfRange,
-    /// A value outside its allowed range (steps < 1, dt <= 0, INTTOL <= 0, ...).
+    /// A value outside its allowed range (steps < 1, dt <= 0, INTTOL <= 0,
+    /// a range whose lower end is not below its upper end, a weight <= 0, a
+    /// position outside the motion, ...).
     BadValue,
     /// An element type name that is not in the catalogue.
     UnknownElementType,
     /// Elements not numbered 1, 2, 3, ... in sequence.
     ElementSequence,
-    /// A keyword that may appear once is given again (NRDOF, TSTEPE, ...).
+    /// A keyword that may appear once is given again (NRDOF, TSTEPE, ...;
+    /// also a second MINIMISE or MAXIMISE).
     DuplicateKeyword,
     /// TSTEPE is not the first keyword of the MOVEMENT block.
     TstepeNotFirst,
@@ -125,8 +128,9 @@ pub enum DiagnosticKind {
     NrdofTooLarge,
     /// The number of prescribed rows differs from the number of moving co-ordinates.
     NotSquare,
-    /// PARA, BUF..., LOAD, LOADFUNC, SPRING or MOTOR for a row or dependent
-    /// form parameter that does not exist.
+    /// PARA, BUF..., LOAD, LOADFUNC, SPRING, MOTOR or VARY for a row or
+    /// dependent form parameter that does not exist (for VARY: that is no
+    /// prescribed row).
     UnknownRow,
     /// PARA given twice for the same row.
     DuplicatePara,
@@ -143,12 +147,27 @@ pub enum DiagnosticKind {
     /// A LOADFUNC file that cannot be read, is too large or empty, or has
     /// a bad row or rows out of time order.
     LoadFile,
-    /// BUFREA on a co-ordinate that moves (only fixed ones have a reaction).
+    /// BUFREA or VARYX on a co-ordinate that moves (only fixed ones have a
+    /// reaction or are design variables of their own).
     NotFixed,
     /// A buffer number defined twice.
     DuplicateBuffer,
-    /// PRINTBUF, SAVEDATA or PLOT* naming a buffer that is not defined.
+    /// PRINTBUF, SAVEDATA, PLOT*, TARGET..., BOUND, MINIMISE or MAXIMISE
+    /// naming a buffer that is not defined.
     UnknownBuffer,
+    /// VARY or VARYX of something that cannot be a design variable: a row
+    /// without PARA, the input of a MOV_FUNC motion, a variable varied twice,
+    /// a start value outside the range.
+    DesignVariable,
+    /// An OPTIMISE block without design variables, or with nothing to
+    /// optimise (no TARGET..., MINIMISE or MAXIMISE).
+    NothingToOptimise,
+    /// A TARGET file that cannot be read, has a bad row, no value, or not
+    /// one row per position.
+    TargetFile,
+    /// TARGETEXT whose reference buffer is not a position quantity (BUFX0,
+    /// BUFE0, BUFINP), so it has no transfer functions to locate an extremum.
+    ExtremumReference,
     /// The core refused the model (for example coinciding points of a binary).
     Model,
 }

@@ -13,13 +13,16 @@ pub enum Block {
     Dynamics,
     /// Input motion and solver settings.
     Movement,
+    /// Design variables, targets, bounds and the objective (mode `KIN OPT`).
+    Optimise,
     /// Output buffers and what to do with them.
     Storage,
 }
 
 impl Block {
     /// Every block, in the order of a deck.
-    pub const ALL: [Block; 5] = [Block::Topology, Block::Geometry, Block::Dynamics, Block::Movement, Block::Storage];
+    pub const ALL: [Block; 6] =
+        [Block::Topology, Block::Geometry, Block::Dynamics, Block::Movement, Block::Optimise, Block::Storage];
 
     /// The header word.
     pub fn name(self) -> &'static str {
@@ -28,6 +31,7 @@ impl Block {
             Block::Geometry => "GEOMETRY",
             Block::Dynamics => "DYNAMICS",
             Block::Movement => "MOVEMENT",
+            Block::Optimise => "OPTIMISE",
             Block::Storage => "STORAGE",
         }
     }
@@ -105,6 +109,16 @@ keywords! {
     Accuracy "ACCURACY" Movement 1 Some(1), "tol";
     Maxiter "MAXITER" Movement 1 Some(1), "m";
     Inttol "INTTOL" Movement 2 Some(2), "rtol atol";
+    Vary "VARY" Optimise 3 Some(3), "r lo hi";
+    VaryX "VARYX" Optimise 3 Some(3), "i lo hi";
+    Target "TARGET" Optimise 2 Some(3), "b file [w]";
+    TargetAt "TARGETAT" Optimise 3 Some(4), "b k value [w]";
+    TargetExt "TARGETEXT" Optimise 3 Some(4), "b bref value [w]";
+    Bound "BOUND" Optimise 3 Some(3), "b lo hi";
+    Minimise "MINIMISE" Optimise 2 Some(2), "kind b";
+    Maximise "MAXIMISE" Optimise 2 Some(2), "kind b";
+    OptSteps "OPTSTEPS" Optimise 1 Some(1), "n";
+    OptTol "OPTTOL" Optimise 1 Some(1), "tol";
     BufInp "BUFINP" Storage 2 Some(2), "j b";
     BufTime "BUFTIME" Storage 1 Some(1), "b";
     BufX0 "BUFX0" Storage 2 Some(2), "i b";
@@ -144,6 +158,33 @@ impl Keyword {
     /// The keywords of one block, in reference order.
     pub fn of_block(block: Block) -> impl Iterator<Item = Keyword> {
         Keyword::ALL.iter().copied().filter(move |k| k.block() == block)
+    }
+
+    /// Whether the keyword defines a buffer (`BUF...`).
+    pub fn is_buffer(self) -> bool {
+        matches!(
+            self,
+            Keyword::BufInp
+                | Keyword::BufTime
+                | Keyword::BufX0
+                | Keyword::BufKx1
+                | Keyword::BufKx2
+                | Keyword::BufVx
+                | Keyword::BufAx
+                | Keyword::BufE0
+                | Keyword::BufKe1
+                | Keyword::BufKe2
+                | Keyword::BufVe
+                | Keyword::BufAe
+                | Keyword::BufDet
+        ) || self.is_dynamic_buffer()
+    }
+
+    /// Whether the keyword may stand in `block`: its own block, and for a
+    /// buffer definition also OPTIMISE, whose targets and objective name
+    /// buffers.
+    pub fn allowed_in(self, block: Block) -> bool {
+        self.block() == block || (block == Block::Optimise && self.is_buffer())
     }
 
     /// Whether the keyword records a result of the dynamics (BUFSIG,
@@ -236,7 +277,20 @@ mod tests {
         assert_eq!(closest("BUFMRD", all_words()), Some("BUFMRED"));
         assert_eq!(closest("MOV_DIN", all_words()), Some("MOV_DYN"));
         assert_eq!(closest("INTOL", all_words()), Some("INTTOL"));
+        assert_eq!(closest("MINIMIZE", all_words()), Some("MINIMISE"));
+        assert_eq!(closest("OPTIMIZE", all_words()), Some("OPTIMISE"));
+        assert_eq!(closest("TARGETEXTR", all_words()), Some("TARGETEXT"));
         assert_eq!(closest("BANANA", all_words()), None);
+    }
+
+    #[test]
+    fn buffers_may_also_stand_in_optimise() {
+        let buffers: Vec<&str> = Keyword::ALL.iter().filter(|k| k.is_buffer()).map(|k| k.name()).collect();
+        assert_eq!(buffers.len(), 20);
+        assert!(buffers.iter().all(|n| n.starts_with("BUF")));
+        assert!(Keyword::BufKe2.allowed_in(Block::Optimise) && Keyword::BufKe2.allowed_in(Block::Storage));
+        assert!(!Keyword::PrintBuf.allowed_in(Block::Optimise));
+        assert!(!Keyword::Vary.allowed_in(Block::Storage));
     }
 
     #[test]

@@ -1,13 +1,12 @@
 //! The keyword deck of mechfem: text in, a checked core model out.
 //!
 //! This crate reads the deck language of the classic RUNMEC program (the
-//! mode `KIN ANA`, `DYN ANA` or `DYN SIM`, then the blocks TOPOLOGY,
-//! GEOMETRY, DYNAMICS, MOVEMENT, STORAGE) and turns it into what
-//! [`mechfem_core`] runs. It does **not** solve anything: no Newton
-//! iteration, no transfer functions, no dynamics, no simulation, no output
-//! files. It only reads, checks and translates, and says precisely what is
-//! wrong when a deck does not fit. The mode `KIN OPT` is recognised and
-//! refused.
+//! mode `KIN ANA`, `KIN OPT`, `DYN ANA` or `DYN SIM`, then the blocks
+//! TOPOLOGY, GEOMETRY, DYNAMICS, MOVEMENT, OPTIMISE, STORAGE) and turns it
+//! into what [`mechfem_core`] runs. It does **not** solve anything: no
+//! Newton iteration, no transfer functions, no dynamics, no simulation, no
+//! optimisation, no output files. It only reads, checks and translates, and
+//! says precisely what is wrong when a deck does not fit.
 //!
 //! A tour, in the order data flows:
 //!
@@ -17,10 +16,11 @@
 //!   repeats the previous keyword of its block, and a keyword alone on its
 //!   line (as `FORM` in the theory's tables) waits for such lines. What one
 //!   line can tell on its own (with the mode line) is checked here: a
-//!   negative mass, a DYNAMICS block in a `KIN ANA` deck, MOV_FREE in a
-//!   `DYN ANA` or `DYN SIM` deck, MOV_DYN or INTTOL outside `DYN SIM`; so
-//!   is a block the mode requires (DYNAMICS for both dynamics modes,
-//!   MOVEMENT for `DYN SIM`).
+//!   negative mass, an empty range of a design variable, a DYNAMICS block
+//!   in a kinematic deck, an OPTIMISE block outside `KIN OPT`, MOV_FREE in
+//!   a `DYN ANA`, `DYN SIM` or `KIN OPT` deck, MOV_DYN or INTTOL outside
+//!   `DYN SIM`; so is a block the mode requires (DYNAMICS for both dynamics
+//!   modes, MOVEMENT for `DYN SIM` and `KIN OPT`, OPTIMISE for `KIN OPT`).
 //! * [`compile`]: a [`Deck`] to a [`Compiled`] model: the core
 //!   [`mechfem_core::Mechanism`] and [`mechfem_core::State`] (PARA values in
 //!   `state.target`), the [`mechfem_core::Motion`] (MOV_FUNC files read
@@ -30,7 +30,10 @@
 //!   [`mechfem_core::dynamics::Integration`] (`INTTOL rtol atol`, else both
 //!   from ACCURACY), for `DYN ANA` and `DYN SIM` the masses and loads of the
 //!   DYNAMICS block as a [`mechfem_core::dynamics::Dynamics`] (LOADFUNC files
-//!   read like MOV_FUNC files), the output [`Buffer`]s, lists and
+//!   read like MOV_FUNC files), for `KIN OPT` the OPTIMISE block as an
+//!   [`Optimise`] (design variables as [`mechfem_core::DesignVar`]s,
+//!   targets with TARGET files read like MOV_FUNC files, bounds, the
+//!   objective), the output [`Buffer`]s of STORAGE and OPTIMISE, lists and
 //!   [`Picture`]s, and a description of the elements and rows for echoing
 //!   the model. References between lines are checked here.
 //! * [`load`]: both steps for a file.
@@ -65,6 +68,16 @@
 //! assert_eq!(motion.inputs, [mechfem_core::InputMotion::Dynamic { v0: 0.0 }]);
 //! assert_eq!(model.integration, mechfem_core::dynamics::Integration::from_accuracy(model.params.tol));
 //!
+//! // The crank's length as a design variable: the height of its tip at the
+//! // last of five positions should be 0.5.
+//! let design = text.replace("KIN ANA", "KIN OPT")
+//!     + "PARA 1 1\nMOVEMENT\nTSTEPE 4\nMOV_RELE 1 1.5\nOPTIMISE\nVARY 1 0.5 2\nBUFX0 4 1\nTARGETAT 1 5 0.5\n";
+//! let deck = mechfem_deck::parse_str(&design, "design.mec").unwrap();
+//! let model = mechfem_deck::compile(&deck, std::path::Path::new(".")).unwrap();
+//! let optimise = model.optimise.expect("a KIN OPT deck has an optimisation");
+//! assert_eq!(optimise.vary[0].var, mechfem_core::DesignVar::Row(0));
+//! assert_eq!(optimise.targets[0].kind, mechfem_deck::TargetKind::At { position: 4, value: 0.5 });
+//!
 //! let err = mechfem_deck::parse_str("KIN ANA\nTOPOLOGY\nELEM 1 BNI 1 2 3 4\n", "x.mec").unwrap_err();
 //! assert!(err.to_string().starts_with("error: unknown element type `BNI`"));
 //! ```
@@ -76,6 +89,7 @@ mod compiled;
 mod diagnostic;
 mod keywords;
 mod lexer;
+mod optimise;
 mod parse;
 mod statements;
 
@@ -86,10 +100,11 @@ pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
 pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned};
 pub use keywords::{Block, Keyword};
+pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};
 pub use parse::{parse_file, parse_str};
 
-/// Reads, checks and compiles the deck at `path`; MOV_FUNC and LOADFUNC
-/// files are read from the deck's folder.
+/// Reads, checks and compiles the deck at `path`; MOV_FUNC, LOADFUNC and
+/// TARGET files are read from the deck's folder.
 pub fn load(path: impl AsRef<Path>) -> Result<Compiled, Diagnostics> {
     let path = path.as_ref();
     let deck = parse_file(path)?;

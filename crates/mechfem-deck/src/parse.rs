@@ -10,8 +10,8 @@ use std::path::{Path, PathBuf};
 
 use crate::args::Source;
 use crate::ast::{
-    missing_dynamics, missing_movement, Deck, Dynamics, Geometry, IntTolDef, Mode, MotionDef, Movement, PictureDef,
-    Storage, Topology, Tstepe,
+    missing_dynamics, missing_movement, missing_optimise, Deck, Dynamics, Geometry, IntTolDef, Mode, MotionDef,
+    Movement, Optimise, PictureDef, Storage, Topology, Tstepe,
 };
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Hint, Span, Spanned};
 use crate::keywords::{all_words, closest, Block, Keyword};
@@ -70,14 +70,13 @@ pub(crate) struct Parser<'a> {
     pub geometry: Geometry,
     pub dynamics: Dynamics,
     pub movement: MovementParts,
+    pub optimise: Optimise,
     pub storage: Storage,
     pub picture: Option<PictureDef>,
     /// ELEM lines seen so far, refused ones included.
     pub elem_lines: i64,
     /// Lines of NRDOF, ANIMATE, ... for "given twice" messages.
     pub once: Vec<(Keyword, usize)>,
-    /// Reading stopped early (a mode that is not run): blocks are not checked.
-    stopped: bool,
 }
 
 impl<'a> Parser<'a> {
@@ -95,11 +94,11 @@ impl<'a> Parser<'a> {
             geometry: Geometry::default(),
             dynamics: Dynamics::default(),
             movement: MovementParts::default(),
+            optimise: Optimise::default(),
             storage: Storage::default(),
             picture: None,
             elem_lines: 0,
             once: Vec::new(),
-            stopped: false,
         }
     }
 
@@ -111,12 +110,7 @@ impl<'a> Parser<'a> {
     fn run(&mut self, lines: &[Line]) {
         let mut lines = lines.iter();
         let Some(first) = lines.next() else { return };
-        if self.mode_line(first) {
-            if self.mode.as_ref().is_some_and(|m| !runs(m.value)) {
-                self.stopped = true;
-                return;
-            }
-        } else {
+        if !self.mode_line(first) {
             self.line(first);
         }
         for line in lines {
@@ -155,8 +149,9 @@ impl<'a> Parser<'a> {
                     DiagnosticKind::UnknownMode,
                     first.span.to(last),
                     format!("unknown mode `{}`", text.join(" ")),
-                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis), `DYN ANA` \
-                     (inverse dynamics) and `DYN SIM` (forward dynamics, a simulation)",
+                    "the first line gives the mode; mechfem runs `KIN ANA` (kinematic analysis), `KIN OPT` \
+                     (design optimisation), `DYN ANA` (inverse dynamics) and `DYN SIM` (forward dynamics, a \
+                     simulation)",
                 );
                 return true;
             }
@@ -167,15 +162,6 @@ impl<'a> Parser<'a> {
                 extra.span.to(last),
                 format!("the mode line `{}` has extra words", mode.name()),
                 "the mode line holds two words, such as `KIN ANA`",
-            );
-        }
-        if !runs(mode) {
-            self.error(
-                DiagnosticKind::UnsupportedMode,
-                span,
-                format!("mode {} ({}) is not supported yet", mode.name(), mode.description()),
-                "mechfem runs kinematic analysis, inverse dynamics and simulations: start the deck with `KIN ANA`, \
-                 `DYN ANA` or `DYN SIM`",
             );
         }
         self.mode = Some(Spanned::new(mode, span));
@@ -287,21 +273,42 @@ impl<'a> Parser<'a> {
                 Block::Geometry => self.geometry.line = line.number,
                 Block::Dynamics => self.dynamics.line = line.number,
                 Block::Movement => self.movement.line = line.number,
+                Block::Optimise => self.optimise.line = line.number,
                 Block::Storage => self.storage.line = line.number,
             }
         }
-        if block == Block::Dynamics && self.mode.is_some_and(|m| m.value == Mode::KinAna) {
-            self.error(
-                DiagnosticKind::WrongMode,
-                line.words[0].span,
-                "a KIN ANA deck has no DYNAMICS block: masses and loads belong to the dynamics modes",
-                "change the mode line to `DYN ANA` for inverse dynamics or `DYN SIM` for a simulation, or remove the \
-                 DYNAMICS block",
-            );
-        }
+        self.check_block_mode(block, line);
         self.block = Some(block);
         self.previous = None;
         self.poisoned = false;
+    }
+
+    /// Refuses a block that the deck's mode does not have: DYNAMICS in a
+    /// kinematic mode, OPTIMISE outside `KIN OPT`.
+    fn check_block_mode(&mut self, block: Block, line: &Line) {
+        let Some(mode) = self.mode() else { return };
+        let span = line.words[0].span;
+        let name = mode.name();
+        if block == Block::Dynamics && !mode.has_dynamics() {
+            let hint = if mode == Mode::KinOpt {
+                "a KIN OPT deck optimises the kinematics only: remove the DYNAMICS block, or change the mode line to \
+                 `DYN ANA` or `DYN SIM` to analyse the dynamics of one design"
+            } else {
+                "change the mode line to `DYN ANA` for inverse dynamics or `DYN SIM` for a simulation, or remove the \
+                 DYNAMICS block"
+            };
+            let message = format!("a {name} deck has no DYNAMICS block: masses and loads belong to the dynamics modes");
+            self.error(DiagnosticKind::WrongMode, span, message, hint);
+        }
+        if block == Block::Optimise && mode != Mode::KinOpt {
+            let message =
+                format!("a {name} deck has no OPTIMISE block: design variables and targets belong to the mode KIN OPT");
+            let hint = format!(
+                "change the mode line to `KIN OPT` to optimise the design, or remove the OPTIMISE block to run {name} \
+                 as it is"
+            );
+            self.error(DiagnosticKind::WrongMode, span, message, hint);
+        }
     }
 
     /// Ends the current block: a bare keyword without repetition lines, an
@@ -348,7 +355,7 @@ impl<'a> Parser<'a> {
             let right = kw.block();
             let wrong = match self.block {
                 None => Some(format!("{kw} stands before any block header")),
-                Some(b) if b != right => Some(format!("{kw} belongs in the {right} block, not in {b}")),
+                Some(b) if !kw.allowed_in(b) => Some(format!("{kw} belongs in the {right} block, not in {b}")),
                 Some(_) => None,
             };
             if let Some(message) = wrong {
@@ -369,6 +376,11 @@ impl<'a> Parser<'a> {
         if let Err(d) = self.statement(keyword, line, args, repeated) {
             self.errors.push(*d);
         }
+    }
+
+    /// The block being read.
+    pub(crate) fn block(&self) -> Option<Block> {
+        self.block
     }
 
     /// The deck's mode, once the mode line has been read.
@@ -399,19 +411,26 @@ impl<'a> Parser<'a> {
             self.errors.push(d);
         }
         for block in [Block::Topology, Block::Geometry] {
-            if self.headers[block as usize].is_none() && self.mode.is_some() && !self.stopped {
+            if self.headers[block as usize].is_none() && self.mode.is_some() {
                 let d = Diagnostic::file(DiagnosticKind::MissingBlock, path, format!("the deck has no {block} block"))
                     .with_hint(format!("add a line `{block}` followed by its keywords"));
                 self.errors.push(d);
             }
         }
-        if let Some(mode) = self.mode.filter(|m| m.value.has_dynamics() && !self.stopped) {
-            if self.headers[Block::Dynamics as usize].is_none() {
-                self.errors.push(*missing_dynamics(path, self.src.lines, mode.value, mode.span));
+        if let Some(mode) = self.mode {
+            let missing = |block: Block| self.headers[block as usize].is_none();
+            let lines = self.src.lines;
+            let mut found = Vec::new();
+            if mode.value.has_dynamics() && missing(Block::Dynamics) {
+                found.push(missing_dynamics(path, lines, mode.value, mode.span));
             }
-            if mode.value == Mode::DynSim && self.headers[Block::Movement as usize].is_none() {
-                self.errors.push(*missing_movement(path, self.src.lines, mode.span));
+            if matches!(mode.value, Mode::DynSim | Mode::KinOpt) && missing(Block::Movement) {
+                found.push(missing_movement(path, lines, mode.value, mode.span));
             }
+            if mode.value == Mode::KinOpt && missing(Block::Optimise) {
+                found.push(missing_optimise(path, lines, mode.span));
+            }
+            self.errors.extend(found.into_iter().map(|d| *d));
         }
         self.errors.sort_by_key(|d| (d.line == 0, d.line));
         let (Some(mode), true) = (self.mode, self.errors.is_empty()) else {
@@ -436,15 +455,11 @@ impl<'a> Parser<'a> {
             geometry: self.geometry,
             dynamics: self.headers[Block::Dynamics as usize].map(|_| self.dynamics),
             movement,
+            optimise: self.headers[Block::Optimise as usize].map(|_| self.optimise),
             storage: self.headers[Block::Storage as usize].map(|_| self.storage),
             source: Vec::new(),
         })
     }
-}
-
-/// Whether mechfem runs decks of this mode.
-fn runs(mode: Mode) -> bool {
-    matches!(mode, Mode::KinAna | Mode::DynAna | Mode::DynSim)
 }
 
 /// Number of blank characters at the start of a line.

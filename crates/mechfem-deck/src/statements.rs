@@ -1,5 +1,7 @@
 //! One keyword line to one item of the typed deck.
 
+mod optimise;
+
 use mechfem_core::ElementType;
 
 use crate::args::Source;
@@ -38,8 +40,10 @@ impl Parser<'_> {
             return self.elem(line, args, repeated);
         }
         self.src.check_count(kw.value, line, args, repeated)?;
-        if kw.value.block() == Block::Dynamics {
-            return self.dynamics_statement(kw, line, args);
+        match kw.value.block() {
+            Block::Dynamics => return self.dynamics_statement(kw, line, args),
+            Block::Optimise => return self.optimise_statement(kw, line, args),
+            _ => {}
         }
         // `check_count` guarantees the required arguments; `arg` still
         // refuses to index out of range.
@@ -243,7 +247,12 @@ impl Parser<'_> {
                     .map(|(k, w)| src.whole(w, names.get(k).copied().unwrap_or("an index")))
                     .collect::<Result<Vec<_>, _>>()?;
                 let number = src.buffer(last)?;
-                self.storage.buffers.push(BufDef { line: line_no, keyword: kw, args, number });
+                let def = BufDef { line: line_no, keyword: kw, args, number };
+                if self.block() == Some(Block::Optimise) {
+                    self.optimise.buffers.push(def);
+                } else {
+                    self.storage.buffers.push(def);
+                }
             }
         }
         Ok(())
@@ -309,6 +318,17 @@ impl Parser<'_> {
                 format!("{k} records a result of the dynamics, which a KIN ANA deck does not compute"),
                 "change the mode line to `DYN ANA` (or `DYN SIM`) and add a DYNAMICS block, or remove this line",
             ),
+            Mode::KinOpt if k.is_dynamic_buffer() => err(
+                format!("{k} records a result of the dynamics, which a KIN OPT deck does not compute"),
+                "a KIN OPT deck judges a design by its kinematics (positions, transfer functions, velocities, \
+                 accelerations): remove this line, or use BUFX0, BUFKX1, BUFKX2, BUFE0, BUFKE1, BUFKE2, BUFVX, BUFAX, \
+                 BUFVE, BUFAE or BUFDET",
+            ),
+            Mode::KinOpt if matches!(k, Keyword::MovFree | Keyword::MovDyn) => err(
+                format!("{k} cannot move a KIN OPT deck: the design is judged along a driven motion"),
+                "drive every DOF with MOV_RELE, MOV_ABSE or MOV_FUNC: their positions are where the targets, bounds \
+                 and objective of the OPTIMISE block are evaluated, the same for every design",
+            ),
             _ if mode.has_dynamics() && k == Keyword::MovFree => err(
                 format!(
                     "MOV_FREE cannot drive a {name} deck: free motion has no timing, so no velocities or accelerations"
@@ -331,7 +351,7 @@ impl Parser<'_> {
                      MOV_FUNC"
                 },
             ),
-            Mode::KinAna | Mode::DynAna if k == Keyword::Inttol => err(
+            Mode::KinAna | Mode::KinOpt | Mode::DynAna if k == Keyword::Inttol => err(
                 format!("INTTOL sets the tolerances of a simulation's integrator, which a {name} deck does not run"),
                 "remove this line (ACCURACY sets how closely Newton meets the prescribed values), or change the mode \
                  line to `DYN SIM`",

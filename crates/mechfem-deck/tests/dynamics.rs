@@ -143,9 +143,15 @@ fn a_dyn_ana_deck_without_movement_is_position_one_only() {
 }
 
 #[test]
-fn kin_opt_stays_refused() {
-    let (kind, message, line) = first_error(&deck("KIN OPT", "DYNAMICS\n"), Path::new("."));
-    assert_eq!((kind, line), (DiagnosticKind::UnsupportedMode, 1), "{message}");
+fn a_kin_opt_deck_has_no_dynamics() {
+    let e = compiled(&deck("KIN OPT", "DYNAMICS\n"), Path::new(".")).expect_err("refused");
+    let found: Vec<(DiagnosticKind, usize)> = e.iter().map(|d| (d.kind, d.line)).collect();
+    // Besides, it lacks the MOVEMENT and OPTIMISE blocks a KIN OPT deck needs.
+    assert_eq!(
+        found,
+        [(DiagnosticKind::MissingBlock, 1), (DiagnosticKind::MissingBlock, 1), (DiagnosticKind::WrongMode, 21)]
+    );
+    assert!(e.0[2].message.contains("KIN OPT deck has no DYNAMICS block"), "{e}");
 }
 
 #[test]

@@ -2,9 +2,11 @@
 //! lines are checked here, and the core model is built.
 
 mod coordinates;
+mod design;
 mod dynamics;
 mod model;
 mod motion;
+mod optimise;
 mod refs;
 mod rows;
 mod storage;
@@ -16,13 +18,14 @@ use crate::ast::Deck;
 use crate::compiled::Compiled;
 use crate::diagnostic::Diagnostics;
 
-/// Compiles a parsed deck. `deck_dir` is the folder MOV_FUNC and LOADFUNC
-/// file names are relative to (the deck's own folder).
+/// Compiles a parsed deck. `deck_dir` is the folder MOV_FUNC, LOADFUNC and
+/// TARGET file names are relative to (the deck's own folder).
 ///
 /// Checks every reference between lines (co-ordinates, elements, rows,
-/// DOFs, buffers), reads MOV_FUNC and LOADFUNC files, and builds the core
-/// model and, for `DYN ANA` and `DYN SIM`, its masses and loads; the first
-/// mistake found is returned.
+/// DOFs, buffers, positions), reads MOV_FUNC, LOADFUNC and TARGET files,
+/// and builds the core model, for `DYN ANA` and `DYN SIM` its masses and
+/// loads, and for `KIN OPT` its optimisation problem; the first mistake
+/// found is returned.
 pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let m = model::model(deck)?;
     let sizes = refs::Sizes::of(&m.mechanism);
@@ -33,6 +36,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
     let out = storage::outputs(deck, &sizes)?;
+    let optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
     Ok(Compiled {
         mode: deck.mode.value,
         mechanism: m.mechanism,
@@ -49,6 +53,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         prescribed: m.prescribed,
         dependent: m.dependent,
         dynamics,
+        optimise,
     })
 }
 

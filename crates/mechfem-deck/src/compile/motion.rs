@@ -15,9 +15,9 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
     let mut params = Params::default();
     let Some(mv) = &deck.movement else {
         // The parser reports this already; a simulation has nothing to do
-        // without output times.
-        if deck.mode.value == Mode::DynSim {
-            return Err(missing_movement(&deck.path, &deck.source, deck.mode.span));
+        // without output times, an optimisation no positions to judge.
+        if matches!(deck.mode.value, Mode::DynSim | Mode::KinOpt) {
+            return Err(missing_movement(&deck.path, &deck.source, deck.mode.value, deck.mode.span));
         }
         return Ok((None, params));
     };
@@ -64,12 +64,13 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
         let j = k + 1;
         let Some(m) = m else {
             let width = deck.line_text(mv.line).trim_end().chars().count();
-            // Free motion has no timing, so the dynamics cannot use it; only
-            // a simulation lets the forces move a DOF.
+            // Free motion has no timing, so the dynamics cannot use it, nor
+            // does it give the same positions for every design; only a
+            // simulation lets the forces move a DOF.
             let (dynamic, free) = match deck.mode.value {
                 Mode::DynSim => (format!("`MOV_DYN {j} v0`, "), String::new()),
-                Mode::DynAna => (String::new(), String::new()),
-                _ => (String::new(), format!(", `MOV_FREE {j} ds`")),
+                Mode::DynAna | Mode::KinOpt => (String::new(), String::new()),
+                Mode::KinAna => (String::new(), format!(", `MOV_FREE {j} ds`")),
             };
             return Err(deck
                 .error(DiagnosticKind::MissingMotion, Span::new(mv.line, 0, width), format!("DOF {j} has no motion"))

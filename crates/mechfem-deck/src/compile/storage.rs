@@ -1,4 +1,5 @@
-//! STORAGE to buffer definitions, output lists and pictures.
+//! STORAGE to buffer definitions, output lists and pictures; the buffer
+//! definitions of OPTIMISE join those of STORAGE.
 
 use std::collections::BTreeMap;
 
@@ -21,40 +22,10 @@ pub(crate) struct Outputs {
 }
 
 pub(crate) fn outputs(deck: &Deck, sizes: &Sizes) -> Result<Outputs, Box<Diagnostic>> {
-    let Some(st) = &deck.storage else { return Ok(Outputs::default()) };
-    let mut defined: BTreeMap<u32, usize> = BTreeMap::new();
-    let mut buffers = Vec::with_capacity(st.buffers.len());
-    for def in &st.buffers {
-        let quantity = quantity(deck, sizes, def)?;
-        let number = buffer_number(&def.number);
-        if let Some(first) = defined.get(&number) {
-            return Err(deck
-                .error(
-                    DiagnosticKind::DuplicateBuffer,
-                    def.number.span,
-                    format!("buffer {number} is already defined at line {first}"),
-                )
-                .with_hint("give every BUF... keyword its own buffer number"));
-        }
-        defined.insert(number, def.line);
-        buffers.push(Buffer { number, quantity, line: def.line });
-    }
-    let known = |b: &Spanned<i64>| -> Result<u32, Box<Diagnostic>> {
-        let number = buffer_number(b);
-        if defined.contains_key(&number) {
-            return Ok(number);
-        }
-        let list: Vec<String> = defined.keys().take(12).map(u32::to_string).collect();
-        let more = if defined.len() > 12 { ", ..." } else { "" };
-        let hint = if list.is_empty() {
-            "define it with a BUF... keyword; this deck defines no buffers".to_string()
-        } else {
-            format!("define it with a BUF... keyword; the defined buffers are {}{more}", list.join(", "))
-        };
-        Err(deck
-            .error(DiagnosticKind::UnknownBuffer, b.span, format!("buffer {number} is not defined"))
-            .with_hint(hint))
-    };
+    let buffers = buffers(deck, sizes)?;
+    let Some(st) = &deck.storage else { return Ok(Outputs { buffers, ..Outputs::default() }) };
+    let defined = by_number(&buffers);
+    let known = |b: &Spanned<i64>| defined_buffer(deck, &defined, b).map(|buffer| buffer.number);
     let list = |lines: &[BufList]| -> Result<Vec<u32>, Box<Diagnostic>> {
         let mut out: Vec<u32> = Vec::new();
         for b in lines.iter().flat_map(|l| &l.buffers) {
@@ -91,6 +62,58 @@ pub(crate) fn outputs(deck: &Deck, sizes: &Sizes) -> Result<Outputs, Box<Diagnos
         pictures.push(Picture { title: pic.title.clone(), line: pic.line, items });
     }
     Ok(Outputs { buffers, printbuf, savedata, animate: st.animate.as_ref().map(|a| a.value.clone()), pictures })
+}
+
+/// The buffers defined in OPTIMISE and STORAGE, in the order of their
+/// lines; every number defined once.
+fn buffers(deck: &Deck, sizes: &Sizes) -> Result<Vec<Buffer>, Box<Diagnostic>> {
+    let optimise = deck.optimise.iter().flat_map(|o| &o.buffers);
+    let mut defs: Vec<&BufDef> = optimise.chain(deck.storage.iter().flat_map(|s| &s.buffers)).collect();
+    defs.sort_by_key(|d| d.line);
+    let mut defined: BTreeMap<u32, usize> = BTreeMap::new();
+    let mut buffers = Vec::with_capacity(defs.len());
+    for def in defs {
+        let quantity = quantity(deck, sizes, def)?;
+        let number = buffer_number(&def.number);
+        if let Some(first) = defined.get(&number) {
+            return Err(deck
+                .error(
+                    DiagnosticKind::DuplicateBuffer,
+                    def.number.span,
+                    format!("buffer {number} is already defined at line {first}"),
+                )
+                .with_hint("give every BUF... keyword its own buffer number"));
+        }
+        defined.insert(number, def.line);
+        buffers.push(Buffer { number, quantity, line: def.line });
+    }
+    Ok(buffers)
+}
+
+/// The buffers by number.
+pub(crate) fn by_number(buffers: &[Buffer]) -> BTreeMap<u32, Buffer> {
+    buffers.iter().map(|b| (b.number, *b)).collect()
+}
+
+/// The buffer numbered `b`, or a diagnostic naming the buffers the deck
+/// defines.
+pub(crate) fn defined_buffer(
+    deck: &Deck,
+    defined: &BTreeMap<u32, Buffer>,
+    b: &Spanned<i64>,
+) -> Result<Buffer, Box<Diagnostic>> {
+    let number = buffer_number(b);
+    if let Some(buffer) = defined.get(&number) {
+        return Ok(*buffer);
+    }
+    let list: Vec<String> = defined.keys().take(12).map(u32::to_string).collect();
+    let more = if defined.len() > 12 { ", ..." } else { "" };
+    let hint = if list.is_empty() {
+        "define it with a BUF... keyword; this deck defines no buffers".to_string()
+    } else {
+        format!("define it with a BUF... keyword; the defined buffers are {}{more}", list.join(", "))
+    };
+    Err(deck.error(DiagnosticKind::UnknownBuffer, b.span, format!("buffer {number} is not defined")).with_hint(hint))
 }
 
 /// A buffer number the parser has checked to lie in 1..=u32::MAX.

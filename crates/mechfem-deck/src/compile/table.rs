@@ -1,8 +1,10 @@
-//! Tables of numbers in files named by the deck (MOV_FUNC, LOADFUNC).
+//! Tables of numbers in files named by the deck (MOV_FUNC, LOADFUNC,
+//! TARGET).
 //!
 //! One row per line, numbers in Fortran's format separated by blanks, tabs
-//! or commas; blank lines and comments (`;` or `#`) are skipped. File names
-//! are relative to the deck's folder.
+//! or commas; blank lines and comments (`;` or `#`) are skipped. A TARGET
+//! file is a column with one row per position, where a blank row is a
+//! position without a value. File names are relative to the deck's folder.
 
 use std::io::{ErrorKind, Read};
 use std::ops::RangeInclusive;
@@ -56,18 +58,7 @@ pub(crate) fn read(
     layout: &Layout,
 ) -> Result<Table, Box<Diagnostic>> {
     let kw = layout.keyword;
-    let path = deck_dir.join(&file.value);
-    let at_deck = |message: String| deck.error(layout.kind, file.span, message);
-    let bytes = bytes(&path, layout.max_bytes.map(|(max, _)| max)).map_err(|e| match (e, layout.max_bytes) {
-        (Refused::TooLarge, Some((max, hint))) => {
-            at_deck(format!("the {kw} file `{}` is larger than {} MiB", file.value, max >> 20)).with_hint(hint)
-        }
-        (Refused::TooLarge, None) => at_deck(format!("the {kw} file `{}` is too large", file.value)),
-        (Refused::Io(why), _) => at_deck(format!("cannot read the {kw} file `{}`: {why}", file.value))
-            .with_hint(format!("the file name is relative to the deck's folder; looked for {}", path.display())),
-    })?;
-    let text = String::from_utf8_lossy(&bytes);
-    let lines: Vec<String> = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
+    let (path, lines) = read_lines(deck, file, deck_dir, kw, layout.kind, layout.max_bytes)?;
     let src = Source { path: &path, lines: &lines };
     let (min, max) = (*layout.columns.start(), *layout.columns.end());
     let mut rows = Vec::new();
@@ -88,6 +79,84 @@ pub(crate) fn read(
     }
     Ok(Table { path, lines, rows })
 }
+
+/// The lines of the file named by `file` (relative to `deck_dir`), with
+/// the path it was looked up at; `kind` is the diagnostic kind of a file
+/// that cannot be read or is larger than `max_bytes`.
+fn read_lines(
+    deck: &Deck,
+    file: &Spanned<String>,
+    deck_dir: &Path,
+    kw: Keyword,
+    kind: DiagnosticKind,
+    max_bytes: Option<(u64, &'static str)>,
+) -> Result<(PathBuf, Vec<String>), Box<Diagnostic>> {
+    let path = deck_dir.join(&file.value);
+    let at_deck = |message: String| deck.error(kind, file.span, message);
+    let bytes = bytes(&path, max_bytes.map(|(max, _)| max)).map_err(|e| match (e, max_bytes) {
+        (Refused::TooLarge, Some((max, hint))) => {
+            at_deck(format!("the {kw} file `{}` is larger than {} MiB", file.value, max >> 20)).with_hint(hint)
+        }
+        (Refused::TooLarge, None) => at_deck(format!("the {kw} file `{}` is too large", file.value)),
+        (Refused::Io(why), _) => at_deck(format!("cannot read the {kw} file `{}`: {why}", file.value))
+            .with_hint(format!("the file name is relative to the deck's folder; looked for {}", path.display())),
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let lines = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
+    Ok((path, lines))
+}
+
+/// Reads a TARGET file: one entry per row, a number, or `None` for a row
+/// that is blank or `*` (a position that is not compared). Lines that hold only a
+/// comment are not rows, nor are the blank lines at the end of the file,
+/// which editors add unseen.
+pub(crate) fn read_column(
+    deck: &Deck,
+    file: &Spanned<String>,
+    deck_dir: &Path,
+    kw: Keyword,
+) -> Result<Vec<Option<f64>>, Box<Diagnostic>> {
+    let (path, lines) = read_lines(deck, file, deck_dir, kw, DiagnosticKind::TargetFile, None)?;
+    let src = Source { path: &path, lines: &lines };
+    let mut values = Vec::new();
+    let mut blank_tail = 0;
+    for (k, line) in lines.iter().enumerate() {
+        let trimmed = line.trim_start();
+        if trimmed.starts_with(';') || trimmed.starts_with('#') {
+            continue;
+        }
+        let useful = line.split('#').next().unwrap_or("");
+        let Some(words) = lex_line(k + 1, useful) else {
+            values.push(None);
+            blank_tail += 1;
+            continue;
+        };
+        blank_tail = 0;
+        if words.words.len() > 1 {
+            let message = format!("a row of a {kw} file holds one value, this one has {}", words.words.len());
+            return Err(src.count_error(&words, &words.words, Some(1), message).with_hint(COLUMN_ROW));
+        }
+        let word = &words.words[0];
+        if word.text == "*" {
+            values.push(None);
+        } else {
+            let v = src.real(word, "the target value").map_err(|d| match d.kind {
+                DiagnosticKind::NotANumber => d.with_hint(
+                    "write a number (like 12, -3.6, .5, 4E5 or 1.5D0) in each row, or `*` (or nothing) where the \
+                     position is not compared",
+                ),
+                _ => d,
+            })?;
+            values.push(Some(v.value));
+        }
+    }
+    values.truncate(values.len() - blank_tail);
+    Ok(values)
+}
+
+/// How a row of a TARGET file is written.
+const COLUMN_ROW: &str = "write one row per position: the value the buffer should take there, or `*` (or nothing) \
+                          where it is not compared";
 
 /// Why a file was not read.
 enum Refused {

@@ -1,0 +1,181 @@
+//! OPTIMISE to an [`Optimise`]: design variables, targets, bounds and the
+//! objective, referred to the model, the motion's positions and the deck's
+//! buffers; TARGET files.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use mechfem_core::{Motion, Quantity};
+
+use super::design::design_variables;
+use super::model::Model;
+use super::refs::Sizes;
+use super::storage::{by_number, defined_buffer};
+use super::table::read_column;
+use crate::ast::{missing_movement, missing_optimise, Deck, Mode, TargetDef, TargetDefKind};
+use crate::compiled::Buffer;
+use crate::diagnostic::{count, Diagnostic, DiagnosticKind, Hint, Span};
+use crate::optimise::{Bound, Objective, Optimise, Target, TargetKind};
+
+/// The optimisation problem of a `KIN OPT` deck (`None` for other modes).
+pub(crate) fn optimise(
+    deck: &Deck,
+    model: &Model,
+    sizes: &Sizes,
+    motion: Option<&Motion>,
+    buffers: &[Buffer],
+    deck_dir: &Path,
+) -> Result<Option<Optimise>, Box<Diagnostic>> {
+    if deck.mode.value != Mode::KinOpt {
+        return Ok(None);
+    }
+    // The parser reports both already.
+    let Some(block) = &deck.optimise else {
+        return Err(missing_optimise(&deck.path, &deck.source, deck.mode.span));
+    };
+    let Some(motion) = motion else {
+        return Err(missing_movement(&deck.path, &deck.source, deck.mode.value, deck.mode.span));
+    };
+    let header = Span::new(block.line, 0, deck.line_text(block.line).trim_end().chars().count());
+    if block.vary.is_empty() {
+        return Err(deck
+            .error(DiagnosticKind::NothingToOptimise, header, "the OPTIMISE block has no design variable")
+            .with_hint(
+                "add `VARY r lo hi` to vary the PARA value of prescribed row r (a length, an angle, a local u or v, \
+                 a gear ratio) or `VARYX i lo hi` to vary fixed co-ordinate i (a frame pivot)",
+            ));
+    }
+    if block.targets.is_empty() && block.objective.is_none() {
+        return Err(deck
+            .error(
+                DiagnosticKind::NothingToOptimise,
+                header,
+                "the OPTIMISE block has nothing to optimise: no TARGET, TARGETAT, TARGETEXT, MINIMISE or MAXIMISE",
+            )
+            .with_hint(
+                "say what the design should achieve: values a buffer should take (`TARGET b file`, `TARGETAT b k \
+                 value`, `TARGETEXT b bref value`) or a quantity to make small or large (`MINIMISE kind b`, \
+                 `MAXIMISE kind b`); BOUND lines only constrain",
+            ));
+    }
+    let vary = design_variables(deck, model, sizes, Some(motion), &block.vary)?;
+    let defined = by_number(buffers);
+    let positions = motion.steps + 1;
+    let targets = block
+        .targets
+        .iter()
+        .map(|t| {
+            Ok(Target {
+                buffer: defined_buffer(deck, &defined, &t.buffer)?.number,
+                kind: target_kind(deck, t, &defined, positions, deck_dir)?,
+                weight: t.weight.map_or(1.0, |w| w.value),
+                line: t.line,
+            })
+        })
+        .collect::<Result<Vec<_>, Box<Diagnostic>>>()?;
+    let bounds = block
+        .bounds
+        .iter()
+        .map(|b| {
+            let buffer = defined_buffer(deck, &defined, &b.buffer)?.number;
+            Ok(Bound { buffer, lo: b.lo.value, hi: b.hi.value, line: b.line })
+        })
+        .collect::<Result<Vec<_>, Box<Diagnostic>>>()?;
+    let objective = match &block.objective {
+        Some(o) => Some(Objective {
+            sense: o.sense,
+            reduce: o.reduce.value,
+            buffer: defined_buffer(deck, &defined, &o.buffer)?.number,
+            line: o.line,
+        }),
+        None => None,
+    };
+    Ok(Some(Optimise {
+        vary,
+        targets,
+        bounds,
+        objective,
+        steps: block.steps.map_or(Optimise::DEFAULT_STEPS, |n| usize::try_from(n.value).unwrap_or(usize::MAX)),
+        tol: block.tol.map(|t| t.value),
+        line: block.line,
+    }))
+}
+
+/// What a TARGET, TARGETAT or TARGETEXT line compares its buffer with.
+fn target_kind(
+    deck: &Deck,
+    t: &TargetDef,
+    defined: &BTreeMap<u32, Buffer>,
+    positions: usize,
+    deck_dir: &Path,
+) -> Result<TargetKind, Box<Diagnostic>> {
+    let kw = t.keyword.value;
+    let steps = positions - 1;
+    Ok(match &t.kind {
+        TargetDefKind::Values(file) => {
+            let values = read_column(deck, file, deck_dir, kw)?;
+            let rows = values.len();
+            if rows != positions {
+                return Err(deck
+                    .error(
+                        DiagnosticKind::TargetFile,
+                        file.span,
+                        format!(
+                            "the {kw} file `{}` has {}, expected {positions}",
+                            file.value,
+                            count(rows, "row", "rows")
+                        ),
+                    )
+                    .with_hint(format!(
+                        "TSTEPE {steps} makes {positions} positions: give one row for each, `*` or a blank row where \
+                         the buffer is not compared (lines holding only a comment are not rows)"
+                    )));
+            }
+            if values.iter().all(Option::is_none) {
+                return Err(deck
+                    .error(
+                        DiagnosticKind::TargetFile,
+                        file.span,
+                        format!("the {kw} file `{}` has no value: every row is blank or `*`", file.value),
+                    )
+                    .with_hint("give the value the buffer should take in the rows of the positions that matter"));
+            }
+            TargetKind::Values { file: file.value.clone(), values }
+        }
+        TargetDefKind::At { position, value } => {
+            let Some(k) = usize::try_from(position.value).ok().filter(|k| (1..=positions).contains(k)) else {
+                return Err(deck
+                    .error(
+                        DiagnosticKind::BadValue,
+                        position.span,
+                        format!("{kw} names position {}, but the motion has {positions} positions", position.value),
+                    )
+                    .with_hint(format!(
+                        "positions are numbered 1..{positions}: TSTEPE {steps} makes {positions}, position 1 the start"
+                    )));
+            };
+            TargetKind::At { position: k - 1, value: value.value }
+        }
+        TargetDefKind::Extremum { reference, value } => {
+            let r = defined_buffer(deck, defined, reference)?;
+            if !matches!(r.quantity, Quantity::X0(_) | Quantity::E0(_) | Quantity::Input(_)) {
+                return Err(deck
+                    .error(
+                        DiagnosticKind::ExtremumReference,
+                        reference.span,
+                        format!(
+                            "{kw} looks for the extrema of buffer {}, which is not a position quantity (defined at \
+                             line {})",
+                            r.number, r.line
+                        ),
+                    )
+                    .with_hint(
+                        "an extremum is located where the reference's first-order transfer function changes sign, \
+                         and refined with its second-order one: name a buffer of BUFX0 (a co-ordinate), BUFE0 (a \
+                         prescribed row or dependent form parameter) or BUFINP (an input)",
+                    ));
+            }
+            TargetKind::Extremum { reference: r.number, value: value.value }
+        }
+    })
+}

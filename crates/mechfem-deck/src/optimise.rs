@@ -1,0 +1,163 @@
+//! What the OPTIMISE block of a `KIN OPT` deck compiles to: the design
+//! variables with their ranges, the least-squares targets, the bounds and
+//! the objective, all referring to buffers of [`crate::Compiled::buffers`].
+//!
+//! The deck reader only states the problem; it neither evaluates nor
+//! optimises anything. Positions are 0-based, as everywhere in the
+//! compiled deck.
+
+use mechfem_core::DesignVar;
+
+/// The compiled OPTIMISE block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Optimise {
+    /// The design variables (VARY, VARYX), in deck order; at least one.
+    pub vary: Vec<Vary>,
+    /// The least-squares terms (TARGET, TARGETAT, TARGETEXT), in deck order.
+    pub targets: Vec<Target>,
+    /// The constraints (BOUND), in deck order.
+    pub bounds: Vec<Bound>,
+    /// The MINIMISE or MAXIMISE term, if any (at most one). There is at
+    /// least one target or an objective.
+    pub objective: Option<Objective>,
+    /// The iteration limit (OPTSTEPS; 200 without it).
+    pub steps: usize,
+    /// Stop when the objective's relative change is below this (OPTTOL),
+    /// if given.
+    pub tol: Option<f64>,
+    /// Line of the OPTIMISE header.
+    pub line: usize,
+}
+
+impl Optimise {
+    /// The iteration limit without OPTSTEPS.
+    pub const DEFAULT_STEPS: usize = 200;
+}
+
+/// A design variable (`VARY r lo hi` or `VARYX i lo hi`) and its range.
+/// Its start value is the deck's: the row's PARA, or the XFIX value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vary {
+    /// The variable: [`DesignVar::Row`] (0-based prescribed row) for VARY,
+    /// [`DesignVar::Fixed`] (0-based fixed co-ordinate) for VARYX.
+    pub var: DesignVar,
+    /// Lower end of the range (below `hi`).
+    pub lo: f64,
+    /// Upper end of the range.
+    pub hi: f64,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// A least-squares term: `weight * (buffer - value)^2`, summed over the
+/// values the kind gives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Target {
+    /// The buffer compared (a number of [`crate::Compiled::buffers`]).
+    pub buffer: u32,
+    /// What it is compared with, and where.
+    pub kind: TargetKind,
+    /// The weight w (positive; 1 without it).
+    pub weight: f64,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// What a [`Target`] compares its buffer with.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TargetKind {
+    /// `TARGET b file [w]`: one value per position from the file (`None`
+    /// where the row is blank or `*`: that position is not compared).
+    Values {
+        /// The file name as the deck gives it (relative to the deck's folder).
+        file: String,
+        /// One entry per position, in order.
+        values: Vec<Option<f64>>,
+    },
+    /// `TARGETAT b k value [w]`: the buffer at one position.
+    At {
+        /// The position, 0-based (the deck's k is 1-based).
+        position: usize,
+        /// The value the buffer should take there.
+        value: f64,
+    },
+    /// `TARGETEXT b bref value [w]`: the buffer at every extremum of buffer
+    /// `reference` along the motion.
+    Extremum {
+        /// The buffer whose extrema are meant: a position quantity
+        /// ([`mechfem_core::Quantity::X0`], [`mechfem_core::Quantity::E0`]
+        /// or [`mechfem_core::Quantity::Input`]).
+        reference: u32,
+        /// The value the buffer should take there.
+        value: f64,
+    },
+}
+
+/// A constraint (`BOUND b lo hi`): the buffer stays within [lo, hi] at
+/// every position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bound {
+    /// The buffer constrained.
+    pub buffer: u32,
+    /// Lower limit (below `hi`).
+    pub lo: f64,
+    /// Upper limit.
+    pub hi: f64,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// Whether the objective term is made small or large.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Sense {
+    /// `MINIMISE`.
+    Minimise,
+    /// `MAXIMISE`.
+    Maximise,
+}
+
+/// How the values of a buffer over the positions make one number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Reduce {
+    /// `MAX`: the largest value.
+    Max,
+    /// `MAXABS`: the largest absolute value.
+    MaxAbs,
+    /// `RMS`: the root mean square over the positions.
+    Rms,
+    /// `END`: the value at the last position.
+    End,
+}
+
+impl Reduce {
+    /// Every kind, in the order of the deck reference.
+    pub const ALL: [Reduce; 4] = [Reduce::Max, Reduce::MaxAbs, Reduce::Rms, Reduce::End];
+
+    /// The word of the deck, e.g. `MAXABS`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Reduce::Max => "MAX",
+            Reduce::MaxAbs => "MAXABS",
+            Reduce::Rms => "RMS",
+            Reduce::End => "END",
+        }
+    }
+
+    /// The kind spelled `word` (case-insensitive).
+    pub fn from_name(word: &str) -> Option<Reduce> {
+        Reduce::ALL.into_iter().find(|r| r.name().eq_ignore_ascii_case(word))
+    }
+}
+
+/// The objective term (`MINIMISE kind b` or `MAXIMISE kind b`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Objective {
+    /// Minimise or maximise.
+    pub sense: Sense,
+    /// How the buffer's values over the positions make one number.
+    pub reduce: Reduce,
+    /// The buffer.
+    pub buffer: u32,
+    /// Line of the keyword.
+    pub line: usize,
+}

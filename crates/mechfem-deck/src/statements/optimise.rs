@@ -1,0 +1,159 @@
+//! One line of the OPTIMISE block: what the line alone can tell (numbers,
+//! ranges, weights, the kind of an objective). Whether the rows,
+//! co-ordinates, buffers and positions it names exist is checked by
+//! [`crate::compile`].
+
+use crate::args::Source;
+use crate::ast::{BoundDef, ObjectiveDef, TargetDef, TargetDefKind, VaryDef};
+use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
+use crate::keywords::{closest, Keyword};
+use crate::lexer::{Line, Word};
+use crate::optimise::{Reduce, Sense};
+use crate::parse::Parser;
+
+impl Parser<'_> {
+    /// Reads one line of the OPTIMISE block (its argument count is checked).
+    pub(crate) fn optimise_statement(
+        &mut self,
+        kw: Spanned<Keyword>,
+        line: &Line,
+        args: &[Word],
+    ) -> Result<(), Box<Diagnostic>> {
+        let arg =
+            |k: usize| args.get(k).ok_or_else(|| self.src.count_error(line, args, None, "missing argument".into()));
+        let line_no = line.number;
+        let src = &self.src;
+        match kw.value {
+            Keyword::Vary | Keyword::VaryX => {
+                let what = if kw.value == Keyword::Vary { "the row number" } else { "the co-ordinate number" };
+                let index = src.whole(arg(0)?, what)?;
+                let (lo, hi) = range(src, kw.value, arg(1)?, arg(2)?)?;
+                self.optimise.vary.push(VaryDef { line: line_no, keyword: kw, index, lo, hi });
+            }
+            Keyword::Target | Keyword::TargetAt | Keyword::TargetExt => {
+                let buffer = src.buffer(arg(0)?)?;
+                let (kind, weight) = match kw.value {
+                    Keyword::Target => {
+                        let file = arg(1)?;
+                        (TargetDefKind::Values(Spanned::new(file.text.clone(), file.span)), args.get(2))
+                    }
+                    Keyword::TargetAt => {
+                        let position = src.whole(arg(1)?, "the position k")?;
+                        let value = src.real(arg(2)?, "the target value")?;
+                        (TargetDefKind::At { position, value }, args.get(3))
+                    }
+                    _ => {
+                        let reference = src.buffer(arg(1)?)?;
+                        let value = src.real(arg(2)?, "the target value")?;
+                        (TargetDefKind::Extremum { reference, value }, args.get(3))
+                    }
+                };
+                let weight = weight.map(|w| positive_weight(src, kw.value, w)).transpose()?;
+                self.optimise.targets.push(TargetDef { line: line_no, keyword: kw, buffer, kind, weight });
+            }
+            Keyword::Bound => {
+                let buffer = src.buffer(arg(0)?)?;
+                let (lo, hi) = range(src, kw.value, arg(1)?, arg(2)?)?;
+                self.optimise.bounds.push(BoundDef { line: line_no, buffer, lo, hi });
+            }
+            Keyword::Minimise | Keyword::Maximise => {
+                let reduce = reduce(src, kw.value, arg(0)?)?;
+                let buffer = src.buffer(arg(1)?)?;
+                if let Some(first) = &self.optimise.objective {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::DuplicateKeyword,
+                            kw.span,
+                            format!("a second objective: {} is given at line {}", first.keyword.value, first.line),
+                        )
+                        .with_hint(
+                            "give at most one MINIMISE or MAXIMISE line; state further wishes as TARGET, TARGETAT, \
+                             TARGETEXT or BOUND lines",
+                        ));
+                }
+                let sense = if kw.value == Keyword::Minimise { Sense::Minimise } else { Sense::Maximise };
+                self.optimise.objective = Some(ObjectiveDef { line: line_no, keyword: kw, sense, reduce, buffer });
+            }
+            Keyword::OptSteps => {
+                let n = src.whole(arg(0)?, "the iteration limit")?;
+                if n.value < 1 {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::BadValue,
+                            n.span,
+                            format!("OPTSTEPS must be at least 1, got {}", n.value),
+                        )
+                        .with_hint("give the largest number of iterations of the optimiser (default 200)"));
+                }
+                self.once(kw)?;
+                self.optimise.steps = Some(n);
+            }
+            _ => {
+                let tol = src.real(arg(0)?, "the tolerance")?;
+                if tol.value <= 0.0 {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::BadValue,
+                            tol.span,
+                            format!("OPTTOL must be positive, got {}", real(tol.value)),
+                        )
+                        .with_hint(
+                            "give the relative change of the objective below which the optimiser stops, e.g. 1E-8",
+                        ));
+                }
+                self.once(kw)?;
+                self.optimise.tol = Some(tol);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `lo hi` of VARY, VARYX or BOUND: two numbers, lo below hi.
+fn range(src: &Source<'_>, kw: Keyword, lo: &Word, hi: &Word) -> Result<(Spanned<f64>, Spanned<f64>), Box<Diagnostic>> {
+    let lo = src.real(lo, "the lower end lo")?;
+    let hi = src.real(hi, "the upper end hi")?;
+    if lo.value < hi.value {
+        return Ok((lo, hi));
+    }
+    let hint = if kw == Keyword::Bound {
+        "give `BOUND b lo hi` with lo below hi: the buffer must stay within [lo, hi] at every position"
+    } else {
+        "give the range with its lower end first and below the upper end: the variable may take any value in [lo, hi]"
+    };
+    Err(src
+        .error(
+            DiagnosticKind::BadValue,
+            lo.span.to(hi.span),
+            format!("{kw}'s range is empty: lo {} is not below hi {}", real(lo.value), real(hi.value)),
+        )
+        .with_hint(hint))
+}
+
+/// The weight of a target: a positive number.
+fn positive_weight(src: &Source<'_>, kw: Keyword, w: &Word) -> Result<Spanned<f64>, Box<Diagnostic>> {
+    let v = src.real(w, "the weight")?;
+    if v.value > 0.0 {
+        return Ok(v);
+    }
+    Err(src
+        .error(DiagnosticKind::BadValue, w.span, format!("the weight of {kw} must be positive, got {}", real(v.value)))
+        .with_hint(
+            "the weight w multiplies the target's squared error in the objective: give a positive number, or leave \
+             it out for 1",
+        ))
+}
+
+/// The kind of MINIMISE or MAXIMISE: MAX, MAXABS, RMS or END.
+fn reduce(src: &Source<'_>, kw: Keyword, w: &Word) -> Result<Spanned<Reduce>, Box<Diagnostic>> {
+    if let Some(r) = Reduce::from_name(&w.text) {
+        return Ok(Spanned::new(r, w.span));
+    }
+    let names = Reduce::ALL.map(Reduce::name);
+    let guess = closest(&w.text, names).map_or(String::new(), |n| format!("; did you mean `{n}`?"));
+    Err(src.error(DiagnosticKind::BadValue, w.span, format!("unknown kind `{}` of {kw}", w.text)).with_hint(format!(
+        "the kind says what is made {}: MAX (the largest value of the buffer over the positions), MAXABS \
+             (the largest absolute value), RMS (the root mean square) or END (the value at the last position){guess}",
+        if kw == Keyword::Minimise { "small" } else { "large" }
+    )))
+}
