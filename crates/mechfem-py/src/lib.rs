@@ -21,6 +21,7 @@
 
 mod batch;
 mod convert;
+mod design;
 mod errors;
 mod observe;
 mod text;
@@ -236,5 +237,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
+    m.add_class::<design::DesignModel>()?;
     Ok(())
 }

@@ -1,0 +1,207 @@
+//! A compiled deck kept for an optimiser: [`DesignModel`] evaluates one
+//! design after another ([`mechfem_core::design::evaluate`]), each from the
+//! position 1 of the last design that could be assembled, so that the
+//! mechanism stays in its assembly branch. A design that cannot be
+//! assembled, or whose motion stops (a limit position, a lost branch), is
+//! returned as infeasible with the reason, never raised.
+
+use std::path::PathBuf;
+
+use mechfem_core::design::{evaluate, slopes, ExtremumSpec};
+use mechfem_core::{DesignVar, Quantity, Sensitivity};
+use mechfem_deck::Compiled;
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::text::compile_text;
+use crate::{convert, errors};
+
+/// A deck, its design variables, the buffers an objective reads and the
+/// extrema it takes them at.
+#[pyclass(module = "mechfem._core")]
+pub struct DesignModel {
+    compiled: Compiled,
+    vars: Vec<DesignVar>,
+    quantities: Vec<Quantity>,
+    extrema: Vec<ExtremumSpec>,
+    /// The co-ordinates at position 1 of the last design assembled.
+    position_one: Option<Vec<f64>>,
+    runs: usize,
+}
+
+/// The quantity of buffer `number` of the deck.
+fn buffer(c: &Compiled, number: u32) -> PyResult<Quantity> {
+    c.buffers
+        .iter()
+        .find(|b| b.number == number)
+        .map(|b| b.quantity)
+        .ok_or_else(|| PyValueError::new_err(format!("the deck defines no buffer {number}")))
+}
+
+#[pymethods]
+impl DesignModel {
+    /// Compiles the deck `text` (named `path`, its files read from
+    /// `base_dir`). `variables` are `(kind, number)` in the deck's
+    /// numbering: kind 0 a fixed co-ordinate, 1 a prescribed row;
+    /// `buffers` the buffer numbers evaluated; `extrema` pairs of buffer
+    /// numbers `(b, bref)`: b wherever bref has an extremum.
+    #[new]
+    fn new(
+        py: Python<'_>,
+        text: &str,
+        path: PathBuf,
+        base_dir: PathBuf,
+        variables: Vec<(u8, usize)>,
+        buffers: Vec<u32>,
+        extrema: Vec<(u32, u32)>,
+    ) -> PyResult<DesignModel> {
+        let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+        let mech = &c.mechanism;
+        if c.motion.is_none() {
+            return Err(PyValueError::new_err("an optimisation needs a motion: its positions are where it looks"));
+        }
+        let vars = variables
+            .iter()
+            .map(|&(kind, number)| {
+                let k = number.checked_sub(1).ok_or_else(|| PyValueError::new_err("deck numbers start at 1"))?;
+                match kind {
+                    0 => Ok(DesignVar::Fixed(k)),
+                    1 => Ok(DesignVar::Row(k)),
+                    _ => Err(PyValueError::new_err(format!("a variable is of kind 0 or 1, not {kind}"))),
+                }
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        Sensitivity::new(mech, &vars).map_err(|e| {
+            let text = match e {
+                mechfem_core::DesignError::NoRow(r) => format!("the deck has no prescribed row {}", r + 1),
+                mechfem_core::DesignError::NoCoordinate(i) => format!("the deck has no co-ordinate {}", i + 1),
+                mechfem_core::DesignError::Moving(i) => format!(
+                    "co-ordinate {} moves (XMOV): only a fixed co-ordinate is a design variable; vary the row that \
+                     prescribes it instead",
+                    i + 1
+                ),
+            };
+            PyValueError::new_err(text)
+        })?;
+        let quantities = buffers.iter().map(|&b| buffer(&c, b)).collect::<PyResult<Vec<_>>>()?;
+        let extrema = extrema
+            .iter()
+            .map(|&(b, r)| {
+                let reference = buffer(&c, r)?;
+                if slopes(reference).is_none() || mech.n_dof() != 1 {
+                    return Err(PyValueError::new_err(format!(
+                        "buffer {r} cannot locate extrema: it must be a position (BUFX0 of a co-ordinate or BUFE0 of \
+                         a dependent form parameter) of a mechanism with one degree of freedom"
+                    )));
+                }
+                Ok(ExtremumSpec { quantity: buffer(&c, b)?, reference })
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        Ok(DesignModel { compiled: c, vars, quantities, extrema, position_one: None, runs: 0 })
+    }
+
+    /// The design's values as the deck gives them.
+    fn start(&self) -> Vec<f64> {
+        let s = &self.compiled.state;
+        self.vars
+            .iter()
+            .map(|v| match *v {
+                DesignVar::Row(r) => s.target[r],
+                DesignVar::Fixed(i) => s.x[i],
+            })
+            .collect()
+    }
+
+    /// How many designs have been evaluated (mechanism runs).
+    #[getter]
+    fn runs(&self) -> usize {
+        self.runs
+    }
+
+    /// The co-ordinates at position 1 of the last design assembled (the
+    /// deck's own before any), in the deck's order.
+    fn position_one(&self) -> Vec<f64> {
+        self.position_one.clone().unwrap_or_else(|| self.compiled.state.x.clone())
+    }
+
+    /// Evaluates the design `values`: a dict with `feasible`, `reason`
+    /// (None when feasible), `positions`, `values` (positions x buffers),
+    /// `gradient` (positions x buffers x variables) and `extrema` (dicts
+    /// with `spec`, `after`, `input`, `reference`, `value`, `gradient`).
+    fn evaluate<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+        if values.len() != self.vars.len() {
+            return Err(PyValueError::new_err(format!(
+                "{} values for {} design variables",
+                values.len(),
+                self.vars.len()
+            )));
+        }
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(PyValueError::new_err(format!("design value {k} is {}", values[k])));
+        }
+        let c = &self.compiled;
+        let mut state = c.state.clone();
+        if let Some(x) = &self.position_one {
+            state.x.clone_from(x);
+        }
+        for (v, &x) in self.vars.iter().zip(&values) {
+            match *v {
+                DesignVar::Row(r) => state.target[r] = x,
+                DesignVar::Fixed(i) => state.x[i] = x,
+            }
+        }
+        let motion = c.motion.as_ref().expect("checked in new");
+        let (vars, quantities, extrema) = (&self.vars, &self.quantities, &self.extrema);
+        let result =
+            py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, vars, quantities, extrema));
+        self.runs += 1;
+        let (nq, nv) = (quantities.len(), vars.len());
+        let d = PyDict::new(py);
+        match result {
+            Ok(run) => {
+                let stop = run.report.stop.as_ref();
+                let reason = stop.map(|s| {
+                    let at = s.last_good + 2;
+                    format!("the motion stopped before position {at}: {}", errors::describe(&c.mechanism, &s.error))
+                });
+                if reason.is_none() {
+                    self.position_one = Some(run.coords[..c.mechanism.n_coords()].to_vec());
+                }
+                d.set_item("feasible", reason.is_none())?;
+                d.set_item("reason", reason)?;
+                d.set_item("positions", run.positions)?;
+                d.set_item("report", convert::report(py, &c.mechanism, &run.report, motion.steps)?)?;
+                d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
+                let g = PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?;
+                d.set_item("gradient", g)?;
+                let found = run
+                    .extrema
+                    .iter()
+                    .map(|e| {
+                        let x = PyDict::new(py);
+                        x.set_item("spec", e.spec)?;
+                        x.set_item("after", e.after)?;
+                        x.set_item("input", e.input)?;
+                        x.set_item("reference", e.reference)?;
+                        x.set_item("value", e.value)?;
+                        x.set_item("gradient", e.gradient.clone())?;
+                        Ok(x)
+                    })
+                    .collect::<PyResult<Vec<_>>>()?;
+                d.set_item("extrema", found)?;
+            }
+            Err(e) => {
+                d.set_item("feasible", false)?;
+                d.set_item("reason", format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, &e)))?;
+                d.set_item("positions", 0)?;
+                d.set_item("report", py.None())?;
+                d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
+                d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;
+                d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
+            }
+        }
+        Ok(d)
+    }
+}

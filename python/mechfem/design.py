@@ -1,0 +1,394 @@
+"""The optimisation engine of ``KIN OPT`` and :func:`mechfem.optimize`: a problem in a deck's numbering, evaluated
+by the compiled model handle ``_core.DesignModel`` (values and exact design sensitivities at every position, and at
+the extrema of a reference), and solved with SciPy.
+
+* Targets alone are least squares: ``scipy.optimize.least_squares`` (trust-region reflective, within the variables'
+  ranges), with the Jacobian from the sensitivities.
+* With bounds on buffers, a MINIMISE/MAXIMISE term or a Python objective: ``scipy.optimize.minimize`` with SLSQP,
+  the bounds as inequality constraints at every position.
+
+A design that cannot be assembled, or whose motion stops (a limit position, a lost branch), is infeasible: the
+optimiser gets a value far worse than any it has seen, so its trust region or line search falls back towards the
+last good design. Every evaluation starts from position 1 of the last design that was assembled (the model handle
+keeps it), so the mechanism stays in the assembly branch it started in.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from mechfem import _core
+
+FloatArray = npt.NDArray[np.float64]
+Reduce = Literal["max", "maxabs", "rms", "end"]
+
+
+@dataclass
+class ValuesTerm:
+    """``weight * (buffer - values)^2`` at every position whose value is not NaN."""
+
+    buffer: int
+    values: FloatArray
+    weight: float = 1.0
+
+
+@dataclass
+class AtTerm:
+    """``weight * (buffer at position - value)^2``; ``position`` 0-based."""
+
+    buffer: int
+    position: int
+    value: float
+    weight: float = 1.0
+
+
+@dataclass
+class ExtremumTerm:
+    """``weight * (buffer - value)^2`` at every extremum of ``reference``."""
+
+    buffer: int
+    reference: int
+    value: float
+    weight: float = 1.0
+
+
+@dataclass
+class Problem:
+    """An optimisation in a deck's numbering: buffers are buffer numbers of ``text``."""
+
+    text: str
+    path: str
+    base_dir: str
+    variables: list[tuple[int, int]]
+    """``(kind, number)``: kind 0 a fixed co-ordinate, 1 a prescribed row."""
+    names: list[str]
+    lo: FloatArray
+    hi: FloatArray
+    terms: list[ValuesTerm | AtTerm | ExtremumTerm] = field(default_factory=list)
+    bounds: list[tuple[int, float, float]] = field(default_factory=list)
+    objective: tuple[Literal[1, -1], Reduce, int] | None = None
+    """``(sense, reduce, buffer)``: +1 minimise, -1 maximise."""
+    custom: Callable[[Evaluation], tuple[float, FloatArray]] | None = None
+    steps: int = 200
+    tol: float | None = None
+
+
+@dataclass
+class Iteration:
+    """One iteration of the optimiser: its objective, the largest violation of a bound, the step's size (the
+    largest change of a variable) and the mechanism runs so far."""
+
+    number: int
+    objective: float
+    violation: float
+    step: float
+    runs: int
+
+
+class Infeasible(Exception):
+    """A design that cannot be assembled or moved through the whole motion."""
+
+
+class Evaluation:
+    """One design evaluated: every buffer at every position and its derivatives with respect to the variables."""
+
+    def __init__(self, problem: Problem, x: FloatArray, d: dict[str, Any]) -> None:
+        self.x = x
+        self._column = {b: k for k, b in enumerate(_buffers(problem))}
+        self._values: FloatArray = d["values"]
+        self._gradient: FloatArray = d["gradient"]
+        self.extrema: list[dict[str, Any]] = d["extrema"]
+
+    def value(self, buffer: int) -> FloatArray:
+        """The buffer at every position."""
+        return np.asarray(self._values[:, self._column[buffer]], dtype=np.float64)
+
+    def gradient(self, buffer: int) -> FloatArray:
+        """Its derivative with respect to every variable: positions x variables."""
+        return np.asarray(self._gradient[:, self._column[buffer], :], dtype=np.float64)
+
+
+def _buffers(problem: Problem) -> list[int]:
+    out: list[int] = []
+    for b in [t.buffer for t in problem.terms] + [b for b, _, _ in problem.bounds]:
+        if b not in out:
+            out.append(b)
+    if problem.objective is not None and problem.objective[2] not in out:
+        out.append(problem.objective[2])
+    return out
+
+
+def _extrema(problem: Problem) -> list[tuple[int, int]]:
+    return [(t.buffer, t.reference) for t in problem.terms if isinstance(t, ExtremumTerm)]
+
+
+class Evaluator:
+    """Evaluates designs through one compiled model, counting runs and remembering the best design seen."""
+
+    def __init__(self, problem: Problem, extra_buffers: Sequence[int] = ()) -> None:
+        self.problem = problem
+        buffers = _buffers(problem) + [b for b in extra_buffers if b not in _buffers(problem)]
+        self.model = _core.DesignModel(
+            problem.text, problem.path, problem.base_dir, problem.variables, buffers, _extrema(problem)
+        )
+        self._cache: tuple[bytes, Evaluation | str] | None = None
+        self.extrema_count: list[int] | None = None
+
+    @property
+    def runs(self) -> int:
+        return int(self.model.runs)
+
+    def start(self) -> FloatArray:
+        return np.asarray(self.model.start(), dtype=np.float64)
+
+    def __call__(self, x: FloatArray) -> Evaluation:
+        """The evaluation at ``x``; raises :class:`Infeasible` with the reason."""
+        key = np.asarray(x, dtype=np.float64).tobytes()
+        if self._cache is None or self._cache[0] != key:
+            d = self.model.evaluate([float(v) for v in x])
+            result: Evaluation | str = Evaluation(self.problem, np.array(x), d) if d["feasible"] else str(d["reason"])
+            if isinstance(result, Evaluation):
+                counts = _extremum_counts(self.problem, result)
+                if self.extrema_count is None:
+                    self.extrema_count = counts
+                elif counts != self.extrema_count:
+                    result = f"the reference of a TARGETEXT has {counts} extrema here, {self.extrema_count} at the start"
+            self._cache = (key, result)
+        found = self._cache[1]
+        if isinstance(found, str):
+            raise Infeasible(found)
+        return found
+
+
+def _extremum_counts(problem: Problem, e: Evaluation) -> list[int]:
+    specs = [t for t in problem.terms if isinstance(t, ExtremumTerm)]
+    return [sum(1 for x in e.extrema if x["spec"] == k) for k in range(len(specs))]
+
+
+# --- the objective -------------------------------------------------------------------------------------------------
+
+
+def residuals(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:
+    """The least-squares residuals ``sqrt(w) (b - value)`` of every target and their Jacobian."""
+    res: list[FloatArray] = []
+    jac: list[FloatArray] = []
+    n = len(problem.variables)
+    k_ext = 0
+    for t in problem.terms:
+        w = math.sqrt(t.weight)
+        if isinstance(t, ValuesTerm):
+            v, g = e.value(t.buffer), e.gradient(t.buffer)
+            keep = ~np.isnan(t.values)
+            res.append(w * (v[keep] - t.values[keep]))
+            jac.append(w * g[keep])
+        elif isinstance(t, AtTerm):
+            res.append(w * (e.value(t.buffer)[t.position : t.position + 1] - t.value))
+            jac.append(w * e.gradient(t.buffer)[t.position : t.position + 1])
+        else:
+            found = [x for x in e.extrema if x["spec"] == k_ext]
+            k_ext += 1
+            res.append(np.array([w * (x["value"] - t.value) for x in found], dtype=np.float64))
+            jac.append(np.array([w * np.asarray(x["gradient"]) for x in found], dtype=np.float64).reshape(-1, n))
+    if not res:
+        return np.zeros(0), np.zeros((0, n))
+    return np.concatenate(res), np.vstack(jac)
+
+
+def reduced(reduce: Reduce, v: FloatArray, g: FloatArray) -> tuple[float, FloatArray]:
+    """One number from a buffer's values over the positions, and its gradient (at the position that decides it,
+    for MAX and MAXABS)."""
+    if reduce == "max":
+        k = int(np.argmax(v))
+        return float(v[k]), g[k]
+    if reduce == "maxabs":
+        k = int(np.argmax(np.abs(v)))
+        return float(abs(v[k])), np.sign(v[k]) * g[k]
+    if reduce == "rms":
+        rms = float(np.sqrt(np.mean(v**2)))
+        return rms, (v @ g) / (len(v) * rms) if rms > 0 else np.zeros(g.shape[1])
+    return float(v[-1]), g[-1]
+
+
+def objective(problem: Problem, e: Evaluation) -> tuple[float, FloatArray]:
+    """Sum of squares of the targets, plus the MINIMISE/MAXIMISE term, plus a Python objective; with gradient."""
+    r, j = residuals(problem, e)
+    f, g = float(r @ r), 2.0 * (r @ j)
+    if problem.objective is not None:
+        sense, reduce, b = problem.objective
+        fo, go = reduced(reduce, e.value(b), e.gradient(b))
+        f, g = f + sense * fo, g + sense * go
+    if problem.custom is not None:
+        fc, gc = problem.custom(e)
+        f, g = f + float(fc), g + np.asarray(gc, dtype=np.float64)
+    return f, np.asarray(g, dtype=np.float64)
+
+
+def constraints(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:
+    """Every bound as ``c >= 0`` at every position, and the Jacobian."""
+    cs: list[FloatArray] = [np.zeros(0)]
+    js: list[FloatArray] = [np.zeros((0, len(problem.variables)))]
+    for b, lo, hi in problem.bounds:
+        v, g = e.value(b), e.gradient(b)
+        cs += [v - lo, hi - v]
+        js += [g, -g]
+    return np.concatenate(cs), np.vstack(js)
+
+
+def violation(problem: Problem, e: Evaluation) -> float:
+    c, _ = constraints(problem, e)
+    return float(max(0.0, -c.min())) if c.size else 0.0
+
+
+# --- solving -------------------------------------------------------------------------------------------------------
+
+
+@dataclass
+class Solution:
+    """What the optimiser found, in the problem's order of variables."""
+
+    start: FloatArray
+    x: FloatArray
+    objective: float
+    start_objective: float
+    history: list[Iteration]
+    runs: int
+    success: bool
+    message: str
+    seconds: float
+    method: str
+    position_one: list[float]
+
+
+def solve(problem: Problem, report: Callable[[Iteration], object] | None = None) -> Solution:
+    """Optimises from the deck's design; ``report`` is called with every iteration."""
+    from scipy import optimize
+
+    t0 = time.perf_counter()
+    ev = Evaluator(problem)
+    x0 = np.clip(ev.start(), problem.lo, problem.hi)
+    try:
+        e0 = ev(x0)
+    except Infeasible as err:
+        raise Infeasible(f"the start design is infeasible: {err}") from None
+    f0, _ = objective(problem, e0)
+    history: list[Iteration] = [Iteration(0, f0, violation(problem, e0), 0.0, ev.runs)]
+    best = {"x": x0, "f": f0}
+    if report is not None:
+        report(history[0])
+
+    def note(x: FloatArray, e: Evaluation) -> None:
+        f, _ = objective(problem, e)
+        step = float(np.max(np.abs(x - best["x"])))
+        it = Iteration(len(history), f, violation(problem, e), step, ev.runs)
+        history.append(it)
+        best["x"], best["f"] = np.array(x), f
+        if report is not None:
+            report(it)
+
+    least_squares = not problem.bounds and problem.objective is None and problem.custom is None
+    if least_squares:
+        big = {"r": None}
+
+        def fun(x: FloatArray) -> FloatArray:
+            try:
+                e = ev(x)
+            except Infeasible:
+                r_best, _ = residuals(problem, ev(best["x"]))
+                big["r"] = 1e3 * (1.0 + np.abs(r_best))
+                return np.asarray(big["r"])
+            r, _ = residuals(problem, e)
+            if float(r @ r) < best["f"]:
+                note(x, e)
+            return r
+
+        def jac(x: FloatArray) -> FloatArray:
+            try:
+                return residuals(problem, ev(x))[1]
+            except Infeasible:
+                return residuals(problem, ev(best["x"]))[1]
+
+        tol = problem.tol if problem.tol is not None else 1e-12
+        out = optimize.least_squares(
+            fun,
+            x0,
+            jac=jac,
+            bounds=(problem.lo, problem.hi),
+            method="trf",
+            x_scale="jac",
+            ftol=tol,
+            xtol=1e-12,
+            gtol=1e-12,
+            max_nfev=max(problem.steps, 1),
+        )
+        x, success, message, method = out.x, bool(out.success), str(out.message), "least_squares (trf)"
+    else:
+        last_good = {"g": np.zeros(len(x0))}
+
+        def fg(x: FloatArray) -> tuple[float, FloatArray]:
+            try:
+                e = ev(x)
+            except Infeasible:
+                return 1e3 * (1.0 + abs(best["f"])), last_good["g"]
+            f, g = objective(problem, e)
+            last_good["g"] = g
+            return f, g
+
+        def cons(x: FloatArray) -> FloatArray:
+            try:
+                return constraints(problem, ev(x))[0]
+            except Infeasible:
+                return -np.ones_like(constraints(problem, ev(best["x"]))[0])
+
+        def cons_jac(x: FloatArray) -> FloatArray:
+            try:
+                return constraints(problem, ev(x))[1]
+            except Infeasible:
+                return constraints(problem, ev(best["x"]))[1]
+
+        def callback(xk: FloatArray) -> None:
+            try:
+                note(np.asarray(xk), ev(xk))
+            except Infeasible:
+                pass
+
+        cons_list = [{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else []
+        tol = problem.tol if problem.tol is not None else 1e-10
+        out = optimize.minimize(
+            fg,
+            x0,
+            jac=True,
+            method="SLSQP",
+            bounds=list(zip(problem.lo, problem.hi, strict=True)),
+            constraints=cons_list,
+            callback=callback,
+            options={"maxiter": max(problem.steps, 1), "ftol": tol * max(1.0, abs(f0))},
+        )
+        x, success, message, method = out.x, bool(out.success), str(out.message), "SLSQP"
+    try:
+        e = ev(x)
+    except Infeasible:
+        x = best["x"]
+        e = ev(x)
+    f, _ = objective(problem, e)
+    if not np.array_equal(x, best["x"]):
+        note(x, e)
+    return Solution(
+        start=x0,
+        x=np.asarray(x, dtype=np.float64),
+        objective=float(f),
+        start_objective=float(f0),
+        history=history,
+        runs=ev.runs,
+        success=success,
+        message=message,
+        seconds=time.perf_counter() - t0,
+        method=method,
+        position_one=list(ev.model.position_one()),
+    )
