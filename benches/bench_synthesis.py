@@ -31,8 +31,8 @@ script makes a run reproducible by handing it a generator seeded with ``--seed``
 repeats using seed, seed + 1, ... Runs are mechanism runs: fitness evaluations, each one simulation of the four-bar
 (particles x (iterations + 1) for the PSO). Seconds are the wall time of the whole optimisation on one core.
 
-The mechfem row comes from ``run_mechfem`` below, to be filled in when ``mechfem.optimize`` exists; until then
-the table has the PSO rows only. Nothing here asserts a time or an error: it is a benchmark, not a test.
+The mechfem row comes from ``run_mechfem`` below (``mechfem.optimize`` on the four-bar of
+``examples/synthesis/path_synthesis.py``). Nothing here asserts a time or an error: it is a benchmark, not a test.
 """
 
 from __future__ import annotations
@@ -63,15 +63,32 @@ except ImportError:  # pragma: no cover - a message instead of a traceback
 
 
 def run_mechfem(problem: sp.Problem) -> dict[str, float]:
-    """>>> TO BE FILLED IN: mechfem's gradient method on ``problem``. <<<
+    """mechfem's gradient method on ``problem``: ``mechfem.optimize`` (trust-region least squares with the exact
+    design sensitivities) on the four-bar of ``examples/synthesis/path_synthesis.py``, started from
+    ``problem.start`` within ``problem.lower`` .. ``problem.upper``, its coupler point compared with
+    ``problem.targets`` at ``problem.thetas`` (the motion has 9 positions between two of them, not compared, which
+    keep every run on its branch). Runs are mechanism runs: one run of the motion with the sensitivities."""
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples" / "synthesis"))
+    import path_synthesis as ps
 
-    Start from ``problem.start`` within ``problem.lower`` .. ``problem.upper``, prescribed crank angles
-    ``problem.thetas`` (A0 at the origin, crank angle from the x axis), targets ``problem.targets``, branch
-    ``problem.branch``. Return ``dict(runs=..., seconds=..., error=...)``: runs = mechanism runs (one analysis of
-    the four-bar through the crank angles, with or without its sensitivities), seconds = wall time of the whole
-    optimisation, error = the final sum of squared distances; add ``design=`` (the seven variables in
-    ``problem.names`` order) and the table re-scores it with ``problem.error``."""
-    raise NotImplementedError("needs mechfem.optimize")
+    import mechfem
+
+    if not np.allclose(problem.thetas, ps.THETAS):
+        raise ValueError("the mechfem model turns the crank through the angles of path_synthesis.THETAS")
+    n = ps.SUBSTEPS * (len(problem.thetas) - 1) + 1
+    targets = []
+    for k, name in enumerate(("P.x", "P.y")):
+        values = np.full(n, np.nan)
+        values[:: ps.SUBSTEPS] = problem.targets[:, k]
+        targets.append(mechfem.Target(name, values))
+    vary = {name: (float(lo), float(hi)) for name, lo, hi in zip(ps.NAMES, problem.lower, problem.upper, strict=True)}
+    import scipy.optimize  # noqa: F401  (loaded once per session, as in a user's; not part of the timing)
+
+    t0 = time.perf_counter()
+    opt = mechfem.optimize(ps.four_bar(tuple(problem.start)), vary, targets=targets)
+    seconds = time.perf_counter() - t0
+    design = np.array([opt.values[name] for name in ps.NAMES])
+    return {"runs": opt.runs, "seconds": seconds, "error": opt.objective, "design": design}
 
 
 # pylinkage -------------------------------------------------------------------------------------------------------

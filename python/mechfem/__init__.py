@@ -41,6 +41,7 @@ from pathlib import Path
 from mechfem import _core, limits
 from mechfem.analysis import Analysis
 from mechfem.batch import Study, run_many, sweep
+from mechfem.design import Infeasible
 from mechfem.errors import (
     AssemblyError,
     ConvergenceError,
@@ -51,6 +52,7 @@ from mechfem.errors import (
     RunInterrupted,
 )
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
+from mechfem.optimise import Bound, Evaluated, Optimum, Q, Target, TargetAt, TargetExtremum, optimize
 from mechfem.result import (
     AdjustInfo,
     Buffer,
@@ -108,6 +110,7 @@ __all__ = [
     "AdjustInfo",
     "Analysis",
     "AssemblyError",
+    "Bound",
     "Buffer",
     "CheckResult",
     "ConvergenceError",
@@ -115,6 +118,8 @@ __all__ = [
     "DeckError",
     "Driven",
     "Element",
+    "Evaluated",
+    "Infeasible",
     "Keep",
     "Limit",
     "LimitPositionError",
@@ -122,10 +127,12 @@ __all__ = [
     "Mechanism",
     "Model",
     "Motion",
+    "Optimum",
     "Output",
     "Picture",
     "Plot",
     "Progress",
+    "Q",
     "Row",
     "ResourceError",
     "RunInterrupted",
@@ -134,9 +141,13 @@ __all__ = [
     "Stop",
     "Storage",
     "Study",
+    "Target",
+    "TargetAt",
+    "TargetExtremum",
     "Term",
     "__version__",
     "check_deck",
+    "optimize",
     "run_many",
     "run_deck",
     "sweep",

@@ -26,7 +26,7 @@ from mechfem.result import Limit, RunReport, RunResult
 
 if TYPE_CHECKING:
     from mechfem.deckio import Numbering
-    from mechfem.model import Coordinate, FormParameter, InputKey, Mechanism, Point, Row
+    from mechfem.model import Coordinate, FormParameter, InputKey, Mechanism, Motion, Point, Row
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -61,6 +61,8 @@ class Analysis:
         self.path = path or f"{mechanism.name}.mec"
         """The name of the deck written for the run."""
         self.parameters: dict[str, Any] = parameters or {}
+        self.motion: Motion | None = None
+        """The motion the run followed (None: position 1 only, or not known)."""
         table = np.asarray(d["table"], dtype=np.float64)
         nb = d["n_buffers"]
         self.buffers: dict[int, FloatArray] = {
@@ -274,6 +276,17 @@ class Analysis:
                 f"the mechanism {self.mechanism.name!r} has no masses or loads, so its run computed no {what}: give "
                 "them with Mechanism.mass, point_mass, inertia, gravity, force, load, load_table, spring or motor"
             )
+
+    def sensitivity(self, quantity: Any, wrt: str | Sequence[str]) -> FloatArray:
+        """The derivative of ``quantity`` at every position with respect to the design variables ``wrt`` (names of
+        prescribed values or fixed co-ordinates, as for :func:`mechfem.optimize`): positions x variables, or one
+        value per position for a single name. ``quantity`` is a name (its value) or ``Q(name, order, wrt)`` for a
+        transfer function. Exact: from the factorisation of D^c at each position (one more run of the motion)."""
+        from mechfem import optimise
+
+        names = [wrt] if isinstance(wrt, str) else list(wrt)
+        out = optimise.sensitivity(self, quantity, names)
+        return out[:, 0].copy() if isinstance(wrt, str) else out
 
     def drive_torque(self, input: InputKey = None) -> FloatArray:
         """The force or torque the drive of an input delivers at every position (the stress of its row), positive when

@@ -446,6 +446,7 @@ def run(
             if close is not None:
                 close()
     analysis = Analysis(mech, deck.numbering, d, path=deck.path)
+    analysis.motion = motion if with_motion else None
     if d["interrupted"]:
         raise RunInterrupted(analysis)
     return analysis

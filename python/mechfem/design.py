@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -25,6 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
+from mechfem.errors import MechfemError
 
 FloatArray = npt.NDArray[np.float64]
 Reduce = Literal["max", "maxabs", "rms", "end"]
@@ -76,6 +77,8 @@ class Problem:
     objective: tuple[Literal[1, -1], Reduce, int] | None = None
     """``(sense, reduce, buffer)``: +1 minimise, -1 maximise."""
     custom: Callable[[Evaluation], tuple[float, FloatArray]] | None = None
+    extra_buffers: list[int] = field(default_factory=list)
+    """Buffers evaluated for ``custom`` beyond those of the terms."""
     steps: int = 200
     tol: float | None = None
 
@@ -92,8 +95,8 @@ class Iteration:
     runs: int
 
 
-class Infeasible(Exception):
-    """A design that cannot be assembled or moved through the whole motion."""
+class Infeasible(MechfemError):
+    """The start design of an optimisation cannot be assembled or moved through the whole motion."""
 
 
 class Evaluation:
@@ -122,7 +125,7 @@ def _buffers(problem: Problem) -> list[int]:
             out.append(b)
     if problem.objective is not None and problem.objective[2] not in out:
         out.append(problem.objective[2])
-    return out
+    return out + [b for b in problem.extra_buffers if b not in out]
 
 
 def _extrema(problem: Problem) -> list[tuple[int, int]]:
@@ -132,9 +135,9 @@ def _extrema(problem: Problem) -> list[tuple[int, int]]:
 class Evaluator:
     """Evaluates designs through one compiled model, counting runs and remembering the best design seen."""
 
-    def __init__(self, problem: Problem, extra_buffers: Sequence[int] = ()) -> None:
+    def __init__(self, problem: Problem) -> None:
         self.problem = problem
-        buffers = _buffers(problem) + [b for b in extra_buffers if b not in _buffers(problem)]
+        buffers = _buffers(problem)
         self.model = _core.DesignModel(
             problem.text, problem.path, problem.base_dir, problem.variables, buffers, _extrema(problem)
         )
@@ -159,7 +162,9 @@ class Evaluator:
                 if self.extrema_count is None:
                     self.extrema_count = counts
                 elif counts != self.extrema_count:
-                    result = f"the reference of a TARGETEXT has {counts} extrema here, {self.extrema_count} at the start"
+                    result = (
+                        f"the reference of a TARGETEXT has {counts} extrema here, {self.extrema_count} at the start"
+                    )
             self._cache = (key, result)
         found = self._cache[1]
         if isinstance(found, str):

@@ -1,0 +1,359 @@
+"""Design sensitivities and optimisation of a named mechanism: :func:`optimize` and the targets it takes.
+
+A quantity is named as for :meth:`Analysis.value`: a co-ordinate (``"C.x"``, an angle), a row or an output, as a
+name or the object, with ``order`` 0 (the value), 1 or 2 (its transfer function with respect to an input) — write
+:class:`Q` for order 1 and 2, a plain name for the value. The model is written as a deck with one buffer for each
+quantity and evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.design`).
+"""
+
+from __future__ import annotations
+
+import copy
+import sys
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
+
+import numpy as np
+
+from mechfem import deckio, design
+from mechfem.design import FloatArray, Iteration
+from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
+from mechfem.storage import Storage
+
+if TYPE_CHECKING:
+    from mechfem.analysis import Analysis
+    from mechfem.model import Mechanism, Motion
+
+Name: TypeAlias = "str | Coordinate | Row | FormParameter"
+
+
+@dataclass(frozen=True)
+class Q:
+    """A quantity at every position: ``name``'s value (``order`` 0) or its transfer function of first or second
+    order with respect to the input ``wrt`` (and ``wrt2``; default: the only input)."""
+
+    name: Name
+    order: int = 0
+    wrt: InputKey = None
+    wrt2: InputKey = None
+
+
+Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q"
+
+
+@dataclass
+class Target:
+    """Least squares: ``quantity`` should take ``values`` (one per position; NaN: not compared), times ``weight``."""
+
+    quantity: Quantity
+    values: Sequence[float] | FloatArray
+    weight: float = 1.0
+
+
+@dataclass
+class TargetAt:
+    """Least squares: ``quantity`` at ``position`` (0-based index of the run's positions) should equal ``value``."""
+
+    quantity: Quantity
+    position: int
+    value: float
+    weight: float = 1.0
+
+
+@dataclass
+class TargetExtremum:
+    """Least squares: ``quantity`` at every extremum of ``reference`` (a co-ordinate or an output, found between
+    the positions where its first-order transfer function changes sign and located to full precision) should equal
+    ``value``; e.g. an output's second-order transfer function at its dead positions."""
+
+    quantity: Quantity
+    reference: Name
+    value: float = 0.0
+    weight: float = 1.0
+
+
+@dataclass
+class Bound:
+    """Constraint: ``quantity`` stays within ``[lo, hi]`` at every position."""
+
+    quantity: Quantity
+    lo: float
+    hi: float
+
+
+@dataclass
+class Optimum:
+    """What :func:`optimize` found: the optimised mechanism, the variables' start and final values, the history."""
+
+    mechanism: Mechanism
+    start: dict[str, float]
+    values: dict[str, float]
+    objective: float
+    start_objective: float
+    history: list[Iteration]
+    runs: int
+    """Mechanism runs (designs evaluated), the start design's included."""
+    success: bool
+    message: str
+    seconds: float
+    method: str
+    motion: Motion | None = field(default=None, repr=False)
+
+    def run(self) -> Analysis:
+        """The optimised mechanism run through the motion the optimisation used."""
+        return self.mechanism.run(self.motion)
+
+
+class _Deck:
+    """The mechanism written with one buffer per quantity, numbered in order of first use."""
+
+    def __init__(self, mech: Mechanism) -> None:
+        self.mech = mech
+        self.storage = Storage()
+        self.keys: dict[tuple[str, tuple[object, ...]], int] = {}
+
+    def buffer(self, q: Quantity) -> int:
+        spec = q if isinstance(q, Q) else Q(q)
+        obj = _lookup(self.mech, spec.name)
+        coord = isinstance(obj, Coordinate)
+        if spec.order not in (0, 1, 2):
+            raise ValueError(f"{spec!r}: order must be 0, 1 or 2")
+        keyword = ("BUFX0", "BUFKX1", "BUFKX2")[spec.order] if coord else ("BUFE0", "BUFKE1", "BUFKE2")[spec.order]
+        dofs: tuple[object, ...] = ()
+        if spec.order >= 1:
+            from mechfem.motion import input_dof
+
+            inputs = [r for r in self.mech.rows if r.kind == "input"]
+            j = input_dof(spec.wrt, inputs)
+            dofs = (j,) if spec.order == 1 else (j, input_dof(spec.wrt2 if spec.wrt2 is not None else j, inputs))
+        key = (keyword, (obj, *dofs))
+        if key not in self.keys:
+            number = len(self.keys) + 1
+            self.storage.buffer(number, keyword, obj, *dofs)  # type: ignore[arg-type]
+            self.keys[key] = number
+        return self.keys[key]
+
+
+def _lookup(mech: Mechanism, name: Name) -> Coordinate | Row | FormParameter:
+    obj = mech[name] if isinstance(name, str) else name
+    if isinstance(obj, Point):
+        raise TypeError(f"{obj.name!r} is a point: name one co-ordinate, {obj.name + '.x'!r} or {obj.name + '.y'!r}")
+    if not isinstance(obj, Coordinate | Row | FormParameter):
+        raise TypeError(f"{name!r} is not a co-ordinate, row or output of {mech.name!r}")
+    return obj
+
+
+def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[int, int, float]:
+    """``(kind, deck number, start value)`` of a design variable."""
+    obj = _lookup(mech, name)
+    if isinstance(obj, FormParameter):
+        rows = [r for r in numbering.prescribed if r.terms == ((1.0, obj),)]
+        if not rows:
+            raise ValueError(f"{name!r} is not prescribed: only a prescribed value or a fixed co-ordinate can vary")
+        obj = rows[0]
+    if isinstance(obj, Coordinate):
+        if not obj.fixed:
+            raise ValueError(
+                f"{name!r} moves: its value is found, not chosen; vary the prescribed row that fixes it, or a fixed "
+                "co-ordinate"
+            )
+        return 0, numbering.coord_number[obj], obj.value
+    if obj.kind == "output":
+        raise ValueError(f"{name!r} is an output: it has no prescribed value to vary")
+    if obj.value is None:
+        raise ValueError(f"{name!r} has no prescribed value (it takes its value at the given co-ordinates): give one")
+    return 1, numbering.row_dest[obj], float(obj.value)
+
+
+def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable[[Iteration], object] | None:
+    if callable(progress):
+        return progress
+    if progress:
+
+        def show(it: Iteration) -> None:
+            print(
+                f"  iteration {it.number}: objective {it.objective:.6e}, largest violation {it.violation:.2e}, "
+                f"step {it.step:.2e}, {it.runs} runs",
+                file=sys.stderr,
+            )
+
+        return show
+    return None
+
+
+def optimize(
+    mechanism: Mechanism,
+    vary: Mapping[str, tuple[float, float]],
+    *,
+    targets: Sequence[Target | TargetAt | TargetExtremum] = (),
+    bounds: Sequence[Bound] = (),
+    minimize: tuple[Literal["max", "maxabs", "rms", "end"], Quantity] | None = None,
+    maximize: tuple[Literal["max", "maxabs", "rms", "end"], Quantity] | None = None,
+    objective: Callable[[Evaluated], tuple[float, Any]] | None = None,
+    quantities: Sequence[Quantity] = (),
+    motion: Motion | None = None,
+    steps: int = 200,
+    tol: float | None = None,
+    progress: bool | Callable[[Iteration], object] | None = None,
+) -> Optimum:
+    """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
+    start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
+    well as they can be, with exact gradients from the design sensitivities.
+
+    The objective is the weighted sum of squares of the ``targets``, plus the ``minimize`` / ``maximize`` term
+    (``"max"``, ``"maxabs"``, ``"rms"`` or ``"end"`` of a quantity over the positions), plus ``objective(e)``: a
+    Python function of an :class:`Evaluated` design ``e`` that returns the value and its gradient over the
+    variables, reading ``e.value(q)`` and ``e.gradient(q)`` (positions x variables) of the quantities listed in
+    ``quantities``. Targets alone are solved by SciPy's trust-region least
+    squares (``least_squares``); with ``bounds`` or another term by SLSQP (``minimize``). ``steps`` limits the
+    iterations (least squares: the evaluations), ``tol`` is the relative change of the objective that ends it.
+    ``motion`` (default the mechanism's) gives the positions; ``progress`` True prints every iteration on
+    stderr, a callable gets every :class:`~mechfem.design.Iteration`.
+
+    Raises ValueError for a name that cannot vary and :class:`~mechfem.design.Infeasible` when the start design
+    cannot be assembled or moved through the motion. A design met on the way that cannot is reported to the
+    optimiser as a very poor one, never raised.
+    """
+    motion = motion or mechanism.motion
+    if motion is None:
+        raise ValueError("an optimisation needs a motion (its positions are where targets are compared)")
+    if not vary:
+        raise ValueError("nothing to vary: name at least one prescribed value or fixed co-ordinate")
+    if minimize is not None and maximize is not None:
+        raise ValueError("give minimize or maximize, not both")
+    deck = _Deck(mechanism)
+    terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
+    for t in targets:
+        b = deck.buffer(t.quantity)
+        if isinstance(t, Target):
+            terms.append(design.ValuesTerm(b, np.asarray(t.values, dtype=np.float64), t.weight))
+        elif isinstance(t, TargetAt):
+            terms.append(design.AtTerm(b, int(t.position), float(t.value), t.weight))
+        else:
+            terms.append(design.ExtremumTerm(b, deck.buffer(t.reference), float(t.value), t.weight))
+    bound_terms = [(deck.buffer(bd.quantity), float(bd.lo), float(bd.hi)) for bd in bounds]
+    goal: tuple[Literal[1, -1], design.Reduce, int] | None = None
+    if minimize is not None:
+        goal = (1, minimize[0], deck.buffer(minimize[1]))
+    elif maximize is not None:
+        goal = (-1, maximize[0], deck.buffer(maximize[1]))
+    extra = [deck.buffer(q) for q in quantities]
+    if not (terms or goal or objective):
+        raise ValueError("nothing to optimise: give targets, minimize, maximize or objective")
+    written = deckio.write(mechanism, motion, deck.storage)
+    variables = [_variable(mechanism, written.numbering, name) for name in vary]
+    positions = motion.steps + 1
+    for t in terms:
+        if isinstance(t, design.ValuesTerm) and len(t.values) != positions:
+            raise ValueError(f"a Target has {len(t.values)} values for the motion's {positions} positions")
+        if isinstance(t, design.AtTerm) and not 0 <= t.position < positions:
+            raise ValueError(f"TargetAt position {t.position} is outside 0..{positions - 1}")
+    lo = np.array([float(v[0]) for v in vary.values()])
+    hi = np.array([float(v[1]) for v in vary.values()])
+    for name, (_, _, start), a, b in zip(vary, variables, lo, hi, strict=True):
+        if not a < b:
+            raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
+        if not a <= start <= b:
+            raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
+    with deckio.tables_dir(written.tables) as base:
+        problem = design.Problem(
+            text=written.text,
+            path=written.path,
+            base_dir=base,
+            variables=[(k, n) for k, n, _ in variables],
+            names=list(vary),
+            lo=lo,
+            hi=hi,
+            terms=terms,
+            bounds=bound_terms,
+            objective=goal,
+            custom=None if objective is None else _named(objective, deck),
+            extra_buffers=extra,
+            steps=steps,
+            tol=tol,
+        )
+        sol = design.solve(problem, _progress(progress))
+    optimised = copy.deepcopy(mechanism)
+    for name, x in zip(vary, sol.x, strict=True):
+        optimised.set(name, float(x))
+    _carry_position_one(optimised, written.numbering, sol.position_one)
+    return Optimum(
+        mechanism=optimised,
+        start=dict(zip(vary, map(float, sol.start), strict=True)),
+        values=dict(zip(vary, map(float, sol.x), strict=True)),
+        objective=sol.objective,
+        start_objective=sol.start_objective,
+        history=sol.history,
+        runs=sol.runs,
+        success=sol.success,
+        message=sol.message,
+        seconds=sol.seconds,
+        method=sol.method,
+        motion=motion,
+    )
+
+
+def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequence[float]) -> None:
+    """Starts the moving co-ordinates at the optimised design's position 1, so that it assembles in the branch the
+    optimisation followed."""
+    for c, value in zip(numbering.coords, x, strict=False):
+        if not c.fixed and np.isfinite(value):
+            mech[c.name].value = float(value)
+
+
+def sensitivity(analysis: Analysis, quantity: Quantity, wrt: Sequence[str]) -> FloatArray:
+    """The derivative of ``quantity`` at every position with respect to each design variable in ``wrt``
+    (positions x variables); see :meth:`Analysis.sensitivity`."""
+    mech, motion = analysis.mechanism, analysis.motion
+    if motion is None:
+        raise ValueError("sensitivities need a motion: the analysis computed position 1 only")
+    deck = _Deck(mech)
+    b = deck.buffer(quantity)
+    written = deckio.write(mech, motion, deck.storage)
+    variables = [_variable(mech, written.numbering, name) for name in wrt]
+    with deckio.tables_dir(written.tables) as base:
+        from mechfem import _core
+
+        model = _core.DesignModel(written.text, written.path, base, [(k, n) for k, n, _ in variables], [b], [])
+        d = model.evaluate([v for _, _, v in variables])
+    if not d["feasible"]:
+        raise design.Infeasible(str(d["reason"]))
+    return np.asarray(d["gradient"][:, 0, :], dtype=np.float64)
+
+
+class Evaluated:
+    """One design as a Python objective sees it: a quantity's values at every position and their gradient."""
+
+    def __init__(self, e: design.Evaluation, deck: _Deck) -> None:
+        self._e, self._deck = e, deck
+        self.x = e.x
+        """The design variables' values, in the order of ``vary``."""
+
+    def _buffer(self, q: Quantity) -> int:
+        known = dict(self._deck.keys)
+        b = self._deck.buffer(q)
+        if len(self._deck.keys) != len(known):
+            raise KeyError(f"{q!r} is not among the quantities given to optimize (quantities=[...])")
+        return b
+
+    def value(self, q: Quantity) -> FloatArray:
+        """``q`` at every position."""
+        return self._e.value(self._buffer(q))
+
+    def gradient(self, q: Quantity) -> FloatArray:
+        """The derivatives of ``q`` with respect to the design variables: positions x variables."""
+        return self._e.gradient(self._buffer(q))
+
+
+def _named(
+    fn: Callable[[Evaluated], tuple[float, Any]], deck: _Deck
+) -> Callable[[design.Evaluation], tuple[float, FloatArray]]:
+    def call(e: design.Evaluation) -> tuple[float, FloatArray]:
+        f, g = fn(Evaluated(e, deck))
+        return float(f), np.asarray(g, dtype=np.float64)
+
+    return call
+
+
+__all__ = ["Bound", "Evaluated", "Optimum", "Q", "Target", "TargetAt", "TargetExtremum", "optimize", "sensitivity"]

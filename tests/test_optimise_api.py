@@ -1,0 +1,138 @@
+"""mechfem.optimize and Analysis.sensitivity: the supply mechanism's coupler angle, path and function generation."""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechfem
+from mechfem import Q
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _example(name: str):  # type: ignore[no-untyped-def]
+    path = ROOT / "examples" / "synthesis" / f"{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def supply(kappa: float = -5.25) -> mechfem.Mechanism:
+    return mechfem.Mechanism.from_deck(ROOT / "examples" / "supply" / "supply.mec").variant(row5=kappa)
+
+
+def test_supply_coupler_angle_at_the_dead_positions() -> None:
+    seen: list[float] = []
+    opt = mechfem.optimize(
+        supply(),
+        {"row5": (-5.5, -5.0)},
+        targets=[mechfem.TargetExtremum(Q("out1", 2), "out1", 0.0)],
+        progress=lambda it: seen.append(it.objective),
+    )
+    # The theory prints kappa = -5.17514 for this design.
+    assert abs(opt.values["row5"] - (-5.17514)) < 2e-4
+    assert opt.start == {"row5": -5.25}
+    assert opt.objective < 1e-6 * opt.start_objective
+    assert seen[0] == opt.start_objective and len(seen) == len(opt.history)
+    tf2 = opt.run().output("out1", 2)
+    # Both dead-position values are tiny next to the largest second-order transfer function.
+    assert math.sqrt(opt.objective) < 0.01 * np.abs(tf2).max()
+    assert opt.runs < 60
+
+
+def test_sensitivity_against_central_differences() -> None:
+    m = supply(-5.2)
+    r = m.run()
+    names = ["row5", "P3.x", "E7.length"]
+    s = r.sensitivity(Q("out1", 2), names)
+    assert s.shape == (r.positions, 3)
+    for k, name in enumerate(names):
+        start = m[name].value
+        h = 1e-5 * max(1.0, abs(start))
+        plus = m.variant({name: start + h}).run().output("out1", 2)
+        minus = m.variant({name: start - h}).run().output("out1", 2)
+        fd = (plus - minus) / (2 * h)
+        assert np.allclose(fd, s[:, k], rtol=1e-5, atol=1e-5 * np.abs(s[:, k]).max()), name
+    one = r.sensitivity("P9.x", "E1.length")
+    assert one.shape == (r.positions,)
+
+
+def test_path_generation_reaches_the_known_four_bar() -> None:
+    ps = _example("path_synthesis")
+    opt = ps.synthesise()
+    assert opt.objective < 1e-16
+    assert opt.values["B0.x"] == pytest.approx(3.2, abs=1e-7)
+    assert opt.values["coupler.u"] == pytest.approx(1.8 * math.cos(0.6), abs=1e-7)
+    assert opt.runs < 40
+    # The optimised mechanism passes the points at the crank angles.
+    r = opt.run()
+    pts = np.column_stack([r.x("P"), r.y("P")])[:: ps.SUBSTEPS]
+    assert np.abs(pts - ps.known_points()).max() < 1e-7
+
+
+def test_function_generation_follows_the_logarithm() -> None:
+    fg = _example("function_generation")
+    opt = fg.synthesise()
+    rms = math.degrees(math.sqrt(opt.objective / (fg.STEPS + 1)))
+    assert rms < 0.5
+    assert opt.objective < 1e-3 * opt.start_objective
+    r = opt.run()
+    assert np.abs(r.output("phi") - fg.wanted()).max() < math.radians(1.0)
+
+
+def test_bounds_and_minimise_with_slsqp() -> None:
+    # Keep the output's first-order transfer function within a band while making its rms second order small.
+    opt = mechfem.optimize(
+        supply(-5.2),
+        {"row5": (-5.5, -5.0)},
+        minimize=("rms", Q("out1", 2)),
+        bounds=[mechfem.Bound(Q("out1", 1), -2.0, 2.0)],
+        steps=50,
+    )
+    assert opt.method == "SLSQP"
+    r = opt.run()
+    assert np.all(np.abs(r.output("out1", 1)) <= 2.0 + 1e-6)
+    assert opt.objective <= opt.start_objective
+
+
+def test_python_objective_with_its_gradient() -> None:
+    q = Q("out1", 2)
+
+    def f(e: mechfem.Evaluated) -> tuple[float, np.ndarray]:
+        v, g = e.value(q), e.gradient(q)
+        return float(v @ v), 2 * v @ g
+
+    opt = mechfem.optimize(supply(-5.2), {"row5": (-5.5, -5.0)}, objective=f, quantities=[q], steps=50)
+    assert opt.objective <= opt.start_objective
+
+
+def test_mistakes_are_named() -> None:
+    m = supply()
+    with pytest.raises(ValueError, match="moves"):
+        mechfem.optimize(m, {"P9.x": (0, 1)}, targets=[mechfem.TargetAt("out1", 0, 1.0)])
+    with pytest.raises(ValueError, match="outside its range"):
+        mechfem.optimize(m, {"row5": (-5.1, -5.0)}, targets=[mechfem.TargetAt("out1", 0, 1.0)])
+    with pytest.raises(ValueError, match="nothing to optimise"):
+        mechfem.optimize(m, {"row5": (-5.5, -5.0)})
+    with pytest.raises(TypeError, match="is a point"):
+        mechfem.optimize(m, {"P1": (0, 1)}, targets=[mechfem.TargetAt("out1", 0, 1.0)])
+
+
+def test_an_infeasible_start_is_an_error_and_an_infeasible_step_is_not() -> None:
+    m = supply()
+    with pytest.raises(mechfem.Infeasible, match="start design"):
+        mechfem.optimize(
+            m.variant({"E1.length": 3.0}), {"E1.length": (0.1, 5.0)}, targets=[mechfem.TargetAt("out1", 0, 1.0)]
+        )
+    # A range that reaches designs that cannot turn the crank: the optimiser steps back.
+    opt = mechfem.optimize(m, {"E1.length": (0.1, 5.0)}, targets=[mechfem.TargetAt("out1", 0, 10.0)], steps=30)
+    assert np.isfinite(opt.objective)
