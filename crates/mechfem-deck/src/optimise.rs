@@ -84,9 +84,9 @@ pub enum TargetKind {
     /// `TARGETEXT b bref value [w]`: the buffer at every extremum of buffer
     /// `reference` along the motion.
     Extremum {
-        /// The buffer whose extrema are meant: a position quantity
-        /// ([`mechfem_core::Quantity::X0`], [`mechfem_core::Quantity::E0`]
-        /// or [`mechfem_core::Quantity::Input`]).
+        /// The buffer whose extrema are meant: a position quantity,
+        /// [`mechfem_core::Quantity::X0`] of a co-ordinate or
+        /// [`mechfem_core::Quantity::E0`] of a dependent form parameter.
         reference: u32,
         /// The value the buffer should take there.
         value: f64,

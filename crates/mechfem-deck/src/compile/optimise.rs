@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use mechfem_core::{Motion, Quantity};
+use mechfem_core::{FormRef, Motion, Quantity};
 
 use super::design::design_variables;
 use super::model::Model;
@@ -158,7 +158,7 @@ fn target_kind(
         }
         TargetDefKind::Extremum { reference, value } => {
             let r = defined_buffer(deck, defined, reference)?;
-            if !matches!(r.quantity, Quantity::X0(_) | Quantity::E0(_) | Quantity::Input(_)) {
+            if !matches!(r.quantity, Quantity::X0(_) | Quantity::E0(FormRef::Dependent(_))) {
                 return Err(deck
                     .error(
                         DiagnosticKind::ExtremumReference,
@@ -171,8 +171,9 @@ fn target_kind(
                     )
                     .with_hint(
                         "an extremum is located where the reference's first-order transfer function changes sign, \
-                         and refined with its second-order one: name a buffer of BUFX0 (a co-ordinate), BUFE0 (a \
-                         prescribed row or dependent form parameter) or BUFINP (an input)",
+                         and refined with its second-order one: name a buffer of BUFX0 (a co-ordinate) or of BUFE0 \
+                         of a dependent form parameter (destination -k); a prescribed row is constant or, as an \
+                         input, moves steadily, so it has no extremum inside the motion",
                     ));
             }
             TargetKind::Extremum { reference: r.number, value: value.value }
