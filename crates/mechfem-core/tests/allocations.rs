@@ -108,3 +108,33 @@ fn a_simulation_allocates_nothing_per_step() {
     assert!(many_steps > 3 * few_steps, "{few_steps} and {many_steps} steps");
     assert_eq!(coarse, fine, "{coarse} allocations for {few_steps} steps, {fine} for {many_steps}");
 }
+
+/// Computes every design sensitivity at every position.
+struct Sensitive(mechfem_core::Sensitivity, f64);
+
+impl Observer for Sensitive {
+    fn position(&mut self, view: &PositionView<'_>) {
+        self.0.compute(view.mech, view.kin, view.state, TransferOrder::Second).unwrap();
+        self.1 += self.0.dx2(4, 0, 0, 0) + self.0.dep2(0, 0, 0, 6);
+    }
+}
+
+#[test]
+fn design_sensitivities_allocate_nothing_per_position() {
+    use mechfem_core::{DesignVar, Sensitivity};
+    let (mech, start) = fourbar();
+    let vars: Vec<DesignVar> = (0..mech.n_prescribed()).map(DesignVar::Row).chain([DesignVar::Fixed(2)]).collect();
+    let count = |steps: usize| {
+        let motion = Motion { steps, dt: 0.01, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
+        let mut obs = Sensitive(Sensitivity::new(&mech, &vars).unwrap(), 0.0);
+        let mut state = start.clone();
+        let info = allocation_counter::measure(|| {
+            run(&mech, &mut state, Some(&motion), &Params::default(), &mut obs).unwrap();
+        });
+        assert!(obs.1.is_finite());
+        info.count_total
+    };
+    // The first run chooses D^c's storage for the model, once.
+    count(10);
+    assert_eq!(count(100), count(900), "allocations grew with the positions");
+}
