@@ -5,7 +5,7 @@ Numbers that name things are the deck's, 1-based (destinations signed); position
 
 import os
 from collections.abc import Callable
-from typing import NotRequired, TypedDict
+from typing import Any, Literal, NotRequired, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -326,6 +326,53 @@ class DescribedMotionDict(TypedDict):
     dt: float
     inputs: list[DescribedInputDict]
 
+class VaryDict(TypedDict):
+    """A design variable: VARY (kind 1, a prescribed row) or VARYX (kind 0, a fixed co-ordinate)."""
+
+    kind: int
+    number: int
+    lo: float
+    hi: float
+    line: int
+
+class TargetDict(TypedDict):
+    """TARGET (``values`` from ``file``, None where not compared), TARGETAT (``position``, 1-based, and
+    ``value``) or TARGETEXT (``reference`` and ``value``); the other keys are None."""
+
+    buffer: int
+    kind: Literal["values", "at", "extremum"]
+    values: list[float | None] | None
+    file: str | None
+    position: int | None
+    reference: int | None
+    value: float | None
+    weight: float
+    line: int
+
+class BoundDict(TypedDict):
+    buffer: int
+    lo: float
+    hi: float
+    line: int
+
+class ObjectiveDict(TypedDict):
+    sense: Literal["minimise", "maximise"]
+    reduce: Literal["max", "maxabs", "rms", "end"]
+    buffer: int
+    line: int
+
+class OptimiseDict(TypedDict):
+    """The OPTIMISE block of a KIN OPT deck."""
+
+    vary: list[VaryDict]
+    targets: list[TargetDict]
+    bounds: list[BoundDict]
+    objective: ObjectiveDict | None
+    steps: int
+    tol: float | None
+    line: int
+    """Line of the OPTIMISE header."""
+
 class DescribedDeckDict(TypedDict):
     coordinates: list[DescribedCoordDict]
     elements: list[DescribedElementDict]
@@ -337,11 +384,13 @@ class DescribedDeckDict(TypedDict):
     motion: DescribedMotionDict | None
     storage: StorageDict
     mode: str
-    """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
+    """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None
     """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
     inttol: NotRequired[list[float] | None]
     """``[rtol, atol]`` of INTTOL; None (or absent) for a deck without INTTOL."""
+    optimise: NotRequired[OptimiseDict | None]
+    """The OPTIMISE block of a KIN OPT deck; None for any other mode."""
 
 def run_deck_text(
     text: str,
@@ -368,3 +417,33 @@ def run_deck_variants(
 ) -> list[TextRunDict | MechfemError]:
     """Each variant is (index into ``texts``, changes); a change is (0, co-ordinate, value) or
     (1, prescribed row, value), numbered as in the deck."""
+
+class DesignModel:
+    """A compiled deck kept for an optimiser: designs evaluated one after another, each from position 1 of the
+    last design assembled."""
+
+    def __init__(
+        self,
+        text: str,
+        path: str | os.PathLike[str],
+        base_dir: str | os.PathLike[str],
+        variables: list[tuple[int, int]],
+        buffers: list[int],
+        extrema: list[tuple[int, int]],
+    ) -> None: ...
+    @property
+    def runs(self) -> int: ...
+    def start(self) -> list[float]: ...
+    def position_one(self) -> list[float]: ...
+    def evaluate(self, values: list[float]) -> dict[str, Any]: ...
+
+def optimised_deck_text(
+    text: str,
+    path: str | os.PathLike[str],
+    rows: list[tuple[int, float]],
+    coords: list[tuple[int, float]],
+    file_dir: str | os.PathLike[str] | None = None,
+) -> str:
+    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` replaced ((number, value),
+    deck numbering), in mode KIN ANA without its OPTIMISE block; MOV_FUNC files named from ``file_dir`` (the old
+    deck's folder as seen from the new deck's) when given."""

@@ -2,7 +2,9 @@
 
     mechfem run DECK [-o OUTDIR] [--report] [--max-frames N] [--memory-limit SIZE]
                                    run the deck, write DECK-stem.prt (and .csv with SAVEDATA), the pictures
-                                   and the animation to OUTDIR; --report adds the interactive DECK-stem.html
+                                   and the animation to OUTDIR; --report adds the interactive DECK-stem.html;
+                                   a KIN OPT deck is optimised first and its final design written as
+                                   DECK-stem_opt.mec, whose run gives the outputs
     mechfem report DECK [-o OUTDIR] [--memory-limit SIZE]
                                    run the deck and write only the interactive report DECK-stem.html
     mechfem check DECK             read the deck and compute position 1 only
@@ -16,11 +18,13 @@ every position computed before it). Messages go to stderr as one short paragraph
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 from pathlib import Path
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 import mechfem
+from mechfem import design, optimise_deck
 from mechfem.animation import MAX_FRAMES
 from mechfem.errors import (
     AssemblyError,
@@ -34,6 +38,9 @@ from mechfem.limits import DEFAULT_MEMORY_LIMIT, ENV, memory_limit, parse_size
 from mechfem.media import Media
 from mechfem.output import count, write_outputs
 from mechfem.report import write_report
+
+if TYPE_CHECKING:
+    from mechfem._core import OptimiseDict
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -159,9 +166,76 @@ def exit_status(deck: Path, result: mechfem.RunResult, interrupted: bool) -> int
 def cmd_run(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    opt = optimisation(deck)
+    if opt is not None:
+        return run_optimisation(args, deck, outdir, opt)
     result, interrupted = run_with_progress(deck, args.memory_limit)
+    return finish_run(args, deck, outdir, result, interrupted)
+
+
+def optimisation(deck: Path) -> OptimiseDict | None:
+    """The OPTIMISE block of a KIN OPT deck; None for any other mode, or a deck that cannot be read (the run then
+    says why)."""
+    try:
+        text = deck.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+    if optimise_deck.deck_mode(text) != "KIN OPT":
+        return None
+    return optimise_deck.describe(deck).get("optimise")
+
+
+def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: OptimiseDict) -> int:
+    """Optimises the design of a KIN OPT deck, writes it as ``<stem>_opt.mec`` and runs that deck as a KIN ANA
+    run whose outputs are named after ``deck`` and whose print file has the OPTIMISATION section."""
+    history: list[design.Iteration] = []
+
+    def report(it: design.Iteration) -> None:
+        history.append(it)
+        print(optimise_deck.iteration_line(it), file=sys.stderr, flush=True)
+
+    print(f"{deck}: optimising {optimise_deck.names_and_lines(opt)}", file=sys.stderr, flush=True)
+    try:
+        outcome = optimise_deck.optimise(deck, opt, report)
+    except optimise_deck.OptimisationError as e:
+        print(e, file=sys.stderr)
+        return EXIT_FAILED
+    except KeyboardInterrupt:
+        path = optimise_deck.write_interrupted(deck, opt, history, outdir)
+        print(f"wrote {path}")
+        done = count(max(len(history) - 1, 0), "iteration")
+        print(f"mechfem: {deck}: interrupted during the optimisation after {done}.", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    s = outcome.solution
+    values = ", ".join(f"{n} = {x:.10g}" for n, x in zip(outcome.problem.names, s.x, strict=True))
+    print(
+        f"{deck}: {'optimised' if s.success else 'optimiser stopped'} in {count(s.runs, 'mechanism run')}: "
+        f"objective {s.start_objective:.4g} -> {s.objective:.4g}; {values}"
+    )
+    written_deck = optimise_deck.write_design_deck(outcome, outdir)
+    result, interrupted = run_with_progress(written_deck, args.memory_limit)
+    result = dataclasses.replace(result, deck=deck)
+    status = finish_run(
+        args, deck, outdir, result, interrupted, optimise_deck.print_lines(outcome, written_deck), [written_deck]
+    )
+    if not s.success:
+        print(f"warning: {deck}: the optimiser did not converge: {s.message}", file=sys.stderr)
+    return status
+
+
+def finish_run(
+    args: argparse.Namespace,
+    deck: Path,
+    outdir: Path,
+    result: mechfem.RunResult,
+    interrupted: bool,
+    lines: list[str] | None = None,
+    files: list[Path] | None = None,
+) -> int:
+    """Writes every output of a run, says what was written and gives the exit status; ``lines`` are added to
+    the print file and ``files`` to the list of files written."""
     media = Media(result, outdir, max_frames=args.max_frames, report=args.report)
-    written = write_outputs(result, outdir, media.print_lines())
+    written = [*(files or []), *write_outputs(result, outdir, [*(lines or []), *media.print_lines()])]
     report = result.report
     print(f"{deck}: {count(report.positions, 'position')} computed")
     for path in written:

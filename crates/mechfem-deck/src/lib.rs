@@ -37,6 +37,9 @@
 //!   [`Picture`]s, and a description of the elements and rows for echoing
 //!   the model. References between lines are checked here.
 //! * [`load`]: both steps for a file.
+//! * [`rewrite::design_deck`]: a deck's text with new PARA and XFIX/XMOV
+//!   values, a `KIN OPT` deck turned into the `KIN ANA` deck of its final
+//!   design.
 //! * [`Diagnostic`]: every mistake names the file, line and word, renders
 //!   like rustc (`error:`, ` --> file:line:col`, the line, a caret, a hint),
 //!   and has a [`DiagnosticKind`] for programs.
@@ -91,6 +94,7 @@ mod keywords;
 mod lexer;
 mod optimise;
 mod parse;
+pub mod rewrite;
 mod statements;
 
 use std::path::Path;

@@ -3,8 +3,8 @@
 //! deck's 1-based numbering here.
 
 use mechfem_core::dynamics::{Dynamics, LoadKind, SimReport};
-use mechfem_core::{AdjustInfo, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
-use mechfem_deck::{Buffer, Compiled, PlotItem, RowInfo};
+use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
+use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -308,5 +308,89 @@ pub fn simulation<'py>(py: Python<'py>, s: &SimReport) -> PyResult<Bound<'py, Py
     d.set_item("rejected", s.rejected)?;
     d.set_item("evaluations", s.evaluations)?;
     d.set_item("reached", s.reached)?;
+    Ok(d)
+}
+
+/// The OPTIMISE block of a `KIN OPT` deck as a dict, in the deck's
+/// numbering: `vary` (`kind` 0 a fixed co-ordinate, 1 a prescribed row,
+/// `number`, `lo`, `hi`, `line`), `targets` (`buffer`, `kind` "values",
+/// "at" or "extremum", `values` with None where not compared and `file`,
+/// `position` 1-based, `reference`, `value`, `weight`, `line`), `bounds`
+/// (`buffer`, `lo`, `hi`, `line`), `objective` (`sense` "minimise" or
+/// "maximise", `reduce` "max", "maxabs", "rms" or "end", `buffer`, `line`;
+/// None without one), `steps`, `tol` and `line`.
+pub fn optimise<'py>(py: Python<'py>, o: &Optimise) -> PyResult<Bound<'py, PyDict>> {
+    let vary = o
+        .vary
+        .iter()
+        .map(|v| {
+            let d = PyDict::new(py);
+            let (kind, number) = match v.var {
+                DesignVar::Fixed(i) => (0, i + 1),
+                DesignVar::Row(r) => (1, r + 1),
+            };
+            d.set_item("kind", kind)?;
+            d.set_item("number", number)?;
+            d.set_item("lo", v.lo)?;
+            d.set_item("hi", v.hi)?;
+            d.set_item("line", v.line)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let targets = o
+        .targets
+        .iter()
+        .map(|t| {
+            let d = PyDict::new(py);
+            d.set_item("buffer", t.buffer)?;
+            let (kind, values, file, position, reference, value) = match &t.kind {
+                TargetKind::Values { file, values } => ("values", Some(values.clone()), Some(file), None, None, None),
+                TargetKind::At { position, value } => ("at", None, None, Some(position + 1), None, Some(*value)),
+                TargetKind::Extremum { reference, value } => {
+                    ("extremum", None, None, None, Some(*reference), Some(*value))
+                }
+            };
+            d.set_item("kind", kind)?;
+            d.set_item("values", values)?;
+            d.set_item("file", file)?;
+            d.set_item("position", position)?;
+            d.set_item("reference", reference)?;
+            d.set_item("value", value)?;
+            d.set_item("weight", t.weight)?;
+            d.set_item("line", t.line)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let bounds = o
+        .bounds
+        .iter()
+        .map(|b| {
+            let d = PyDict::new(py);
+            d.set_item("buffer", b.buffer)?;
+            d.set_item("lo", b.lo)?;
+            d.set_item("hi", b.hi)?;
+            d.set_item("line", b.line)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let objective = o
+        .objective
+        .map(|ob| {
+            let d = PyDict::new(py);
+            d.set_item("sense", if ob.sense == Sense::Minimise { "minimise" } else { "maximise" })?;
+            d.set_item("reduce", ob.reduce.name().to_ascii_lowercase())?;
+            d.set_item("buffer", ob.buffer)?;
+            d.set_item("line", ob.line)?;
+            Ok::<_, PyErr>(d)
+        })
+        .transpose()?;
+    let d = PyDict::new(py);
+    d.set_item("vary", vary)?;
+    d.set_item("targets", targets)?;
+    d.set_item("bounds", bounds)?;
+    d.set_item("objective", objective)?;
+    d.set_item("steps", o.steps)?;
+    d.set_item("tol", o.tol)?;
+    d.set_item("line", o.line)?;
     Ok(d)
 }

@@ -154,8 +154,7 @@ impl DesignModel {
         }
         let motion = c.motion.as_ref().expect("checked in new");
         let (vars, quantities, extrema) = (&self.vars, &self.quantities, &self.extrema);
-        let result =
-            py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, vars, quantities, extrema));
+        let result = py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, vars, quantities, extrema));
         self.runs += 1;
         let (nq, nv) = (quantities.len(), vars.len());
         let d = PyDict::new(py);
@@ -204,4 +203,24 @@ impl DesignModel {
         }
         Ok(d)
     }
+}
+
+/// The deck `text` (named `path` in messages) of the design with the PARA
+/// values of `rows` and the XFIX or XMOV values of `coords` replaced
+/// (`(number, value)` in the deck's numbering), in mode `KIN ANA` without
+/// its OPTIMISE block, its MOV_FUNC files named from `file_dir` when given:
+/// see [`mechfem_deck::rewrite::design_deck`]. A deck
+/// that does not parse raises `DeckError`.
+#[pyfunction]
+#[pyo3(signature = (text, path, rows, coords, file_dir=None))]
+pub fn optimised_deck_text(
+    py: Python<'_>,
+    text: &str,
+    path: PathBuf,
+    rows: Vec<(usize, f64)>,
+    coords: Vec<(usize, f64)>,
+    file_dir: Option<PathBuf>,
+) -> PyResult<String> {
+    mechfem_deck::rewrite::design_deck(text, &path, &rows, &coords, file_dir.as_deref())
+        .map_err(|d| errors::deck_error(py, &path, &d))
 }

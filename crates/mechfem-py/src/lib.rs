@@ -238,5 +238,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<design::DesignModel>()?;
+    m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     Ok(())
 }

@@ -423,7 +423,8 @@ pub fn run_deck_text<'py>(
 /// block), `tol`, `max_iter`, `storage`, `inttol` (INTTOL's rtol and atol,
 /// None without it), the `mode` and the `dynamics`
 /// (masses and loads, LOADFUNC tables with their file names; None for a
-/// KIN ANA deck). Numbers are the deck's own.
+/// KIN ANA deck) and the `optimise` block of a KIN OPT deck
+/// ([`convert::optimise`]; None otherwise). Numbers are the deck's own.
 #[pyfunction]
 pub fn describe_deck_text<'py>(
     py: Python<'py>,
@@ -516,5 +517,6 @@ pub fn describe_deck_text<'py>(
     d.set_item("inttol", inttol)?;
     d.set_item("mode", c.mode.name())?;
     d.set_item("dynamics", c.dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
+    d.set_item("optimise", c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?)?;
     Ok(d)
 }

@@ -1,0 +1,212 @@
+"""``mechfem run`` of a ``KIN OPT`` deck: the OPTIMISE block as a :class:`mechfem.design.Problem`, solved, the
+final design written as ``<stem>_opt.mec`` (mode ``KIN ANA``) and the print file's OPTIMISATION section.
+
+The command runs the written deck as any ``KIN ANA`` deck; this module only states the problem, writes the deck
+and says what the optimiser did.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from mechfem import _core, design
+from mechfem.errors import MechfemError
+from mechfem.output import atomic_text, count
+
+if TYPE_CHECKING:
+    from mechfem._core import DescribedDeckDict, OptimiseDict
+
+
+class OptimisationError(MechfemError):
+    """The optimisation cannot start: its start design is infeasible, or the OPTIMISE block asks for something
+    the model cannot give. ``str()`` is the whole message, naming the deck and the line."""
+
+
+def deck_mode(text: str) -> str:
+    """The mode line of a deck (its first line with words, upper case, e.g. ``KIN OPT``), read without compiling
+    anything; "" for a deck without words."""
+    for line in text.lstrip("\ufeff").splitlines():
+        words = line.split(";", 1)[0].split()
+        if words:
+            return " ".join(words[:2]).upper()
+    return ""
+
+
+def describe(deck: Path) -> DescribedDeckDict:
+    """The deck's description (its OPTIMISE block under ``optimise``)."""
+    return _core.describe_deck_text(deck.read_text(encoding="utf-8"), os.fspath(deck), os.fspath(deck_dir(deck)))
+
+
+def deck_dir(deck: Path) -> Path:
+    return deck.parent if deck.parent != Path("") else Path(".")
+
+
+def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
+    """The OPTIMISE block in the engine's terms (deck numbering; positions 0-based, NaN where not compared)."""
+    terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
+    for t in opt["targets"]:
+        if t["kind"] == "values":
+            values = np.array([math.nan if v is None else v for v in t["values"] or []], dtype=np.float64)
+            terms.append(design.ValuesTerm(t["buffer"], values, t["weight"]))
+        elif t["kind"] == "at":
+            terms.append(design.AtTerm(t["buffer"], int(t["position"] or 1) - 1, float(t["value"] or 0.0), t["weight"]))
+        else:
+            terms.append(
+                design.ExtremumTerm(t["buffer"], int(t["reference"] or 0), float(t["value"] or 0.0), t["weight"])
+            )
+    objective = opt["objective"]
+    return design.Problem(
+        text=text,
+        path=os.fspath(deck),
+        base_dir=os.fspath(deck_dir(deck)),
+        variables=[(v["kind"], v["number"]) for v in opt["vary"]],
+        names=[variable_name(v["kind"], v["number"]) for v in opt["vary"]],
+        lo=np.array([v["lo"] for v in opt["vary"]], dtype=np.float64),
+        hi=np.array([v["hi"] for v in opt["vary"]], dtype=np.float64),
+        terms=terms,
+        bounds=[(b["buffer"], b["lo"], b["hi"]) for b in opt["bounds"]],
+        objective=None
+        if objective is None
+        else (1 if objective["sense"] == "minimise" else -1, objective["reduce"], objective["buffer"]),
+        steps=opt["steps"],
+        tol=opt["tol"],
+    )
+
+
+def variable_name(kind: int, number: int) -> str:
+    """``PARA 5`` for a prescribed row, ``XFIX 3`` for a fixed co-ordinate."""
+    return f"{'PARA' if kind == 1 else 'XFIX'} {number}"
+
+
+def iteration_line(it: design.Iteration) -> str:
+    """One line of progress on standard error."""
+    return (
+        f"  iteration {it.number}: objective {it.objective:.4g}, largest violation {it.violation:.3g}, "
+        f"step {it.step:.2g}, {count(it.runs, 'run')}"
+    )
+
+
+@dataclass
+class Outcome:
+    """An optimisation of a deck: its problem, the solution and what the targets at extrema gave there."""
+
+    deck: Path
+    opt: OptimiseDict
+    problem: design.Problem
+    solution: design.Solution
+    extrema: list[tuple[design.ExtremumTerm, float, float]]
+    """``(term, input, buffer value)`` of every extremum at the final design."""
+
+
+def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Outcome:
+    """Solves the deck's OPTIMISE block from its own design; raises :class:`OptimisationError` when it cannot
+    start."""
+    text = deck.read_text(encoding="utf-8")
+    p = problem(deck, text, opt)
+    try:
+        solution = design.solve(p, report=report)
+    except design.Infeasible as e:
+        raise OptimisationError(
+            f"error: {deck}: the optimisation (OPTIMISE, line {opt['line']}) cannot start: {e}. The start design "
+            f"is the deck's own (the PARA and XFIX values of the variables, {names_and_lines(opt)}): change it, or "
+            "its XMOV estimates, so that position 1 can be assembled and the whole motion run."
+        ) from None
+    except ValueError as e:
+        raise OptimisationError(
+            f"error: {deck}: the OPTIMISE block (line {opt['line']}) cannot be evaluated: {e}."
+        ) from None
+    return Outcome(deck, opt, p, solution, final_extrema(p, solution))
+
+
+def names_and_lines(opt: OptimiseDict) -> str:
+    keyword = {0: "VARYX", 1: "VARY"}
+    return ", ".join(
+        f"{variable_name(v['kind'], v['number'])} ({keyword[v['kind']]} on line {v['line']})" for v in opt["vary"]
+    )
+
+
+def final_extrema(p: design.Problem, s: design.Solution) -> list[tuple[design.ExtremumTerm, float, float]]:
+    """Every TARGETEXT's extrema at the final design: one more mechanism run, only when there are any."""
+    specs = [t for t in p.terms if isinstance(t, design.ExtremumTerm)]
+    if not specs:
+        return []
+    try:
+        e = design.Evaluator(p)(s.x)
+    except design.Infeasible:
+        return []
+    return [(specs[x["spec"]], float(x["input"]), float(x["value"])) for x in e.extrema]
+
+
+def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
+    """Writes the final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
+    variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
+    deck, s = outcome.deck, outcome.solution
+    described = describe(deck)
+    moving = {c["number"] for c in described["coordinates"] if c["moving"]}
+    rows = [(n, float(x)) for (k, n), x in zip(outcome.problem.variables, s.x, strict=True) if k == 1]
+    coords = [(n, float(x)) for (k, n), x in zip(outcome.problem.variables, s.x, strict=True) if k == 0]
+    coords += [(i + 1, float(x)) for i, x in enumerate(s.position_one) if i + 1 in moving]
+    outdir.mkdir(parents=True, exist_ok=True)
+    source = deck_dir(deck).resolve()
+    file_dir = None if source == outdir.resolve() else Path(os.path.relpath(source, outdir.resolve()))
+    text = _core.optimised_deck_text(deck.read_text(encoding="utf-8"), os.fspath(deck), rows, coords, file_dir)
+    path = outdir / f"{deck.stem}_opt.mec"
+    with atomic_text(path) as f:
+        f.write(text)
+    return path
+
+
+def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
+    """The print file's OPTIMISATION section."""
+    p, s = outcome.problem, outcome.solution
+    out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {outcome.opt['line']}"]
+    out += history_lines(s.history)
+    out += ["", "  design variables:", f"  {'variable':>10} {'start':>18} {'final':>18} {'lower':>14} {'upper':>14}"]
+    for name, x0, x, lo, hi in zip(p.names, s.start, s.x, p.lo, p.hi, strict=True):
+        out.append(f"  {name:>10} {x0:>18.12g} {x:>18.12g} {lo:>14.8g} {hi:>14.8g}")
+    out += [
+        "",
+        f"  objective: start {s.start_objective:.10g}, final {s.objective:.10g}",
+        f"  {count(s.runs, 'mechanism run')} in {s.seconds:.3g} s",
+        f"  {'converged' if s.success else 'did not converge'}: {s.message}",
+    ]
+    if outcome.extrema:
+        out += ["", "  targets at extrema, at the final design:"]
+        out.append(f"  {'buffer':>8} {'reference':>10} {'input':>18} {'value':>18} {'target':>12}")
+        for t, at, value in outcome.extrema:
+            out.append(f"  {t.buffer:>8} {t.reference:>10} {at:>18.12g} {value:>18.6e} {t.value:>12.6g}")
+    if written is not None:
+        out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
+    return [*out, ""]
+
+
+def history_lines(history: list[design.Iteration]) -> list[str]:
+    out = [f"  {'iteration':>9} {'objective':>18} {'violation':>12} {'step':>12} {'runs':>6}"]
+    for it in history:
+        out.append(f"  {it.number:>9} {it.objective:>18.10e} {it.violation:>12.4g} {it.step:>12.4g} {it.runs:>6}")
+    return out
+
+
+def interrupted_lines(deck: Path, opt: OptimiseDict, history: list[design.Iteration]) -> list[str]:
+    """The print file of an optimisation stopped by Ctrl-C: the history so far."""
+    from mechfem import __version__
+
+    out = [f"mechfem {__version__} - print file", f"deck: {deck}", "", "OPTIMISATION (interrupted)"]
+    out.append(f"  OPTIMISE block at line {opt['line']}; variables: {names_and_lines(opt)}")
+    out += history_lines(history)
+    return [*out, "", "  interrupted by Ctrl-C before the optimiser finished: no final design was written", ""]
+
+
+def write_interrupted(deck: Path, opt: OptimiseDict, history: list[design.Iteration], outdir: Path) -> Path:
+    outdir.mkdir(parents=True, exist_ok=True)
+    path = outdir / f"{deck.stem}.prt"
+    with atomic_text(path) as f:
+        f.write("\n".join(interrupted_lines(deck, opt, history)) + "\n")
+    return path
