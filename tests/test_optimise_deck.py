@@ -4,6 +4,7 @@ section, and the refusals."""
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from pathlib import Path
@@ -145,3 +146,48 @@ def test_the_optimised_deck_text_replaces_para_and_drops_optimise() -> None:
     assert "      5 -5.175    ; the angle kappa" in text and "XMOV 9  0.2\n" in text
     assert "\nOPTIMISE\n" not in text and "VARY" not in text and "TARGETEXT" not in text
     assert "STORAGE\nBUFE0  -1 100          ; output angle\n" in text
+
+
+def test_ctrl_c_writes_the_design_reached(tmp_path: Path) -> None:
+    from mechfem import design, optimise_deck
+
+    deck = without_media(tmp_path)
+    opt = optimise_deck.describe(deck)["optimise"]
+    assert opt is not None
+    history = [
+        design.Iteration(0, 0.2, 0.0, 0.0, 1, np.array([-5.25])),
+        design.Iteration(1, 0.01, 0.0, 0.06, 2, np.array([-5.19])),
+    ]
+    out = tmp_path / "out"
+    written = optimise_deck.write_interrupted(deck, opt, history, out)
+    assert sorted(p.name for p in written) == ["supply_opt.prt", "supply_opt_opt.mec"]
+    assert sorted(p.name for p in out.iterdir()) == ["supply_opt.prt", "supply_opt_opt.mec"]
+    prt = (out / "supply_opt.prt").read_text()
+    assert "interrupted by Ctrl-C" in prt and "-5.19" in prt
+    # The design reached runs as a KIN ANA deck with its kappa.
+    run = _core.describe_deck_text((out / "supply_opt_opt.mec").read_text(), "x.mec", os.fspath(deck.parent))
+    assert run["mode"] == "KIN ANA"
+    assert [r["para"] for r in run["prescribed"] if r["dest"] == 5] == [-5.19]
+    # Before the first iteration there is nothing but the note.
+    assert [p.name for p in optimise_deck.write_interrupted(deck, opt, [], tmp_path / "empty")] == ["supply_opt.prt"]
+
+
+def _final_objective(prt: str) -> float:
+    found = re.search(r"objective: start \S+, final (\S+)", prt)
+    assert found is not None, prt
+    return float(found.group(1))
+
+
+@pytest.mark.parametrize(("stem", "worst"), [("path", 1e-16), ("function", 31 * math.radians(0.5) ** 2)])
+def test_the_synthesis_decks_from_the_command_line(cli: Cli, tmp_path: Path, stem: str, worst: float) -> None:
+    # Path generation reaches the known four-bar (error 0); function generation an rms below half a degree.
+    src = ROOT / "examples" / "synthesis"
+    deck = tmp_path / f"{stem}.mec"
+    lines = (src / f"{stem}.mec").read_text().splitlines(keepends=True)
+    deck.write_text("".join(s for s in lines if not re.match(r"\s*(BEGINPIC|ENDPIC|PLOT)", s)))
+    for dat in src.glob(f"{stem}*.dat"):
+        (tmp_path / dat.name).write_text(dat.read_text())
+    done = cli("run", deck, "-o", tmp_path / "out")
+    assert done.returncode == 0, done.stderr
+    assert "iteration 1:" in done.stderr
+    assert _final_objective((tmp_path / "out" / f"{stem}.prt").read_text()) < worst

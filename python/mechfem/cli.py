@@ -201,8 +201,8 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
         print(e, file=sys.stderr)
         return EXIT_FAILED
     except KeyboardInterrupt:
-        path = optimise_deck.write_interrupted(deck, opt, history, outdir)
-        print(f"wrote {path}")
+        for path in optimise_deck.write_interrupted(deck, opt, history, outdir):
+            print(f"wrote {path}")
         done = count(max(len(history) - 1, 0), "iteration")
         print(f"mechfem: {deck}: interrupted during the optimisation after {done}.", file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -86,13 +86,14 @@ class Problem:
 @dataclass
 class Iteration:
     """One iteration of the optimiser: its objective, the largest violation of a bound, the step's size (the
-    largest change of a variable) and the mechanism runs so far."""
+    largest change of a variable), the mechanism runs so far and the design ``x`` it reached."""
 
     number: int
     objective: float
     violation: float
     step: float
     runs: int
+    x: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False)
 
 
 class Infeasible(MechfemError):
@@ -269,6 +270,7 @@ class Solution:
     seconds: float
     method: str
     position_one: list[float]
+    """The co-ordinates at position 1 of the final design (the last design evaluated), in deck order."""
 
 
 def solve(problem: Problem, report: Callable[[Iteration], object] | None = None) -> Solution:
@@ -283,7 +285,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
     except Infeasible as err:
         raise Infeasible(f"the start design is infeasible: {err}") from None
     f0, _ = objective(problem, e0)
-    history: list[Iteration] = [Iteration(0, f0, violation(problem, e0), 0.0, ev.runs)]
+    history: list[Iteration] = [Iteration(0, f0, violation(problem, e0), 0.0, ev.runs, np.array(x0))]
     best = {"x": x0, "f": f0}
     if report is not None:
         report(history[0])
@@ -291,7 +293,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
     def note(x: FloatArray, e: Evaluation) -> None:
         f, _ = objective(problem, e)
         step = float(np.max(np.abs(x - best["x"])))
-        it = Iteration(len(history), f, violation(problem, e), step, ev.runs)
+        it = Iteration(len(history), f, violation(problem, e), step, ev.runs, np.array(x))
         history.append(it)
         best["x"], best["f"] = np.array(x), f
         if report is not None:

@@ -147,12 +147,20 @@ def final_extrema(p: design.Problem, s: design.Solution) -> list[tuple[design.Ex
 def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
     """Writes the final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
     variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
-    deck, s = outcome.deck, outcome.solution
+    s = outcome.solution
+    return write_design(outcome.deck, outcome.problem.variables, s.x, s.position_one, outdir)
+
+
+def write_design(
+    deck: Path, variables: list[tuple[int, int]], x: np.ndarray, position_one: list[float], outdir: Path
+) -> Path:
+    """Writes the design ``x`` of ``variables`` as ``<outdir>/<stem>_opt.mec``; ``position_one`` (deck order, may
+    be empty) replaces the XMOV estimates."""
     described = describe(deck)
     moving = {c["number"] for c in described["coordinates"] if c["moving"]}
-    rows = [(n, float(x)) for (k, n), x in zip(outcome.problem.variables, s.x, strict=True) if k == 1]
-    coords = [(n, float(x)) for (k, n), x in zip(outcome.problem.variables, s.x, strict=True) if k == 0]
-    coords += [(i + 1, float(x)) for i, x in enumerate(s.position_one) if i + 1 in moving]
+    rows = [(n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k == 1]
+    coords = [(n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k == 0]
+    coords += [(i + 1, float(v)) for i, v in enumerate(position_one) if i + 1 in moving]
     outdir.mkdir(parents=True, exist_ok=True)
     source = deck_dir(deck).resolve()
     file_dir = None if source == outdir.resolve() else Path(os.path.relpath(source, outdir.resolve()))
@@ -194,19 +202,31 @@ def history_lines(history: list[design.Iteration]) -> list[str]:
     return out
 
 
-def interrupted_lines(deck: Path, opt: OptimiseDict, history: list[design.Iteration]) -> list[str]:
-    """The print file of an optimisation stopped by Ctrl-C: the history so far."""
+def interrupted_lines(
+    deck: Path, opt: OptimiseDict, history: list[design.Iteration], written: Path | None
+) -> list[str]:
+    """The print file of an optimisation stopped by Ctrl-C: the history so far, and the design it had reached."""
     from mechfem import __version__
 
     out = [f"mechfem {__version__} - print file", f"deck: {deck}", "", "OPTIMISATION (interrupted)"]
     out.append(f"  OPTIMISE block at line {opt['line']}; variables: {names_and_lines(opt)}")
     out += history_lines(history)
-    return [*out, "", "  interrupted by Ctrl-C before the optimiser finished: no final design was written", ""]
+    if written is None or not history:
+        return [*out, "", "  interrupted by Ctrl-C before the first iteration: no design was written", ""]
+    out += ["", "  design reached at the last iteration:"]
+    for v, x in zip(opt["vary"], history[-1].x, strict=True):
+        out.append(f"  {variable_name(v['kind'], v['number']):>10} {x:>18.12g}")
+    return [*out, "", f"  interrupted by Ctrl-C: that design is written as {written.name} (mode KIN ANA)", ""]
 
 
-def write_interrupted(deck: Path, opt: OptimiseDict, history: list[design.Iteration], outdir: Path) -> Path:
+def write_interrupted(deck: Path, opt: OptimiseDict, history: list[design.Iteration], outdir: Path) -> list[Path]:
+    """Writes the history so far and, once there is an iteration, the design it reached as ``<stem>_opt.mec``."""
     outdir.mkdir(parents=True, exist_ok=True)
+    written: Path | None = None
+    if history:
+        variables = [(int(v["kind"]), int(v["number"])) for v in opt["vary"]]
+        written = write_design(deck, variables, history[-1].x, [], outdir)
     path = outdir / f"{deck.stem}.prt"
     with atomic_text(path) as f:
-        f.write("\n".join(interrupted_lines(deck, opt, history)) + "\n")
-    return path
+        f.write("\n".join(interrupted_lines(deck, opt, history, written)) + "\n")
+    return [path] if written is None else [written, path]
