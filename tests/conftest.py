@@ -20,6 +20,7 @@ def stops_on_purpose(deck: Path) -> bool:
     position (it says so in a comment line); such a run exits with status 1."""
     return STOP_MARK in deck.read_text()
 
+
 Cli = Callable[..., subprocess.CompletedProcess[str]]
 
 
