@@ -144,6 +144,8 @@ class Evaluator:
         )
         self._cache: tuple[bytes, Evaluation | str] | None = None
         self.extrema_count: list[int] | None = None
+        self.infeasible = 0
+        """How many designs evaluated were infeasible."""
 
     @property
     def runs(self) -> int:
@@ -166,6 +168,7 @@ class Evaluator:
                     result = (
                         f"the reference of a TARGETEXT has {counts} extrema here, {self.extrema_count} at the start"
                     )
+            self.infeasible += isinstance(result, str)
             self._cache = (key, result)
         found = self._cache[1]
         if isinstance(found, str):
@@ -265,6 +268,8 @@ class Solution:
     start_objective: float
     history: list[Iteration]
     runs: int
+    infeasible: int
+    """How many of the runs met an infeasible design (stepped back from)."""
     success: bool
     message: str
     seconds: float
@@ -393,6 +398,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         start_objective=float(f0),
         history=history,
         runs=ev.runs,
+        infeasible=ev.infeasible,
         success=success,
         message=message,
         seconds=time.perf_counter() - t0,

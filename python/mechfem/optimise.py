@@ -94,6 +94,8 @@ class Optimum:
     history: list[Iteration]
     runs: int
     """Mechanism runs (designs evaluated), the start design's included."""
+    infeasible: int
+    """How many of them met a design that could not be assembled or moved (stepped back from)."""
     success: bool
     message: str
     seconds: float
@@ -277,7 +279,7 @@ def optimize(
     optimised = copy.deepcopy(mechanism)
     for name, x in zip(vary, sol.x, strict=True):
         optimised.set(name, float(x))
-    _carry_position_one(optimised, written.numbering, sol.position_one)
+    _carry_position_one(optimised, mechanism, written.numbering, sol.position_one, motion)
     return Optimum(
         mechanism=optimised,
         start=dict(zip(vary, map(float, sol.start), strict=True)),
@@ -286,6 +288,7 @@ def optimize(
         start_objective=sol.start_objective,
         history=sol.history,
         runs=sol.runs,
+        infeasible=sol.infeasible,
         success=sol.success,
         message=sol.message,
         seconds=sol.seconds,
@@ -294,12 +297,24 @@ def optimize(
     )
 
 
-def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequence[float]) -> None:
+def _carry_position_one(
+    mech: Mechanism, original: Mechanism, numbering: deckio.Numbering, x: Sequence[float], motion: Motion
+) -> None:
     """Starts the moving co-ordinates at the optimised design's position 1, so that it assembles in the branch the
-    optimisation followed."""
+    optimisation followed. Where the exact position does not assemble from scratch (a combined angle row whose
+    value there lies a full turn from its prescribed one, which the adjustment cannot undo), the original
+    estimates are kept instead."""
+    from mechfem.errors import MechfemError
+
     for c, value in zip(numbering.coords, x, strict=False):
         if not c.fixed and np.isfinite(value):
             mech[c.name].value = float(value)
+    try:
+        mech.check(motion)
+    except MechfemError:
+        for c in numbering.coords:
+            if not c.fixed:
+                mech[c.name].value = original[c.name].value
 
 
 def sensitivity(analysis: Analysis, quantity: Quantity, wrt: Sequence[str]) -> FloatArray:

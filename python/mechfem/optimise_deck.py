@@ -148,7 +148,14 @@ def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
     """Writes the final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
     variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
     s = outcome.solution
-    return write_design(outcome.deck, outcome.problem.variables, s.x, s.position_one, outdir)
+    path = write_design(outcome.deck, outcome.problem.variables, s.x, s.position_one, outdir)
+    try:
+        _core.check_deck(os.fspath(path))
+    except MechfemError:
+        # The exact position 1 does not assemble from scratch (a combined angle row whose value there lies a full
+        # turn from its prescribed one): the deck's own XMOV estimates instead.
+        path = write_design(outcome.deck, outcome.problem.variables, s.x, [], outdir)
+    return path
 
 
 def write_design(
@@ -182,7 +189,8 @@ def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
     out += [
         "",
         f"  objective: start {s.start_objective:.10g}, final {s.objective:.10g}",
-        f"  {count(s.runs, 'mechanism run')} in {s.seconds:.3g} s",
+        f"  {count(s.runs, 'mechanism run')} in {s.seconds:.3g} s"
+        + (f" ({s.infeasible} of them met an infeasible design and were stepped back from)" if s.infeasible else ""),
         f"  {'converged' if s.success else 'did not converge'}: {s.message}",
     ]
     if outcome.extrema:
