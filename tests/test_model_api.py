@@ -453,7 +453,7 @@ def python_code(doc: Path) -> str:
     return "\n".join(out)
 
 
-@pytest.mark.parametrize("doc", ["tutorial.md", "design-study.md", "python-api.md"])
+@pytest.mark.parametrize("doc", ["tutorial.md", "design-study.md", "python-api.md", "optimisation.md"])
 def test_python_code_of_the_documents_runs(doc: str, monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     code = python_code(ROOT / "docs" / doc)
     assert code.strip(), f"docs/{doc} has no python code"

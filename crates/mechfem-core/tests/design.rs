@@ -81,3 +81,28 @@ fn extremum_sensitivities_against_central_differences() {
         }
     }
 }
+
+#[test]
+fn an_angle_row_a_full_turn_from_its_value_needs_no_turn() {
+    use mechfem_core::{adjust, Kinematics};
+    // The supply mechanism with a short crank, started from its exact position 1: there the plate angle
+    // beta2 - beta4 (row 5) reads 1.108 by principal values, a full turn from the prescribed -5.17514.
+    let c = supply();
+    let mech = &c.mechanism;
+    let mut state = c.state.clone();
+    state.target[0] = 0.1;
+    let mut kin = Kinematics::new(mech);
+    adjust(mech, &mut state, &mut kin, &c.params).unwrap();
+    let exact = state.x.clone();
+    let mut again = c.state.clone();
+    again.target[0] = 0.1;
+    again.x.clone_from(&exact);
+    // As a deck with those co-ordinates compiles: angles by their principal values.
+    again.branch.fill(f64::NAN);
+    let principal = again.clone().prescribed_value(mech, 4).unwrap();
+    assert!((principal - again.target[4] - std::f64::consts::TAU).abs() < 1e-9, "{principal}");
+    let info = adjust(mech, &mut again, &mut kin, &c.params).unwrap();
+    assert_eq!((info.iterations, info.stages), (0, 1));
+    assert!(exact.iter().zip(&again.x).all(|(a, b)| (a - b).abs() < 1e-12));
+    assert!((again.clone().prescribed_value(mech, 4).unwrap() - again.target[4]).abs() < 1e-12);
+}

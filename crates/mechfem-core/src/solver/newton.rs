@@ -198,6 +198,7 @@ pub fn adjust(
     params: &Params,
 ) -> Result<AdjustInfo, SolveError> {
     let target = state.target.clone();
+    align_turns(mech, state)?;
     let start = state.clone();
     let mut from = vec![0.0; target.len()];
     for (r, v) in from.iter_mut().enumerate() {
@@ -248,4 +249,49 @@ pub fn adjust(
         }
     }
     Ok(info)
+}
+
+/// Puts every prescribed angle row on the turn of its prescribed value.
+///
+/// An angle found by `atan2` is known only up to whole turns: given
+/// co-ordinates where, say, a plate angle beta2 - beta4 reads 1.108 while
+/// -5.175 is prescribed describe the right position, a full turn away only
+/// in how the angle is counted. Newton would otherwise try to turn the plate
+/// once around to close that gap. So, row by row, where a row's value at
+/// the given co-ordinates is whole turns from its prescribed value, the
+/// angle memory of one of its elements is moved by those turns: an element
+/// whose angle the row holds with a factor of +-1 and that no earlier row's
+/// angle depends on (moving it would move that row too).
+fn align_turns(mech: &Mechanism, state: &mut State) -> Result<(), SolveError> {
+    use std::f64::consts::TAU;
+    let mut used = vec![false; mech.elements().len()];
+    for r in 0..mech.n_prescribed() {
+        let terms = mech.prescribed_terms(r);
+        let value = state.prescribed_value(mech, r)?;
+        let turns = ((value - state.target[r]) / TAU).round();
+        let tracked: Vec<bool> = terms.iter().map(|t| tracked(mech, state, t)).collect::<Result<_, _>>()?;
+        if turns != 0.0 && turns.is_finite() {
+            let free = terms.iter().zip(&tracked).find(|(t, &a)| a && t.factor.abs() == 1.0 && !used[t.element]);
+            if let Some((t, _)) = free {
+                state.branch[t.element] -= turns * TAU * t.factor;
+            }
+        }
+        for (t, _) in terms.iter().zip(&tracked).filter(|(_, &a)| a) {
+            used[t.element] = true;
+        }
+    }
+    Ok(())
+}
+
+/// Whether term `t` is an angle that the element's memory tracks: one turn
+/// more in the memory reads one turn more.
+fn tracked(mech: &Mechanism, state: &State, t: &crate::model::Term) -> Result<bool, SolveError> {
+    use std::f64::consts::TAU;
+    let mut probe = crate::elements::FormEval::default();
+    let mut branch = state.branch.clone();
+    mech.eval_term(t, &state.x, &mut branch, Order::Value, &mut probe)?;
+    let here = probe.value;
+    branch[t.element] = here + TAU;
+    mech.eval_term(t, &state.x, &mut branch, Order::Value, &mut probe)?;
+    Ok((probe.value - here - TAU).abs() < 1e-6)
 }
