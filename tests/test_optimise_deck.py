@@ -191,3 +191,16 @@ def test_the_synthesis_decks_from_the_command_line(cli: Cli, tmp_path: Path, ste
     assert done.returncode == 0, done.stderr
     assert "iteration 1:" in done.stderr
     assert _final_objective((tmp_path / "out" / f"{stem}.prt").read_text()) < worst
+
+
+def test_report_of_a_kin_opt_deck_says_it_shows_the_start_design(cli: Cli, tmp_path: Path) -> None:
+    deck = without_media(tmp_path)
+    done = cli("report", deck, "-o", tmp_path / "out")
+    assert done.returncode == 0, done.stderr
+    assert "KIN OPT deck: this report shows its start design" in done.stderr
+
+
+def test_check_of_a_kin_opt_deck_names_the_variables(cli: Cli) -> None:
+    done = cli("check", EXAMPLE)
+    assert done.returncode == 0, done.stderr
+    assert "KIN OPT: position 1 of the start design; the optimisation varies PARA 5 (VARY on line" in done.stdout

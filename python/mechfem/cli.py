@@ -266,6 +266,12 @@ def frame_count(text: str) -> int:
 def cmd_report(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    if optimisation(deck) is not None:
+        print(
+            f"note: {deck} is a KIN OPT deck: this report shows its start design; `mechfem run --report` optimises "
+            "it and reports the final design",
+            file=sys.stderr,
+        )
     result, interrupted = run_with_progress(deck, args.memory_limit)
     path = write_report(result, outdir)
     print(f"{deck}: {count(result.report.positions, 'position')} computed")
@@ -278,6 +284,11 @@ def cmd_check(args: argparse.Namespace) -> int:
     c = mechfem.check_deck(deck)
     a = c.adjust
     print(f"{deck}: the deck is valid")
+    opt = optimisation(deck)
+    if opt is not None:
+        print(
+            f"  KIN OPT: position 1 of the start design; the optimisation varies {optimise_deck.names_and_lines(opt)}"
+        )
     print(
         f"  {c.n_coords} co-ordinates ({c.n_coords - c.n_moving} fixed, {c.n_moving} moving), "
         f"{count(c.n_prescribed, 'prescribed row')}, {count(c.n_dependent, 'dependent form parameter')}, "
