@@ -98,7 +98,8 @@ pub enum DiagnosticKind {
     TstepeNotFirst,
     /// The MOVEMENT block has no TSTEPE.
     MissingTstepe,
-    /// BEGINPIC without ENDPIC, ENDPIC without BEGINPIC, PLOT* outside a picture, ...
+    /// BEGINPIC without ENDPIC, ENDPIC without BEGINPIC, PLOT* outside a
+    /// picture, a picture with nothing in it, ...
     PictureStructure,
     /// A co-ordinate number outside 1..N.
     CoordinateOutOfRange,
@@ -170,6 +171,38 @@ pub enum DiagnosticKind {
     ExtremumReference,
     /// The core refused the model (for example coinciding points of a binary).
     Model,
+    /// An output name (ANIMATE) that is not a plain file name: a folder
+    /// part, `..`, an absolute path, a control character or more than
+    /// [`MAX_OUTPUT_NAME`] bytes. A run writes into its output folder only.
+    OutputName,
+}
+
+/// The longest output name (in bytes) a deck may give, so that the name
+/// with its extension stays well below the 255 bytes a file name may have.
+pub const MAX_OUTPUT_NAME: usize = 200;
+
+/// Why `name` is not a plain file name that stays inside the output folder,
+/// or `None` when it is one.
+pub fn output_name_problem(name: &str) -> Option<String> {
+    let trimmed = name.trim();
+    let drive = trimmed.len() >= 2 && trimmed.as_bytes()[1] == b':' && trimmed.as_bytes()[0].is_ascii_alphabetic();
+    if trimmed.is_empty() {
+        Some("is empty".into())
+    } else if trimmed.starts_with('/') || trimmed.starts_with('\\') || drive {
+        Some("is an absolute path".into())
+    } else if trimmed.split(['/', '\\']).any(|part| part == "..") || trimmed == "." {
+        Some("leads out of the output folder (`..`)".into())
+    } else if trimmed.contains(['/', '\\']) {
+        Some("has a folder part (`/` or `\\`)".into())
+    } else if name.contains('\0') {
+        Some("holds a NUL character".into())
+    } else if name.chars().any(char::is_control) {
+        Some("holds a control character".into())
+    } else if name.len() > MAX_OUTPUT_NAME {
+        Some(format!("is {} bytes long, more than {MAX_OUTPUT_NAME}", name.len()))
+    } else {
+        None
+    }
 }
 
 /// One mistake in a deck, with the place it was found and a hint.

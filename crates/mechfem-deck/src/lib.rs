@@ -102,7 +102,7 @@ use std::path::Path;
 pub use ast::{Deck, Mode};
 pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
-pub use diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned};
+pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned, MAX_OUTPUT_NAME};
 pub use keywords::{Block, Keyword};
 pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};
 pub use parse::{parse_file, parse_str};

@@ -224,6 +224,19 @@ impl Parser<'_> {
             }
             Keyword::EndPic => {
                 if let Some(pic) = self.picture.take() {
+                    if pic.items.is_empty() {
+                        return Err(self
+                            .src
+                            .error(
+                                DiagnosticKind::PictureStructure,
+                                kw.span,
+                                format!("the picture opened at line {} has nothing in it", pic.line),
+                            )
+                            .with_hint(
+                                "put at least one PLOTFUNC, PLOTCURV or PLOTHODO line between BEGINPIC and ENDPIC, or \
+                                 remove the empty picture",
+                            ));
+                    }
                     self.storage.pictures.push(pic);
                 }
             }

@@ -8,7 +8,7 @@ use mechfem_core::{FormRef, Quantity};
 use super::refs::{coordinate, dof, form, Sizes};
 use crate::ast::{BufDef, BufList, Deck};
 use crate::compiled::{Buffer, Picture, PlotItem};
-use crate::diagnostic::{count, numbered, Diagnostic, DiagnosticKind, Hint, Spanned};
+use crate::diagnostic::{count, numbered, output_name_problem, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::Keyword;
 
 /// The compiled STORAGE block.
@@ -61,7 +61,25 @@ pub(crate) fn outputs(deck: &Deck, sizes: &Sizes) -> Result<Outputs, Box<Diagnos
         }
         pictures.push(Picture { title: pic.title.clone(), line: pic.line, items });
     }
-    Ok(Outputs { buffers, printbuf, savedata, animate: st.animate.as_ref().map(|a| a.value.clone()), pictures })
+    let animate = st.animate.as_ref().map(|a| animate_name(deck, a)).transpose()?;
+    Ok(Outputs { buffers, printbuf, savedata, animate, pictures })
+}
+
+/// The ANIMATE name, a plain file name: the animation is written into the
+/// output folder and nowhere else.
+fn animate_name(deck: &Deck, name: &Spanned<String>) -> Result<String, Box<Diagnostic>> {
+    let Some(problem) = output_name_problem(&name.value) else { return Ok(name.value.clone()) };
+    Err(deck
+        .error(DiagnosticKind::OutputName, name.span, format!("the ANIMATE name `{}` {problem}", shown(&name.value)))
+        .with_hint(
+            "give a plain file name such as `film`: the animation is written as film.gif (and film.mp4) into the \
+             output folder, and nowhere else",
+        ))
+}
+
+/// A name as a message shows it: control characters escaped (`\0`).
+fn shown(name: &str) -> String {
+    name.chars().map(|c| if c.is_control() { c.escape_debug().to_string() } else { c.to_string() }).collect()
 }
 
 /// The buffers defined in OPTIMISE and STORAGE, in the order of their

@@ -5,6 +5,12 @@
 //! or commas; blank lines and comments (`;` or `#`) are skipped. A TARGET
 //! file is a column with one row per position, where a blank row is a
 //! position without a value. File names are relative to the deck's folder.
+//!
+//! A table file is read as data only: it must be a regular file (not a
+//! folder, a device or a pipe), of at most [`MAX_TABLE_BYTES`] (or the
+//! keyword's own smaller limit) and [`MAX_TABLE_LINES`] lines, without NUL
+//! bytes (a binary file). The size is checked before reading, and the read
+//! itself is capped, so no file is read without bound.
 
 use std::io::{ErrorKind, Read};
 use std::ops::RangeInclusive;
@@ -15,6 +21,13 @@ use crate::ast::{diagnostic_at, Deck};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 use crate::lexer::lex_line;
+
+/// The largest table file read when the keyword has no smaller limit.
+pub(crate) const MAX_TABLE_BYTES: u64 = 64 << 20;
+
+/// The most lines a table file may have: more than any motion or load
+/// table needs, and few enough that a table never takes much memory.
+pub(crate) const MAX_TABLE_LINES: usize = 2_000_000;
 
 /// What a table file of a keyword must look like.
 pub(crate) struct Layout {
@@ -29,7 +42,8 @@ pub(crate) struct Layout {
     pub names: &'static [&'static str],
     /// How a row is written, for the hint of a bad row.
     pub row: &'static str,
-    /// The largest file read, with the hint for a larger one (`None`: any size).
+    /// The largest file read, with the hint for a larger one (`None`:
+    /// [`MAX_TABLE_BYTES`]).
     pub max_bytes: Option<(u64, &'static str)>,
 }
 
@@ -93,14 +107,31 @@ fn read_lines(
 ) -> Result<(PathBuf, Vec<String>), Box<Diagnostic>> {
     let path = deck_dir.join(&file.value);
     let at_deck = |message: String| deck.error(kind, file.span, message);
-    let bytes = bytes(&path, max_bytes.map(|(max, _)| max)).map_err(|e| match (e, max_bytes) {
-        (Refused::TooLarge, Some((max, hint))) => {
-            at_deck(format!("the {kw} file `{}` is larger than {} MiB", file.value, max >> 20)).with_hint(hint)
+    let (max, hint) = max_bytes.unwrap_or((
+        MAX_TABLE_BYTES,
+        "a table file holds one short row of numbers per position or time: check that the deck names the right file",
+    ));
+    let name = &file.value;
+    let bytes = bytes(&path, max).map_err(|e| match e {
+        Refused::TooLarge => {
+            at_deck(format!("the {kw} file `{name}` is larger than {} MiB", max >> 20)).with_hint(hint)
         }
-        (Refused::TooLarge, None) => at_deck(format!("the {kw} file `{}` is too large", file.value)),
-        (Refused::Io(why), _) => at_deck(format!("cannot read the {kw} file `{}`: {why}", file.value))
+        Refused::Io(why) => at_deck(format!("cannot read the {kw} file `{name}`: {why}"))
             .with_hint(format!("the file name is relative to the deck's folder; looked for {}", path.display())),
     })?;
+    if let Some(at) = bytes.iter().position(|&b| b == 0) {
+        return Err(at_deck(format!(
+            "the {kw} file `{name}` is a binary file, not a table of numbers (a NUL byte at byte {})",
+            at + 1
+        ))
+        .with_hint("a table file is text: one row of numbers per line, separated by blanks, tabs or commas"));
+    }
+    let n_lines = bytes.iter().filter(|&&b| b == b'\n').count() + usize::from(!bytes.ends_with(b"\n"));
+    if n_lines > MAX_TABLE_LINES {
+        return Err(
+            at_deck(format!("the {kw} file `{name}` has {n_lines} lines, more than {MAX_TABLE_LINES}")).with_hint(hint)
+        );
+    }
     let text = String::from_utf8_lossy(&bytes);
     let lines = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
     Ok((path, lines))
@@ -165,7 +196,7 @@ enum Refused {
 }
 
 /// The bytes of a regular file, at most `max` of them.
-fn bytes(path: &Path, max: Option<u64>) -> Result<Vec<u8>, Refused> {
+fn bytes(path: &Path, max: u64) -> Result<Vec<u8>, Refused> {
     let why = |e: std::io::Error| {
         Refused::Io(match e.kind() {
             ErrorKind::NotFound => "it does not exist".to_string(),
@@ -173,22 +204,26 @@ fn bytes(path: &Path, max: Option<u64>) -> Result<Vec<u8>, Refused> {
             _ => e.to_string(),
         })
     };
-    // A regular file only: a device such as /dev/zero, or a pipe, would be
-    // read without end (and opening a pipe waits for a writer).
-    let meta = std::fs::metadata(path).map_err(why)?;
-    if meta.is_dir() {
-        return Err(Refused::Io("it is a folder".to_string()));
-    }
-    if !meta.is_file() {
-        return Err(Refused::Io("it is not a regular file".to_string()));
-    }
-    let Some(max) = max else { return std::fs::read(path).map_err(why) };
-    if meta.len() > max {
-        return Err(Refused::TooLarge);
-    }
+    let regular = |meta: &std::fs::Metadata| {
+        if meta.is_dir() {
+            Err(Refused::Io("it is a folder".to_string()))
+        } else if !meta.is_file() {
+            Err(Refused::Io("it is not a regular file".to_string()))
+        } else if meta.len() > max {
+            Err(Refused::TooLarge)
+        } else {
+            Ok(())
+        }
+    };
+    // A regular file only, asked before opening: a device such as /dev/zero,
+    // or a pipe, would be read without end (and opening a pipe waits for a
+    // writer). Asked again of the open file, in case the name changed hands.
+    regular(&std::fs::metadata(path).map_err(why)?)?;
+    let file = std::fs::File::open(path).map_err(why)?;
+    regular(&file.metadata().map_err(why)?)?;
     // The file may have grown since: read one byte more than allowed to see.
     let mut out = Vec::new();
-    std::fs::File::open(path).map_err(why)?.take(max + 1).read_to_end(&mut out).map_err(why)?;
+    file.take(max + 1).read_to_end(&mut out).map_err(why)?;
     if out.len() as u64 > max {
         return Err(Refused::TooLarge);
     }
