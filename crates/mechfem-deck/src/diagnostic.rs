@@ -282,8 +282,17 @@ impl fmt::Display for Diagnostic {
         let pad = " ".repeat(number.len());
         writeln!(f, "{pad}--> {}:{}:{}", self.path.display(), self.line, self.columns.start + 1)?;
         writeln!(f, "{pad} |")?;
-        let shown: String =
-            self.text.chars().map(|c| if c == '\t' { "    ".to_string() } else { c.to_string() }).collect();
+        // Tabs as four blanks; other control characters (a NUL) as the
+        // replacement character, so that the message stays plain text.
+        let shown: String = self
+            .text
+            .chars()
+            .map(|c| match c {
+                '\t' => "    ".to_string(),
+                c if c.is_control() => '\u{fffd}'.to_string(),
+                c => c.to_string(),
+            })
+            .collect();
         writeln!(f, "{number} | {}", shown.trim_end())?;
         let lead: usize = self.text.chars().take(self.columns.start).map(width).sum();
         let marked: usize = self.text.chars().skip(self.columns.start).take(self.columns.len()).map(width).sum();
