@@ -11,7 +11,8 @@ every recorded buffer back as numpy arrays::
     result.report.stop_reason()  # None when every position was computed
 
 or build a mechanism in Python with named points and elements (:class:`Mechanism`), run it
-(:class:`Analysis`) and run many variants of it on every core (:func:`sweep`)::
+(:class:`Analysis`) and run many variants of it on every core (:func:`sweep`), or on a Dask cluster
+(``executor=client``; :func:`tolerance_study`, :func:`optimize` with ``starts``)::
 
     m = mechfem.Mechanism.from_deck("examples/supply/supply.mec")
     r = m.run()
@@ -52,7 +53,7 @@ from mechfem.errors import (
     RunInterrupted,
 )
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
-from mechfem.optimise import Bound, Evaluated, Optimum, Q, Target, TargetAt, TargetExtremum, optimize
+from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
 from mechfem.result import (
     AdjustInfo,
     Buffer,
@@ -72,6 +73,7 @@ from mechfem.result import (
     check_result,
     run_result,
 )
+from mechfem.tolerance import Spread, ToleranceStudy, tolerance_study
 
 try:
     __version__ = version("mechfem")
@@ -138,6 +140,8 @@ __all__ = [
     "RunInterrupted",
     "RunReport",
     "RunResult",
+    "Spread",
+    "Start",
     "Stop",
     "Storage",
     "Study",
@@ -145,10 +149,12 @@ __all__ = [
     "TargetAt",
     "TargetExtremum",
     "Term",
+    "ToleranceStudy",
     "__version__",
     "check_deck",
     "optimize",
     "run_many",
     "run_deck",
     "sweep",
+    "tolerance_study",
 ]

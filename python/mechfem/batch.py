@@ -23,12 +23,13 @@ import math
 import sys
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TextIO
 
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import _core
+from mechfem import _core, cluster
 from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import MechfemError
 from mechfem.limits import memory_limit
@@ -101,11 +102,22 @@ def run_many(
     workers: int | None = None,
     progress: Progress = True,
     order: int | None = 2,
+    executor: object | None = None,
+    chunk_size: int | None = None,
+    retries: int = cluster.RETRIES,
 ) -> list[Analysis | MechfemError]:
     """Runs every mechanism (each with ``motion``, default its own :attr:`~Mechanism.motion`) on ``workers``
     threads (default: one per core), computing the transfer functions of ``order`` (see
     :meth:`Mechanism.run`). Returns, in order, an :class:`Analysis` or the error that stopped that mechanism
-    at position 1 (with the model's names)."""
+    at position 1 (with the model's names).
+
+    With an ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``) the mechanisms go
+    out in chunks of ``chunk_size`` (see :func:`sweep`), each run on ``workers`` threads of its worker (default
+    1); an :class:`Analysis` that comes back holds a copy of its mechanism, and a chunk that could not be run
+    gives a :class:`MechfemError` with the reason for each of its mechanisms.
+    """
+    if executor is not None:
+        return _run_many_on(executor, list(mechanisms), motion, storage, workers, progress, order, chunk_size, retries)
     from mechfem import deckio
 
     # One deck per distinct mechanism: the same mechanism given many times is read and compiled once.
@@ -128,6 +140,79 @@ def run_many(
         else:
             results.append(Analysis(m, d.numbering, o, path=d.path))
     return results
+
+
+@dataclass
+class _ManyChunk:
+    """The mechanisms of :func:`run_many` that one task runs."""
+
+    mechanisms: list[Mechanism]
+    motion: Motion | None
+    storage: Storage | None
+    workers: int | None
+    order: int | None
+
+
+def _run_many_chunk(c: _ManyChunk) -> list[Analysis | MechfemError]:
+    return run_many(c.mechanisms, c.motion, c.storage, workers=c.workers, progress=False, order=c.order)
+
+
+def _run_many_on(
+    executor: object,
+    mechanisms: list[Mechanism],
+    motion: Motion | None,
+    storage: Storage | None,
+    workers: int | None,
+    progress: Progress,
+    order: int | None,
+    requested: int | None,
+    retries: int,
+) -> list[Analysis | MechfemError]:
+    if not mechanisms:
+        return []
+    size = cluster.chunk_size(len(mechanisms), _positions(motion or mechanisms[0].motion), executor, requested)
+    parts = cluster.chunks(len(mechanisms), size)
+    tasks = [_ManyChunk([mechanisms[k] for k in r], motion, storage, workers or 1, order) for r in parts]
+    outs = _on_executor(executor, _run_many_chunk, tasks, parts, progress, retries)
+    results: list[Analysis | MechfemError] = []
+    for r, out in zip(parts, outs, strict=True):
+        if isinstance(out, cluster.TaskFailed):
+            results += [MechfemError(f"the task of this chunk failed: {out.reason}") for _ in r]
+        else:
+            results += out
+    return results
+
+
+def _positions(motion: Motion | None) -> int:
+    return int(motion.steps) + 1 if motion is not None else 1
+
+
+def _on_executor(
+    executor: object,
+    fn: Callable[[Any], Any],
+    tasks: Sequence[Any],
+    parts: Sequence[range],
+    progress: Progress,
+    retries: int,
+) -> list[Any]:
+    """The tasks' results in order, with the progress counted in variants as chunks finish."""
+    from mechfem import deckio
+
+    callback = deckio.progress_callback(progress, "variants")
+    total = sum(len(r) for r in parts)
+    done = [0]
+
+    def finished(k: int, _: object) -> None:
+        done[0] += len(parts[k])
+        if callback is not None:
+            callback(done[0], total)
+
+    try:
+        return cluster.run_tasks(executor, fn, tasks, retries=retries, on_done=finished)
+    finally:
+        close = getattr(callback, "close", None)
+        if close is not None:
+            close()
 
 
 Variant = tuple[int, list[tuple[int, int, float]]]
@@ -240,6 +325,64 @@ def default_measures(mech: Mechanism) -> dict[str, Measure]:
     return out
 
 
+@dataclass
+class _Chunk:
+    """The variants of a study that one task runs: the deck texts they change (each once), the mechanism each
+    text was written from, every variant's text (its index here) and changes, its parameters, and the measures."""
+
+    texts: list[deckio.DeckText]
+    mechanisms: list[Mechanism]
+    variants: list[Variant]
+    sets: list[dict[str, Any]]
+    names: list[str]
+    measures: dict[str, Measure]
+    order: int | None
+    keep: bool
+    workers: int | None
+
+
+Rows = tuple[list[list[Any]], list["Analysis | MechfemError | None"]]
+
+
+def _failed_row(p: dict[str, Any], names: list[str], measures: int, text: str) -> list[Any]:
+    return [*(_plain(p.get(n, math.nan)) for n in names), False, False, 0, 0, text, *(math.nan,) * measures]
+
+
+def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
+    """Runs a chunk of a study: every variant's row of the table (and its result when ``c.keep``)."""
+    from mechfem import deckio
+
+    rows: list[list[Any]] = [[] for _ in c.sets]
+    kept: list[Analysis | MechfemError | None] = [None] * len(c.sets)
+
+    def take(k: int, o: _core.TextRunDict | MechfemError) -> None:
+        # Called as each variant finishes, while the workers go on with the others.
+        p, t = c.sets[k], c.variants[k][0]
+        m, d = c.mechanisms[t], c.texts[t]
+        if isinstance(o, MechfemError):
+            err = deckio.translate(o, d, m.name)
+            kept[k] = err if c.keep else None
+            text = str(err).splitlines()[0] if str(err) else type(err).__name__
+            rows[k] = _failed_row(p, c.names, len(c.measures), text)
+            return
+        a = Analysis(m, d.numbering, o, parameters=p, path=d.path)
+        kept[k] = a if c.keep else None
+        # What the table needs of the report, from the run's own dict (cheaper than the full report).
+        report = o["report"]
+        values, errors = [], []
+        for name, fn in c.measures.items():
+            try:
+                values.append(float(fn(a)))
+            except Exception as err:
+                values.append(math.nan)
+                errors.append(f"measure {name!r}: {type(err).__name__}: {err}")
+        done = [True, report["stop"] is None, a.positions, len(report["limits"]), "; ".join(errors)]
+        rows[k] = [*(_plain(p.get(n, math.nan)) for n in c.names), *done, *values]
+
+    _run_variants(c.texts, c.variants, c.workers, progress, take, c.order)
+    return rows, kept
+
+
 def sweep(
     model: Mechanism | Callable[..., Mechanism],
     parameters: Mapping[str, npt.ArrayLike] | Sequence[Mapping[str, Any]],
@@ -251,6 +394,9 @@ def sweep(
     progress: Progress = True,
     keep_results: bool = False,
     order: int | None = 2,
+    executor: object | None = None,
+    chunk_size: int | None = None,
+    retries: int = cluster.RETRIES,
 ) -> Study:
     """Runs a design study and tabulates it.
 
@@ -258,10 +404,18 @@ def sweep(
     points) the parameters change, or a function that builds a mechanism from the parameters as keyword
     arguments. ``parameters`` is a mapping name -> values (every combination is run: one name gives a
     range, several a grid) or a list of parameter sets. ``measures`` maps a column name to a function of
-    the variant's :class:`Analysis` (default :func:`default_measures`). Variants run on ``workers`` threads
+    the variant's :class:`Analysis` (default :func:`default_measures`); a measure that raises leaves NaN and
+    its error in the variant's ``error``. Variants run on ``workers`` threads
     (default: one per core) with a progress bar (``progress=False`` for none, or a callable
     ``progress(done, total)``). ``order`` is the transfer functions computed (see :meth:`Mechanism.run`);
     ``order=1`` is faster when the measures need no second order.
+
+    With an ``executor`` (a Dask ``distributed.Client``, or any ``concurrent.futures.Executor``) the variants go
+    out in chunks of ``chunk_size`` (default: about a second of work each, and at least two chunks for every
+    worker thread); a chunk's task gets the deck text once, compiles it once and runs its variants on
+    ``workers`` threads of its worker (default 1: Dask runs one task per worker thread), and sends back the
+    rows (and the full results with ``keep_results``). A Dask task that raises is run again up to ``retries``
+    times; a chunk that cannot be run at all is a set of rows with ``ok`` False and the reason in ``error``.
     """
     from mechfem import deckio
 
@@ -274,11 +428,8 @@ def sweep(
     if isinstance(model, Mechanism):
         # One deck for the whole study; each variant changes numbers of it.
         base = deckio.write(model, motion or model.motion, storage or model.storage)
-        for p in sets:
-            variants.append((0, _changes(model._targets(p), base.numbering)))
-            decks.append(base)
-            mechanisms.append(model)
-        texts = [base]
+        variants = [(0, _changes(model._targets(p), base.numbering)) for p in sets]
+        decks, mechanisms = [base], [model]
     else:
         for k, p in enumerate(sets):
             m = model(**p)
@@ -287,34 +438,36 @@ def sweep(
             decks.append(deckio.write(m, motion or m.motion, storage or m.storage))
             variants.append((k, []))
             mechanisms.append(m)
-        texts = decks
     chosen = dict(measures) if measures is not None else default_measures(mechanisms[0])
     names = list(sets[0]) if isinstance(parameters, Mapping) else sorted({k for p in sets for k in p})
     fixed = ["ok", "complete", "positions", "limits", "error"]
     for extra in (*fixed, *chosen):
         if extra in names or (extra in chosen and extra in fixed):
             raise ValueError(f"the column name {extra!r} is used twice")
-    rows: list[list[Any]] = [[] for _ in sets]
-    kept: list[Analysis | MechfemError | None] = [None] * len(sets)
 
-    def take(k: int, o: _core.TextRunDict | MechfemError) -> None:
-        # Called as each variant finishes, while the workers go on with the others.
-        p, m, d = sets[k], mechanisms[k], decks[k]
-        row = [_plain(p.get(n, math.nan)) for n in names]
-        if isinstance(o, MechfemError):
-            err = deckio.translate(o, d, m.name)
-            kept[k] = err if keep_results else None
-            text = str(err).splitlines()[0] if str(err) else type(err).__name__
-            rows[k] = [*row, False, False, 0, 0, text, *(math.nan for _ in chosen)]
-            return
-        a = Analysis(m, d.numbering, o, parameters=p, path=d.path)
-        kept[k] = a if keep_results else None
-        # What the table needs of the report, from the run's own dict (cheaper than the full report).
-        report = o["report"]
-        done = [True, report["stop"] is None, a.positions, len(report["limits"]), ""]
-        rows[k] = [*row, *done, *(float(fn(a)) for fn in chosen.values())]
+    def part(r: range, threads: int | None) -> _Chunk:
+        # A chunk carries each deck text it needs once.
+        some, vs = sets[r.start : r.stop], variants[r.start : r.stop]
+        if isinstance(model, Mechanism):
+            return _Chunk(decks, mechanisms, vs, some, names, chosen, order, keep_results, threads)
+        ts, ms, vs = decks[r.start : r.stop], mechanisms[r.start : r.stop], [(j, []) for j in range(len(r))]
+        return _Chunk(ts, ms, vs, some, names, chosen, order, keep_results, threads)
 
-    _run_variants(texts, variants, workers, progress, take, order)
+    if executor is None:
+        rows, kept = _study_rows(part(range(len(sets)), workers), progress)
+    else:
+        positions = _positions(motion or mechanisms[0].motion)
+        parts = cluster.chunks(len(sets), cluster.chunk_size(len(sets), positions, executor, chunk_size))
+        tasks = [part(r, workers or 1) for r in parts]
+        rows, kept = [], []
+        for r, out in zip(parts, _on_executor(executor, _study_rows, tasks, parts, progress, retries), strict=True):
+            if isinstance(out, cluster.TaskFailed):
+                text = f"the task of this chunk failed: {out.reason}"
+                rows += [_failed_row(sets[k], names, len(chosen), text) for k in r]
+                kept += [MechfemError(text) if keep_results else None for _ in r]
+            else:
+                rows += out[0]
+                kept += out[1]
     columns: dict[str, list[Any]] = {n: [r[c] for r in rows] for c, n in enumerate([*names, *fixed, *chosen])}
     results = [r for r in kept if r is not None] if keep_results else None
     arrays = {n: _column(v) for n, v in columns.items()}

@@ -9,7 +9,10 @@ quantity and evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.d
 from __future__ import annotations
 
 import copy
+import dataclasses
+import math
 import sys
+import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
@@ -101,10 +104,27 @@ class Optimum:
     seconds: float
     method: str
     motion: Motion | None = field(default=None, repr=False)
+    starts: list[Start] = field(default_factory=list, repr=False)
+    """Every start's outcome (one for a single start); this optimum is the best of them."""
 
     def run(self) -> Analysis:
         """The optimised mechanism run through the motion the optimisation used."""
         return self.mechanism.run(self.motion)
+
+
+@dataclass
+class Start:
+    """One start of :func:`optimize`: the variables' start values, where the optimiser took them (None when the
+    start failed) and the objective there (NaN when it failed), its runs and time, and ``message``: the
+    optimiser's word, or why the start failed (e.g. its design cannot be assembled)."""
+
+    start: dict[str, float]
+    values: dict[str, float] | None
+    objective: float
+    runs: int
+    success: bool
+    message: str
+    seconds: float
 
 
 class _Deck:
@@ -198,6 +218,9 @@ def optimize(
     steps: int = 200,
     tol: float | None = None,
     progress: bool | Callable[[Iteration], object] | None = None,
+    starts: int = 1,
+    seed: int | None = None,
+    executor: object | None = None,
 ) -> Optimum:
     """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
     start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
@@ -216,7 +239,27 @@ def optimize(
     Raises ValueError for a name that cannot vary and :class:`~mechfem.design.Infeasible` when the start design
     cannot be assembled or moved through the motion. A design met on the way that cannot is reported to the
     optimiser as a very poor one, never raised.
+
+    ``starts`` > 1 is a multi-start: the given design and ``starts - 1`` designs drawn uniformly within the ranges
+    of ``vary`` (a random generator seeded with ``seed``) are each optimised, one after the other or as tasks of
+    an ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``; there ``progress`` is
+    not shown). The best optimum is returned; its ``starts`` holds every start's :class:`Start`, and a start that
+    failed is one of them. :class:`~mechfem.design.Infeasible` is raised only when every start failed.
     """
+    if starts != 1 or executor is not None:
+        kwargs = {
+            "targets": targets,
+            "bounds": bounds,
+            "minimize": minimize,
+            "maximize": maximize,
+            "objective": objective,
+            "quantities": quantities,
+            "motion": motion,
+            "steps": steps,
+            "tol": tol,
+            "progress": progress,
+        }
+        return _multi_start(mechanism, vary, kwargs, starts, seed, executor)
     motion = motion or mechanism.motion
     if motion is None:
         raise ValueError("an optimisation needs a motion (its positions are where targets are compared)")
@@ -294,7 +337,92 @@ def optimize(
         seconds=sol.seconds,
         method=sol.method,
         motion=motion,
+        starts=[
+            Start(
+                dict(zip(vary, map(float, sol.start), strict=True)),
+                dict(zip(vary, map(float, sol.x), strict=True)),
+                sol.objective,
+                sol.runs,
+                sol.success,
+                sol.message,
+                sol.seconds,
+            )
+        ],
     )
+
+
+# --- multi-start ---------------------------------------------------------------------------------------------------
+
+
+def _holder(mech: Mechanism, name: str) -> Coordinate | Row:
+    """What holds the value of the design variable ``name``: a co-ordinate or a prescribed row."""
+    obj = _lookup(mech, name)
+    if isinstance(obj, FormParameter):
+        rows = [r for r in mech.prescribed if r.terms == ((1.0, obj),)]
+        if not rows:
+            raise ValueError(f"{name!r} is not prescribed: only a prescribed value or a fixed co-ordinate can vary")
+        return rows[0]
+    return obj
+
+
+def _with_values(mech: Mechanism, values: Mapping[str, float]) -> Mechanism:
+    """A copy of ``mech`` whose design variables (as ``vary`` names them) take ``values``."""
+    out = copy.deepcopy(mech)
+    for name, x in values.items():
+        _holder(out, name).value = float(x)
+    return out
+
+
+def _one_start(task: tuple[Mechanism, dict[str, tuple[float, float]], dict[str, Any]]) -> Optimum | tuple[str, float]:
+    """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
+    from mechfem.errors import MechfemError
+
+    mech, vary, kwargs = task
+    t0 = time.perf_counter()
+    try:
+        return optimize(mech, vary, **kwargs)
+    except MechfemError as err:
+        return str(err) or type(err).__name__, time.perf_counter() - t0
+
+
+def _multi_start(
+    mechanism: Mechanism,
+    vary: Mapping[str, tuple[float, float]],
+    kwargs: dict[str, Any],
+    starts: int,
+    seed: int | None,
+    executor: object | None,
+) -> Optimum:
+    from mechfem import cluster
+
+    if starts < 1:
+        raise ValueError(f"starts must be at least 1, got {starts}")
+    lo = np.array([float(v[0]) for v in vary.values()])
+    hi = np.array([float(v[1]) for v in vary.values()])
+    draws = lo + (hi - lo) * np.random.default_rng(seed).random((starts - 1, len(vary)))
+    designs = [mechanism] + [_with_values(mechanism, dict(zip(vary, x, strict=True))) for x in draws]
+    tasks = [(m, dict(vary), kwargs) for m in designs]
+    if executor is None:
+        outs: list[Any] = [_one_start(t) for t in tasks]
+    else:
+        remote = {**kwargs, "progress": None}
+        tasks = [(m, v, remote) for m, v, _ in tasks]
+        outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
+    outcomes: list[Start] = []
+    for m, out in zip(designs, outs, strict=True):
+        if isinstance(out, Optimum):
+            outcomes.append(out.starts[0])
+            continue
+        reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
+        begin = {name: float(v) for name in vary if (v := _holder(m, name).value) is not None}
+        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
+    found = [out for out in outs if isinstance(out, Optimum)]
+    if not found:
+        raise design.Infeasible(
+            "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
+        )
+    best = min(found, key=lambda o: o.objective)
+    return dataclasses.replace(best, starts=outcomes)
 
 
 def _carry_position_one(
@@ -371,4 +499,15 @@ def _named(
     return call
 
 
-__all__ = ["Bound", "Evaluated", "Optimum", "Q", "Target", "TargetAt", "TargetExtremum", "optimize", "sensitivity"]
+__all__ = [
+    "Bound",
+    "Evaluated",
+    "Optimum",
+    "Q",
+    "Start",
+    "Target",
+    "TargetAt",
+    "TargetExtremum",
+    "optimize",
+    "sensitivity",
+]
