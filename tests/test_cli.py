@@ -141,11 +141,11 @@ def test_usage_error_exits_2(cli: Cli) -> None:
     assert "Traceback" not in proc.stderr
 
 
-def test_stopped_motion_writes_partial_results_and_fails(cli: Cli, tmp_path: Path) -> None:
+def test_stopped_motion_writes_partial_results_and_exits_3(cli: Cli, tmp_path: Path) -> None:
     from test_api import ROCKER
 
     proc = cli("run", ROCKER, "-o", tmp_path)
-    assert proc.returncode == 1
+    assert proc.returncode == 3
     assert "The motion stopped after position" in proc.stderr
     assert "Traceback" not in proc.stderr
     rows = (tmp_path / "rocker.csv").read_text().splitlines()

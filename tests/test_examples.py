@@ -67,7 +67,7 @@ def test_there_are_examples() -> None:
 def test_example_runs_and_writes_print_file_and_data_set(cli: Cli, tmp_path: Path, deck: Path) -> None:
     proc = cli("run", deck, "-o", tmp_path)
     stops = stops_on_purpose(deck)
-    assert proc.returncode == (1 if stops else 0), proc.stderr
+    assert proc.returncode == (3 if stops else 0), proc.stderr
     prt, data = tmp_path / f"{deck.stem}.prt", tmp_path / f"{deck.stem}.csv"
     assert prt.is_file() and data.is_file(), proc.stdout
 

@@ -235,7 +235,7 @@ ST_F0 = 7.0  # x of F0 in stephenson_limits.mec
 
 def test_stephenson_limits_driven_run_stops_at_the_first_limit(cli: Cli, tmp_path: Path) -> None:
     proc = cli("run", LIMITS / "stephenson_limits.mec", "-o", tmp_path)
-    assert proc.returncode == 1
+    assert proc.returncode == 3
     r = run("stephenson_limits")
     stop = r.report.stop
     assert stop is not None and stop.limit is not None and stop.limit.kind == "input_limit"
@@ -294,7 +294,7 @@ SC_FAR, SC_NEAR = SC_B + SC_A, SC_B - SC_A  # xB at the dead centres: stretched 
 
 def test_slider_driven_stops_at_the_dead_centre(cli: Cli, tmp_path: Path) -> None:
     proc = cli("run", LIMITS / "slider_dead_centre.mec", "-o", tmp_path)
-    assert proc.returncode == 1
+    assert proc.returncode == 3
     r = run("slider_dead_centre")
     stop = r.report.stop
     assert stop is not None and stop.limit is not None and stop.limit.kind == "input_limit"

@@ -57,7 +57,7 @@ def test_every_example_deck_runs(cli: Cli, tmp_path: Path) -> None:
     assert decks
     for deck in decks:
         proc = cli("run", deck, "-o", tmp_path / deck.stem)
-        assert proc.returncode == (1 if stops_on_purpose(deck) else 0), f"{deck}: {proc.stderr}"
+        assert proc.returncode == (3 if stops_on_purpose(deck) else 0), f"{deck}: {proc.stderr}"
 
 
 def test_readme_python_example_runs(monkeypatch: pytest.MonkeyPatch) -> None:

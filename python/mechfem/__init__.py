@@ -28,7 +28,8 @@ raises :class:`AssemblyError`, :class:`ConvergenceError` or
 :class:`LimitPositionError`; a run whose results would not fit in the memory
 limit (:mod:`mechfem.limits`) raises :class:`ResourceError` before it starts.
 A motion that stops later is not an error: the result holds every position up
-to the last good one and says why it stopped. Ctrl-C raises
+to the last good one, says why it stopped and warns with
+:class:`IncompleteRunWarning`. Ctrl-C raises
 :class:`RunInterrupted` carrying the positions computed before it.
 """
 
@@ -47,10 +48,12 @@ from mechfem.errors import (
     AssemblyError,
     ConvergenceError,
     DeckError,
+    IncompleteRunWarning,
     LimitPositionError,
     MechfemError,
     ResourceError,
     RunInterrupted,
+    warn_incomplete,
 )
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
@@ -92,13 +95,15 @@ def run_deck(
     ``progress``, if given, is called about every 1% of the positions. ``memory_limit`` (bytes, or a size
     such as ``"4G"``; default :func:`mechfem.limits.memory_limit`) bounds the memory the results may take:
     a run that would need more raises :class:`ResourceError` before it starts. Ctrl-C raises
-    :class:`RunInterrupted` with the positions computed so far in its ``result``.
+    :class:`RunInterrupted` with the positions computed so far in its ``result``. A motion that stops early
+    returns the positions up to there and warns with :class:`IncompleteRunWarning`.
     """
     deck = Path(path)
     d = _core.run_deck(os.fspath(deck), progress, limits.memory_limit(memory_limit))
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)
+    warn_incomplete(result.report.stop_reason())
     return result
 
 
@@ -121,6 +126,7 @@ __all__ = [
     "Driven",
     "Element",
     "Evaluated",
+    "IncompleteRunWarning",
     "Infeasible",
     "Keep",
     "Limit",

@@ -9,10 +9,18 @@
                                    run the deck and write only the interactive report DECK-stem.html
     mechfem check DECK             read the deck and compute position 1 only
 
-Exit status: 0 on success; 1 when the deck has a mistake, position 1 cannot be computed, the results would
-not fit in the memory limit, the motion stopped early (its results are still written) or an output file
-cannot be written; 2 for a wrong command line; 3 for an internal error; 130 after Ctrl-C (a run writes
-every position computed before it). Messages go to stderr as one short paragraph, never a traceback.
+Exit status:
+
+    0    complete: every position computed and every output written
+    1    nothing computed: a mistake in the deck or the command, position 1 cannot be computed, the results would
+         not fit in the memory limit, an optimisation that cannot start, or an output file that cannot be written
+    2    a wrong command line
+    3    the motion (or simulation, or the optimisation's final run) stopped early: the results up to there are
+         written, and stderr says why
+    4    an internal error of mechfem (a bug)
+    130  Ctrl-C (a run writes every position computed before it)
+
+Messages go to stderr as one short paragraph, never a traceback.
 """
 
 from __future__ import annotations
@@ -20,6 +28,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import sys
+import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING, TextIO
 
@@ -44,7 +53,8 @@ if TYPE_CHECKING:
 
 EXIT_OK = 0
 EXIT_FAILED = 1
-EXIT_INTERNAL = 3
+EXIT_STOPPED = 3
+EXIT_INTERNAL = 4
 EXIT_INTERRUPTED = 130
 
 
@@ -142,7 +152,10 @@ def run_with_progress(deck: Path, limit: int | None) -> tuple[mechfem.RunResult,
     whether Ctrl-C stopped it (the result then holds the positions computed before)."""
     bar = ProgressBar(sys.stderr)
     try:
-        return mechfem.run_deck(deck, progress=bar, memory_limit=limit), False
+        # A stopped motion is said once, with the exit status (exit_status), not as a Python warning.
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", mechfem.IncompleteRunWarning)
+            return mechfem.run_deck(deck, progress=bar, memory_limit=limit), False
     except RunInterrupted as e:
         return e.result, True
     finally:
@@ -159,7 +172,7 @@ def exit_status(deck: Path, result: mechfem.RunResult, interrupted: bool) -> int
         return EXIT_INTERRUPTED
     if reason is not None:
         print(f"error: {deck}: {reason}", file=sys.stderr)
-        return EXIT_FAILED
+        return EXIT_STOPPED
     return EXIT_OK
 
 

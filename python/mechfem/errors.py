@@ -14,7 +14,8 @@ All of them derive from :class:`MechfemError`:
   (:mod:`mechfem.limits`); the run was refused before it started.
 
 A motion that stops after position 1 is not an error: the run returns what
-it computed and says why it stopped (:attr:`mechfem.RunReport.stop`).
+it computed and says why it stopped (:attr:`mechfem.RunReport.stop`), and
+warns with :class:`IncompleteRunWarning` so that a script notices.
 
 Ctrl-C during a run raises :class:`RunInterrupted`, a ``KeyboardInterrupt``
 that carries the positions computed before it in ``result``, so a script
@@ -23,6 +24,7 @@ still stops while the command line writes them.
 
 from __future__ import annotations
 
+import warnings
 from typing import Generic, TypeVar
 
 from mechfem._core import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
@@ -39,10 +41,23 @@ class RunInterrupted(KeyboardInterrupt, Generic[R]):
         self.result = result
 
 
+class IncompleteRunWarning(UserWarning):
+    """The motion (or simulation) stopped before its last position: the result holds every position up to there,
+    and its ``stop_reason()`` says why (the warning's message says it too)."""
+
+
+def warn_incomplete(reason: str | None, stacklevel: int = 3) -> None:
+    """Warns with :class:`IncompleteRunWarning` when ``reason`` (a run's stop reason) is not None; ``stacklevel``
+    counts from the caller of this function, as :func:`warnings.warn` does."""
+    if reason is not None:
+        warnings.warn(f"the motion stopped early: {reason}", IncompleteRunWarning, stacklevel=stacklevel)
+
+
 __all__ = [
     "AssemblyError",
     "ConvergenceError",
     "DeckError",
+    "IncompleteRunWarning",
     "LimitPositionError",
     "MechfemError",
     "ResourceError",

@@ -26,7 +26,7 @@ class Media:
         """The print file's section on pictures, animation and report; empty when there are none."""
         r, out = self.result, []
         for k, (pic, (png, svg)) in enumerate(zip(r.storage.pictures, picture_files(r, self.outdir), strict=True), 1):
-            plots = ", ".join(f"{p.keyword} {p.a} {p.b}" for p in pic.plots)
+            plots = ", ".join(f"{p.keyword} {p.a} {p.b}" for p in pic.plots) or "no plots"
             title = f" '{pic.title}'" if pic.title else ""
             out.append(f"  picture {k}{title} (line {pic.line}: {plots}): {png.name}, {svg.name}")
         if r.storage.animate:

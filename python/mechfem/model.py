@@ -889,11 +889,15 @@ class Mechanism:
         :class:`~mechfem.LimitPositionError` when position 1 cannot be computed, with this model's names, and
         :class:`~mechfem.ResourceError` before the run when its results would exceed the memory limit
         (:mod:`mechfem.limits`). Ctrl-C raises :class:`~mechfem.RunInterrupted` with the :class:`Analysis` of
-        the positions computed so far.
+        the positions computed so far. A motion that stops early returns the positions up to there
+        (:meth:`Analysis.stop_reason` says why) and warns with :class:`~mechfem.IncompleteRunWarning`.
         """
         from mechfem import deckio
+        from mechfem.errors import warn_incomplete
 
-        return deckio.run(self, motion or self.motion, storage or self.storage, progress=progress, order=order)
+        analysis = deckio.run(self, motion or self.motion, storage or self.storage, progress=progress, order=order)
+        warn_incomplete(analysis.stop_reason())
+        return analysis
 
     def simulate(
         self,

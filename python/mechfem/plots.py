@@ -342,6 +342,15 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
     if zoom:
         widths.append(7.5)
     height = 6.5 if curves else 5.0
+    if panels == 0:
+        # A picture without plots (the deck reader refuses one; the Python API may still build one): one empty
+        # panel that says so.
+        fig = Figure(figsize=(7.0, height), layout="constrained")
+        ax = fig.subplots()
+        ax.text(0.5, 0.5, "this picture has no plots", ha="center", va="center", transform=ax.transAxes)
+        ax.set_axis_off()
+        fig.suptitle(picture_title(result, index))
+        return fig
     fig = Figure(figsize=(max(sum(widths) + 0.6 * panels, 7.0), height), layout="constrained")
     axes = fig.subplots(1, panels, width_ratios=widths, squeeze=False)[0]
     k = 0

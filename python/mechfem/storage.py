@@ -90,6 +90,8 @@ class Storage:
                 out.append((kw, p[1], p[2]))
             else:
                 raise ValueError(f"not a plot: {p!r}")
+        if not out:
+            raise ValueError(f"picture {title!r} has no plots: give at least one, e.g. ('PLOTFUNC', bx, by)")
         self.pictures.append(Picture(title, out))
         return self
 
