@@ -17,7 +17,7 @@ STOP_MARK = "; expect: the motion stops at a limit position"
 
 def stops_on_purpose(deck: Path) -> bool:
     """Whether an example deck demonstrates a driven motion stopping at a limit
-    position (it says so in a comment line); such a run exits with status 1."""
+    position (it says so in a comment line); such a run exits with status 3."""
     return STOP_MARK in deck.read_text()
 
 
