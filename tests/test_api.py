@@ -68,6 +68,7 @@ def test_progress_is_reported_up_to_the_last_position() -> None:
     assert [d for d, _ in calls] == sorted(d for d, _ in calls)
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_motion_that_stops_returns_what_was_computed() -> None:
     result = mechfem.run_deck(ROCKER)
     stop = result.report.stop

@@ -169,6 +169,7 @@ def test_nearly_singular_dc_still_gives_the_exact_position(tmp_path: Path) -> No
     assert np.isfinite(r.buffers[3]).all()
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_driven_past_the_limit_stops_there_with_a_reason(tmp_path: Path) -> None:
     limit = stretched_angle()
     r = mechfem.run_deck(rocker_deck(tmp_path, 2.0, limit - 0.1, 50))
@@ -196,6 +197,7 @@ def test_a_bar_of_zero_or_negative_length_is_a_clear_error(tmp_path: Path, lengt
     assert "length" in message and "zero.mec:" in message
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_coinciding_points_during_the_motion_stop_it_clearly(tmp_path: Path) -> None:
     # A bar whose prescribed length is the input, driven from 1 through 0 to -1: at length 0 its points
     # coincide and its angle no longer exists.

@@ -157,6 +157,7 @@ def test_nongrashof_print_file_lists_the_limit_positions(cli: Cli, tmp_path: Pat
     assert "nan" not in (tmp_path / "nongrashof.csv").read_text()
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_nongrashof_driven_by_its_crank_stops_at_its_limit(tmp_path: Path) -> None:
     deck = tmp_path / "driven.mec"
     deck.write_text(
@@ -233,6 +234,7 @@ def test_stephenson_print_file_reports_transfer_quality(tmp_path: Path) -> None:
 ST_F0 = 7.0  # x of F0 in stephenson_limits.mec
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_stephenson_limits_driven_run_stops_at_the_first_limit(cli: Cli, tmp_path: Path) -> None:
     proc = cli("run", LIMITS / "stephenson_limits.mec", "-o", tmp_path)
     assert proc.returncode == 3
@@ -259,6 +261,7 @@ def test_stephenson_limits_driven_run_stops_at_the_first_limit(cli: Cli, tmp_pat
         assert len(list(csv.reader(f))) == 1 + k
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_stephenson_limits_suggested_free_motion_passes_both_limits(tmp_path: Path) -> None:
     driven = run("stephenson_limits")
     line, ds = suggested_free_motion(driven.report.stop_reason() or "")
@@ -292,6 +295,7 @@ SC_A, SC_B = 1.0, 3.0
 SC_FAR, SC_NEAR = SC_B + SC_A, SC_B - SC_A  # xB at the dead centres: stretched and folded
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_slider_driven_stops_at_the_dead_centre(cli: Cli, tmp_path: Path) -> None:
     proc = cli("run", LIMITS / "slider_dead_centre.mec", "-o", tmp_path)
     assert proc.returncode == 3

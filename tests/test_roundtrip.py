@@ -51,6 +51,7 @@ def test_there_are_example_decks() -> None:
     assert any(mode(p) == "DYN SIM" for p in DYNAMIC_DECKS)
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 @pytest.mark.parametrize("deck", DECKS, ids=deck_id)
 def test_example_deck_read_into_the_api_gives_the_deck_results(deck: Path) -> None:
     try:
@@ -95,6 +96,7 @@ def plain(motion: Motion | None) -> tuple[object, ...] | None:
     return (motion.steps, motion.dt, motion.accuracy, motion.max_iter, motion.rtol, motion.atol, inputs)
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 @pytest.mark.parametrize("deck", DECKS, ids=deck_id)
 def test_every_transfer_function_agrees_with_the_deck_within_its_accuracy(deck: Path) -> None:
     # With every transfer function computed (the default), positions are predicted otherwise than in a

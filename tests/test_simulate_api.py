@@ -231,6 +231,7 @@ def test_a_driven_input_may_follow_a_table() -> None:
 # --- stopping early ---------------------------------------------------------------------------------------------------
 
 
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
 def test_a_simulation_that_stops_early_keeps_what_it_reached() -> None:
     # A stiff spring with a strong damper: the explicit integrator detects the stiffness and gives up.
     m = Mechanism("stiff")
