@@ -160,9 +160,10 @@ impl Quantity {
     }
 
     /// The quantity's derivative with respect to design variable `var` of
-    /// `s` (computed at this position, [`Sensitivity::compute`]): NaN for
-    /// det(D^c), time and the dynamics, which have none, and for a quantity
-    /// made from transfer functions that were not computed.
+    /// `s` (computed at this position, [`Sensitivity::compute`]): 0 for the
+    /// time, which the motion fixes; NaN for det(D^c) and the dynamics,
+    /// which have none, and for a quantity made from transfer functions
+    /// that were not computed.
     pub fn sensitivity(&self, v: &PositionView<'_>, s: &Sensitivity, var: usize) -> f64 {
         let mech = v.mech;
         let (qd, qdd) = (v.input_vel, v.input_acc);
@@ -192,6 +193,8 @@ impl Quantity {
         let input_of = |r: usize| (0..nd).find(|&j| mech.input_row(j) == r);
         let dvel = |j: usize| s.input_rate(j, var);
         match *self {
+            // The times are the motion's (TSTEPE, a MOV_FUNC table's), whatever the design.
+            Quantity::Time => 0.0,
             Quantity::Input(j) => input_scale(j),
             Quantity::X0(i) => s.dx(i, var),
             Quantity::Kx1 { coord, j } => s.dx1(coord, j, var),

@@ -158,10 +158,12 @@ proptest! {
 }
 
 /// The generator is worth its time: a fair share of its decks compile and
-/// run, some to the end, and some are refused.
+/// run, some to the end, and some are refused; decks of every mode get
+/// through the reader.
 #[test]
 fn generated_decks_reach_the_solver() {
     let mut counts = std::collections::HashMap::new();
+    let mut modes = std::collections::BTreeMap::<String, usize>::new();
     let mut seed = 0x2545_f491_4f6c_dd1du64;
     for _ in 0..300 {
         let choices: Vec<u8> = (0..300)
@@ -173,7 +175,15 @@ fn generated_decks_reach_the_solver() {
             })
             .collect();
         let text = deck(&mut Bytes::new(&choices));
-        *counts.entry(check_deck(&text, Path::new(DIR), MAX_STEPS)).or_insert(0) += 1;
+        let outcome = check_deck(&text, Path::new(DIR), MAX_STEPS);
+        *counts.entry(outcome).or_insert(0) += 1;
+        if outcome != Outcome::Rejected {
+            *modes.entry(text.lines().next().unwrap_or("").to_string()).or_insert(0) += 1;
+        }
+    }
+    // The new modes are reached too: designs evaluated, simulations run.
+    for mode in ["KIN ANA", "DYN ANA", "DYN SIM", "KIN OPT"] {
+        assert!(modes.get(mode).copied().unwrap_or(0) >= 3, "{modes:?}");
     }
     let count = |o| counts.get(&o).copied().unwrap_or(0);
     assert!(count(Outcome::Rejected) > 0, "{counts:?}");

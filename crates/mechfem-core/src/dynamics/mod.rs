@@ -27,7 +27,7 @@ mod simulate;
 
 pub use body::Frame;
 pub use inverse::InverseDynamics;
-pub use simulate::{simulate, SimReport};
+pub use simulate::{simulate, simulate_within, SimReport};
 
 use crate::elements::ElementType;
 use crate::model::{FormRef, Mechanism};

@@ -334,7 +334,14 @@ struct Integrated {
     error: Option<SolveError>,
 }
 
-fn integrate<D: Dim>(ode: &mut Ode<'_, '_>, dim: D, y0: &[f64], end: f64, dt: f64, tol: Integration) -> Integrated
+fn integrate<D: Dim>(
+    ode: &mut Ode<'_, '_>,
+    dim: D,
+    y0: &[f64],
+    (end, dt): (f64, f64),
+    tol: Integration,
+    budget: Option<u32>,
+) -> Integrated
 where
     DefaultAllocator: Allocator<D>,
 {
@@ -353,7 +360,7 @@ where
         10.0,
         end,
         0.0,
-        max_steps(end, dt),
+        budget.unwrap_or_else(|| max_steps(end, dt)),
         1000,
         OutputType::Dense,
     );
@@ -371,6 +378,9 @@ where
                 time: x,
                 reason: "the step size collapsed: no position could be found beyond this time (a limit position?)",
             },
+            ode_solvers::dop_shared::IntegrationError::MaxNumStepReached { x, .. } if budget.is_some() => {
+                SolveError::Simulation { time: x, reason: "the integrator used up the step budget it was given" }
+            }
             ode_solvers::dop_shared::IntegrationError::MaxNumStepReached { x, .. } => SolveError::Simulation {
                 time: x,
                 reason: "the integrator needed more than 2000 steps per output interval on average: the motion \
@@ -414,6 +424,25 @@ pub fn simulate(
     params: &Params,
     integration: &Integration,
     dynamics: &Dynamics,
+    observer: &mut dyn Observer,
+) -> Result<SimReport, SolveError> {
+    simulate_within(mech, state, motion, params, integration, dynamics, None, observer)
+}
+
+/// As [`simulate`], with at most `budget` accepted and rejected integrator
+/// steps instead of the default (2000 per output interval on average, at
+/// least 200 000), for a caller that must bound the work any model can
+/// cause (a fuzzer, a quick check). A simulation that uses the budget up
+/// stops with that reason, like any other early end.
+#[allow(clippy::too_many_arguments)]
+pub fn simulate_within(
+    mech: &Mechanism,
+    state: &mut State,
+    motion: &Motion,
+    params: &Params,
+    integration: &Integration,
+    dynamics: &Dynamics,
+    budget: Option<u32>,
     observer: &mut dyn Observer,
 ) -> Result<SimReport, SolveError> {
     let nd = mech.n_dof();
@@ -474,10 +503,10 @@ pub fn simulate(
     let past = span + motion.dt;
     let out = match nf {
         0 => Integrated { times: vec![0.0], states: vec![vec![]], stats: (0, 0, 0), error: None },
-        1 => integrate(&mut ode, Const::<2>, &y0, past, motion.dt, *integration),
-        2 => integrate(&mut ode, Const::<4>, &y0, past, motion.dt, *integration),
-        3 => integrate(&mut ode, Const::<6>, &y0, past, motion.dt, *integration),
-        _ => integrate(&mut ode, Dyn(2 * nf), &y0, past, motion.dt, *integration),
+        1 => integrate(&mut ode, Const::<2>, &y0, (past, motion.dt), *integration, budget),
+        2 => integrate(&mut ode, Const::<4>, &y0, (past, motion.dt), *integration, budget),
+        3 => integrate(&mut ode, Const::<6>, &y0, (past, motion.dt), *integration, budget),
+        _ => integrate(&mut ode, Dyn(2 * nf), &y0, (past, motion.dt), *integration, budget),
     };
     let Ode { eom, observer, .. } = ode;
     let mut eom = eom.into_inner();

@@ -109,12 +109,29 @@ impl Parser<'_> {
     }
 }
 
-/// `lo hi` of VARY, VARYX or BOUND: two numbers, lo below hi.
+/// `lo hi` of VARY, VARYX or BOUND: two numbers, lo below hi; for a design
+/// variable also hi - lo finite (the optimiser scales its steps by it).
 fn range(src: &Source<'_>, kw: Keyword, lo: &Word, hi: &Word) -> Result<(Spanned<f64>, Spanned<f64>), Box<Diagnostic>> {
     let lo = src.real(lo, "the lower end lo")?;
     let hi = src.real(hi, "the upper end hi")?;
-    if lo.value < hi.value {
+    if lo.value < hi.value && (kw == Keyword::Bound || (hi.value - lo.value).is_finite()) {
         return Ok((lo, hi));
+    }
+    if lo.value < hi.value {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                lo.span.to(hi.span),
+                format!(
+                    "{kw}'s range [{}, {}] is wider than a number can hold: hi - lo overflows",
+                    real(lo.value),
+                    real(hi.value)
+                ),
+            )
+            .with_hint(
+                "the optimiser measures a variable's steps against its range: give the range the variable can \
+                 sensibly take (its width below about 1.8e308)",
+            ));
     }
     let hint = if kw == Keyword::Bound {
         "give `BOUND b lo hi` with lo below hi: the buffer must stay within [lo, hi] at every position"

@@ -71,12 +71,90 @@ const EXTREME_REALS: &[&str] =
     &["1e308", "-1e308", "1.7976931348623157e308", "1D300", "1e-308", "-1e-308", "5e-324", "1d-300", "1e154", "1e-154"];
 /// Words that are keywords, element types or form names.
 const WORDS: &[&str] = &[
-    "KIN", "ANA", "DYN", "TOPOLOGY", "GEOMETRY", "MOVEMENT", "STORAGE", "END", "ELEM", "FORM", "NRDOF", "XFIX", "XMOV",
-    "PARA", "TSTEPE", "MOV_RELE", "MOV_ABSE", "MOV_FUNC", "MOV_FREE", "ACCURACY", "MAXITER", "BUFINP", "BUFTIME",
-    "BUFX0", "BUFKX2", "BUFAE", "BUFDET", "PRINTBUF", "SAVEDATA", "ANIMATE", "BEGINPIC", "ENDPIC", "PLOTFUNC",
-    "PLOTHODO", "BIN", "TR2", "GR1", "BLT", "CRD", "LENL", "ANGB", "GEAR", "BELT", "COOR", ";", "\t", "Ä", "\u{0}",
-    "\r", "DYNAMICS", "MASS", "PMASS", "GRAVITY", "LOADFUNC", "SPRING", "MOTOR", "BUFSIG", "BUFREA", "BUFMRED", "SIM",
-    "MOV_DYN", "INTTOL",
+    "KIN",
+    "ANA",
+    "DYN",
+    "TOPOLOGY",
+    "GEOMETRY",
+    "MOVEMENT",
+    "STORAGE",
+    "END",
+    "ELEM",
+    "FORM",
+    "NRDOF",
+    "XFIX",
+    "XMOV",
+    "PARA",
+    "TSTEPE",
+    "MOV_RELE",
+    "MOV_ABSE",
+    "MOV_FUNC",
+    "MOV_FREE",
+    "ACCURACY",
+    "MAXITER",
+    "BUFINP",
+    "BUFTIME",
+    "BUFX0",
+    "BUFKX2",
+    "BUFAE",
+    "BUFDET",
+    "PRINTBUF",
+    "SAVEDATA",
+    "ANIMATE",
+    "BEGINPIC",
+    "ENDPIC",
+    "PLOTFUNC",
+    "PLOTHODO",
+    "BIN",
+    "TR2",
+    "GR1",
+    "BLT",
+    "CRD",
+    "LENL",
+    "ANGB",
+    "GEAR",
+    "BELT",
+    "COOR",
+    ";",
+    "\t",
+    "Ä",
+    "\u{0}",
+    "\r",
+    "DYNAMICS",
+    "MASS",
+    "PMASS",
+    "GRAVITY",
+    "LOADFUNC",
+    "SPRING",
+    "MOTOR",
+    "BUFSIG",
+    "BUFREA",
+    "BUFMRED",
+    "SIM",
+    "MOV_DYN",
+    "INTTOL",
+    "OPT",
+    "OPTIMISE",
+    "INERTIA",
+    "FORCE",
+    "LOAD",
+    "BUFDRV",
+    "BUFEKIN",
+    "BUFEPOT",
+    "BUFPOW",
+    "VARY",
+    "VARYX",
+    "TARGET",
+    "TARGETAT",
+    "TARGETEXT",
+    "BOUND",
+    "MINIMISE",
+    "MAXIMISE",
+    "OPTSTEPS",
+    "OPTTOL",
+    "MAX",
+    "MAXABS",
+    "RMS",
 ];
 
 /// How hostile a generated deck is.
@@ -89,6 +167,44 @@ pub enum Level {
     /// Anything: numbers that are none, references out of range, wrong
     /// counts, lines dropped, repeated, swapped or given a stray word.
     Wild,
+}
+
+/// The mode line of a generated deck, and with it the blocks it has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// `KIN ANA`.
+    KinAna,
+    /// `DYN ANA`: a DYNAMICS block, a timed motion.
+    DynAna,
+    /// `DYN SIM`: a DYNAMICS block, DOFs moved by the forces (MOV_DYN).
+    DynSim,
+    /// `KIN OPT`: a driven motion and an OPTIMISE block.
+    KinOpt,
+}
+
+impl Mode {
+    fn line(self) -> &'static str {
+        match self {
+            Mode::KinAna => "KIN ANA",
+            Mode::DynAna => "DYN ANA",
+            Mode::DynSim => "DYN SIM",
+            Mode::KinOpt => "KIN OPT",
+        }
+    }
+
+    fn dynamic(self) -> bool {
+        matches!(self, Mode::DynAna | Mode::DynSim)
+    }
+}
+
+/// The sizes of a generated model that buffers refer to.
+struct Sizes {
+    n_dof: usize,
+    n_coords: usize,
+    n_rows: usize,
+    n_dep: usize,
+    fixed: usize,
+    mode: Mode,
 }
 
 /// A generator of deck text from a stream of choices.
@@ -137,6 +253,18 @@ impl<C: Choose> Gen<'_, C> {
         }
     }
 
+    /// A number meant to be positive (a mass, a stiffness, a tolerance):
+    /// in a tame deck 0.1 to 5, otherwise any [`Gen::real`], and now and
+    /// then far too large for the other numbers of the model.
+    fn positive(&mut self) -> String {
+        let level = self.level;
+        match level {
+            Level::Tame => format!("{}", (1 + self.below(50)) as f64 / 10.0),
+            _ if self.chance(10) => self.pick(&["1e12", "1e15", "1e30", "1e-12"]).to_string(),
+            _ => self.real(),
+        }
+    }
+
     /// A whole number meant to lie in `1..=n`; in a wild deck sometimes
     /// just outside (0, n+1, negative) or far outside, or no whole number.
     pub fn index(&mut self, n: usize) -> String {
@@ -177,9 +305,189 @@ impl<C: Choose> Gen<'_, C> {
         }
     }
 
+    /// A buffer definition `BUF... b`: the kinematic ones in every mode,
+    /// the dynamic ones in a dynamics mode (BUFMRED in DYN ANA only).
+    fn buffer(&mut self, z: &Sizes, b: &str) -> String {
+        let (n_dof, n_coords, n_rows, n_dep) = (z.n_dof, z.n_coords, z.n_rows, z.n_dep);
+        let kinds = if z.mode.dynamic() || self.wild(5) { 20 } else { 13 };
+        match self.below(kinds) {
+            0 => format!("BUFINP {} {b}", self.index(n_dof)),
+            1 => format!("BUFTIME {b}"),
+            2 => format!("BUFX0 {} {b}", self.index(n_coords)),
+            3 => format!("BUFKX1 {} {} {b}", self.index(n_coords), self.index(n_dof)),
+            4 => format!("BUFKX2 {} {} {} {b}", self.index(n_coords), self.index(n_dof), self.index(n_dof)),
+            5 => format!("BUFVX {} {b}", self.index(n_coords)),
+            6 => format!("BUFAX {} {b}", self.index(n_coords)),
+            7 => format!("BUFE0 {} {b}", self.row(n_rows, n_dep)),
+            8 => format!("BUFKE1 {} {} {b}", self.row(n_rows, n_dep), self.index(n_dof)),
+            9 => format!("BUFKE2 {} {} {b}", self.row(n_rows, n_dep), self.index(n_dof)),
+            10 => format!("BUFVE {} {b}", self.row(n_rows, n_dep)),
+            11 => format!("BUFAE {} {b}", self.row(n_rows, n_dep)),
+            12 => format!("BUFDET {b}"),
+            13 => format!("BUFSIG {} {b}", self.index(n_rows)),
+            14 => format!("BUFDRV {} {b}", self.index(n_dof)),
+            15 => format!("BUFREA {} {b}", self.index(z.fixed.max(1))),
+            16 => format!("BUFEKIN {b}"),
+            17 => format!("BUFEPOT {b}"),
+            18 => format!("BUFPOW {b}"),
+            _ => format!("BUFMRED {} {} {b}", self.index(n_dof), self.index(n_dof)),
+        }
+    }
+
+    /// The DYNAMICS block: masses on elements with a frame, point masses,
+    /// inertias on angles, gravity, forces, loads, springs and motors.
+    fn dynamics(
+        &mut self,
+        lines: &mut Vec<String>,
+        types: &[ElementType],
+        points: &[[usize; 2]],
+        scalars: &[usize],
+        (n_rows, n_dep): (usize, usize),
+    ) {
+        lines.push("DYNAMICS".into());
+        for (k, &ty) in types.iter().enumerate() {
+            let framed = matches!(ty, ElementType::Bin | ElementType::Hlf | ElementType::Tr1 | ElementType::Tr2);
+            if (framed && self.chance(70)) || self.wild(10) {
+                let (m, u, v) = (self.positive(), self.real(), self.real());
+                let j = if self.chance(60) { format!(" {}", self.positive()) } else { String::new() };
+                lines.push(format!("MASS {} {m} {u} {v}{j}", k + 1));
+            }
+        }
+        if !points.is_empty() && self.chance(30) {
+            let p = points[self.below(points.len())];
+            let m = self.positive();
+            lines.push(format!("PMASS {} {} {m}", p[0], p[1]));
+        }
+        if !scalars.is_empty() && self.chance(20) {
+            let i = scalars[self.below(scalars.len())];
+            let j = self.positive();
+            lines.push(format!("INERTIA {i} {j}"));
+        }
+        if self.chance(40) {
+            let g = if self.level == Level::Tame { "-9.81".to_string() } else { self.real() };
+            let gx = if self.chance(80) { "0".to_string() } else { self.real() };
+            lines.push(format!("GRAVITY {gx} {g}"));
+        }
+        if !points.is_empty() && self.chance(20) {
+            let p = points[self.below(points.len())];
+            let (fx, fy) = (self.real(), self.real());
+            lines.push(format!("FORCE {} {} {fx} {fy}", p[0], p[1]));
+        }
+        if self.chance(30) {
+            let (r, value) = (self.row(n_rows, n_dep), self.real());
+            lines.push(format!("LOAD {r} {value}"));
+        }
+        if self.chance(10) {
+            let r = self.row(n_rows, n_dep);
+            lines.push(format!("LOADFUNC {r} torque.dat"));
+        }
+        if self.chance(30) {
+            let (r, k, e0) = (self.row(n_rows, n_dep), self.positive(), self.real());
+            let c = if self.chance(50) { format!(" {}", self.positive()) } else { String::new() };
+            lines.push(format!("SPRING {r} {k} {e0}{c}"));
+        }
+        if self.chance(20) {
+            let (r, t0, w0) = (self.row(n_rows, n_dep), self.real(), self.positive());
+            lines.push(format!("MOTOR {r} {t0} {w0}"));
+        }
+    }
+
+    /// The OPTIMISE block of a KIN OPT deck: design variables among the
+    /// rows with a PARA value (`paras`) and the fixed co-ordinates, a few
+    /// buffers, targets of each kind, bounds, an objective and the
+    /// optimiser's settings. `buffers` counts the buffers defined.
+    fn optimise(
+        &mut self,
+        lines: &mut Vec<String>,
+        z: &Sizes,
+        paras: &[(usize, String)],
+        fixed: &[usize],
+        steps: usize,
+        buffers: &mut usize,
+    ) {
+        lines.push("OPTIMISE".into());
+        let mut vary = 0;
+        for (r, value) in paras {
+            if vary < 3 && self.chance(60) {
+                let (lo, hi) = self.range(value);
+                lines.push(format!("VARY {r} {lo} {hi}"));
+                vary += 1;
+            }
+        }
+        if !fixed.is_empty() && (vary == 0 || self.chance(20)) {
+            let i = fixed[self.below(fixed.len())];
+            let (lo, hi) = (self.real(), self.real());
+            let (lo, hi) = if self.level == Level::Wild { (lo, hi) } else { ("-1e3".into(), "1e3".into()) };
+            lines.push(format!("VARYX {i} {lo} {hi}"));
+        }
+        // Buffers: one of any kind, and a position quantity as a reference
+        // of extrema.
+        let mut defined = Vec::new();
+        for _ in 0..1 + self.below(3) {
+            *buffers += 1;
+            let b = buffers.to_string();
+            let line = if self.chance(40) {
+                if z.n_dep > 0 && self.chance(50) {
+                    format!("BUFE0 -{} {b}", self.index(z.n_dep))
+                } else {
+                    format!("BUFX0 {} {b}", self.index(z.n_coords))
+                }
+            } else {
+                self.buffer(z, &b)
+            };
+            lines.push(line);
+            defined.push(*buffers);
+        }
+        let mut terms = 0;
+        for _ in 0..self.below(4) {
+            let b = defined[self.below(defined.len())];
+            let w = if self.chance(20) { format!(" {}", self.positive()) } else { String::new() };
+            let line = match self.below(4) {
+                0 => format!("TARGETAT {b} {} {}{w}", self.index(steps + 1), self.real()),
+                1 => format!("TARGETEXT {b} {} {}{w}", defined[self.below(defined.len())], self.real()),
+                2 => format!("TARGET {b} target.dat{w}"),
+                _ => format!("BOUND {b} {} {}", self.real(), self.real()),
+            };
+            terms += usize::from(!line.starts_with("BOUND"));
+            lines.push(line);
+        }
+        if self.chance(30) || (terms == 0 && !self.wild(50)) {
+            let kind = self.pick(&["MAX", "MAXABS", "RMS", "END", "MIN"]);
+            let sense = self.pick(&["MINIMISE", "MAXIMISE"]);
+            let b = defined[self.below(defined.len())];
+            lines.push(format!("{sense} {kind} {b}"));
+        }
+        if self.chance(20) {
+            let n = if self.level == Level::Tame { (1 + self.below(5)).to_string() } else { self.index(300) };
+            lines.push(format!("OPTSTEPS {n}"));
+        }
+        if self.chance(20) {
+            let tol = if self.level == Level::Tame { "1e-6".to_string() } else { self.real() };
+            lines.push(format!("OPTTOL {tol}"));
+        }
+    }
+
+    /// A range `lo hi` of a design variable whose start is `value`: around
+    /// it in a tame deck, anything (empty, reversed, not finite) otherwise.
+    fn range(&mut self, value: &str) -> (String, String) {
+        match value.parse::<f64>() {
+            Ok(v) if v.is_finite() && !self.wild(30) && !(self.level == Level::Extreme && self.chance(20)) => {
+                let (a, b) = ((1 + self.below(8)) as f64 / 4.0, (1 + self.below(8)) as f64 / 4.0);
+                (format!("{}", v - a * v.abs().max(1.0)), format!("{}", v + b * v.abs().max(1.0)))
+            }
+            _ => (self.real(), self.real()),
+        }
+    }
+
     /// The deck: see [`deck`].
     fn deck(&mut self) -> String {
-        let mut lines = vec!["KIN ANA".to_string(), "TOPOLOGY".to_string()];
+        let mode = match self.below(8) {
+            0..=4 => Mode::KinAna,
+            5 => Mode::DynAna,
+            6 => Mode::DynSim,
+            _ => Mode::KinOpt,
+        };
+        let mut lines = vec![mode.line().to_string(), "TOPOLOGY".to_string()];
 
         // Elements sharing points (pairs of co-ordinates) and angles.
         let n_elem = 1 + self.below(4);
@@ -262,15 +570,24 @@ impl<C: Choose> Gen<'_, C> {
             let value = self.real();
             lines.push(format!("{} {number} {value}", if m { "XMOV" } else { "XFIX" }));
         }
+        // A KIN OPT deck varies rows with a PARA value: more of them have one.
+        let mut paras = Vec::new();
+        let fixed: Vec<usize> = (1..=n_coords).filter(|&i| !moving[i - 1]).collect();
         for r in 1..=n_rows {
-            if self.chance(20) {
+            if self.chance(if mode == Mode::KinOpt { 60 } else { 20 }) {
                 let value = self.real();
                 lines.push(format!("PARA {r} {value}"));
+                paras.push((r, value));
             }
+        }
+        if mode.dynamic() && !self.wild(10) {
+            self.dynamics(&mut lines, &types, &points, &scalars, (n_rows, n_dep));
         }
 
         // The motion.
-        if self.below(10) < 8 {
+        let needs_motion = matches!(mode, Mode::DynSim | Mode::KinOpt) && !self.wild(10);
+        let mut steps_taken = 0;
+        if needs_motion || self.below(10) < 8 {
             lines.push("MOVEMENT".into());
             let mut steps = match self.below(10) {
                 0..=7 => (1 + self.below(20)).to_string(),
@@ -290,7 +607,15 @@ impl<C: Choose> Gen<'_, C> {
             for j in 1..=n_dof {
                 let dof = if self.wild(5) { self.index(n_dof) } else { j.to_string() };
                 let kinds = if n_dof == 1 || self.level == Level::Wild { 10 } else { 7 };
-                let what = match self.below(kinds) {
+                // A DYN SIM deck lets the forces move a DOF now and then,
+                // the others (and every other mode's) follow a driven or free
+                // motion; KIN OPT and DYN ANA decks are driven, except wild ones.
+                let kinds = match mode {
+                    Mode::DynSim if self.chance(60) => 11,
+                    Mode::KinOpt | Mode::DynAna if self.level != Level::Wild => 8,
+                    _ => kinds,
+                };
+                let what = match self.below(kinds).max(if kinds == 11 { 10 } else { 0 }) {
                     0..=3 => format!("MOV_RELE {dof} {}", self.real()),
                     4 | 5 => format!("MOV_ABSE {dof} {}", self.real()),
                     6 | 7 => {
@@ -299,6 +624,7 @@ impl<C: Choose> Gen<'_, C> {
                         }
                         format!("MOV_FUNC {dof} {}", file.0)
                     }
+                    10 => format!("MOV_DYN {dof} {}", self.real()),
                     _ => {
                         let ds = self.real();
                         let ds = if self.level == Level::Wild {
@@ -318,6 +644,7 @@ impl<C: Choose> Gen<'_, C> {
                 _ => Some(self.real().trim_start_matches('-').to_string())
                     .filter(|dt| dt.parse::<f64>().is_ok_and(|v| v > 0.0)),
             };
+            steps_taken = steps.parse().unwrap_or(0);
             match dt {
                 Some(dt) => lines.push(format!("TSTEPE {steps} {dt}")),
                 None => lines.push(format!("TSTEPE {steps}")),
@@ -331,30 +658,29 @@ impl<C: Choose> Gen<'_, C> {
                 let m = self.index(50);
                 lines.push(format!("MAXITER {m}"));
             }
+            if mode == Mode::DynSim && self.chance(20) {
+                let (rtol, atol) = match self.level {
+                    Level::Tame => (format!("1e-{}", 4 + self.below(9)), format!("1e-{}", 4 + self.below(9))),
+                    _ => (self.real(), self.real()),
+                };
+                lines.push(format!("INTTOL {rtol} {atol}"));
+            }
+        }
+
+        // Buffers are numbered across OPTIMISE and STORAGE.
+        let mut buffers = 0;
+        let sizes = Sizes { n_dof, n_coords, n_rows, n_dep, fixed: fixed.len(), mode };
+        if mode == Mode::KinOpt && !self.wild(10) {
+            self.optimise(&mut lines, &sizes, &paras, &fixed, steps_taken, &mut buffers);
         }
 
         // Buffers and what to do with them.
         if self.below(10) < 7 {
             lines.push("STORAGE".into());
-            let mut buffers = 0;
             for _ in 0..self.below(8) {
                 buffers += 1;
                 let b = if self.wild(5) { self.index(buffers) } else { buffers.to_string() };
-                let line = match self.below(13) {
-                    0 => format!("BUFINP {} {b}", self.index(n_dof)),
-                    1 => format!("BUFTIME {b}"),
-                    2 => format!("BUFX0 {} {b}", self.index(n_coords)),
-                    3 => format!("BUFKX1 {} {} {b}", self.index(n_coords), self.index(n_dof)),
-                    4 => format!("BUFKX2 {} {} {} {b}", self.index(n_coords), self.index(n_dof), self.index(n_dof)),
-                    5 => format!("BUFVX {} {b}", self.index(n_coords)),
-                    6 => format!("BUFAX {} {b}", self.index(n_coords)),
-                    7 => format!("BUFE0 {} {b}", self.row(n_rows, n_dep)),
-                    8 => format!("BUFKE1 {} {} {b}", self.row(n_rows, n_dep), self.index(n_dof)),
-                    9 => format!("BUFKE2 {} {} {b}", self.row(n_rows, n_dep), self.index(n_dof)),
-                    10 => format!("BUFVE {} {b}", self.row(n_rows, n_dep)),
-                    11 => format!("BUFAE {} {b}", self.row(n_rows, n_dep)),
-                    _ => format!("BUFDET {b}"),
-                };
+                let line = self.buffer(&sizes, &b);
                 lines.push(line);
             }
             if self.chance(40) {

@@ -12,8 +12,12 @@ mod generator;
 
 use std::path::Path;
 
-use mechfem_core::{run, FormRef, InputMotion, Motion, Observer, PositionView, Quantity, Recorder, SolveError};
-use mechfem_deck::{compile, parse_str, Compiled, Diagnostics};
+use mechfem_core::design::{evaluate, ExtremumSpec};
+use mechfem_core::dynamics::simulate_within;
+use mechfem_core::{
+    run, DesignVar, FormRef, InputMotion, Motion, Observer, PositionView, Quantity, Recorder, SolveError,
+};
+use mechfem_deck::{compile, parse_str, Compiled, Diagnostics, TargetKind};
 
 // `Choose` is for the fuzz targets (`fuzz/src/lib.rs`), which re-export it.
 #[allow(unused_imports)]
@@ -21,6 +25,19 @@ pub use generator::{deck, Bytes, Choose};
 
 /// Longest motion a fuzz input runs; longer ones are cut to this.
 pub const FUZZ_MAX_STEPS: usize = 2000;
+
+/// Output positions of a simulation checked, at most (its motion is cut to
+/// this), and the integrator steps it may take: every deck, however stiff,
+/// is simulated in bounded time.
+pub const SIM_MAX_OUTPUTS: usize = 20;
+/// See [`SIM_MAX_OUTPUTS`].
+pub const SIM_BUDGET: u32 = 2000;
+
+/// Positions of a design evaluation checked, at most, and its design
+/// variables used, at most.
+pub const DESIGN_MAX_STEPS: usize = 50;
+/// See [`DESIGN_MAX_STEPS`].
+pub const DESIGN_MAX_VARS: usize = 2;
 
 /// What became of a deck.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -177,13 +194,127 @@ pub fn run_checked(c: &Compiled, quantities: Vec<Quantity>, max_steps: usize) ->
     }
 }
 
+/// Simulates a `DYN SIM` deck with its motion cut to [`SIM_MAX_OUTPUTS`]
+/// output positions and an integrator budget of [`SIM_BUDGET`] steps,
+/// recording every kinematic quantity: a simulation that cannot start says
+/// why, one that ends early says why at its last output, and every output
+/// is finite (transfer functions excepted at positions reported singular).
+pub fn simulate_checked(c: &Compiled) {
+    let (Some(motion), Some(dynamics)) = (c.motion.as_ref(), c.dynamics.as_ref()) else { return };
+    let mut motion = motion.clone();
+    cap_steps(&mut motion, SIM_MAX_OUTPUTS);
+    let mut state = c.state.clone();
+    let mut obs = Checked { rec: Recorder::new(every_quantity(c), false), bad_state: None };
+    let result = simulate_within(
+        &c.mechanism,
+        &mut state,
+        &motion,
+        &c.params,
+        &c.integration,
+        dynamics,
+        Some(SIM_BUDGET),
+        &mut obs,
+    );
+    let report = match result {
+        Ok(r) => r.run,
+        Err(e) => {
+            assert!(!e.to_string().is_empty());
+            return;
+        }
+    };
+    let rec = &obs.rec;
+    assert_eq!(rec.positions(), report.positions, "simulation: positions observed and reported differ");
+    assert_eq!(obs.bad_state, None, "simulation: a position with a non-finite co-ordinate was observed");
+    let w = rec.quantities().len();
+    for k in 0..rec.positions() {
+        let singular = report.singular_positions.contains(&k);
+        for (q, v) in rec.quantities().iter().zip(&rec.data()[k * w..(k + 1) * w]) {
+            assert!(v.is_finite() || (singular && q.needs_transfer()), "simulation: {q:?} at output {k} is {v}");
+        }
+    }
+    match &report.stop {
+        Some(stop) => assert!(!stop.error.to_string().is_empty()),
+        None => assert_eq!(report.positions, motion.steps + 1, "the simulation ended early without saying why"),
+    }
+}
+
+/// Evaluates one design of a `KIN OPT` deck as an optimiser would: its
+/// first [`DESIGN_MAX_VARS`] design variables set to the middle of their
+/// ranges, the motion cut to [`DESIGN_MAX_STEPS`] steps, every kinematic
+/// buffer and the TARGETEXT extrema with their design sensitivities. An
+/// evaluation that fails says why; one that succeeds gives finite values
+/// and gradients (transfer functions excepted at singular positions).
+pub fn evaluate_checked(c: &Compiled) {
+    let (Some(opt), Some(motion)) = (c.optimise.as_ref(), c.motion.as_ref()) else { return };
+    let mut motion = motion.clone();
+    cap_steps(&mut motion, DESIGN_MAX_STEPS);
+    let vars: Vec<DesignVar> = opt.vary.iter().take(DESIGN_MAX_VARS).map(|v| v.var).collect();
+    let mut state = c.state.clone();
+    for v in opt.vary.iter().take(DESIGN_MAX_VARS) {
+        let mid = 0.5 * v.lo + 0.5 * v.hi;
+        match v.var {
+            DesignVar::Row(r) => state.target[r] = mid,
+            DesignVar::Fixed(i) => state.x[i] = mid,
+        }
+    }
+    let quantity = |b: u32| c.buffers.iter().find(|x| x.number == b).map(|x| x.quantity);
+    let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).filter(|q| !q.is_dynamic()).collect();
+    let extrema: Vec<ExtremumSpec> = opt
+        .targets
+        .iter()
+        .filter_map(|t| match t.kind {
+            TargetKind::Extremum { reference, .. } => {
+                Some(ExtremumSpec { quantity: quantity(t.buffer)?, reference: quantity(reference)? })
+            }
+            _ => None,
+        })
+        .collect();
+    let design = match evaluate(&c.mechanism, &mut state, &motion, &c.params, &vars, &quantities, &extrema) {
+        Ok(d) => d,
+        Err(e) => {
+            assert!(!e.to_string().is_empty());
+            return;
+        }
+    };
+    let (nq, nv) = (quantities.len(), vars.len());
+    assert_eq!(design.positions, design.report.positions, "design: positions computed and reported differ");
+    assert_eq!(design.values.len(), design.positions * nq);
+    for k in 0..design.positions {
+        let singular = design.report.singular_positions.contains(&k);
+        for (i, q) in quantities.iter().enumerate() {
+            let v = design.values[k * nq + i];
+            let g = &design.gradient[(k * nq + i) * nv..(k * nq + i + 1) * nv];
+            let exempt = singular && q.needs_transfer();
+            assert!(v.is_finite() || exempt, "design: {q:?} at position {k} is {v}");
+            // det(D^c) has no design sensitivity (NaN); the deck refuses it
+            // in a target, a bound or an objective.
+            let no_gradient = exempt || *q == Quantity::Det;
+            assert!(g.iter().all(|d| d.is_finite()) || no_gradient, "design: d {q:?} / d p at position {k} is {g:?}");
+        }
+    }
+    assert!(design.coords.iter().all(|v| v.is_finite()), "design: a non-finite co-ordinate");
+    for e in &design.extrema {
+        assert!(
+            e.input.is_finite() && e.reference.is_finite() && e.value.is_finite(),
+            "design: an extremum that is not finite: {e:?}"
+        );
+        assert!(e.gradient.iter().all(|d| d.is_finite()), "design: an extremum's gradient is not finite: {e:?}");
+    }
+}
+
 /// The whole check of one deck: parse, compile, and if it compiles, run it
 /// (at most `max_steps` steps) recording every quantity, then again
 /// recording only the deck's buffers when they need less (a run computes no
-/// more transfer functions than its observer reads).
+/// more transfer functions than its observer reads); a `DYN SIM` deck is
+/// also simulated ([`simulate_checked`]) and one design of a `KIN OPT` deck
+/// evaluated ([`evaluate_checked`]).
 pub fn check_deck(text: &str, dir: &Path, max_steps: usize) -> Outcome {
     let Ok(c) = compile_text(text, dir) else { return Outcome::Rejected };
     let outcome = run_checked(&c, every_quantity(&c), max_steps);
+    if c.dynamics.is_some() && c.motion.as_ref().is_some_and(is_simulated) {
+        simulate_checked(&c);
+    }
+    evaluate_checked(&c);
     // The dynamics are the core's to check: a run here records kinematics only.
     let own: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).filter(|q| !q.is_dynamic()).collect();
     let order = own.iter().map(Quantity::transfer_order).max().flatten();
