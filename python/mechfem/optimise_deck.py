@@ -198,6 +198,14 @@ def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
         out.append(f"  {'buffer':>8} {'reference':>10} {'input':>18} {'value':>18} {'target':>12}")
         for t, at, value in outcome.extrema:
             out.append(f"  {t.buffer:>8} {t.reference:>10} {at:>18.12g} {value:>18.6e} {t.value:>12.6g}")
+    # A TARGETEXT whose reference has no extremum along the motion adds nothing to the objective: said here.
+    found = {id(t) for t, _, _ in outcome.extrema}
+    for t in p.terms:
+        if isinstance(t, design.ExtremumTerm) and id(t) not in found:
+            out.append(
+                f"  TARGETEXT {t.buffer} {t.reference}: buffer {t.reference} has no extremum along the motion at the "
+                "final design, so this target contributes nothing to the objective"
+            )
     if written is not None:
         out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
     return [*out, ""]
