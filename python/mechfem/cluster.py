@@ -11,8 +11,9 @@ module sends them to an executor and brings the results back in order:
   :class:`TaskFailed` in its place, so that the others are kept;
 * without Dask installed nothing here imports it; ``executor=None`` never comes here.
 
-Dask pickles a task's function and inputs with cloudpickle, so lambdas and functions of a script travel as they
-are; other executors that pickle (``ProcessPoolExecutor``) get the same by cloudpickle when it is installed.
+A task's function and input travel as one cloudpickle (when installed; it comes with Dask), so lambdas and functions
+of a script go as they are, to Dask and to a ``ProcessPoolExecutor`` alike; the task unpickles them itself, so that
+an input a worker cannot read (a module only the client has) is that task's error, not a broken worker.
 """
 
 from __future__ import annotations
@@ -105,7 +106,8 @@ def run_tasks(
     if is_dask(executor):
         from distributed import as_completed
 
-        futures = [executor.submit(fn, a, retries=retries, pure=False) for a in args]  # type: ignore[attr-defined]
+        submit = executor.submit  # type: ignore[attr-defined]
+        futures = [submit(_call_pickled, _pickled(fn, a), retries=retries, pure=False) for a in args]
         wait: Any = as_completed(futures)
     else:
         assert isinstance(executor, concurrent.futures.Executor), executor
