@@ -169,6 +169,9 @@ pub enum DiagnosticKind {
     /// TARGETEXT whose reference buffer is not a position quantity (BUFX0,
     /// BUFE0, BUFINP), so it has no transfer functions to locate an extremum.
     ExtremumReference,
+    /// TARGET..., BOUND, MINIMISE or MAXIMISE on a buffer that has no design
+    /// sensitivity (BUFDET), so an optimiser cannot tell how to improve it.
+    NoSensitivity,
     /// The core refused the model (for example coinciding points of a binary).
     Model,
     /// An output name (ANIMATE) that is not a plain file name: a folder

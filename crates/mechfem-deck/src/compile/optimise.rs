@@ -15,6 +15,7 @@ use super::table::read_column;
 use crate::ast::{missing_movement, missing_optimise, Deck, Mode, TargetDef, TargetDefKind};
 use crate::compiled::Buffer;
 use crate::diagnostic::{count, Diagnostic, DiagnosticKind, Hint, Span};
+use crate::keywords::Keyword;
 use crate::optimise::{Bound, Objective, Optimise, Target, TargetKind};
 
 /// The optimisation problem of a `KIN OPT` deck (`None` for other modes).
@@ -60,6 +61,28 @@ pub(crate) fn optimise(
     }
     let vary = design_variables(deck, model, sizes, Some(motion), &block.vary)?;
     let defined = by_number(buffers);
+    let judged = block.targets.iter().map(|t| (&t.buffer, t.keyword.value));
+    let judged = judged.chain(block.bounds.iter().map(|b| (&b.buffer, Keyword::Bound)));
+    let judged = judged.chain(block.objective.iter().map(|o| (&o.buffer, o.keyword.value)));
+    for (b, kw) in judged {
+        let buffer = defined_buffer(deck, &defined, b)?;
+        if buffer.quantity == Quantity::Det {
+            return Err(deck
+                .error(
+                    DiagnosticKind::NoSensitivity,
+                    b.span,
+                    format!(
+                        "{kw} names buffer {}, det(D^c) (BUFDET at line {}), which has no design sensitivity",
+                        buffer.number, buffer.line
+                    ),
+                )
+                .with_hint(
+                    "the optimiser follows the derivatives of what it judges with respect to the design variables, \
+                     and mechfem does not compute those of det(D^c): keep BUFDET in STORAGE to watch it, and judge \
+                     a transfer function or a position instead",
+                ));
+        }
+    }
     let positions = motion.steps + 1;
     let targets = block
         .targets
