@@ -80,7 +80,7 @@ def main() -> None:
         client = Client(args.scheduler)
     else:
         cluster = LocalCluster(
-            n_workers=args.workers, processes=True, threads_per_worker=1, dashboard_address=None, silence_logs=40
+            n_workers=args.workers, processes=True, threads_per_worker=1, dashboard_address=":0", silence_logs=40
         )
         client = Client(cluster)
     try:

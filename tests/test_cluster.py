@@ -36,7 +36,7 @@ def client() -> Iterator[Any]:
     distributed = pytest.importorskip("distributed", reason=NO_DASK)
     try:
         cluster = distributed.LocalCluster(
-            n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None, silence_logs=50
+            n_workers=2, processes=True, threads_per_worker=1, dashboard_address=":0", silence_logs=50
         )
     except Exception as err:  # pragma: no cover - a machine that cannot start worker processes
         pytest.skip(f"dask cannot start worker processes here: {type(err).__name__}: {err}")
@@ -122,6 +122,7 @@ def test_failing_variants_and_chunks_are_rows_with_their_reason(client: Any, tmp
     assert study["error"][1].startswith("Newton iteration did not converge")
     assert study["error"][2] == "measure 'stroke': ZeroDivisionError: no stroke for this one"
     assert math.isnan(study["stroke"][2]) and study["stroke"][3] > 0 and study["error"][3] == ""
+    same_table(study, mechfem.sweep(fourbar, sets, {"stroke": picky}, motion=MOTION, progress=False))
     # A measure from a module the workers cannot import: every chunk fails, every row says why.
     (tmp_path / "only_here.py").write_text("def swing(r):\n    return 1.0\n")
     sys.path.insert(0, str(tmp_path))
