@@ -7,7 +7,9 @@
 #[path = "common/dynamics.rs"]
 mod models;
 
-use mechfem_core::dynamics::{simulate, Body, Dynamics, Integration, InverseDynamics, Load, LoadKind, PointMass};
+use mechfem_core::dynamics::{
+    simulate, simulate_within, Body, Dynamics, Integration, InverseDynamics, Load, LoadKind, PointMass,
+};
 use mechfem_core::{
     run, ElementType, FormRef, InputMotion, Mechanism, MechanismBuilder, Motion, Params, Quantity, Recorder, State,
     Term,
@@ -194,4 +196,35 @@ fn a_free_input_stops_at_its_limit_position() {
     assert!(stop.error.to_string().contains("limit position"), "{}", stop.error);
     let reached = rec.data().iter().fold(f64::MIN, |m, &x| m.max(x));
     assert!(reached < r + l && reached > r + l - 1e-2, "the slider stops just short of r + l: {reached}");
+}
+
+/// A spring of stiffness 1e12 on a pendulum's angle swings it with a period
+/// of microseconds against outputs every 10 ms: the simulation stops with
+/// a reason once the step budget it was given is used up (or the motion is
+/// found stiff), keeping the outputs reached, instead of creeping on.
+#[test]
+fn a_very_stiff_spring_stops_the_simulation_within_its_step_budget() {
+    let theta0 = -1.0;
+    let (mech, mut state, mut dynamics) = models::pendulum(0.8, theta0, 2.0);
+    dynamics
+        .loads
+        .push(Load { form: FormRef::Prescribed(1), kind: LoadKind::Spring { k: 1e12, e0: theta0 + 0.1, c: 0.0 } });
+    let motion = Motion { steps: 100, dt: 0.01, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
+    let mut rec = Recorder::new(vec![Quantity::Input(0)], false);
+    let report = simulate_within(
+        &mech,
+        &mut state,
+        &motion,
+        &Params::default(),
+        &Integration::default(),
+        &dynamics,
+        Some(5000),
+        &mut rec,
+    )
+    .unwrap();
+    let stop = report.run.stop.expect("the simulation must stop early");
+    assert!(report.steps + report.rejected <= 5000, "{} + {} steps", report.steps, report.rejected);
+    let reason = stop.error.to_string();
+    assert!(reason.contains("step budget") || reason.contains("stiff"), "{reason}");
+    assert!(rec.positions() < motion.steps + 1 && rec.data().iter().all(|v| v.is_finite()));
 }
