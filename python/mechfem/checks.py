@@ -1,4 +1,4 @@
-"""Checks of the values the model API is given: finite numbers and names."""
+"""Checks of the values the model API is given: finite numbers, names, and the file names a run writes."""
 
 from __future__ import annotations
 
@@ -18,3 +18,34 @@ def check_name(name: str) -> str:
     if not isinstance(name, str) or not name or name != name.strip() or any(c in name for c in "\r\n\t"):
         raise ValueError(f"a name must be a non-empty string without surrounding blanks or line breaks: {name!r}")
     return name
+
+
+#: The longest output name (bytes of UTF-8) a deck or the Python API may give: with its extension it stays well
+#: below the 255 bytes a file name may have.
+MAX_OUTPUT_NAME = 200
+
+
+def name_problem(name: str) -> str | None:
+    """Why ``name`` is not a plain file name that stays inside the output folder, or None when it is one.
+
+    The deck reader refuses the same names in a deck (an ANIMATE name), with the same words."""
+    trimmed = name.strip()
+    if not trimmed:
+        return "is empty"
+    if trimmed.startswith(("/", "\\")) or (
+        len(trimmed) >= 2 and trimmed[1] == ":" and trimmed[0].isascii() and trimmed[0].isalpha()
+    ):
+        return "is an absolute path"
+    parts = trimmed.replace("\\", "/").split("/")
+    if ".." in parts or trimmed == ".":
+        return "leads out of the output folder (`..`)"
+    if len(parts) > 1:
+        return "has a folder part (`/` or `\\`)"
+    if "\0" in name:
+        return "holds a NUL character"
+    if any(c < " " or "\x7f" <= c <= "\x9f" for c in name):
+        return "holds a control character"
+    size = len(name.encode("utf-8", errors="surrogatepass"))
+    if size > MAX_OUTPUT_NAME:
+        return f"is {size} bytes long, more than {MAX_OUTPUT_NAME}"
+    return None

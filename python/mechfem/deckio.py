@@ -49,8 +49,8 @@ from mechfem.model import (
     To,
     input_dof,
 )
-from mechfem.output import atomic_text, name_problem
-from mechfem.storage import from_described
+from mechfem.output import atomic_text
+from mechfem.storage import check_file_names, from_described
 
 DEFAULT_ACCURACY = 1e-10
 DEFAULT_MAX_ITER = 25
@@ -309,33 +309,8 @@ def write(
                 out.add(f"{kw} {ab[0]} {ab[1]}", ("picture", pic.title))
             out.add("ENDPIC")
     out.add("END")
-    _check_file_names(mech, storage, tables)
+    check_file_names(mech.name, storage, tables)
     return DeckText("\n".join(out.lines) + "\n", f"{mech.name}.mec", out.notes, nb, tables, simulated)
-
-
-def _check_file_names(mech: Mechanism, storage: Storage | None, tables: Mapping[str, str]) -> None:
-    """Refuses an output name (ANIMATE) or a table file name that is not a plain file name: a run writes into its
-    output folder only, and :meth:`Mechanism.save_deck` writes the tables beside the deck only."""
-
-    def problem_of(name: str) -> str | None:
-        if any(c.isspace() for c in name.strip()):
-            return "holds a blank, which a deck cannot write"
-        return name_problem(name)
-
-    if storage is not None and storage.animate is not None:
-        problem = problem_of(storage.animate)
-        if problem is not None:
-            raise ValueError(
-                f"the storage of mechanism {mech.name!r}: the ANIMATE name {storage.animate!r} {problem}; give a "
-                "plain file name such as 'film' (the animation is written as film.gif into the output folder only)"
-            )
-    for file in tables:
-        problem = problem_of(file)
-        if problem is not None:
-            raise ValueError(
-                f"mechanism {mech.name!r}: the table file name {file!r} {problem}; give a plain file name such as "
-                "'input1.dat' (a table is written beside the deck only)"
-            )
 
 
 def save(mech: Mechanism, path: Path, motion: Motion | None, storage: Storage | None) -> Path:

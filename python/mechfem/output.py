@@ -28,37 +28,6 @@ def count(n: int, singular: str, plural: str | None = None) -> str:
     return f"{n} {singular if n == 1 else plural or singular + 's'}"
 
 
-#: The longest output name (bytes of UTF-8) a deck or the Python API may give: with its extension it stays well
-#: below the 255 bytes a file name may have.
-MAX_OUTPUT_NAME = 200
-
-
-def name_problem(name: str) -> str | None:
-    """Why ``name`` is not a plain file name that stays inside the output folder, or None when it is one.
-
-    The deck reader refuses the same names in a deck (an ANIMATE name), with the same words."""
-    trimmed = name.strip()
-    if not trimmed:
-        return "is empty"
-    if trimmed.startswith(("/", "\\")) or (
-        len(trimmed) >= 2 and trimmed[1] == ":" and trimmed[0].isascii() and trimmed[0].isalpha()
-    ):
-        return "is an absolute path"
-    parts = trimmed.replace("\\", "/").split("/")
-    if ".." in parts or trimmed == ".":
-        return "leads out of the output folder (`..`)"
-    if len(parts) > 1:
-        return "has a folder part (`/` or `\\`)"
-    if "\0" in name:
-        return "holds a NUL character"
-    if any(c < " " or "\x7f" <= c <= "\x9f" for c in name):
-        return "holds a control character"
-    size = len(name.encode("utf-8", errors="surrogatepass"))
-    if size > MAX_OUTPUT_NAME:
-        return f"is {size} bytes long, more than {MAX_OUTPUT_NAME}"
-    return None
-
-
 @contextmanager
 def atomic_text(path: Path) -> Iterator[TextIO]:
     """Opens a temporary file beside ``path`` for writing; renames it to ``path`` when the block succeeds.

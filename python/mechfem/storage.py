@@ -5,8 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeAlias, Union
 
+from mechfem.checks import name_problem
+
 if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Mapping
 
     from mechfem import _core
     from mechfem.model import Coordinate, FormParameter, Point, Row
@@ -116,3 +118,28 @@ def from_described(s: _core.StorageDict, name: Callable[[str, int], Ref]) -> Sto
         pictures.append(Picture(p["title"], plots))
     printbuf = s["printbuf"]
     return Storage(buffers, None if printbuf is None else list(printbuf), list(s["savedata"]), s["animate"], pictures)
+
+
+def check_file_names(mechanism: str, storage: Storage | None, tables: Mapping[str, str]) -> None:
+    """Refuses an output name (ANIMATE) or a table file name that is not a plain file name: a run writes into its
+    output folder only, and :meth:`Mechanism.save_deck` writes the tables beside the deck only."""
+
+    def problem_of(name: str) -> str | None:
+        if any(c.isspace() for c in name.strip()):
+            return "holds a blank, which a deck cannot write"
+        return name_problem(name)
+
+    if storage is not None and storage.animate is not None:
+        problem = problem_of(storage.animate)
+        if problem is not None:
+            raise ValueError(
+                f"the storage of mechanism {mechanism!r}: the ANIMATE name {storage.animate!r} {problem}; give a "
+                "plain file name such as 'film' (the animation is written as film.gif into the output folder only)"
+            )
+    for file in tables:
+        problem = problem_of(file)
+        if problem is not None:
+            raise ValueError(
+                f"mechanism {mechanism!r}: the table file name {file!r} {problem}; give a plain file name such as "
+                "'input1.dat' (a table is written beside the deck only)"
+            )
