@@ -121,6 +121,11 @@ def test_optimisations_that_cannot_do_well_end_with_their_results(tmp_path: Path
     prt = (out / "supply_opt.prt").read_text()
     assert "objective: start" in prt and ("converged:" in prt or "did not converge:" in prt)
     assert (out / "supply_opt_opt.mec").exists()
+    assert "targets at the final design (the largest difference from the value asked for):" in prt
+    if change[1].startswith("TARGETAT"):
+        # Said plainly: the target is out of reach, how far, and which line.
+        assert "the targets are not all reached: the largest difference left is" in err
+        assert "(the target on line" in err
 
 
 def test_a_targetext_without_extrema_is_said_to_contribute_nothing(tmp_path: Path, cli: Cli) -> None:

@@ -233,6 +233,14 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
     )
     if not s.success:
         print(f"warning: {deck}: the optimiser did not converge: {s.message}", file=sys.stderr)
+    missed = outcome.unreached()
+    if missed is not None:
+        print(
+            f"note: {deck}: the targets are not all reached: the largest difference left is {missed[0]:.4g} (the "
+            f"target on line {missed[1]}); the design found is the nearest the optimiser could get, and the print "
+            "file lists every target's difference",
+            file=sys.stderr,
+        )
     return status
 
 

@@ -210,6 +210,25 @@ def residuals(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:
     return np.concatenate(res), np.vstack(jac)
 
 
+def misses(problem: Problem, e: Evaluation) -> list[tuple[float, int | None]]:
+    """How far each target is from its value at ``e``: the largest difference (unweighted) and the position
+    (0-based) where it is, None for a TARGETEXT; NaN where a target compares nothing."""
+    out: list[tuple[float, int | None]] = []
+    k_ext = 0
+    for t in problem.terms:
+        if isinstance(t, ValuesTerm):
+            d = np.abs(e.value(t.buffer) - t.values)
+            k = int(np.nanargmax(d)) if np.any(~np.isnan(d)) else None
+            out.append((float(d[k]) if k is not None else math.nan, k))
+        elif isinstance(t, AtTerm):
+            out.append((abs(float(e.value(t.buffer)[t.position]) - t.value), t.position))
+        else:
+            found = [abs(x["value"] - t.value) for x in e.extrema if x["spec"] == k_ext]
+            k_ext += 1
+            out.append((max(found) if found else math.nan, None))
+    return out
+
+
 def reduced(reduce: Reduce, v: FloatArray, g: FloatArray) -> tuple[float, FloatArray]:
     """One number from a buffer's values over the positions, and its gradient (at the position that decides it,
     for MAX and MAXABS)."""

@@ -103,6 +103,18 @@ class Outcome:
     solution: design.Solution
     extrema: list[tuple[design.ExtremumTerm, float, float]]
     """``(term, input, buffer value)`` of every extremum at the final design."""
+    misses: list[tuple[float, int | None]]
+    """How far each target (in deck order) is from its value at the final design (:func:`design.misses`)."""
+
+    def unreached(self) -> tuple[float, int] | None:
+        """The largest difference of a target from its value and that target's line, when some target is missed
+        by more than 1e-6 of its size; None when every target is met."""
+        worst: tuple[float, int] | None = None
+        for t, term, (d, _) in zip(self.opt["targets"], self.problem.terms, self.misses, strict=True):
+            size = np.nanmax(np.abs(term.values)) if isinstance(term, design.ValuesTerm) else abs(term.value)
+            if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
+                worst = (d, int(t["line"]))
+        return worst
 
 
 def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Outcome:
@@ -122,7 +134,8 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
         raise OptimisationError(
             f"error: {deck}: the OPTIMISE block (line {opt['line']}) cannot be evaluated: {e}."
         ) from None
-    return Outcome(deck, opt, p, solution, final_extrema(p, solution))
+    extrema, missed = at_final_design(p, solution)
+    return Outcome(deck, opt, p, solution, extrema, missed)
 
 
 def names_and_lines(opt: OptimiseDict) -> str:
@@ -132,16 +145,18 @@ def names_and_lines(opt: OptimiseDict) -> str:
     )
 
 
-def final_extrema(p: design.Problem, s: design.Solution) -> list[tuple[design.ExtremumTerm, float, float]]:
-    """Every TARGETEXT's extrema at the final design: one more mechanism run, only when there are any."""
+def at_final_design(
+    p: design.Problem, s: design.Solution
+) -> tuple[list[tuple[design.ExtremumTerm, float, float]], list[tuple[float, int | None]]]:
+    """Every TARGETEXT's extrema at the final design, and how far each target is from its value there: one more
+    mechanism run."""
     specs = [t for t in p.terms if isinstance(t, design.ExtremumTerm)]
-    if not specs:
-        return []
     try:
         e = design.Evaluator(p)(s.x)
     except design.Infeasible:
-        return []
-    return [(specs[x["spec"]], float(x["input"]), float(x["value"])) for x in e.extrema]
+        return [], [(math.nan, None) for _ in p.terms]
+    extrema = [(specs[x["spec"]], float(x["input"]), float(x["value"])) for x in e.extrema]
+    return extrema, design.misses(p, e)
 
 
 def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
@@ -206,6 +221,12 @@ def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
                 f"  TARGETEXT {t.buffer} {t.reference}: buffer {t.reference} has no extremum along the motion at the "
                 "final design, so this target contributes nothing to the objective"
             )
+    if outcome.opt["targets"]:
+        out += ["", "  targets at the final design (the largest difference from the value asked for):"]
+        for t, (d, k) in zip(outcome.opt["targets"], outcome.misses, strict=True):
+            where = f" at position {k + 1}" if k is not None else ""
+            kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[t["kind"]]
+            out.append(f"  {kw} on line {t['line']} (buffer {t['buffer']}): {d:.6g}{where}")
     if written is not None:
         out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
     return [*out, ""]
