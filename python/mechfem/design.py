@@ -103,12 +103,14 @@ class Infeasible(MechfemError):
 class Evaluation:
     """One design evaluated: every buffer at every position and its derivatives with respect to the variables."""
 
-    def __init__(self, problem: Problem, x: FloatArray, d: dict[str, Any]) -> None:
+    def __init__(self, column: dict[int, int], x: FloatArray, d: dict[str, Any]) -> None:
         self.x = x
-        self._column = {b: k for k, b in enumerate(_buffers(problem))}
+        self._column = column
         self._values: FloatArray = d["values"]
         self._gradient: FloatArray = d["gradient"]
         self.extrema: list[dict[str, Any]] = d["extrema"]
+        self.position_one: list[float] = list(d["position_one"] or [])
+        """The design's co-ordinates at position 1, in deck order."""
 
     def value(self, buffer: int) -> FloatArray:
         """The buffer at every position."""
@@ -139,6 +141,7 @@ class Evaluator:
     def __init__(self, problem: Problem) -> None:
         self.problem = problem
         buffers = _buffers(problem)
+        self._column = {b: k for k, b in enumerate(buffers)}
         self.model = _core.DesignModel(
             problem.text, problem.path, problem.base_dir, problem.variables, buffers, _extrema(problem)
         )
@@ -159,7 +162,7 @@ class Evaluator:
         key = np.asarray(x, dtype=np.float64).tobytes()
         if self._cache is None or self._cache[0] != key:
             d = self.model.evaluate([float(v) for v in x])
-            result: Evaluation | str = Evaluation(self.problem, np.array(x), d) if d["feasible"] else str(d["reason"])
+            result: Evaluation | str = Evaluation(self._column, np.array(x), d) if d["feasible"] else str(d["reason"])
             if isinstance(result, Evaluation):
                 counts = _extremum_counts(self.problem, result)
                 if self.extrema_count is None:
@@ -293,8 +296,13 @@ class Solution:
     message: str
     seconds: float
     method: str
-    position_one: list[float]
-    """The co-ordinates at position 1 of the final design (the last design evaluated), in deck order."""
+    final: Evaluation
+    """The final design evaluated: every buffer, the extrema and its position 1."""
+
+    @property
+    def position_one(self) -> list[float]:
+        """The co-ordinates at position 1 of the final design, in deck order."""
+        return self.final.position_one
 
 
 def solve(problem: Problem, report: Callable[[Iteration], object] | None = None) -> Solution:
@@ -310,7 +318,8 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         raise Infeasible(f"the start design is infeasible: {err}") from None
     f0, _ = objective(problem, e0)
     history: list[Iteration] = [Iteration(0, f0, violation(problem, e0), 0.0, ev.runs, np.array(x0))]
-    best = {"x": x0, "f": f0}
+    # The last design the optimiser moved to: where an infeasible one falls back to, without another run.
+    best: dict[str, Any] = {"x": x0, "f": f0, "e": e0}
     if report is not None:
         report(history[0])
 
@@ -319,37 +328,35 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         step = float(np.max(np.abs(x - best["x"])))
         it = Iteration(len(history), f, violation(problem, e), step, ev.runs, np.array(x))
         history.append(it)
-        best["x"], best["f"] = np.array(x), f
+        best.update(x=np.array(x), f=f, e=e)
         if report is not None:
             report(it)
 
+    def feasible(x: FloatArray) -> Evaluation:
+        """The evaluation at ``x``, or the best design's when ``x`` is infeasible."""
+        try:
+            return ev(x)
+        except Infeasible:
+            return best["e"]
+
     least_squares = not problem.bounds and problem.objective is None and problem.custom is None
     if least_squares:
-        big = {"r": None}
 
         def fun(x: FloatArray) -> FloatArray:
             try:
                 e = ev(x)
             except Infeasible:
-                r_best, _ = residuals(problem, ev(best["x"]))
-                big["r"] = 1e3 * (1.0 + np.abs(r_best))
-                return np.asarray(big["r"])
+                return 1e3 * (1.0 + np.abs(residuals(problem, best["e"])[0]))
             r, _ = residuals(problem, e)
             if float(r @ r) < best["f"]:
                 note(x, e)
             return r
 
-        def jac(x: FloatArray) -> FloatArray:
-            try:
-                return residuals(problem, ev(x))[1]
-            except Infeasible:
-                return residuals(problem, ev(best["x"]))[1]
-
         tol = problem.tol if problem.tol is not None else 1e-12
         out = optimize.least_squares(
             fun,
             x0,
-            jac=jac,
+            jac=lambda x: residuals(problem, feasible(x))[1],
             bounds=(problem.lo, problem.hi),
             method="trf",
             x_scale="jac",
@@ -375,13 +382,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             try:
                 return constraints(problem, ev(x))[0]
             except Infeasible:
-                return -np.ones_like(constraints(problem, ev(best["x"]))[0])
-
-        def cons_jac(x: FloatArray) -> FloatArray:
-            try:
-                return constraints(problem, ev(x))[1]
-            except Infeasible:
-                return constraints(problem, ev(best["x"]))[1]
+                return -np.ones_like(constraints(problem, best["e"])[0])
 
         def callback(xk: FloatArray) -> None:
             try:
@@ -389,7 +390,8 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             except Infeasible:
                 pass
 
-        cons_list = [{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else []
+        cons_jac = {"jac": lambda x: constraints(problem, feasible(x))[1]}
+        cons_list = [{"type": "ineq", "fun": cons, **cons_jac}] if problem.bounds else []
         tol = problem.tol if problem.tol is not None else 1e-10
         out = optimize.minimize(
             fg,
@@ -405,8 +407,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
     try:
         e = ev(x)
     except Infeasible:
-        x = best["x"]
-        e = ev(x)
+        x, e = best["x"], best["e"]
     f, _ = objective(problem, e)
     if not np.array_equal(x, best["x"]):
         note(x, e)
@@ -422,5 +423,5 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         message=message,
         seconds=time.perf_counter() - t0,
         method=method,
-        position_one=list(ev.model.position_one()),
+        final=e,
     )

@@ -322,7 +322,7 @@ def optimize(
     optimised = copy.deepcopy(mechanism)
     for name, x in zip(vary, sol.x, strict=True):
         optimised.set(name, float(x))
-    _carry_position_one(optimised, mechanism, written.numbering, sol.position_one, motion)
+    _carry_position_one(optimised, written.numbering, sol.position_one)
     return Optimum(
         mechanism=optimised,
         start=dict(zip(vary, map(float, sol.start), strict=True)),
@@ -354,25 +354,6 @@ def optimize(
 # --- multi-start ---------------------------------------------------------------------------------------------------
 
 
-def _holder(mech: Mechanism, name: str) -> Coordinate | Row:
-    """What holds the value of the design variable ``name``: a co-ordinate or a prescribed row."""
-    obj = _lookup(mech, name)
-    if isinstance(obj, FormParameter):
-        rows = [r for r in mech.prescribed if r.terms == ((1.0, obj),)]
-        if not rows:
-            raise ValueError(f"{name!r} is not prescribed: only a prescribed value or a fixed co-ordinate can vary")
-        return rows[0]
-    return obj
-
-
-def _with_values(mech: Mechanism, values: Mapping[str, float]) -> Mechanism:
-    """A copy of ``mech`` whose design variables (as ``vary`` names them) take ``values``."""
-    out = copy.deepcopy(mech)
-    for name, x in values.items():
-        _holder(out, name).value = float(x)
-    return out
-
-
 def _one_start(task: tuple[Mechanism, dict[str, tuple[float, float]], dict[str, Any]]) -> Optimum | tuple[str, float]:
     """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
     from mechfem.errors import MechfemError
@@ -400,7 +381,9 @@ def _multi_start(
     lo = np.array([float(v[0]) for v in vary.values()])
     hi = np.array([float(v[1]) for v in vary.values()])
     draws = lo + (hi - lo) * np.random.default_rng(seed).random((starts - 1, len(vary)))
-    designs = [mechanism] + [_with_values(mechanism, dict(zip(vary, x, strict=True))) for x in draws]
+    begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
+    begins += [dict(zip(vary, map(float, x), strict=True)) for x in draws]
+    designs = [mechanism] + [mechanism.variant(b) for b in begins[1:]]
     tasks = [(m, dict(vary), kwargs) for m in designs]
     if executor is None:
         outs: list[Any] = [_one_start(t) for t in tasks]
@@ -409,12 +392,11 @@ def _multi_start(
         tasks = [(m, v, remote) for m, v, _ in tasks]
         outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
     outcomes: list[Start] = []
-    for m, out in zip(designs, outs, strict=True):
+    for begin, out in zip(begins, outs, strict=True):
         if isinstance(out, Optimum):
             outcomes.append(out.starts[0])
             continue
         reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
-        begin = {name: float(v) for name in vary if (v := _holder(m, name).value) is not None}
         outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
     found = [out for out in outs if isinstance(out, Optimum)]
     if not found:
@@ -425,24 +407,12 @@ def _multi_start(
     return dataclasses.replace(best, starts=outcomes)
 
 
-def _carry_position_one(
-    mech: Mechanism, original: Mechanism, numbering: deckio.Numbering, x: Sequence[float], motion: Motion
-) -> None:
+def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequence[float]) -> None:
     """Starts the moving co-ordinates at the optimised design's position 1, so that it assembles in the branch the
-    optimisation followed. Where the exact position does not assemble from scratch (a combined angle row whose
-    value there lies a full turn from its prescribed one, which the adjustment cannot undo), the original
-    estimates are kept instead."""
-    from mechfem.errors import MechfemError
-
+    optimisation followed."""
     for c, value in zip(numbering.coords, x, strict=False):
         if not c.fixed and np.isfinite(value):
             mech[c.name].value = float(value)
-    try:
-        mech.check(motion)
-    except MechfemError:
-        for c in numbering.coords:
-            if not c.fixed:
-                mech[c.name].value = original[c.name].value
 
 
 def sensitivity(analysis: Analysis, quantity: Quantity, wrt: Sequence[str]) -> FloatArray:

@@ -148,29 +148,17 @@ def names_and_lines(opt: OptimiseDict) -> str:
 def at_final_design(
     p: design.Problem, s: design.Solution
 ) -> tuple[list[tuple[design.ExtremumTerm, float, float]], list[tuple[float, int | None]]]:
-    """Every TARGETEXT's extrema at the final design, and how far each target is from its value there: one more
-    mechanism run."""
+    """Every TARGETEXT's extrema at the final design, and how far each target is from its value there."""
     specs = [t for t in p.terms if isinstance(t, design.ExtremumTerm)]
-    try:
-        e = design.Evaluator(p)(s.x)
-    except design.Infeasible:
-        return [], [(math.nan, None) for _ in p.terms]
-    extrema = [(specs[x["spec"]], float(x["input"]), float(x["value"])) for x in e.extrema]
-    return extrema, design.misses(p, e)
+    extrema = [(specs[x["spec"]], float(x["input"]), float(x["value"])) for x in s.final.extrema]
+    return extrema, design.misses(p, s.final)
 
 
 def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
     """Writes the final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
     variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
     s = outcome.solution
-    path = write_design(outcome.deck, outcome.problem.variables, s.x, s.position_one, outdir)
-    try:
-        _core.check_deck(os.fspath(path))
-    except MechfemError:
-        # The exact position 1 does not assemble from scratch (a combined angle row whose value there lies a full
-        # turn from its prescribed one): the deck's own XMOV estimates instead.
-        path = write_design(outcome.deck, outcome.problem.variables, s.x, [], outdir)
-    return path
+    return write_design(outcome.deck, outcome.problem.variables, s.x, s.position_one, outdir)
 
 
 def write_design(

@@ -76,12 +76,31 @@ pub(crate) struct Slot {
     pub cols: [usize; MAX_COORDS],
 }
 
+/// What a vector handed to a [`Slot`] is indexed by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Over {
+    /// The columns of D^c (the moving co-ordinates): fixed co-ordinates do
+    /// not move.
+    Columns,
+    /// Every co-ordinate: a fixed one moves too (a design variable).
+    Coordinates,
+}
+
 impl Slot {
-    /// A vector over the moving co-ordinates (indexed by column) seen from
-    /// the element: fixed co-ordinates do not move.
+    /// The indices into a vector `over` the columns or the co-ordinates.
     #[inline]
-    pub fn gather_columns(&self, a: &[f64]) -> [f64; MAX_COORDS] {
-        self.cols.map(|c| a.get(c).copied().unwrap_or(0.0))
+    pub fn indices(&self, over: Over) -> &[usize; MAX_COORDS] {
+        match over {
+            Over::Columns => &self.cols,
+            Over::Coordinates => &self.coords,
+        }
+    }
+
+    /// A vector `over` the columns or the co-ordinates seen from the
+    /// element (0 where it has no entry: a fixed co-ordinate's column).
+    #[inline]
+    pub fn gather(&self, a: &[f64], over: Over) -> [f64; MAX_COORDS] {
+        self.indices(over).map(|c| a.get(c).copied().unwrap_or(0.0))
     }
 }
 

@@ -120,14 +120,9 @@ impl DesignModel {
         self.runs
     }
 
-    /// The co-ordinates at position 1 of the last design assembled (the
-    /// deck's own before any), in the deck's order.
-    fn position_one(&self) -> Vec<f64> {
-        self.position_one.clone().unwrap_or_else(|| self.compiled.state.x.clone())
-    }
-
     /// Evaluates the design `values`: a dict with `feasible`, `reason`
-    /// (None when feasible), `positions`, `values` (positions x buffers),
+    /// (None when feasible), `positions`, `position_one` (its co-ordinates
+    /// at position 1, None when it has none), `values` (positions x buffers),
     /// `gradient` (positions x buffers x variables) and `extrema` (dicts
     /// with `spec`, `after`, `input`, `reference`, `value`, `gradient`).
     fn evaluate<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
@@ -165,9 +160,11 @@ impl DesignModel {
                     let at = s.last_good + 2;
                     format!("the motion stopped before position {at}: {}", errors::describe(&c.mechanism, &s.error))
                 });
+                let at_1 = run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec);
                 if reason.is_none() {
-                    self.position_one = Some(run.coords[..c.mechanism.n_coords()].to_vec());
+                    self.position_one.clone_from(&at_1);
                 }
+                d.set_item("position_one", at_1)?;
                 d.set_item("feasible", reason.is_none())?;
                 d.set_item("reason", reason)?;
                 d.set_item("positions", run.positions)?;
@@ -195,6 +192,7 @@ impl DesignModel {
                 d.set_item("feasible", false)?;
                 d.set_item("reason", format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, &e)))?;
                 d.set_item("positions", 0)?;
+                d.set_item("position_one", py.None())?;
                 d.set_item("report", py.None())?;
                 d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
                 d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;

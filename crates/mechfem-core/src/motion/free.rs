@@ -7,7 +7,7 @@
 //! are passed.
 
 use crate::error::SolveError;
-use crate::model::{Mechanism, State};
+use crate::model::{Mechanism, Over, State};
 use crate::solver::assemble::grad_dot;
 use crate::solver::{correct_with, Kinematics, Params, TempInput};
 
@@ -99,7 +99,7 @@ impl FreeStepper {
             }
         }
         let norm = self.tangent.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut rate = grad_dot(&mech.prescribed, &kin.cache, self.row, &self.tangent) / norm;
+        let mut rate = grad_dot(&mech.prescribed, &kin.cache, self.row, &self.tangent, Over::Columns) / norm;
         let dot: f64 = self.tangent.iter().zip(&self.previous).map(|(a, b)| a * b).sum();
         let flip = if self.has_previous { dot < 0.0 } else { rate * self.initial_sign < 0.0 };
         let f = if flip { -1.0 / norm } else { 1.0 / norm };

@@ -7,7 +7,7 @@
 use super::lu::Lu;
 use crate::elements::{FormEval, Order, MAX_COORDS};
 use crate::error::SolveError;
-use crate::model::{Mechanism, Rows, FIXED};
+use crate::model::{Mechanism, Over, Rows, FIXED};
 
 /// Marker for "this co-ordinate has no entry in D^c" (it is fixed).
 pub(crate) const NO_ENTRY: usize = usize::MAX;
@@ -115,12 +115,13 @@ pub(crate) fn writes_every_place_once(positions: &[[usize; MAX_COORDS]], len: us
     count.iter().all(|&c| c == 1)
 }
 
-/// `sum_k D_{row,k} a_k`: the row's gradient times a vector over the moving
-/// co-ordinates (fixed co-ordinates do not move).
-pub(crate) fn grad_dot(rows: &Rows, cache: &[FormEval], row: usize, a: &[f64]) -> f64 {
+/// `sum_k D_{row,k} a_k`: the row's gradient times a vector `over` the
+/// moving co-ordinates (fixed co-ordinates do not move) or over every
+/// co-ordinate.
+pub(crate) fn grad_dot(rows: &Rows, cache: &[FormEval], row: usize, a: &[f64], over: Over) -> f64 {
     let mut s = 0.0;
     for k in rows.range(row) {
-        let ae = rows.slots()[k].gather_columns(a);
+        let ae = rows.slots()[k].gather(a, over);
         let g: f64 = (0..rows.slots()[k].n).map(|p| cache[k].grad[p] * ae[p]).sum();
         s += rows.terms()[k].factor * g;
     }
@@ -130,10 +131,18 @@ pub(crate) fn grad_dot(rows: &Rows, cache: &[FormEval], row: usize, a: &[f64]) -
 /// `sum_kl D_{row,kl} a_k b_l` for every row into `out`: the second-order
 /// products of eqs. 5.22 and 5.28, summed element by element from each
 /// element's second derivative along the directions (no Hessian is formed),
-/// with `cache` the rows' evaluation at `x` to first order or more.
-pub(crate) fn second_products(rows: &Rows, x: &[f64], cache: &[FormEval], a: &[f64], b: &[f64], out: &mut [f64]) {
+/// with `cache` the rows' evaluation at `x` to first order or more, and
+/// `a`, `b` vectors `over` the columns of D^c or every co-ordinate.
+pub(crate) fn second_products(
+    rows: &Rows,
+    x: &[f64],
+    cache: &[FormEval],
+    (a, b): (&[f64], &[f64]),
+    over: Over,
+    out: &mut [f64],
+) {
     out[..rows.len()].fill(0.0);
     for (((t, slot), first), &row) in rows.terms().iter().zip(rows.slots()).zip(cache).zip(rows.row_of()) {
-        out[row] += t.factor * slot.ty.second_at(t.form, (&slot.coords, &slot.cols), x, first, a, b);
+        out[row] += t.factor * slot.ty.second_at(t.form, (&slot.coords, slot.indices(over)), x, first, a, b);
     }
 }

@@ -22,10 +22,11 @@
 //! the solve adds. Everything else is exact. Dependent form parameters
 //! follow by the chain rule (eqs. 5.31, 5.32 differentiated).
 
-use super::transfer::{Kinematics, TransferOrder};
+use super::assemble::{grad_dot, second_products};
+use super::transfer::{pairs, Kinematics, TransferOrder};
 use crate::elements::{FormEval, Order};
 use crate::error::SolveError;
-use crate::model::{Mechanism, Rows, State};
+use crate::model::{Mechanism, Over, Rows, State};
 
 /// A design variable: a number of the model that a designer may change.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -101,22 +102,13 @@ impl Sensitivity {
         }
         let (nv, n, nc, nd, ndep) = (vars.len(), mech.n_moving(), mech.n_coords(), mech.n_dof(), mech.n_dependent());
         let np = nd * (nd + 1) / 2;
-        let mut pair = vec![0; nd * nd];
-        let mut p = 0;
-        for j in 0..nd {
-            for m in j..nd {
-                pair[j * nd + m] = p;
-                pair[m * nd + j] = p;
-                p += 1;
-            }
-        }
         Ok(Sensitivity {
             vars: vars.to_vec(),
             n_coords: nc,
             n_dof: nd,
             n_pairs: np,
             n_dep: ndep,
-            pair,
+            pair: pairs(nd),
             s: vec![f64::NAN; nv * nc],
             s1: vec![f64::NAN; nv * nd * nc],
             s2: vec![f64::NAN; nv * np * nc],
@@ -194,7 +186,7 @@ impl Sensitivity {
             // d x'_j / dp.
             for j in 0..nd {
                 let (s, a) = (&self.s[v * nc..(v + 1) * nc], &self.x1[j * nc..(j + 1) * nc]);
-                products(&mech.prescribed, x, &kin.cache, a, s, &mut self.prod);
+                second_products(&mech.prescribed, x, &kin.cache, (a, s), Over::Coordinates, &mut self.prod);
                 self.col.iter_mut().zip(&self.prod).for_each(|(c, p)| *c = -p);
                 kin.lu.solve(&mut self.col, &mut self.work);
                 let k = (v * nd + j) * nc;
@@ -232,7 +224,7 @@ impl Sensitivity {
         let x2 = &self.x2[p * nc..(p + 1) * nc];
         let rows = &mech.prescribed;
         let acc = |u: &[f64], w: &[f64], col: &mut [f64], prod: &mut [f64]| {
-            products(rows, x, &kin.cache, u, w, prod);
+            second_products(rows, x, &kin.cache, (u, w), Over::Coordinates, prod);
             col.iter_mut().zip(prod.iter()).for_each(|(c, p)| *c -= p);
         };
         self.col.fill(0.0);
@@ -254,14 +246,14 @@ impl Sensitivity {
         let (cache, x) = (&kin.dep_cache, &state.x);
         let s = &self.s[v * nc..(v + 1) * nc];
         for d in 0..ndep {
-            self.e[v * ndep + d] = grad_dot_all(rows, cache, d, s);
+            self.e[v * ndep + d] = grad_dot(rows, cache, d, s, Over::Coordinates);
         }
         for j in 0..nd {
             let a = &self.x1[j * nc..(j + 1) * nc];
             let da = &self.s1[(v * nd + j) * nc..][..nc];
-            products(rows, x, cache, a, s, &mut self.dep_prod);
+            second_products(rows, x, cache, (a, s), Over::Coordinates, &mut self.dep_prod);
             for d in 0..ndep {
-                self.e1[(v * ndep + d) * nd + j] = grad_dot_all(rows, cache, d, da) + self.dep_prod[d];
+                self.e1[(v * ndep + d) * nd + j] = grad_dot(rows, cache, d, da, Over::Coordinates) + self.dep_prod[d];
             }
         }
         if order < TransferOrder::Second {
@@ -274,10 +266,10 @@ impl Sensitivity {
                 let (da, db) = (&self.s1[(v * nd + j) * nc..][..nc], &self.s1[(v * nd + m) * nc..][..nc]);
                 let (x2, ds2) = (&self.x2[p * nc..(p + 1) * nc], &self.s2[(v * np + p) * nc..][..nc]);
                 for d in 0..ndep {
-                    self.e2[(v * ndep + d) * np + p] = grad_dot_all(rows, cache, d, ds2);
+                    self.e2[(v * ndep + d) * np + p] = grad_dot(rows, cache, d, ds2, Over::Coordinates);
                 }
                 for (u, w) in [(s, x2), (da, b), (a, db)] {
-                    products(rows, x, cache, u, w, &mut self.dep_prod);
+                    second_products(rows, x, cache, (u, w), Over::Coordinates, &mut self.dep_prod);
                     for d in 0..ndep {
                         self.e2[(v * ndep + d) * np + p] += self.dep_prod[d];
                     }
@@ -373,27 +365,6 @@ fn column_of_fixed(rows: &Rows, cache: &[FormEval], i: usize, out: &mut [f64]) {
                 out[row] += t.factor * e.grad[a];
             }
         }
-    }
-}
-
-/// `sum_k E_{d,k} a_k` over every co-ordinate of row d (fixed ones too).
-fn grad_dot_all(rows: &Rows, cache: &[FormEval], d: usize, a: &[f64]) -> f64 {
-    rows.range(d)
-        .map(|k| {
-            let s = &rows.slots()[k];
-            let g: f64 = (0..s.n).map(|p| cache[k].grad[p] * a[s.coords[p]]).sum();
-            rows.terms()[k].factor * g
-        })
-        .sum()
-}
-
-/// `sum_kl D_{row,kl} a_k b_l` for every row, with `a` and `b` over every
-/// co-ordinate (fixed ones too: a fixed co-ordinate that is a design
-/// variable moves with it).
-fn products(rows: &Rows, x: &[f64], cache: &[FormEval], a: &[f64], b: &[f64], out: &mut [f64]) {
-    out[..rows.len()].fill(0.0);
-    for (((t, slot), first), &row) in rows.terms().iter().zip(rows.slots()).zip(cache).zip(rows.row_of()) {
-        out[row] += t.factor * slot.ty.second_at(t.form, (&slot.coords, &slot.coords), x, first, a, b);
     }
 }
 

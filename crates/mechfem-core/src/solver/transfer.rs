@@ -12,7 +12,7 @@ use super::assemble::{
 use super::lu::Lu;
 use crate::elements::{FormEval, Order, MAX_COORDS};
 use crate::error::SolveError;
-use crate::model::{Mechanism, State, FIXED};
+use crate::model::{Mechanism, Over, State, FIXED};
 
 /// How far [`Kinematics::transfer`] goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -41,6 +41,22 @@ impl DcPlan {
         let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
         DcPlan { lu, dc_pos, overwrite }
     }
+}
+
+/// The number of every pair of inputs (j, m), j <= m, in order, at
+/// `[j * n_dof + m]` and `[m * n_dof + j]`: where the second-order transfer
+/// function of the pair is kept.
+pub(crate) fn pairs(n_dof: usize) -> Vec<usize> {
+    let mut pair = vec![0; n_dof * n_dof];
+    let mut p = 0;
+    for j in 0..n_dof {
+        for m in j..n_dof {
+            pair[j * n_dof + m] = p;
+            pair[m * n_dof + j] = p;
+            p += 1;
+        }
+    }
+    pair
 }
 
 /// Workspace and results of the analysis at one position.
@@ -111,15 +127,7 @@ impl Kinematics {
         let n = mech.n_moving();
         let n_dof = mech.n_dof();
         let n_pairs = n_dof * (n_dof + 1) / 2;
-        let mut pair = vec![0; n_dof * n_dof];
-        let mut p = 0;
-        for j in 0..n_dof {
-            for m in j..n_dof {
-                pair[j * n_dof + m] = p;
-                pair[m * n_dof + j] = p;
-                p += 1;
-            }
-        }
+        let pair = pairs(n_dof);
         let n_d = mech.n_dependent();
         Kinematics {
             n,
@@ -275,7 +283,7 @@ impl Kinematics {
                 for m in j..self.n_dof {
                     let p = self.pair[j * self.n_dof + m];
                     let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
-                    second_products(&mech.prescribed, &state.x, &self.cache, a, b, &mut self.rhs);
+                    second_products(&mech.prescribed, &state.x, &self.cache, (a, b), Over::Columns, &mut self.rhs);
                     for r in self.rhs.iter_mut() {
                         *r = -*r;
                     }
@@ -341,7 +349,7 @@ impl Kinematics {
         let n_pairs = nd * (nd + 1) / 2;
         for d in 0..rows.len() {
             for j in 0..nd {
-                self.dep1[d * nd + j] = grad_dot(rows, &self.dep_cache, d, &self.x1[j * n..(j + 1) * n]);
+                self.dep1[d * nd + j] = grad_dot(rows, &self.dep_cache, d, &self.x1[j * n..(j + 1) * n], Over::Columns);
             }
         }
         if order == TransferOrder::Second {
@@ -349,10 +357,11 @@ impl Kinematics {
                 for m in j..nd {
                     let p = self.pair[j * nd + m];
                     let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
-                    second_products(rows, &state.x, &self.dep_cache, a, b, &mut self.dep_second);
+                    second_products(rows, &state.x, &self.dep_cache, (a, b), Over::Columns, &mut self.dep_second);
                     for d in 0..rows.len() {
                         self.dep2[d * n_pairs + p] =
-                            grad_dot(rows, &self.dep_cache, d, &self.x2[p * n..(p + 1) * n]) + self.dep_second[d];
+                            grad_dot(rows, &self.dep_cache, d, &self.x2[p * n..(p + 1) * n], Over::Columns)
+                                + self.dep_second[d];
                     }
                 }
             }
@@ -500,7 +509,7 @@ impl Kinematics {
         for k in 0..n {
             for l in k..n {
                 let (a, b) = (&f[k * n..(k + 1) * n], &f[l * n..(l + 1) * n]);
-                second_products(&mech.prescribed, &self.x_second, &self.cache, a, b, &mut self.rhs);
+                second_products(&mech.prescribed, &self.x_second, &self.cache, (a, b), Over::Columns, &mut self.rhs);
                 for r in self.rhs.iter_mut() {
                     *r = -*r;
                 }
