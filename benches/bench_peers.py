@@ -43,12 +43,10 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-VENV = ROOT / ".venv-bench"
+from benchenv import ROOT, ensure_venv
+
 # The peers and the versions measured in docs/performance.md.
 PEERS = ["pylinkage==1.3.0", "numba==0.68.1", "mechanism==1.1.10"]
-# What mechfem itself needs at import (see pyproject.toml).
-MECHFEM_DEPS = ["numpy", "matplotlib", "pillow"]
 
 # The four-bar.
 A, B, C, D = 1.0, 3.0, 2.5, 3.2
@@ -59,26 +57,6 @@ OMEGA = 2.0
 # seconds in all (--min-time), up to MAX_RUNS.
 MIN_TIME = 0.2
 MAX_RUNS = 100_000
-
-
-def venv_python() -> Path:
-    return VENV / ("Scripts/python.exe" if os.name == "nt" else "bin/python")
-
-
-def ensure_venv() -> None:
-    """Creates .venv-bench with the peers (once), then re-runs this script with its interpreter."""
-    python = venv_python()
-    if Path(sys.prefix).resolve() == VENV.resolve():
-        return
-    stamp = VENV / ".peers-stamp"
-    wanted = "\n".join(PEERS + MECHFEM_DEPS)
-    if not python.exists() or not stamp.exists() or stamp.read_text() != wanted:
-        print(f"installing the peers into {VENV.name}: {' '.join(PEERS)}", flush=True)
-        subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-        pip = [str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"]
-        subprocess.run(pip + PEERS + MECHFEM_DEPS, check=True)
-        stamp.write_text(wanted)
-    os.execv(str(python), [str(python), *sys.argv])
 
 
 def best_of(
@@ -227,7 +205,7 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="time the package mechanism at the smallest --steps only")
     args = parser.parse_args()
     MIN_TIME = args.min_time
-    ensure_venv()
+    ensure_venv(PEERS, ".peers-stamp")
     sys.path.insert(0, str(ROOT / "python"))
 
     import numpy as np

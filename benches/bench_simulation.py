@@ -41,7 +41,6 @@ import argparse
 import math
 import os
 import platform
-import subprocess
 import sys
 import tempfile
 import time
@@ -50,11 +49,10 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
-ROOT = Path(__file__).resolve().parent.parent
-VENV = ROOT / ".venv-bench"
-# SciPy as measured in docs/performance.md, and what mechfem itself needs at import (see pyproject.toml).
+from benchenv import ROOT, ensure_venv
+
+# SciPy as measured in docs/performance.md.
 PEERS = ["scipy==1.17.1"]
-MECHFEM_DEPS = ["numpy", "matplotlib", "pillow"]
 
 # The slider-crank (SI units).
 R, L = 0.05, 0.2  # crank, rod
@@ -64,27 +62,6 @@ M_SLIDER = 0.5
 TORQUE, GAS = 1.0, 10.0  # drive torque on the crank; gas force on the slider, towards the shaft
 Q0, W0 = 0.3, 30.0  # crank angle and speed at the start
 T_END, OUTPUTS = 1.0, 1000
-
-
-def venv_python() -> Path:
-    return VENV / ("Scripts/python.exe" if os.name == "nt" else "bin/python")
-
-
-def ensure_venv() -> None:
-    """Installs SciPy into .venv-bench (once), then re-runs this script with its interpreter."""
-    python = venv_python()
-    if Path(sys.prefix).resolve() == VENV.resolve():
-        return
-    stamp = VENV / ".simulation-stamp"
-    wanted = "\n".join(PEERS + MECHFEM_DEPS)
-    if not python.exists() or not stamp.exists() or stamp.read_text() != wanted:
-        print(f"installing into {VENV.name}: {' '.join(PEERS)}", flush=True)
-        if not python.exists():
-            subprocess.run([sys.executable, "-m", "venv", str(VENV)], check=True)
-        pip = [str(python), "-m", "pip", "install", "--quiet", "--disable-pip-version-check"]
-        subprocess.run(pip + PEERS + MECHFEM_DEPS, check=True)
-        stamp.write_text(wanted)
-    os.execv(str(python), [str(python), *sys.argv])
 
 
 # --- the equations of motion, by hand ---------------------------------------------------------------------------------
@@ -200,7 +177,7 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--min-time", type=float, default=0.5, help="seconds of calls per timing, at least")
     args = parser.parse_args()
-    ensure_venv()
+    ensure_venv(PEERS, ".simulation-stamp")
     sys.path.insert(0, str(ROOT / "python"))
 
     import numpy as np
