@@ -11,6 +11,7 @@ prescribed rows, reactions of the frame, energies, power and the mass matrix. A 
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import importlib
 from collections.abc import Callable, Sequence
@@ -22,7 +23,7 @@ import numpy.typing as npt
 
 from mechfem import _core
 from mechfem.inverse_dynamics import Simulation
-from mechfem.result import Limit, RunReport, RunResult
+from mechfem.result import Limit, ModelNames, RunReport, RunResult
 
 if TYPE_CHECKING:
     from mechfem.deckio import Numbering
@@ -404,7 +405,16 @@ class Analysis:
         if self.dynamic:
             t, v, power = self._energies.T
             d["dynamic"] = {"inputs": self.inputs, "drive": self._drive, "ekin": t, "epot": v, "power": power}
-        return run_result(Path(self.path), d)  # type: ignore[arg-type]
+        result = run_result(Path(self.path), d)  # type: ignore[arg-type]
+        nb = self.numbering
+        # The model's own names, so that the pictures and tables label every quantity as the model calls it.
+        names = ModelNames(
+            coordinates=[c.name for c in nb.coords],
+            prescribed=[r.name for r in nb.prescribed],
+            dependent=[r.name for r in nb.dependent],
+            inputs=[r.name for r in nb.inputs],
+        )
+        return dataclasses.replace(result, names=names)
 
     def plot(self, *outputs: str, **options: Any) -> Any:
         """A figure (``matplotlib.figure.Figure``): the mechanism at position 1 with the paths of its moving points,

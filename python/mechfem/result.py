@@ -448,6 +448,21 @@ class Storage:
 
 
 @dataclass(frozen=True)
+class ModelNames:
+    """A named model's own names for the deck numbers of its run (:class:`mechfem.Mechanism`), so that labels
+    (:mod:`mechfem.labels`) speak the model's language instead of the deck's."""
+
+    coordinates: list[str]
+    """Co-ordinate i is ``coordinates[i - 1]``, e.g. ``P.x``."""
+    prescribed: list[str]
+    """Prescribed row r is ``prescribed[r - 1]``."""
+    dependent: list[str]
+    """Dependent form parameter -k (an output) is ``dependent[k - 1]``."""
+    inputs: list[str]
+    """The input of DOF j is ``inputs[j - 1]``."""
+
+
+@dataclass(frozen=True)
 class RunResult:
     """Everything a run computed, position by position (row k is position k + 1)."""
 
@@ -469,6 +484,8 @@ class RunResult:
     """Drive forces, energies and power at every position of a DYN deck's run."""
     simulation: Simulation | None = None
     """What the integrator of a DYN SIM run did."""
+    names: ModelNames | None = None
+    """The model's own names, for the run of a named model (None for a deck's run: labels use deck numbers)."""
 
     @property
     def positions(self) -> int:
