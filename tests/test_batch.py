@@ -13,7 +13,7 @@ import pytest
 import mechfem
 from conftest import ROOT
 from mechfem import Driven, Mechanism, Motion, Output
-from mechfem.batch import ProgressBar, default_measures
+from mechfem.batch import default_measures
 from test_model_api import supply
 
 TURN = 2 * math.pi
@@ -135,14 +135,23 @@ def test_an_error_in_the_progress_callback_stops_the_study() -> None:
         mechfem.sweep(fourbar, {"rocker": [2.8, 3.0, 3.2]}, motion=MOTION, progress=stop)
 
 
-def test_the_progress_bar_draws_one_line() -> None:
-    out = io.StringIO()
-    bar = ProgressBar("variants", out)
-    for k in range(1, 4):
-        bar(k, 3)
-    bar.close()
-    text = out.getvalue()
-    assert text.endswith("\n") and "3/3 variants" in text and "[" + "#" * 30 + "]" in text
+class Terminal(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+def test_the_progress_bar_counts_variants_on_a_terminal_only(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    mechfem.sweep(fourbar, {"rocker": [2.8, 3.0, 3.2]}, motion=MOTION, progress=True)
+    assert capsys.readouterr().err == ""
+    terminal = Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)
+    mechfem.sweep(fourbar, {"rocker": [2.8, 3.0, 3.2]}, motion=MOTION, progress=True)
+    lines = terminal.getvalue().split("\r")
+    assert any(line.startswith("running:") and "/3 " in line and "variants" in line for line in lines)
+    # The bar is one line, cleared when the study ends.
+    assert "\n" not in terminal.getvalue() and lines[-2].strip() == ""
 
 
 def test_table_as_pandas(monkeypatch: pytest.MonkeyPatch) -> None:

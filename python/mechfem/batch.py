@@ -20,11 +20,9 @@ from __future__ import annotations
 
 import itertools
 import math
-import sys
-import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, TextIO
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -41,36 +39,6 @@ if TYPE_CHECKING:
 FloatArray = npt.NDArray[np.float64]
 Measure = Callable[[Analysis], float]
 Progress = bool | Callable[[int, int], object] | None
-
-
-class ProgressBar:
-    """A one-line progress bar on stderr: ``progress(done, total)``; redrawn at most 20 times a second."""
-
-    def __init__(self, what: str, stream: TextIO | None = None, width: int = 30) -> None:
-        self.what = what
-        self.stream = stream or sys.stderr
-        self.width = width
-        self.started = time.monotonic()
-        self.shown = 0.0
-        self.drawn = False
-
-    def __call__(self, done: int, total: int) -> None:
-        now = time.monotonic()
-        if done < total and now - self.shown < 0.05:
-            return
-        self.shown = now
-        filled = self.width * done // max(total, 1)
-        bar = "#" * filled + "." * (self.width - filled)
-        self.stream.write(f"\r[{bar}] {done}/{total} {self.what} {now - self.started:6.1f} s")
-        self.stream.flush()
-        self.drawn = True
-
-    def close(self) -> None:
-        """Ends the bar's line."""
-        if self.drawn:
-            self.stream.write("\n")
-            self.stream.flush()
-            self.drawn = False
 
 
 def _variants(parameters: Mapping[str, npt.ArrayLike] | Sequence[Mapping[str, Any]]) -> list[dict[str, Any]]:

@@ -417,13 +417,16 @@ def names_in(text: str, nb: Numbering) -> str:
 
 
 def progress_callback(progress: Progress, what: str) -> Callable[[int, int], object] | None:
-    """A callable for ``_core``: None, the user's own, or a progress bar on stderr for ``True``."""
+    """A callable for ``_core``: None, the user's own, or for ``True`` a progress bar counting ``what`` on stderr
+    (drawn on a terminal only)."""
     if progress is None or progress is False:
         return None
     if progress is True:
-        from mechfem.batch import ProgressBar
+        from mechfem.progress import ProgressBar
 
-        return ProgressBar(what)
+        bar = ProgressBar()
+        bar.phase("running", unit=what)
+        return bar
     return progress
 
 

@@ -1,0 +1,111 @@
+"""The data set in a binary format, for runs too big to read back from text comfortably.
+
+``<stem>.npz`` (numpy) holds one array per SAVEDATA buffer, named by the buffer's header cell in the CSV
+(``101 dANGB(8)/dinput1``), and the array ``position`` (1, 2, ...). ``<stem>.parquet`` (Apache Parquet,
+needs the optional dependency pyarrow: ``pip install 'mechfem[parquet]'``) holds the same as columns, ``position``
+first. Both store the doubles as computed, so each column equals the CSV's to the last bit, and both are
+written under a temporary name and renamed when complete, like every output.
+"""
+
+from __future__ import annotations
+
+import os
+import secrets
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from types import ModuleType
+from typing import BinaryIO
+
+import numpy as np
+import numpy.typing as npt
+
+from mechfem.errors import MechfemError
+from mechfem.labels import buffer_labels
+from mechfem.result import RunResult
+
+#: The formats of the data set, the default first.
+FORMATS = ("csv", "npz", "parquet")
+
+#: The name of the column (array) of position numbers.
+POSITION = "position"
+
+
+class MissingDependency(MechfemError):
+    """An output asked for needs an optional dependency that is not installed."""
+
+
+def suffix(fmt: str) -> str:
+    """The file suffix of the data set in format ``fmt``."""
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown data set format {fmt!r}: use one of {', '.join(FORMATS)}")
+    return f".{fmt}"
+
+
+def columns(result: RunResult) -> dict[str, npt.NDArray[np.float64]]:
+    """The SAVEDATA buffers by their header cell in the CSV, in deck order."""
+    labels = buffer_labels(result)
+    return {
+        labels[n].header(): np.ascontiguousarray(result.buffers[n], dtype=np.float64) for n in result.storage.savedata
+    }
+
+
+def positions(result: RunResult) -> npt.NDArray[np.int64]:
+    """The position numbers 1 to ``result.positions``."""
+    return np.arange(1, result.positions + 1, dtype=np.int64)
+
+
+@contextmanager
+def atomic_binary(path: Path) -> Iterator[BinaryIO]:
+    """A new temporary file beside ``path``, opened for writing bytes and renamed to ``path`` when the block
+    succeeds (removed when it fails); as :func:`mechfem.output.atomic_text` does for text."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")
+    try:
+        with open(tmp, "xb") as f:
+            yield f
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def write_npz(result: RunResult, path: Path) -> Path:
+    """The data set as ``.npz``: the array ``position`` and one array per SAVEDATA buffer (uncompressed: doubles
+    hardly compress, and a big run's file is then written as fast as the disk takes it)."""
+    arrays = {POSITION: positions(result), **columns(result)}
+    with atomic_binary(path) as f:
+        np.savez(f, **arrays)
+    return path
+
+
+def pyarrow() -> ModuleType:
+    """The pyarrow module, or a :class:`MissingDependency` saying how to install it."""
+    try:
+        import pyarrow
+        import pyarrow.parquet  # noqa: F401  (the writer is a submodule)
+    except ImportError:
+        raise MissingDependency(
+            "the Parquet data set needs pyarrow, which is not installed: install it with "
+            "`pip install 'mechfem[parquet]'`, or write the data set as csv or npz (--format)"
+        ) from None
+    return pyarrow
+
+
+def write_parquet(result: RunResult, path: Path) -> Path:
+    """The data set as ``.parquet``: the column ``position``, then one column of doubles per SAVEDATA buffer."""
+    pa = pyarrow()
+    data = {POSITION: positions(result), **columns(result)}
+    # NaN stays NaN (not a missing value): pa.array takes numpy's doubles as they are.
+    table = pa.table({name: pa.array(values) for name, values in data.items()})
+    with atomic_binary(path) as f:
+        pa.parquet.write_table(table, f)
+    return path
+
+
+def write_binary(result: RunResult, path: Path, fmt: str) -> Path:
+    """The data set in the binary format ``fmt`` (npz or parquet)."""
+    if fmt == "npz":
+        return write_npz(result, path)
+    if fmt == "parquet":
+        return write_parquet(result, path)
+    raise ValueError(f"not a binary data set format: {fmt!r}")
