@@ -55,6 +55,7 @@ from mechfem.errors import (
     RunInterrupted,
     warn_incomplete,
 )
+from mechfem.export import export_drawing
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
 from mechfem.result import (
@@ -158,6 +159,7 @@ __all__ = [
     "ToleranceStudy",
     "__version__",
     "check_deck",
+    "export_drawing",
     "optimize",
     "run_many",
     "run_deck",

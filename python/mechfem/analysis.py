@@ -431,10 +431,31 @@ class Analysis:
 
         return figures.animate(self, path, points)
 
-    def _repr_png_(self) -> bytes | None:
-        from mechfem import figures
+    def to_dxf(
+        self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True, units: str | None = None
+    ) -> Path:
+        """Writes the mechanism at ``position`` (1-based) as a DXF file with the paths of its moving points
+        (``paths``: True, False or point names) and the points' names, one layer per kind of shape; ``units``
+        ("mm", "m", ...) declares the length unit. Needs ezdxf (``pip install 'mechfem[dxf]'``)."""
+        from mechfem import export
 
-        return figures.result_png(self)
+        return export.write_dxf(export.analysis_drawing(self, position, paths), path, units)
+
+    def to_svg(self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True) -> Path:
+        """Writes the mechanism at ``position`` (1-based) as an SVG file, as :meth:`to_dxf` does a DXF file."""
+        from mechfem import export
+
+        return export.write_svg(export.analysis_drawing(self, position, paths), path)
+
+    def _repr_png_(self) -> bytes | None:
+        from mechfem import notebook
+
+        return notebook.analysis_png(self)
+
+    def _repr_html_(self) -> str:
+        from mechfem import notebook
+
+        return notebook.analysis_html(self)
 
     def __repr__(self) -> str:
         state = "complete" if self.complete else f"stopped after position {self.positions}"

@@ -263,6 +263,11 @@ class Study:
         """The table as a ``pandas.DataFrame`` (needs pandas: ``pip install 'mechfem[pandas]'``)."""
         return _pandas().DataFrame(self.columns)
 
+    def _repr_html_(self) -> str:
+        from mechfem import notebook
+
+        return notebook.study_html(self)
+
     def __repr__(self) -> str:
         ok = int(np.sum(self.columns["ok"])) if "ok" in self.columns else 0
         return f"Study({len(self)} variants, {ok} ok; columns {', '.join(self.columns)})"

@@ -8,6 +8,9 @@
     mechfem report DECK [-o OUTDIR] [--memory-limit SIZE]
                                    run the deck and write only the interactive report DECK-stem.html
     mechfem check DECK             read the deck and compute position 1 only
+    mechfem draw DECK [-o OUTDIR] [--position N] [--format dxf,svg] [--no-paths] [--units UNIT]
+                                   run the deck and write the mechanism at position N (default 1) with the paths
+                                   of its moving points as DECK-stem_posN.dxf and .svg
 
 Exit status:
 
@@ -114,6 +117,7 @@ def build_parser() -> argparse.ArgumentParser:
     check = commands.add_parser("check", help="read a deck and compute its first position only")
     check.add_argument("deck", type=Path, metavar="DECK", help="the deck to check")
     check.set_defaults(func=cmd_check)
+    add_draw(commands)
     return parser
 
 
@@ -336,6 +340,89 @@ def cmd_check(args: argparse.Namespace) -> int:
             "(free motion starts from it)"
         )
     return EXIT_OK
+
+
+def add_draw(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """The ``draw`` command: the mechanism's drawing at one position as DXF and SVG."""
+    from mechfem import export
+
+    draw = commands.add_parser("draw", help="run a deck and write the mechanism at one position as DXF and SVG")
+    draw.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
+    add_outdir(draw, "DECK-stem_posN.dxf and .svg")
+    draw.add_argument(
+        "--position", type=position_number, default=1, metavar="N", help="the position to draw (default 1)"
+    )
+    draw.add_argument(
+        "--format",
+        type=draw_formats,
+        default=list(export.FORMATS),
+        metavar="FORMATS",
+        help="dxf, svg or both as dxf,svg (default both; DXF needs ezdxf: pip install 'mechfem[dxf]')",
+    )
+    draw.add_argument("--no-paths", action="store_true", help="leave out the paths of the moving points")
+    draw.add_argument(
+        "--units",
+        choices=list(export.DXF_UNITS),
+        default=None,
+        help="the deck's length unit, declared in the DXF file (co-ordinates are not scaled; default unitless)",
+    )
+    add_memory_limit(draw)
+    draw.set_defaults(func=cmd_draw)
+
+
+def position_number(text: str) -> int:
+    """``--position``: a whole number from 1."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"positions are numbered from 1, not {n}")
+    return n
+
+
+def draw_formats(text: str) -> list[str]:
+    """``--format``: formats separated by commas, each dxf or svg."""
+    from mechfem import export
+
+    wanted = [f.strip().lower() for f in text.split(",") if f.strip()]
+    wrong = [f for f in wanted if f not in export.FORMATS]
+    if wrong or not wanted:
+        raise argparse.ArgumentTypeError(f"{text!r}: give dxf, svg or dxf,svg")
+    return list(dict.fromkeys(wanted))
+
+
+def cmd_draw(args: argparse.Namespace) -> int:
+    from mechfem import export
+
+    deck: Path = args.deck
+    outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    if "dxf" in args.format and not export.dxf_available():
+        print(
+            "error: writing DXF needs ezdxf, which is not installed: pip install 'mechfem[dxf]' (or pip install "
+            "ezdxf), or ask for SVG only with --format svg",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+    if optimisation(deck) is not None:
+        print(
+            f"note: {deck} is a KIN OPT deck: this drawing shows its start design; `mechfem run` optimises it and "
+            "writes the final design as a deck, which `mechfem draw` draws",
+            file=sys.stderr,
+        )
+    result, interrupted = run_with_progress(deck, args.memory_limit)
+    if args.position > result.positions:
+        print(
+            f"error: {deck}: --position {args.position}: the run has {count(result.positions, 'position')}, so "
+            f"--position must be from 1 to {result.positions}",
+            file=sys.stderr,
+        )
+        return EXIT_FAILED
+    files = export.draw_files(result, outdir, args.position, args.format, not args.no_paths, args.units)
+    print(f"{deck}: {count(result.positions, 'position')} computed")
+    for path in files:
+        print(f"wrote {path}")
+    return exit_status(deck, result, interrupted)
 
 
 _HINTS: dict[type[MechfemError], str] = {

@@ -491,6 +491,11 @@ class RunResult:
     def positions(self) -> int:
         return int(self.coords.shape[0])
 
+    def _repr_html_(self) -> str:
+        from mechfem import notebook
+
+        return notebook.run_result_html(self)
+
 
 @dataclass(frozen=True)
 class CheckResult:
