@@ -17,13 +17,14 @@ PY := $(VENV)/bin/python
 BIN := $(abspath $(VENV))/bin
 RUST_SOURCES := Cargo.toml $(wildcard Cargo.lock) $(shell find crates -name '*.rs' -o -name Cargo.toml)
 
-.PHONY: help install demo test bench browser fuzz fuzz-seeds clean
+.PHONY: help install demo test bench browser docs fuzz fuzz-seeds clean
 
 help:
 	@echo "make demo     install everything into $(VENV), then run examples/supply/supply.mec into out/supply"
 	@echo "make test     install everything into $(VENV), then run the Rust and Python tests and linters"
 	@echo "make bench    install everything into $(VENV), then time mechfem against its peers (benches/bench_peers.py)"
 	@echo "make browser  install Debian's chromium for the report's browser test (as root; make test calls it)"
+	@echo "make docs     install everything into $(VENV), then build the documentation site into site/ (mkdocs, --strict)"
 	@echo "make fuzz     fuzz the deck reader and the run for FUZZ_SECONDS (default $(FUZZ_SECONDS)) per target (nightly Rust, cargo-fuzz)"
 	@echo "make clean    remove $(VENV), out/ and the build products"
 
@@ -66,6 +67,12 @@ test: install browser
 	$(BIN)/ruff check python tests
 	$(PY) -m pytest -q tests
 
+# The documentation site: docs/*.md with mkdocs (a dev dependency) into site/; --strict fails on any warning,
+# a broken link among them (mkdocs.yml, scripts/mkdocs_hooks.py).
+docs: install
+	$(PY) -m mkdocs build --strict --site-dir site
+	@echo "open site/index.html in a web browser"
+
 # The peers (pylinkage with numba, mechanism) go into .venv-bench, which the script creates itself;
 # mechfem is imported from this tree with the module built by `install`.
 bench: install
@@ -95,4 +102,4 @@ fuzz: fuzz-seeds
 	done
 
 clean:
-	rm -rf $(VENV) .venv-bench out python/mechfem/_core*.so
+	rm -rf $(VENV) .venv-bench out site python/mechfem/_core*.so
