@@ -63,8 +63,10 @@ def test_the_site_builds_strictly_with_every_page(site: Path) -> None:
 def test_every_link_out_of_docs_is_kept_in_the_site(site: Path) -> None:
     for page in (ROOT / "docs").glob("*.md"):
         for target in re.findall(r"\]\(\.\./([^)\s#]+)", page.read_text()):
+            # A file is copied as it is, a Markdown file becomes a page, a folder a page listing its files.
             kept = site / "repository" / target
-            assert kept.is_file() or (kept / "index.html").is_file(), f"docs/{page.name} links to ../{target}"
+            page_of = kept.with_suffix("") / "index.html" if kept.suffix == ".md" else kept / "index.html"
+            assert kept.is_file() or page_of.is_file(), f"docs/{page.name} links to ../{target}"
 
 
 def small_site(tmp_path: Path, page: str) -> Path:
