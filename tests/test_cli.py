@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import re
 from pathlib import Path
 
 import pytest
@@ -21,11 +22,12 @@ def test_run_supply_writes_print_file_and_data_set(cli: Cli, supply_with_savedat
     assert prt.is_file() and data.is_file()
     assert f"wrote {prt}" in proc.stdout
     rows = list(csv.reader(data.read_text().splitlines()))
-    assert rows[0] == ["99", "100", "101", "102"]
+    assert rows[0] == ["99 ANGB(1)", "100 ANGB(8)", "101 dANGB(8)/dinput1", "102 d2ANGB(8)/dinput1^2"]
     assert len(rows) - 1 == SUPPLY_STEPS + 1
     text = prt.read_text()
     assert "ADJUSTMENT OF POSITION 1" in text
-    assert "BUFFERS 99 = BUFINP 1" in text
+    # The legend of the tables: number, name, unit, deck line, what the buffer holds.
+    assert re.search(r"^ +99 +ANGB\(1\) +rad +BUFINP 1 +value of input 1 \(ANGB\(1\)\)$", text, re.M)
 
 
 def test_run_without_savedata_writes_no_data_set(cli: Cli, tmp_path: Path) -> None:
@@ -65,8 +67,8 @@ def test_data_set_has_full_precision(cli: Cli, supply_with_savedata: Path, tmp_p
     assert proc.returncode == 0, proc.stderr
     rows = list(csv.reader((tmp_path / "supply.csv").read_text().splitlines()))
     result = mechfem.run_deck(supply_with_savedata)
-    for col, number in enumerate(rows[0]):
-        column = result.buffers[int(number)]
+    for col, cell in enumerate(rows[0]):
+        column = result.buffers[int(cell.split()[0])]
         # Every value reads back as exactly the double that was computed.
         assert [float(r[col]) for r in rows[1:]] == column.tolist()
     # An irrational-looking value, such as the output angle, shows at least 15 significant digits.

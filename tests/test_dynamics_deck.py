@@ -120,7 +120,7 @@ def test_the_outputs_show_the_dynamics(tmp_path: Path, cli: Cli) -> None:
     assert "a flywheel's energy swing" in summary
     with open(tmp_path / "supply_dyn.csv", newline="") as f:
         header = next(csv.reader(f))
-    assert header[:3] == ["99", "100", "110"]
+    assert header[:3] == ["99 ANGB(1)", "100 ANGB(8)", "110 drive(ANGB(1))"]
     report = (tmp_path / "supply_dyn.html").read_text()
     assert "drive force or torque against input 1" in report
     assert "energies against input 1" in report

@@ -87,7 +87,7 @@ def test_example_runs_and_writes_print_file_and_data_set(cli: Cli, tmp_path: Pat
     assert all(len(r) == len(header) for r in rows)
 
     # The data set holds exactly the buffers SAVEDATA names, as the run computed them.
-    assert [int(h) for h in header] == result.storage.savedata
+    assert [int(h.split()[0]) for h in header] == result.storage.savedata
     values = np.array(rows, dtype=float)
     for col, number in enumerate(result.storage.savedata):
         assert np.array_equal(values[:, col], result.buffers[number], equal_nan=True), f"buffer {number}"

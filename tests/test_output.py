@@ -37,8 +37,9 @@ def test_print_file_without_printbuf_has_no_table(tmp_path: Path) -> None:
 def test_print_file_tabulates_every_buffer_for_bare_printbuf() -> None:
     result = mechfem.run_deck(SUPPLY)
     lines = print_file_lines(result)
-    header = next(k for k, line in enumerate(lines) if line.startswith("BUFFERS"))
-    assert lines[header + 1].split() == ["position", "99", "100", "101", "102"]
+    header = next(k for k, line in enumerate(lines) if line.startswith("  position"))
+    assert lines[header].split() == ["position", "99", "100", "101", "102"]
+    assert lines[header + 1].split() == ["ANGB(1)", "ANGB(8)", "dANGB(8)/dinput1", "d2ANGB(8)/dinput1^2"]
     table = lines[header + 2 : header + 2 + result.positions]
     assert [int(row.split()[0]) for row in table] == list(range(1, 74))
 

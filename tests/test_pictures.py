@@ -67,21 +67,46 @@ def test_supply_pictures_are_written_as_png_and_svg(supply: RunResult, tmp_path:
             assert root.tag.endswith("svg")
 
 
-def test_function_picture_says_what_the_buffers_hold(supply: RunResult) -> None:
+def test_function_picture_has_one_panel_per_kind_each_with_its_unit(supply: RunResult) -> None:
+    # Picture 2 plots the output angle and its first- and second-order transfer functions against the input:
+    # three kinds of quantity, three panels stacked over one shared x axis.
     fig = picture_figure(supply, 1)
     assert isinstance(fig, Figure)
-    ax = fig.axes[0]
-    assert ax.get_xlabel() == "input 1 = ANGB(1) (BUFINP 1)"
+    assert [ax.get_ylabel() for ax in fig.axes] == [
+        "ANGB(8) [rad]",
+        "dANGB(8)/dinput1 [rad/rad]",
+        "d2ANGB(8)/dinput1^2 [rad/rad^2]",
+    ]
+    # Only the bottom panel names the shared x axis: the input, row 12 = ANGB(1), an angle.
+    assert [ax.get_xlabel() for ax in fig.axes] == ["", "", "ANGB(1) [rad]"]
+    top, middle, bottom = fig.axes
+    assert top.get_shared_x_axes().joined(top, bottom) and middle.get_shared_x_axes().joined(middle, bottom)
+    for ax, number in zip(fig.axes, (100, 101, 102), strict=True):
+        assert np.array_equal(ax.lines[0].get_ydata(), supply.buffers[number], equal_nan=True)
+    suptitle = fig.get_suptitle()
+    assert suptitle == "supply, picture 2: ANGB(8), dANGB(8)/dinput1, d2ANGB(8)/dinput1^2 against ANGB(1)"
+
+
+def test_functions_of_one_kind_and_unit_share_a_panel_with_a_legend(tmp_path: Path) -> None:
+    # Two angles (the output and the input) against time: one panel, a legend, the unit once on the axis.
+    deck = supply_variant(
+        tmp_path,
+        "angles",
+        {
+            "  PRINTBUF\n": "  BUFTIME 98\n  PRINTBUF\n",
+            "    PLOTFUNC 99 100\n    PLOTFUNC 99 101\n    PLOTFUNC 99 102\n": (
+                "    PLOTFUNC 98 100\n    PLOTFUNC 98 99\n"
+            ),
+        },
+    )
+    fig = picture_figure(mechfem.run_deck(deck), 1)
+    assert isinstance(fig, Figure)
+    (ax,) = fig.axes
+    assert ax.get_xlabel() == "time [s]"
+    assert ax.get_ylabel() == "ANGB(8), ANGB(1) [rad]"
     legend = ax.get_legend()
     assert legend is not None
-    assert [t.get_text() for t in legend.get_texts()] == [
-        "100: eps(-1) = ANGB(8) (BUFE0 -1)",
-        "101: d eps(-1) / d input 1 (BUFKE1 -1 1)",
-        "102: d² eps(-1) / d input 1² (BUFKE2 -1 1 1)",
-    ]
-    assert len(ax.lines) >= 3
-    suptitle = fig.get_suptitle()
-    assert suptitle.startswith("supply, picture 2: eps(-1), d eps(-1) / d input 1") and "against input 1" in suptitle
+    assert [t.get_text() for t in legend.get_texts()] == ["ANGB(8) [rad]", "ANGB(1) [rad]"]
 
 
 def test_a_beginpic_title_is_the_picture_title(every_element: RunResult) -> None:
@@ -118,7 +143,8 @@ def test_hodograph_picture_draws_path_arrows_and_mechanism(supply: RunResult) ->
     whole, zoom = fig.axes
     for ax in (whole, zoom):
         assert len(ax.collections) >= 1  # arrows (quiver) and ground hatching
-        assert any(line.get_label() == "path of (x13, y14)" for line in ax.lines)
+        assert any(line.get_label() == "path of (x13, x14)" for line in ax.lines)
+        assert (ax.get_xlabel(), ax.get_ylabel()) == ("x13 [length]", "x14 [length]")
         assert len(ax.patches) >= 9  # joints, fixed pivots
     assert whole.get_ylim()[0] < -6.5  # the whole mechanism, down to its lowest pivot
     assert zoom.get_ylim()[1] < 1.5
@@ -144,7 +170,7 @@ def test_plotcurv_has_equal_axis_scales(tmp_path: Path) -> None:
     per_x = ax.transData.transform((1.0, 0.0)) - origin
     per_y = ax.transData.transform((0.0, 1.0)) - origin
     assert abs(per_x[0]) == pytest.approx(abs(per_y[1]), rel=1e-6)
-    assert ax.get_xlabel() == "x13 (BUFX0 13)" and ax.get_ylabel() == "x14 (BUFX0 14)"
+    assert ax.get_xlabel() == "x13 [length]" and ax.get_ylabel() == "x14 [length]"
 
 
 def test_every_element_type_is_drawn(every_element: RunResult, tmp_path: Path) -> None:

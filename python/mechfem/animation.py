@@ -25,7 +25,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem.drawing import MechanismDrawing, MplMechanism
-from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, atomic_path, describe_buffer, fit_equal, hodograph
+from mechfem.labels import buffer_labels
+from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, atomic_path, fit_equal, hodograph
 from mechfem.result import RunResult
 
 IntArray = npt.NDArray[np.int64]
@@ -175,12 +176,14 @@ class _Mp4Pipe:
 def _title(result: RunResult, name: str, k: int) -> str:
     text = f"{name}: position {k + 1} of {result.positions}"
     inputs = [b for b in result.storage.buffers if b.keyword == "BUFINP"]
+    labels = buffer_labels(result) if inputs else {}
     shown = []
     for b in inputs[:2]:
         value = float(result.buffers[b.number][k])
-        shown.append(f"{describe_buffer(result, b).split(' = ')[0]} = {value:.6g}")
+        lab = labels[b.number]
+        shown.append(f"{lab.name} = {value:.6g} {lab.unit}".rstrip())
     if not shown and result.time.size:
-        shown.append(f"time = {float(result.time[k]):.6g}")
+        shown.append(f"time = {float(result.time[k]):.6g} s")
     return text + ("  (" + ", ".join(shown) + ")" if shown else "")
 
 

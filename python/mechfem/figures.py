@@ -108,9 +108,14 @@ def result_figure(
         assert isinstance(fig, Figure)
         return fig
     names = list(outputs) or [r.name for r in a.numbering.dependent]
-    fig = Figure(figsize=(12.0 if names else 6.5, 5.0), layout="constrained")
-    axes = fig.subplots(1, 2 if names else 1, squeeze=False)[0]
-    ax = axes[0]
+    # The outputs are drawn in panels, one per unit, stacked to the right of the mechanism.
+    units: dict[str, list[str]] = {}
+    for name in names:
+        units.setdefault(_unit(a, name), []).append(name)
+    height = max(5.0, 1.2 + 2.4 * len(units))
+    fig = Figure(figsize=(12.0 if names else 6.5, height), layout="constrained")
+    grid = fig.add_gridspec(max(1, len(units)), 2 if names else 1)
+    ax = fig.add_subplot(grid[:, 0])
     x0, x1, y0, y1 = _draw_mechanism(ax, a)
     chosen = _points(a, points)
     for k, p in enumerate(chosen):
@@ -126,20 +131,48 @@ def result_figure(
         ax.legend(fontsize="small", loc="best")
     ax.set_title(f"{a.mechanism.name}: position 1 and paths", fontsize="medium")
     if names:
-        ax2 = axes[1]
+        from mechfem.labels import input_unit, with_unit
+
         if against == "time" or not a.numbering.inputs:
-            xs, xlabel = a.time, "time"
+            xs, xname, xlabel = a.time, "time", with_unit("time", "s")
         else:
             key = against if against is not None else a.numbering.inputs[0].name
-            xs, xlabel = a.input(key), key
-        for k, name in enumerate(names):
-            ax2.plot(xs, a.value(name), color=PATH_COLOURS[k % len(PATH_COLOURS)], label=name)
-        ax2.set_xlabel(xlabel)
-        ax2.grid(True, alpha=0.3)
-        ax2.legend(fontsize="small", loc="best")
-        state = "" if a.complete else f" (stopped after position {a.positions})"
-        ax2.set_title(f"{', '.join(names)} against {xlabel}{state}", fontsize="medium")
+            j = a.numbering.dof(key)
+            xname = a.numbering.inputs[j - 1].name
+            xs, xlabel = a.input(key), with_unit(xname, input_unit(a.run_result(), j))
+        first = None
+        k = 0
+        for row, (unit, group) in enumerate(units.items()):
+            ax2 = fig.add_subplot(grid[row, 1], sharex=first)
+            first = first or ax2
+            for name in group:
+                ax2.plot(xs, a.value(name), color=PATH_COLOURS[k % len(PATH_COLOURS)], label=with_unit(name, unit))
+                k += 1
+            ax2.set_ylabel(with_unit(", ".join(group), unit))
+            ax2.grid(True, alpha=0.3)
+            if len(group) > 1:
+                ax2.legend(fontsize="small", loc="best")
+            if row < len(units) - 1:
+                ax2.tick_params(labelbottom=False)
+            else:
+                ax2.set_xlabel(xlabel)
+            if row == 0:
+                state = "" if a.complete else f" (stopped after position {a.positions})"
+                ax2.set_title(f"{', '.join(names)} against {xname}{state}", fontsize="medium")
     return fig
+
+
+def _unit(a: Analysis, name: str) -> str:
+    """The unit of what ``a.value(name)`` gives: an output's or row's, a co-ordinate's, a point's (a length)."""
+    from mechfem.labels import LENGTH, coordinate_unit, row_dest_unit
+    from mechfem.model import Coordinate, Row
+
+    obj = a._lookup(name)
+    if isinstance(obj, Row):
+        return row_dest_unit(a.run_result(), a.numbering.row_dest[obj])
+    if isinstance(obj, Coordinate):
+        return coordinate_unit(a.run_result(), a.numbering.coord_number[obj])
+    return LENGTH
 
 
 def _png(fig: Figure) -> bytes:

@@ -91,7 +91,7 @@ class Label:
 
     def axis(self) -> str:
         """An axis label with the unit: ``dANGB(8)/dinput1 [rad/rad]`` (no brackets without a unit)."""
-        return f"{self.name} [{self.unit}]" if self.unit else self.name
+        return with_unit(self.name, self.unit)
 
     def legend(self) -> str:
         """A legend or table entry: the number, the name and the unit (``101 dANGB(8)/dinput1 [rad/rad]``)."""
@@ -359,8 +359,7 @@ def coordinate_name(result: RunResult, i: int) -> str:
 def coordinate_axis(result: RunResult, i: int) -> str:
     """An axis label for co-ordinate i: ``x13 [length]``."""
     namer = _Namer(result)
-    unit = namer.coordinate_unit(i)
-    return f"{namer.coordinate(i)} [{unit}]" if unit else namer.coordinate(i)
+    return with_unit(namer.coordinate(i), namer.coordinate_unit(i))
 
 
 def point_name(result: RunResult, ix: int, iy: int) -> str:
@@ -374,3 +373,23 @@ def point_name(result: RunResult, ix: int, iy: int) -> str:
 def input_name(result: RunResult, j: int) -> str:
     """Input j in a derivative: ``input1``, or the model's name for it."""
     return _Namer(result).input(j)
+
+
+def row_dest_unit(result: RunResult, dest: int) -> str:
+    """The unit of prescribed row ``dest`` (> 0) or dependent form parameter ``-dest``."""
+    return _Namer(result).row_unit(dest)
+
+
+def coordinate_unit(result: RunResult, i: int) -> str:
+    """The unit of co-ordinate i."""
+    return _Namer(result).coordinate_unit(i)
+
+
+def input_unit(result: RunResult, j: int) -> str:
+    """The unit of input j (its row's)."""
+    return _Namer(result).input_unit(j)
+
+
+def with_unit(name: str, unit: str) -> str:
+    """``name [unit]``, or ``name`` without a unit: the form of every axis label."""
+    return f"{name} [{unit}]" if unit else name

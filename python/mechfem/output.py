@@ -1,4 +1,5 @@
-"""The output files of a run: the print file ``<stem>.prt`` and the data set ``<stem>.csv``.
+"""The output files of a run: the print file ``<stem>.prt`` and the data set ``<stem>.csv`` (or ``.npz``,
+``.parquet``: :mod:`mechfem.datasets`).
 
 Each file is written to a temporary file in the output folder and renamed when complete, so a reader
 never sees half a file and an interrupted run leaves no stray temporary file behind.
@@ -6,18 +7,24 @@ never sees half a file and an interrupted run leaves no stray temporary file beh
 
 from __future__ import annotations
 
+import csv
 import os
 import secrets
 import textwrap
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 import numpy as np
 
+from mechfem.datasets import write_binary
 from mechfem.inverse_dynamics import summary_lines
+from mechfem.labels import Label, buffer_labels
 from mechfem.result import Model, RunResult, Storage
+
+if TYPE_CHECKING:
+    from mechfem.progress import ProgressBar
 
 #: Buffers per table in the print file, so that a table fits an ordinary terminal or page.
 COLUMNS_PER_TABLE = 6
@@ -46,35 +53,66 @@ def atomic_text(path: Path) -> Iterator[TextIO]:
         raise
 
 
-def write_outputs(result: RunResult, outdir: Path, media: Sequence[str] = ()) -> list[Path]:
-    """Writes the print file, and the data set when the deck has SAVEDATA; returns the files written.
+def write_outputs(
+    result: RunResult,
+    outdir: Path,
+    media: Sequence[str] = (),
+    fmt: str = "csv",
+    progress: ProgressBar | None = None,
+    on_file: Callable[[Path], object] | None = None,
+) -> list[Path]:
+    """Writes the data set in format ``fmt`` (csv, npz or parquet) when the deck has SAVEDATA, with its notes when
+    it holds NaN, then the print file; returns the files written.
 
     ``media`` are the print file's lines on pictures, animation and report (:meth:`mechfem.media.Media.print_lines`).
+    ``progress`` is told each phase and how far it is; ``on_file(path)`` is called as soon as each file is complete.
     """
     outdir.mkdir(parents=True, exist_ok=True)
     stem = result.deck.stem
-    written = [write_print_file(result, outdir / f"{stem}.prt", media)]
+    written: list[Path] = []
+
+    def done(path: Path) -> None:
+        written.append(path)
+        if on_file is not None:
+            on_file(path)
+
     if result.storage.savedata:
-        written.append(write_data_set(result, outdir / f"{stem}.csv"))
+        data = outdir / f"{stem}.{fmt}"
+        if fmt == "csv":
+            if progress is not None:
+                progress.phase("data set", result.positions, "rows")
+            done(write_data_set(result, data, progress))
+        else:
+            if progress is not None:
+                progress.phase("data set")
+            done(write_binary(result, data, fmt))
         if nan_positions(result, result.storage.savedata):
-            written.append(write_data_set_notes(result, outdir / f"{stem}.notes.txt"))
+            done(write_data_set_notes(result, outdir / f"{stem}.notes.txt", data))
+    if progress is not None:
+        progress.phase("print file")
+    done(write_print_file(result, outdir / f"{stem}.prt", media))
     return written
 
 
-def write_data_set(result: RunResult, path: Path) -> Path:
-    """The data set: a header row of buffer numbers, then one row per position.
+def write_data_set(result: RunResult, path: Path, on_rows: Callable[[int, int], object] | None = None) -> Path:
+    """The data set: a header row, then one row per position.
 
-    Values are written with ``repr``, the shortest text that reads back as exactly the same double
-    (up to 17 significant digits).
+    Each header cell is the buffer's number, a space and its name (``101 dANGB(8)/dinput1``,
+    :meth:`Label.header`), so that a program takes the number as the cell's first word; the csv module quotes a
+    cell whose name holds a comma. Values are written with ``repr``, the shortest text that reads back as exactly
+    the same double (up to 17 significant digits).
     """
     numbers = result.storage.savedata
+    labels = buffer_labels(result)
     table = np.column_stack([np.asarray(result.buffers[n], dtype=np.float64) for n in numbers])
     with atomic_text(path) as f:
-        f.write(",".join(str(n) for n in numbers) + "\n")
+        csv.writer(f, lineterminator="\n").writerow([labels[n].header() for n in numbers])
         # A block of rows at a time: tolist() gives Python floats in bulk, which is several times faster
         # than indexing numpy per value, and the block keeps the memory for text small.
         for start in range(0, result.positions, CSV_BLOCK):
             f.writelines(format_row(row) for row in table[start : start + CSV_BLOCK].tolist())
+            if on_rows is not None:
+                on_rows(min(start + CSV_BLOCK, result.positions), result.positions)
     return path
 
 
@@ -187,20 +225,45 @@ def motion_lines(result: RunResult) -> list[str]:
 
 
 def table_lines(result: RunResult) -> list[str]:
-    """The PRINTBUF tables, COLUMNS_PER_TABLE buffers per table; nothing without PRINTBUF."""
+    """The PRINTBUF section: a legend of every tabulated buffer (number, name, unit, deck line, what it holds),
+    then the tables, COLUMNS_PER_TABLE buffers per table, each column headed by its number and name. Nothing
+    without PRINTBUF."""
     numbers = result.storage.printbuf
     if not numbers:
         return []
-    out: list[str] = []
+    labels = buffer_labels(result)
+    out = ["BUFFERS", *legend_lines(result, numbers, labels), ""]
     for start in range(0, len(numbers), COLUMNS_PER_TABLE):
         group = numbers[start : start + COLUMNS_PER_TABLE]
-        defs = [result.storage.buffer(n) for n in group]
-        out.append("BUFFERS " + ", ".join(f"{d.number} = {d.label()}" for d in defs))
-        out.append("  position" + "".join(f"{n:>18d}" for n in group))
+        # A column is as wide as the numbers need (10 significant digits) or its name, whichever is wider.
+        widths = [max(COLUMN_WIDTH, len(labels[n].name) + 2) for n in group]
+        out.append("  position" + "".join(f"{n:>{w}d}" for n, w in zip(group, widths, strict=True)))
+        out.append("          " + "".join(f"{labels[n].name:>{w}}" for n, w in zip(group, widths, strict=True)))
         columns = [result.buffers[n] for n in group]
         for k in range(result.positions):
-            out.append(f"  {k + 1:8d}" + "".join(f"{float(c[k]):18.10g}" for c in columns))
+            out.append(
+                f"  {k + 1:8d}" + "".join(f"{float(c[k]):{w}.10g}" for c, w in zip(columns, widths, strict=True))
+            )
         out.append("")
+    return out
+
+
+#: The width of a table column in the print file (a name longer than it widens its column).
+COLUMN_WIDTH = 18
+
+
+def legend_lines(result: RunResult, numbers: list[int], labels: dict[int, Label]) -> list[str]:
+    """One line per buffer: number, name, unit (``-`` for none), the deck line that defines it and what it holds."""
+    rows = [
+        (str(n), labels[n].name, labels[n].unit or "-", result.storage.buffer(n).label(), labels[n].text)
+        for n in numbers
+    ]
+    head = ("no", "name", "unit", "deck line", "what it holds")
+    widths = [max(len(r[c]) for r in [head, *rows]) for c in range(4)]
+    out = []
+    for r in [head, *rows]:
+        cells = [r[0].rjust(widths[0]), *(r[c].ljust(widths[c]) for c in range(1, 4)), r[4]]
+        out.append(("    " + "  ".join(cells)).rstrip())
     return out
 
 
@@ -301,17 +364,21 @@ def limit_lines(result: RunResult) -> list[str]:
     return out
 
 
-def write_data_set_notes(result: RunResult, path: Path) -> Path:
-    """The note beside a data set that holds NaN: where, and why."""
+def write_data_set_notes(result: RunResult, path: Path, data: Path | None = None) -> Path:
+    """The note beside the data set ``data`` (default ``<stem>.csv``) that holds NaN: where, and why."""
     stem = result.deck.stem
+    data = data if data is not None else path.with_name(f"{stem}.csv")
     saved = result.storage.savedata
     nan = nan_buffers(result, saved)
     positions = nan_positions(result, saved)
     singular = result.report.singular_positions
     lines = [
-        f"Notes on {stem}.csv, the data set of {result.deck}",
+        f"Notes on {data.name}, the data set of {result.deck}",
         "",
-        "Row 1 holds the buffer numbers, row k + 1 the values at position k.",
+        "Row 1 holds each column's buffer number and name, row k + 1 the values at position k."
+        if data.suffix == ".csv"
+        else "The column position holds the position numbers; every other column one buffer, named by its number "
+        "and name.",
         "",
     ]
     lines += paragraph(

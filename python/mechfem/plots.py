@@ -1,14 +1,16 @@
 """The deck's pictures (``BEGINPIC`` ... ``ENDPIC``), each written as ``<stem>_pic<N>.png`` and ``.svg``.
 
-* ``PLOTFUNC bx by``: buffer by against buffer bx; several share one set of axes, with a legend.
+* ``PLOTFUNC bx by``: buffer by against buffer bx. Lines whose vertical buffers have the same kind and unit
+  share one panel, with a legend; lines of other kinds (a transfer function beside the angle it is taken of)
+  get panels of their own, stacked and sharing the x axis.
 * ``PLOTCURV bx by``: a two-dimensional curve with equal axis scales.
 * ``PLOTHODO ix iy``: the path of the point (x_ix, y_iy), the mechanism in its first position and the
   hodograph: the first-order vectors (dx_ix / d input 1, dy_iy / d input 1) drawn as arrows at points
   along the path (theory, fig. 5.6.5). When the path is small against the mechanism a second panel shows
   it enlarged.
 
-A picture with both functions and curves gets two panels: the functions on the left, the curves on the
-right. Axes are labelled with what the buffers hold (``d eps(-1) / d input 1 (BUFKE1 -1 1)``).
+A picture with both functions and curves has the functions on the left, the curves on the right. Axes and
+legends name the buffers with their units (:mod:`mechfem.labels`: ``dANGB(8)/dinput1 [rad/rad]``).
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import math
 import os
 import secrets
 import textwrap
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,7 +28,8 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem.drawing import MechanismDrawing, MplMechanism
-from mechfem.result import Buffer, Picture, Plot, RunResult
+from mechfem.labels import Label, buffer_labels, coordinate_axis, input_name, label, point_name
+from mechfem.result import Picture, Plot, RunResult
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
@@ -57,100 +60,31 @@ def atomic_path(path: Path) -> Iterator[Path]:
 # -- what the buffers hold ---------------------------------------------------------------------------
 
 
-def _d2(what: str, j: int, m: int) -> str:
-    return f"d² {what} / d input {j}²" if j == m else f"d² {what} / d input {j} d input {m}"
-
-
-def describe_buffer(result: RunResult, b: Buffer) -> str:
-    """What buffer ``b`` holds, in words, e.g. ``d eps(-1) / d input 1`` or ``eps(-1) = ANGB(8)``."""
-    a = b.args
-
-    def eps(r: int) -> str:
-        return f"eps({r})"
-
-    def formula(r: int) -> str:
-        rows = result.model.prescribed if r > 0 else result.model.dependent
-        for row in rows:
-            if row.dest == r:
-                return f" = {row.formula()}"
-        return ""
-
-    match b.keyword:
-        case "BUFINP":
-            dofs = result.model.dofs
-            row = dofs[a[0] - 1] if 0 < a[0] <= len(dofs) else None
-            return f"input {a[0]}" + (formula(row) if row is not None else "")
-        case "BUFTIME":
-            return "time"
-        case "BUFX0":
-            return f"x{a[0]}"
-        case "BUFKX1":
-            return f"d x{a[0]} / d input {a[1]}"
-        case "BUFKX2":
-            return _d2(f"x{a[0]}", a[1], a[2] if len(a) > 2 else a[1])
-        case "BUFVX":
-            return f"velocity of x{a[0]}"
-        case "BUFAX":
-            return f"acceleration of x{a[0]}"
-        case "BUFE0":
-            return eps(a[0]) + formula(a[0])
-        case "BUFKE1":
-            return f"d {eps(a[0])} / d input {a[1]}"
-        case "BUFKE2":
-            return _d2(eps(a[0]), a[1], a[2] if len(a) > 2 else a[1])
-        case "BUFVE":
-            return f"velocity of {eps(a[0])}"
-        case "BUFAE":
-            return f"acceleration of {eps(a[0])}"
-        case "BUFDET":
-            return "det(D^c)"
-        case "BUFSIG":
-            return f"stress of row {a[0]}" + formula(a[0])
-        case "BUFDRV":
-            return f"drive of input {a[0]}"
-        case "BUFREA":
-            return f"reaction on x{a[0]}"
-        case "BUFEKIN":
-            return "kinetic energy"
-        case "BUFEPOT":
-            return "potential energy"
-        case "BUFPOW":
-            return "drive power"
-        case "BUFMRED":
-            return f"mass matrix M({a[0]}, {a[1]})"
-    return b.label()
-
-
-def buffer_label(result: RunResult, number: int) -> str:
-    """An axis label: what buffer ``number`` holds and its deck line, e.g. ``input 1 = ANGB(1) (BUFINP 1)``."""
-    try:
-        b = result.storage.buffer(number)
-    except KeyError:
-        return f"buffer {number}"
-    return f"{describe_buffer(result, b)} ({b.label()})"
-
-
 def picture_title(result: RunResult, index: int) -> str:
-    """The BEGINPIC title, or one made from what the picture shows."""
+    """The BEGINPIC title, or one made from what the picture shows (the buffers' names, :mod:`mechfem.labels`)."""
     pic = result.storage.pictures[index]
     if pic.title:
         return pic.title
-    parts = [f"path and hodograph of point (x{p.a}, y{p.b})" for p in pic.plots if p.keyword == "PLOTHODO"]
+    labels = buffer_labels(result)
+    parts = [
+        f"path and hodograph of point {point_name(result, p.a, p.b)}" for p in pic.plots if p.keyword == "PLOTHODO"
+    ]
     # Functions and curves grouped by their horizontal buffer: "A, B against X".
     against: dict[int, list[str]] = {}
     for p in pic.plots:
         if p.keyword != "PLOTHODO":
-            against.setdefault(p.a, []).append(_short(result, p.b))
-    parts += [f"{', '.join(dict.fromkeys(ys))} against {_short(result, x)}" for x, ys in against.items()]
+            against.setdefault(p.a, []).append(_name(result, labels, p.b))
+    parts += [f"{', '.join(dict.fromkeys(ys))} against {_name(result, labels, x)}" for x, ys in against.items()]
     text = f"{result.deck.stem}, picture {index + 1}: {'; '.join(parts)}"
     return "\n".join(textwrap.wrap(text, 100))
 
 
-def _short(result: RunResult, number: int) -> str:
-    try:
-        return describe_buffer(result, result.storage.buffer(number)).split(" = ")[0]
-    except KeyError:
-        return f"buffer {number}"
+def _label(result: RunResult, labels: dict[int, Label], number: int) -> Label:
+    return labels[number] if number in labels else label(result, number)
+
+
+def _name(result: RunResult, labels: dict[int, Label], number: int) -> str:
+    return _label(result, labels, number).name
 
 
 def picture_files(result: RunResult, outdir: Path) -> list[tuple[Path, Path]]:
@@ -214,27 +148,49 @@ def _arrow_positions(x: FloatArray, y: FloatArray, ok: npt.NDArray[np.bool_], ar
 # -- figures -----------------------------------------------------------------------------------------
 
 
-def _function_axes(ax: object, result: RunResult, plots: list[Plot]) -> None:
+def function_panels(result: RunResult, plots: list[Plot]) -> list[list[Plot]]:
+    """The PLOTFUNC lines of a picture grouped into panels: one panel per kind and unit of the vertical buffers
+    (:attr:`Label.group`), in the order they first appear, so that no axis mixes quantities of different kinds."""
+    labels = buffer_labels(result)
+    panels: dict[tuple[str, str], list[Plot]] = {}
+    for p in plots:
+        panels.setdefault(_label(result, labels, p.b).group, []).append(p)
+    return list(panels.values())
+
+
+#: The longest list of names a vertical axis shows; a longer one gives the kind and the unit instead.
+AXIS_NAMES = 48
+
+
+def _function_axes(ax: object, result: RunResult, plots: list[Plot], xlabel: bool = True) -> None:
+    """One panel of functions: every line's vertical buffers share a kind and a unit, which the axis names."""
     from matplotlib.axes import Axes
 
     assert isinstance(ax, Axes)
+    labels = buffer_labels(result)
     for p in plots:
         bx, by = result.buffers.get(p.a), result.buffers.get(p.b)
         if bx is None or by is None:
             continue
-        ax.plot(bx, by, lw=1.6, label=f"{by_label(result, p.b)}")
-    xs = list(dict.fromkeys(p.a for p in plots))
-    ax.set_xlabel("; ".join(buffer_label(result, b) for b in xs))
-    ys = list(dict.fromkeys(p.b for p in plots))
-    ax.set_ylabel(buffer_label(result, ys[0]) if len(ys) == 1 else "value of the buffers in the legend")
+        ax.plot(bx, by, lw=1.6, label=_label(result, labels, p.b).axis())
+    if xlabel:
+        xs = list(dict.fromkeys(p.a for p in plots))
+        ax.set_xlabel("; ".join(_label(result, labels, b).axis() for b in xs))
+    ys = [_label(result, labels, b) for b in dict.fromkeys(p.b for p in plots)]
+    ax.set_ylabel(_y_axis(ys))
     ax.axhline(0.0, color="#888888", lw=0.6, zorder=0)
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize="small")
+    if len(plots) > 1:
+        ax.legend(loc="best", fontsize="small")
 
 
-def by_label(result: RunResult, number: int) -> str:
-    """A legend entry: buffer number and what it holds."""
-    return f"{number}: {buffer_label(result, number)}"
+def _y_axis(ys: list[Label]) -> str:
+    """The vertical axis of buffers of one kind and unit: their names and the unit, or the kind and the unit."""
+    if len(ys) == 1:
+        return ys[0].axis()
+    unit = f" [{ys[0].unit}]" if ys[0].unit else ""
+    names = ", ".join(y.name for y in ys)
+    return names + unit if len(names) <= AXIS_NAMES else ys[0].group[0] + unit
 
 
 def _curve_axes(
@@ -246,17 +202,18 @@ def _curve_axes(
     assert isinstance(ax, Axes)
     hodos = [p for p in plots if p.keyword == "PLOTHODO"]
     curves = [p for p in plots if p.keyword == "PLOTCURV"]
+    labels = buffer_labels(result)
     for p in curves:
         bx, by = result.buffers.get(p.a), result.buffers.get(p.b)
         if bx is None or by is None:
             continue
-        ax.plot(bx, by, lw=1.6, label=f"{_short(result, p.b)} against {_short(result, p.a)}")
+        ax.plot(bx, by, lw=1.6, label=f"{_name(result, labels, p.b)} against {_name(result, labels, p.a)}")
         ax.plot(bx[:1], by[:1], "o", ms=4, color=ax.lines[-1].get_color())
     if curves:
         xs = list(dict.fromkeys(p.a for p in curves))
         ys = list(dict.fromkeys(p.b for p in curves))
-        ax.set_xlabel("; ".join(buffer_label(result, b) for b in xs))
-        ax.set_ylabel("; ".join(buffer_label(result, b) for b in ys))
+        ax.set_xlabel("; ".join(_label(result, labels, b).axis() for b in xs))
+        ax.set_ylabel("; ".join(_label(result, labels, b).axis() for b in ys))
     box = None
     if hodos:
         if drawing is not None:
@@ -265,7 +222,8 @@ def _curve_axes(
         hi = -lo
         for p in hodos:
             h = hodograph(result, p.a, p.b)
-            ax.plot(h.x, h.y, color=PATH_COLOUR, lw=1.6, zorder=5, label=f"path of (x{p.a}, y{p.b})")
+            point = point_name(result, p.a, p.b)
+            ax.plot(h.x, h.y, color=PATH_COLOUR, lw=1.6, zorder=5, label=f"path of {point}")
             ax.plot(h.x[:1], h.y[:1], "o", color=PATH_COLOUR, ms=4, zorder=5)
             if h.scale > 0:
                 ax.quiver(
@@ -282,7 +240,7 @@ def _curve_axes(
                     headlength=5.0,
                     headaxislength=4.5,
                     zorder=6,
-                    label=f"(dx{p.a}, dy{p.b}) / d input 1, drawn x {h.scale:.3g}",
+                    label=f"d{point}/d{input_name(result, 1)}, drawn x {h.scale:.3g}",
                 )
             finite = np.isfinite(h.x) & np.isfinite(h.y)
             if finite.any():
@@ -293,8 +251,8 @@ def _curve_axes(
         if np.isfinite(lo).all():
             box = (float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]))
         if not curves:
-            ax.set_xlabel("x")
-            ax.set_ylabel("y")
+            ax.set_xlabel("; ".join(dict.fromkeys(coordinate_axis(result, p.a) for p in hodos)))
+            ax.set_ylabel("; ".join(dict.fromkeys(coordinate_axis(result, p.b) for p in hodos)))
     ax.set_aspect("equal", adjustable="box" if hodos else "datalim")
     ax.grid(True, alpha=0.3)
     return box
@@ -329,6 +287,7 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
             # A path of (nearly) no size has nothing to enlarge.
             zoom = 1e-6 * wd < pd < 0.35 * wd
 
+    stacked = function_panels(result, funcs) if funcs else []
     panels = (1 if funcs else 0) + (1 if curves else 0) + (1 if zoom else 0)
     widths = []
     if funcs:
@@ -342,6 +301,8 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
     if zoom:
         widths.append(7.5)
     height = 6.5 if curves else 5.0
+    if len(stacked) > 1:
+        height = max(height, 1.2 + 2.4 * len(stacked))
     if panels == 0:
         # A picture without plots (the deck reader refuses one; the Python API may still build one): one empty
         # panel that says so.
@@ -352,14 +313,15 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
         fig.suptitle(picture_title(result, index))
         return fig
     fig = Figure(figsize=(max(sum(widths) + 0.6 * panels, 7.0), height), layout="constrained")
-    axes = fig.subplots(1, panels, width_ratios=widths, squeeze=False)[0]
+    # Functions of different kinds are stacked in one column, one panel per kind, beside the curves' panels.
+    grid = fig.add_gridspec(max(1, len(stacked)), panels, width_ratios=widths)
     k = 0
     if funcs:
-        _function_axes(axes[k], result, funcs)
+        _function_column(fig, grid, result, stacked)
         k += 1
     tips = None
     if curves:
-        ax = axes[k]
+        ax = fig.add_subplot(grid[:, k])
         # The paths with the tips of their arrows, so that no arrow leaves a panel.
         tips = _curve_axes(ax, result, curves, drawing)
         if whole is not None:
@@ -378,7 +340,7 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
             ax.set_title("whole mechanism, position 1", fontsize="medium")
         k += 1
     if zoom and path_box is not None:
-        ax = axes[k]
+        ax = fig.add_subplot(grid[:, k])
         _curve_axes(ax, result, curves, drawing, zoom=True)
         ax.set_title("path and hodograph, enlarged", fontsize="medium")
         fig.suptitle(picture_title(result, index))
@@ -388,6 +350,25 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
         return fig
     fig.suptitle(picture_title(result, index))
     return fig
+
+
+def _function_column(fig: object, grid: object, result: RunResult, stacked: list[list[Plot]]) -> None:
+    """The function panels, top to bottom in the first column of ``grid``. Panels that share their horizontal
+    buffers share the x axis, which only the bottom panel labels."""
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from matplotlib.gridspec import GridSpec
+
+    assert isinstance(fig, Figure) and isinstance(grid, GridSpec)
+    shared = len({tuple(dict.fromkeys(p.a for p in panel)) for panel in stacked}) == 1
+    first: Axes | None = None
+    for row, panel in enumerate(stacked):
+        ax = fig.add_subplot(grid[row, 0], sharex=first if shared else None)
+        first = first or ax
+        bottom = row == len(stacked) - 1
+        _function_axes(ax, result, panel, xlabel=bottom or not shared)
+        if shared and not bottom:
+            ax.tick_params(labelbottom=False)
 
 
 def fit_equal(ax: object, box: tuple[float, float, float, float]) -> None:
@@ -412,8 +393,11 @@ def _paths_box(result: RunResult, hodos: list[Plot]) -> tuple[float, float, floa
     return float(xs[ok].min()), float(xs[ok].max()), float(ys[ok].min()), float(ys[ok].max())
 
 
-def write_pictures(result: RunResult, outdir: Path) -> list[Path]:
-    """Writes every picture of the deck as PNG and SVG into ``outdir``; returns the files written."""
+def write_pictures(result: RunResult, outdir: Path, on_file: Callable[[Path, int], object] | None = None) -> list[Path]:
+    """Writes every picture of the deck as PNG and SVG into ``outdir``; returns the files written.
+
+    ``on_file(path, k)`` is called as soon as each file of picture ``k`` (from 1) is complete.
+    """
     from matplotlib.figure import Figure
 
     if not result.storage.pictures:
@@ -430,4 +414,6 @@ def write_pictures(result: RunResult, outdir: Path) -> list[Path]:
             with atomic_path(path) as tmp:
                 fig.savefig(tmp, format=fmt, **extra)
             written.append(path)
+            if on_file is not None:
+                on_file(path, index + 1)
     return written
