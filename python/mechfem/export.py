@@ -144,10 +144,11 @@ def check_position(position: object, positions: int) -> int:
 def _pieces(x: FloatArray, y: FloatArray) -> list[FloatArray]:
     """The runs of finite points of a path (a path is broken where a position has no point)."""
     xy = np.stack([x, y], axis=1)
-    ok = np.isfinite(xy).all(axis=1)
+    ok = np.asarray(np.isfinite(xy).all(axis=1), dtype=bool)
     out: list[FloatArray] = []
     start = None
-    for k, good in enumerate([*ok, False]):
+    flags = [bool(v) for v in ok] + [False]  # the end closes the last run
+    for k, good in enumerate(flags):
         if good and start is None:
             start = k
         elif not good and start is not None:
@@ -342,7 +343,8 @@ def _svg_shape(s: Shape) -> str | None:
         case "circle":
             return f'<circle class={cls} cx="{_num(d[0])}" cy="{_num(-d[1])}" r="{_num(d[2])}"/>'
         case "arc":
-            xs, ys = arc_points(*d, n=max(8, int(abs(d[4] - d[3]) / (2 * math.pi) * 96)))
+            cx, cy, r, a0, a1 = d
+            xs, ys = arc_points(cx, cy, r, a0, a1, n=max(8, int(abs(a1 - a0) / (2 * math.pi) * 96)))
             return f'<polyline class={cls} points="{" ".join(_xy(x, y) for x, y in zip(xs, ys, strict=True))}"/>'
     return None
 
