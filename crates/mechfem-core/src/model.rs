@@ -10,8 +10,6 @@
 
 use crate::elements::{ElementType, FormEval, Order, MAX_COORDS};
 use crate::error::{ModelError, SolveError};
-use crate::solver::transfer::DcPlan;
-use std::sync::OnceLock;
 
 /// One single form parameter with its factor in a (combined) row, eq. 5.33.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,11 +184,6 @@ pub struct Mechanism {
     pub(crate) prescribed: Rows,
     pub(crate) dependent: Rows,
     n_dof: usize,
-    /// D^c's storage, chosen from its pattern, and where every term's
-    /// gradient goes in it: made by the first workspace and cloned into
-    /// every later one (choosing it again cost every run of the four-bar
-    /// about 1.5 µs, a sixth of a run of eight positions).
-    pub(crate) dc_plan: OnceLock<DcPlan>,
 }
 
 /// Marker for "this co-ordinate is fixed" in [`Mechanism::column`].
@@ -443,16 +436,7 @@ impl MechanismBuilder {
         }
         prescribed.compile(&elements, &column);
         dependent.compile(&elements, &column);
-        let mech = Mechanism {
-            moving: self.moving,
-            column,
-            moving_coords,
-            elements,
-            prescribed,
-            dependent,
-            n_dof,
-            dc_plan: OnceLock::new(),
-        };
+        let mech = Mechanism { moving: self.moving, column, moving_coords, elements, prescribed, dependent, n_dof };
         let mut state =
             State { x: self.x, target: vec![0.0; mech.n_prescribed()], branch: vec![f64::NAN; mech.elements.len()] };
         // Every element must be evaluable at the start (no coinciding points).

@@ -354,7 +354,7 @@ impl Integration {
 
 impl Default for Integration {
     fn default() -> Self {
-        Integration::from_accuracy(crate::Params::default().tol)
+        Integration::from_accuracy(crate::solver::Params::default().tol)
     }
 }
 

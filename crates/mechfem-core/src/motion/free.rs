@@ -7,8 +7,7 @@
 //! are passed.
 
 use crate::error::SolveError;
-use crate::model::{Mechanism, Over, State};
-use crate::solver::assemble::grad_dot;
+use crate::model::{Mechanism, State};
 use crate::solver::{correct_with, Kinematics, Params, TempInput};
 
 /// Steps along the free motion of a one-DOF mechanism.
@@ -55,7 +54,7 @@ impl FreeStepper {
         kin.factor_with_unit_row(self.row, self.col)?;
         self.tangent.fill(0.0);
         self.tangent[self.row] = 1.0;
-        kin.lu.solve(&mut self.tangent, &mut kin.work);
+        kin.solve(&mut self.tangent);
         Ok(())
     }
 
@@ -99,7 +98,7 @@ impl FreeStepper {
             }
         }
         let norm = self.tangent.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut rate = grad_dot(&mech.prescribed, &kin.cache, self.row, &self.tangent, Over::Columns) / norm;
+        let mut rate = kin.row_dot(mech, self.row, &self.tangent) / norm;
         let dot: f64 = self.tangent.iter().zip(&self.previous).map(|(a, b)| a * b).sum();
         let flip = if self.has_previous { dot < 0.0 } else { rate * self.initial_sign < 0.0 };
         let f = if flip { -1.0 / norm } else { 1.0 / norm };

@@ -169,7 +169,7 @@ impl Stepper {
         }
         refine &= kin.factored;
         if refine && self.order.is_none() {
-            kin.lu.solve(&mut self.residual, &mut kin.work);
+            kin.solve(&mut self.residual);
         }
         for ((r, &i), &dx) in self.refined.iter_mut().zip(mech.moving_coords()).zip(&self.residual) {
             *r = if refine { state.x[i] - dx } else { state.x[i] };

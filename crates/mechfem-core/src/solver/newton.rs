@@ -3,8 +3,8 @@
 //! eps(x) - eps^p is below the tolerance, and the adjustment of a rough
 //! initial position to the prescribed values.
 
+use super::params::Params;
 use super::transfer::Kinematics;
-use super::Params;
 use crate::elements::Order;
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};

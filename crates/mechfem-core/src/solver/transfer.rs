@@ -6,10 +6,9 @@
 //! [`Kinematics`] is also the workspace of the Newton iteration: every
 //! buffer is allocated once, in [`Kinematics::new`].
 
-use super::assemble::{
-    dc_pattern, dc_positions, eval_rows, fill_dc, grad_dot, second_products, writes_every_place_once,
-};
+use super::assemble::{eval_rows, fill_dc, grad_dot, second_products};
 use super::lu::Lu;
+use super::plan::DcPlan;
 use crate::elements::{FormEval, Order, MAX_COORDS};
 use crate::error::SolveError;
 use crate::model::{Mechanism, Over, State, FIXED};
@@ -21,26 +20,6 @@ pub enum TransferOrder {
     First,
     /// Also second-order transfer functions of every pair of inputs.
     Second,
-}
-
-/// D^c's storage as [`Lu::for_pattern`] chose it for a mechanism, and where
-/// each prescribed term's gradient goes in it: the same for every
-/// workspace of the mechanism, so it is made once ([`Mechanism`] keeps it).
-#[derive(Debug, Clone)]
-pub(crate) struct DcPlan {
-    lu: Lu,
-    dc_pos: Vec<[usize; MAX_COORDS]>,
-    /// Whether the gradients write every place of `lu` once.
-    overwrite: bool,
-}
-
-impl DcPlan {
-    /// The places of every term's gradient in `lu`'s storage.
-    fn for_lu(mech: &Mechanism, lu: Lu) -> DcPlan {
-        let dc_pos = dc_positions(mech, &lu);
-        let overwrite = writes_every_place_once(&dc_pos, lu.values().len());
-        DcPlan { lu, dc_pos, overwrite }
-    }
 }
 
 /// The number of every pair of inputs (j, m), j <= m, in order, at
@@ -111,9 +90,7 @@ impl Kinematics {
     /// other, a large block as a band when it can be ordered into a narrow
     /// one, anything else dense (see [`Lu::for_pattern`]).
     pub fn new(mech: &Mechanism) -> Kinematics {
-        let plan =
-            mech.dc_plan.get_or_init(|| DcPlan::for_lu(mech, Lu::for_pattern(mech.n_moving(), &dc_pattern(mech))));
-        Self::with_plan(mech, plan.clone())
+        Self::with_plan(mech, DcPlan::of(mech))
     }
 
     /// As [`Self::new`], with D^c always stored dense: free motion replaces
@@ -220,6 +197,18 @@ impl Kinematics {
     pub(crate) fn factor_with_unit_row(&mut self, row: usize, col: usize) -> Result<(), SolveError> {
         self.lu.set_unit_row(row, col);
         self.lu.factor().map_err(|s| SolveError::Singular { column: s.column, pivot: s.pivot })
+    }
+
+    /// Solves `b` in place with the last factorisation: of D^c, or of D^c
+    /// with a row replaced by a unit row.
+    pub(crate) fn solve(&mut self, b: &mut [f64]) {
+        self.lu.solve(b, &mut self.work);
+    }
+
+    /// The gradient of prescribed row `row`, as evaluated last, times `a`,
+    /// a vector over the columns of D^c.
+    pub(crate) fn row_dot(&self, mech: &Mechanism, row: usize, a: &[f64]) -> f64 {
+        grad_dot(&mech.prescribed, &self.cache, row, a, Over::Columns)
     }
 
     /// Computes det(D^c), the transfer functions of the moving co-ordinates

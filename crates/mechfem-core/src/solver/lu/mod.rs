@@ -146,7 +146,7 @@ impl Lu {
     /// # Panics
     /// When the matrix is banded or split into blocks and (i, j) lies
     /// outside the pattern it was made for.
-    #[inline]
+    #[cfg(test)]
     pub fn add(&mut self, i: usize, j: usize, v: f64) {
         let p = self.position(i, j).expect("entry outside the pattern of a sparse matrix");
         self.values_mut()[p] += v;
