@@ -1,13 +1,19 @@
 """The ``mechfem`` command.
 
-    mechfem run DECK [-o OUTDIR] [--report] [--max-frames N] [--memory-limit SIZE]
-                                   run the deck, write DECK-stem.prt (and .csv with SAVEDATA), the pictures
-                                   and the animation to OUTDIR; --report adds the interactive DECK-stem.html;
-                                   a KIN OPT deck is optimised first and its final design written as
+    mechfem run DECK [-o OUTDIR] [--report | --no-media] [--format csv|npz|parquet] [--max-frames N]
+                     [--memory-limit SIZE] [--quiet]
+                                   run the deck, write DECK-stem.prt (and the data set DECK-stem.csv, .npz or
+                                   .parquet with SAVEDATA), the pictures and the animation to OUTDIR; --report
+                                   adds the interactive DECK-stem.html, --no-media leaves out pictures, animation
+                                   and report; a KIN OPT deck is optimised first and its final design written as
                                    DECK-stem_opt.mec, whose run gives the outputs
-    mechfem report DECK [-o OUTDIR] [--memory-limit SIZE]
+    mechfem report DECK [-o OUTDIR] [--memory-limit SIZE] [--quiet]
                                    run the deck and write only the interactive report DECK-stem.html
-    mechfem check DECK             read the deck and compute position 1 only
+    mechfem check DECK [--quiet]   read the deck and compute position 1 only
+
+A progress bar on stderr names each phase (computing, data set, print file, pictures, animation, report) when
+stderr is a terminal; each output file is announced on stdout as soon as it is complete. --quiet says nothing
+but errors.
     mechfem draw DECK [-o OUTDIR] [--position N] [--format dxf,svg] [--no-paths] [--units UNIT]
                                    run the deck and write the mechanism at position N (default 1) with the paths
                                    of its moving points as DECK-stem_posN.dxf and .svg
@@ -33,11 +39,12 @@ import dataclasses
 import sys
 import warnings
 from pathlib import Path
-from typing import TYPE_CHECKING, TextIO
+from typing import TYPE_CHECKING
 
 import mechfem
 from mechfem import design, optimise_deck
 from mechfem.animation import MAX_FRAMES
+from mechfem.datasets import FORMATS, pyarrow
 from mechfem.errors import (
     AssemblyError,
     ConvergenceError,
@@ -49,6 +56,7 @@ from mechfem.errors import (
 from mechfem.limits import DEFAULT_MEMORY_LIMIT, ENV, memory_limit, parse_size
 from mechfem.media import Media
 from mechfem.output import count, write_outputs
+from mechfem.progress import Console, ProgressBar
 from mechfem.report import write_report
 
 if TYPE_CHECKING:
@@ -61,32 +69,6 @@ EXIT_INTERNAL = 4
 EXIT_INTERRUPTED = 130
 
 
-class ProgressBar:
-    """A one-line progress bar on a terminal; silent when the stream is not a terminal."""
-
-    def __init__(self, stream: TextIO, width: int = 30) -> None:
-        self.stream = stream
-        self.width = width
-        self.active = stream.isatty()
-        self.shown = False
-
-    def __call__(self, done: int, total: int) -> None:
-        if not self.active or total <= 0:
-            return
-        filled = self.width * done // total
-        bar = "#" * filled + "." * (self.width - filled)
-        self.stream.write(f"\r  position {done}/{total} [{bar}] {100 * done // total:3d}%")
-        self.stream.flush()
-        self.shown = True
-
-    def close(self) -> None:
-        """Clears the bar's line."""
-        if self.shown:
-            self.stream.write("\r" + " " * (self.width + 40) + "\r")
-            self.stream.flush()
-            self.shown = False
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="mechfem",
@@ -97,8 +79,20 @@ def build_parser() -> argparse.ArgumentParser:
     run = commands.add_parser("run", help="run a deck and write its print file and data set")
     run.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
     add_outdir(run, "the output files")
-    run.add_argument(
+    media = run.add_mutually_exclusive_group()
+    media.add_argument(
         "--report", action="store_true", help="also write the interactive report DECK-stem.html (one offline file)"
+    )
+    media.add_argument(
+        "--no-media",
+        action="store_true",
+        help="write no pictures, animation or report, only the print file and the data set (for big runs)",
+    )
+    run.add_argument(
+        "--format",
+        choices=FORMATS,
+        default="csv",
+        help="the data set's format: csv (text), npz (numpy) or parquet (needs mechfem[parquet]); default csv",
     )
     run.add_argument(
         "--max-frames",
@@ -108,14 +102,17 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"most frames of the animation, 2..{MAX_FRAMES} (default {MAX_FRAMES}); longer runs are subsampled",
     )
     add_memory_limit(run)
+    add_quiet(run)
     run.set_defaults(func=cmd_run)
     rep = commands.add_parser("report", help="run a deck and write only its interactive report (HTML)")
     rep.add_argument("deck", type=Path, metavar="DECK", help="the deck to run")
     add_outdir(rep, "DECK-stem.html")
     add_memory_limit(rep)
+    add_quiet(rep)
     rep.set_defaults(func=cmd_report)
     check = commands.add_parser("check", help="read a deck and compute its first position only")
     check.add_argument("deck", type=Path, metavar="DECK", help="the deck to check")
+    add_quiet(check, "the exit status alone says whether the deck is valid")
     check.set_defaults(func=cmd_check)
     add_draw(commands)
     return parser
@@ -129,6 +126,12 @@ def add_outdir(parser: argparse.ArgumentParser, what: str) -> None:
         default=None,
         metavar="OUTDIR",
         help=f"folder for {what} (created if needed; default: the deck's folder)",
+    )
+
+
+def add_quiet(parser: argparse.ArgumentParser, why: str = "the exit status is the same") -> None:
+    parser.add_argument(
+        "-q", "--quiet", action="store_true", help=f"print nothing but errors: no progress bar, no file list ({why})"
     )
 
 
@@ -151,31 +154,36 @@ def size(text: str) -> int:
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
-def run_with_progress(deck: Path, limit: int | None) -> tuple[mechfem.RunResult, bool]:
-    """Runs a deck with a progress bar on standard error (shown on a terminal only). Returns the result and
-    whether Ctrl-C stopped it (the result then holds the positions computed before)."""
-    bar = ProgressBar(sys.stderr)
+def run_with_progress(deck: Path, limit: int | None, bar: ProgressBar | None = None) -> tuple[mechfem.RunResult, bool]:
+    """Runs a deck with the progress ``bar`` on standard error (default: one of its own, shown on a terminal
+    only and cleared after the run), in the phase "computing". Returns the result and whether Ctrl-C stopped it
+    (the result then holds the positions computed before)."""
+    own = bar is None
+    progress = ProgressBar() if bar is None else bar
+    progress.phase("computing", unit="positions")
     try:
         # A stopped motion is said once, with the exit status (exit_status), not as a Python warning.
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", mechfem.IncompleteRunWarning)
-            return mechfem.run_deck(deck, progress=bar, memory_limit=limit), False
+            return mechfem.run_deck(deck, progress=progress, memory_limit=limit), False
     except RunInterrupted as e:
         return e.result, True
     finally:
-        bar.close()
+        if own:
+            progress.close()
 
 
-def exit_status(deck: Path, result: mechfem.RunResult, interrupted: bool) -> int:
+def exit_status(deck: Path, result: mechfem.RunResult, interrupted: bool, console: Console | None = None) -> int:
     """After the outputs are written: says why the motion stopped early, if it did, and gives the exit status."""
+    say = console if console is not None else Console(ProgressBar(show=False))
     reason = result.report.stop_reason(written=True)
     if interrupted:
         if reason is None:
             reason = f"All {count(result.report.positions, 'position')} had been computed and are written."
-        print(f"mechfem: {deck}: interrupted. {reason}", file=sys.stderr)
+        say.error(f"mechfem: {deck}: interrupted. {reason}")
         return EXIT_INTERRUPTED
     if reason is not None:
-        print(f"error: {deck}: {reason}", file=sys.stderr)
+        say.error(f"error: {deck}: {reason}")
         return EXIT_STOPPED
     return EXIT_OK
 
@@ -183,10 +191,12 @@ def exit_status(deck: Path, result: mechfem.RunResult, interrupted: bool) -> int
 def cmd_run(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    if args.format == "parquet":
+        pyarrow()  # before anything is computed: a missing pyarrow is said at once
     opt = optimisation(deck)
     if opt is not None:
         return run_optimisation(args, deck, outdir, opt)
-    result, interrupted = run_with_progress(deck, args.memory_limit)
+    result, interrupted = run_with_progress(deck, args.memory_limit, args.console.bar)
     return finish_run(args, deck, outdir, result, interrupted)
 
 
@@ -206,44 +216,46 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
     """Optimises the design of a KIN OPT deck, writes it as ``<stem>_opt.mec`` and runs that deck as a KIN ANA
     run whose outputs are named after ``deck`` and whose print file has the OPTIMISATION section."""
     history: list[design.Iteration] = []
+    console: Console = args.console
 
     def report(it: design.Iteration) -> None:
         history.append(it)
-        print(optimise_deck.iteration_line(it), file=sys.stderr, flush=True)
+        console.bar.advance()
+        console.note(optimise_deck.iteration_line(it))
 
-    print(f"{deck}: optimising {optimise_deck.names_and_lines(opt)}", file=sys.stderr, flush=True)
+    console.note(f"{deck}: optimising {optimise_deck.names_and_lines(opt)}")
+    console.bar.phase("optimising", unit="iterations")
     try:
         outcome = optimise_deck.optimise(deck, opt, report)
     except optimise_deck.OptimisationError as e:
-        print(e, file=sys.stderr)
+        console.error(str(e))
         return EXIT_FAILED
     except KeyboardInterrupt:
         for path in optimise_deck.write_interrupted(deck, opt, history, outdir):
-            print(f"wrote {path}")
+            console.say(f"wrote {path}")
         done = count(max(len(history) - 1, 0), "iteration")
-        print(f"mechfem: {deck}: interrupted during the optimisation after {done}.", file=sys.stderr)
+        console.error(f"mechfem: {deck}: interrupted during the optimisation after {done}.")
         return EXIT_INTERRUPTED
     s = outcome.solution
     values = ", ".join(f"{n} = {x:.10g}" for n, x in zip(outcome.problem.names, s.x, strict=True))
-    print(
+    console.say(
         f"{deck}: {'optimised' if s.success else 'optimiser stopped'} in {count(s.runs, 'mechanism run')}: "
         f"objective {s.start_objective:.4g} -> {s.objective:.4g}; {values}"
     )
     written_deck = optimise_deck.write_design_deck(outcome, outdir)
-    result, interrupted = run_with_progress(written_deck, args.memory_limit)
+    result, interrupted = run_with_progress(written_deck, args.memory_limit, console.bar)
     result = dataclasses.replace(result, deck=deck)
     status = finish_run(
         args, deck, outdir, result, interrupted, optimise_deck.print_lines(outcome, written_deck), [written_deck]
     )
     if not s.success:
-        print(f"warning: {deck}: the optimiser did not converge: {s.message}", file=sys.stderr)
+        console.note(f"warning: {deck}: the optimiser did not converge: {s.message}")
     missed = outcome.unreached()
     if missed is not None:
-        print(
+        console.note(
             f"note: {deck}: the targets are not all reached: the largest difference left is {missed[0]:.4g} (the "
             f"target on line {missed[1]}); the design found is the nearest the optimiser could get, and the print "
-            "file lists every target's difference",
-            file=sys.stderr,
+            "file lists every target's difference"
         )
     return status
 
@@ -257,24 +269,32 @@ def finish_run(
     lines: list[str] | None = None,
     files: list[Path] | None = None,
 ) -> int:
-    """Writes every output of a run, says what was written and gives the exit status; ``lines`` are added to
-    the print file and ``files`` to the list of files written."""
-    media = Media(result, outdir, max_frames=args.max_frames, report=args.report)
-    written = [*(files or []), *write_outputs(result, outdir, [*(lines or []), *media.print_lines()])]
+    """Writes every output of a run, saying each file as soon as it is complete, and gives the exit status;
+    ``lines`` are added to the print file and ``files`` (written before) to the list of files written. With
+    ``--no-media`` only the data set and the print file are written."""
+    console: Console = args.console
+    media = None if args.no_media else Media(result, outdir, max_frames=args.max_frames, report=args.report)
     report = result.report
-    print(f"{deck}: {count(report.positions, 'position')} computed")
-    for path in written:
-        print(f"wrote {path}")
-    for path, what in media.write():
-        print(f"wrote {path}" + (f" ({what})" if what else ""))
-    for note in media.notes:
-        print(f"note: {note}")
+    console.say(f"{deck}: {count(report.positions, 'position')} computed")
+    for path in files or []:
+        console.say(f"wrote {path}")
+
+    def wrote(path: Path, what: str = "") -> None:
+        console.say(f"wrote {path}" + (f" ({what})" if what else ""))
+
+    media_lines = media.print_lines() if media is not None else []
+    write_outputs(result, outdir, [*(lines or []), *media_lines], args.format, console.bar, wrote)
+    if media is not None:
+        media.write(console.bar, wrote)
+        for note in media.notes:
+            console.say(f"note: {note}")
+    console.bar.close()
     for limit in report.limits:
         if limit.kind == "passed":
-            print(f"limit position: {limit.describe(report.input_names)}")
+            console.say(f"limit position: {limit.describe(report.input_names)}")
     for w in report.warnings:
-        print(f"warning: {deck}: {w}", file=sys.stderr)
-    return exit_status(deck, result, interrupted)
+        console.note(f"warning: {deck}: {w}")
+    return exit_status(deck, result, interrupted, console)
 
 
 def frame_count(text: str) -> int:
@@ -291,22 +311,26 @@ def frame_count(text: str) -> int:
 def cmd_report(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    console: Console = args.console
     if optimisation(deck) is not None:
-        print(
+        console.note(
             f"note: {deck} is a KIN OPT deck: this report shows its start design; `mechfem run --report` optimises "
-            "it and reports the final design",
-            file=sys.stderr,
+            "it and reports the final design"
         )
-    result, interrupted = run_with_progress(deck, args.memory_limit)
+    result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
+    console.say(f"{deck}: {count(result.report.positions, 'position')} computed")
+    console.bar.phase("report")
     path = write_report(result, outdir)
-    print(f"{deck}: {count(result.report.positions, 'position')} computed")
-    print(f"wrote {path} (open it in a web browser)")
-    return exit_status(deck, result, interrupted)
+    console.bar.close()
+    console.say(f"wrote {path} (open it in a web browser)")
+    return exit_status(deck, result, interrupted, console)
 
 
 def cmd_check(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     c = mechfem.check_deck(deck)
+    if args.quiet:
+        return EXIT_OK
     a = c.adjust
     print(f"{deck}: the deck is valid")
     opt = optimisation(deck)
@@ -454,8 +478,14 @@ def main(argv: list[str] | None = None) -> int:
             args.memory_limit = memory_limit()
         except ValueError as e:
             parser.error(str(e))
+    quiet = bool(getattr(args, "quiet", False))
+    # One bar (and one way of writing lines past it) for the whole command; cleared before any error is said.
+    args.console = Console(ProgressBar(show=False if quiet else None), quiet)
     try:
-        return int(args.func(args))
+        try:
+            return int(args.func(args))
+        finally:
+            args.console.close()
     except MechfemError as e:
         print(error_message(deck, e), file=sys.stderr)
     except KeyboardInterrupt:

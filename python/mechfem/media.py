@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from mechfem.animation import MAX_FRAMES, animation_files, frame_plan, write_animation
 from mechfem.plots import picture_files, write_pictures
 from mechfem.report import report_file, write_report
 from mechfem.result import RunResult
+
+if TYPE_CHECKING:
+    from mechfem.progress import ProgressBar
 
 
 @dataclass
@@ -37,15 +42,43 @@ class Media:
             out.append(f"  interactive report: {report_file(r, self.outdir).name}")
         return ["PICTURES AND ANIMATION", *out, ""] if out else []
 
-    def write(self) -> list[tuple[Path, str]]:
-        """Writes everything; returns each file with a short note on it (may be empty)."""
+    def write(
+        self, progress: ProgressBar | None = None, on_file: Callable[[Path, str], object] | None = None
+    ) -> list[tuple[Path, str]]:
+        """Writes everything; returns each file with a short note on it (may be empty).
+
+        ``progress`` counts the pictures and the animation's frames; ``on_file(path, note)`` is called as soon as
+        each file is complete.
+        """
         r = self.result
-        written: list[tuple[Path, str]] = [(p, "") for p in write_pictures(r, self.outdir)]
+        written: list[tuple[Path, str]] = []
+
+        def done(path: Path, note: str = "") -> None:
+            written.append((path, note))
+            if on_file is not None:
+                on_file(path, note)
+
+        pictures = picture_files(r, self.outdir)
+        if pictures and progress is not None:
+            progress.phase("pictures", len(pictures), "pictures")
+
+        def picture_file(path: Path, k: int) -> None:
+            done(path)
+            # A picture is done when the last of its files is.
+            if progress is not None and path == pictures[k - 1][-1]:
+                progress(k, len(pictures))
+
+        write_pictures(r, self.outdir, picture_file)
         if r.storage.animate:
-            info = write_animation(r, self.outdir, self.max_frames)
-            what = info.plan.describe()
-            written += [(p, what) for p in info.files]
+            plan = frame_plan(r.positions, self.max_frames)
+            if progress is not None:
+                progress.phase("animation", len(plan.frames), "frames")
+            info = write_animation(r, self.outdir, self.max_frames, on_frame=progress)
+            for p in info.files:
+                done(p, info.plan.describe())
             self.notes += info.notes
         if self.report:
-            written.append((write_report(r, self.outdir), "open it in a web browser"))
+            if progress is not None:
+                progress.phase("report")
+            done(write_report(r, self.outdir), "open it in a web browser")
         return written

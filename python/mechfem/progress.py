@@ -44,12 +44,14 @@ class ProgressBar:
         isatty = getattr(self.file, "isatty", None)
         return bool(isatty is not None and isatty())
 
-    def phase(self, name: str, total: int | None = None, unit: str = "steps") -> None:
-        """Starts the phase ``name``: ``total`` ``unit`` to do (None when not known), counted from 0."""
+    def phase(self, name: str, total: int | None = None, unit: str | None = None) -> None:
+        """Starts the phase ``name``: ``total`` ``unit`` to do (None when not known), counted from 0. A phase
+        without a unit is one step (writing one file): the bar shows its name alone."""
         if not self.active:
             return
+        fmt = _format(total, unit)
         # tqdm puts the unit straight after the count (``10B``): a word needs a space before it.
-        unit = f" {unit}"
+        unit = f" {unit or 'steps'}"
         bar = self._bar
         if bar is None:
             self._bar = tqdm(
@@ -57,6 +59,7 @@ class ProgressBar:
                 desc=name,
                 unit=unit,
                 unit_scale=_scaled(total),
+                bar_format=fmt,
                 file=self.file,
                 leave=False,
                 dynamic_ncols=True,
@@ -69,6 +72,7 @@ class ProgressBar:
             return
         bar.unit = unit
         bar.unit_scale = _scaled(total)
+        bar.bar_format = fmt
         bar.set_description_str(name, refresh=False)
         # reset() keeps the old total when given None: an open-ended phase sets it itself.
         bar.total = total
@@ -85,6 +89,7 @@ class ProgressBar:
         # The first report of a phase whose total was not known: show the total at once.
         bar.total = total
         bar.unit_scale = _scaled(total)
+        bar.bar_format = None
         bar.n = done
         bar.refresh()
 
@@ -111,6 +116,14 @@ class ProgressBar:
 
 def _scaled(total: int | None) -> bool:
     return total is not None and total >= SCALED_FROM
+
+
+def _format(total: int | None, unit: str | None) -> str | None:
+    """tqdm's bar_format for a phase: its own (None) when the total is known, the count and the time taken when
+    only the unit is, the name alone for a single step."""
+    if total is not None:
+        return None
+    return "{desc}: {n_fmt}{unit} [{elapsed}]" if unit else "{desc}"
 
 
 class Console:

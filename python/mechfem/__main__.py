@@ -1,0 +1,7 @@
+"""``python -m mechfem``: the ``mechfem`` command, for an environment whose scripts folder is not on the PATH."""
+
+import sys
+
+from mechfem.cli import main
+
+sys.exit(main())
