@@ -70,7 +70,8 @@ def test_failing_variants_are_rows_of_the_table_not_exceptions() -> None:
     sets = [{"rocker": 3.0}, {"rocker": 10.0}, {"rocker": 2.0}]
     study = mechfem.sweep(fourbar, sets, {"stroke": stroke}, motion=MOTION, progress=False, keep_results=True)
     assert list(study["ok"]) == [True, False, True]
-    assert study["error"][1].startswith("Newton iteration did not converge") and study["error"][0] == ""
+    assert study["error"][1].startswith("position 1 of the mechanism 'fourbar' cannot be computed: Newton iteration")
+    assert study["error"][0] == ""
     assert math.isnan(study["stroke"][1]) and study["positions"][1] == 0
     assert study.results is not None and isinstance(study.results[1], mechfem.ConvergenceError)
     assert isinstance(study.results[0], mechfem.Analysis) and study.results[0].parameters == {"rocker": 3.0}

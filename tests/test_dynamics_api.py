@@ -286,7 +286,7 @@ def test_masses_and_loads_are_checked_with_the_model_names() -> None:
         m.mass("B", 1.0)
     with pytest.raises(TypeError, match="point_mass\\(\\) must be a point"):
         m.point_mass("crank", 1.0)
-    with pytest.raises(KeyError, match="nothing called 'C'"):
+    with pytest.raises(KeyError, match="no part named 'C' in the mechanism 'slider crank'"):
         m.force("C", 1.0, 0.0)
     with pytest.raises(ValueError, match="belongs to another mechanism"):
         m.point_mass(Mechanism("other").point("B", 0.0, 0.0), 1.0)
@@ -368,17 +368,17 @@ def test_results_of_the_dynamics_are_asked_for_by_name() -> None:
     r = pendulum().run(swing())
     with pytest.raises(KeyError, match="'tip_y' is an output, which carries no stress"):
         r.stress("tip_y")
-    with pytest.raises(KeyError, match="'A' is not an input|not an input"):
+    with pytest.raises(KeyError, match="no input named 'A' \\(inputs: theta\\)"):
         r.drive_torque("A")
     with pytest.raises(TypeError, match="not a point or co-ordinate"):
         r.reaction("bar")
-    with pytest.raises(TypeError, match="not a row"):
+    with pytest.raises(TypeError, match="'A' is a point of the mechanism 'pendulum', not a prescribed value or input"):
         r.stress("A")
 
 
 def test_a_deck_mistake_in_a_dynamic_model_names_the_model_part() -> None:
     m = pendulum()
-    with pytest.raises(mechfem.DeckError, match="MOV_FREE cannot drive a DYN ANA deck") as info:
+    with pytest.raises(mechfem.DeckError, match="free motion .* cannot drive the mechanism 'pendulum'") as info:
         m.run(Motion.free(10, 0.01))
     assert info.value.name == "theta"  # type: ignore[attr-defined]
 

@@ -29,7 +29,8 @@ raises :class:`AssemblyError`, :class:`ConvergenceError` or
 limit (:mod:`mechfem.limits`) raises :class:`ResourceError` before it starts.
 A motion that stops later is not an error: the result holds every position up
 to the last good one, says why it stopped and warns with
-:class:`IncompleteRunWarning`. Ctrl-C raises
+:class:`IncompleteRunWarning` (or, with ``raise_on_stop=True``, raises
+:class:`RunStoppedError` carrying it). Ctrl-C raises
 :class:`RunInterrupted` carrying the positions computed before it.
 """
 
@@ -53,7 +54,9 @@ from mechfem.errors import (
     MechfemError,
     ResourceError,
     RunInterrupted,
-    warn_incomplete,
+    RunStoppedError,
+    UnitWarning,
+    on_stop,
 )
 from mechfem.export import export_drawing
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
@@ -89,7 +92,11 @@ Progress = Callable[[int, int], object]
 
 
 def run_deck(
-    path: str | os.PathLike[str], progress: Progress | None = None, memory_limit: int | str | None = None
+    path: str | os.PathLike[str],
+    progress: Progress | None = None,
+    memory_limit: int | str | None = None,
+    *,
+    raise_on_stop: bool = False,
 ) -> RunResult:
     """Reads the deck at ``path`` and runs it through its whole motion.
 
@@ -97,15 +104,15 @@ def run_deck(
     such as ``"4G"``; default :func:`mechfem.limits.memory_limit`) bounds the memory the results may take:
     a run that would need more raises :class:`ResourceError` before it starts. Ctrl-C raises
     :class:`RunInterrupted` with the positions computed so far in its ``result``. A motion that stops early
-    returns the positions up to there and warns with :class:`IncompleteRunWarning`.
+    returns the positions up to there and warns with :class:`IncompleteRunWarning`, or with ``raise_on_stop``
+    raises :class:`RunStoppedError` carrying them in its ``result``.
     """
     deck = Path(path)
     d = _core.run_deck(os.fspath(deck), progress, limits.memory_limit(memory_limit))
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)
-    warn_incomplete(result.report.stop_reason())
-    return result
+    return on_stop(result, result.report.stop_reason(), raise_on_stop)
 
 
 def check_deck(path: str | os.PathLike[str]) -> CheckResult:
@@ -146,6 +153,7 @@ __all__ = [
     "ResourceError",
     "RunInterrupted",
     "RunReport",
+    "RunStoppedError",
     "RunResult",
     "Spread",
     "Start",
@@ -157,6 +165,7 @@ __all__ = [
     "TargetExtremum",
     "Term",
     "ToleranceStudy",
+    "UnitWarning",
     "__version__",
     "check_deck",
     "export_drawing",

@@ -24,6 +24,7 @@ import numpy.typing as npt
 from mechfem import _core
 from mechfem.inverse_dynamics import Simulation
 from mechfem.result import Limit, ModelNames, RunReport, RunResult
+from mechfem.units import Unit, check_unit, factor
 
 if TYPE_CHECKING:
     from mechfem.deckio import Numbering
@@ -136,25 +137,28 @@ class Analysis:
         return self.report.limits
 
     def stop_reason(self) -> str | None:
-        """Why the motion stopped early (with the model's names), or None."""
-        from mechfem.deckio import names_in
+        """Why the motion stopped early, where, and what to change (in the model's names and Python calls), or
+        None."""
+        from mechfem.explain import PythonWords
 
-        text = self.report.stop_reason()
-        return None if text is None else names_in(text, self.numbering)
+        return self.report.stop_reason(words=PythonWords(self.numbering))
 
     @property
     def warnings(self) -> list[str]:
-        """The limit positions and singular positions, one sentence each."""
-        from mechfem.deckio import names_in
+        """The limit positions and singular positions, one sentence each (in the model's names)."""
+        from mechfem.explain import PythonWords
 
-        return [names_in(w, self.numbering) for w in self.report.warnings]
+        return self.report.describe_warnings(PythonWords(self.numbering))
 
     # -- names
 
-    def _lookup(self, ref: object) -> object:
+    def _lookup(self, ref: object, what: str = "", kinds: tuple[type, ...] = ()) -> object:
+        """The point, co-ordinate or row ``ref`` names (a form parameter gives its row); a name the model does not
+        have is an error that suggests the closest ``what`` (of ``kinds``: any without)."""
         from mechfem.model import FormParameter, Row
 
-        obj = self.mechanism[ref] if isinstance(ref, str) else ref
+        accept = (lambda o: isinstance(o, kinds)) if kinds else None
+        obj = self.mechanism.find(ref, what, accept) if isinstance(ref, str) else ref
         if isinstance(obj, FormParameter):
             found = [r for r in self.numbering.rows if r.terms == ((1.0, obj),)]
             if not found:
@@ -178,7 +182,7 @@ class Analysis:
     def _point(self, ref: str | Point) -> tuple[int, int]:
         from mechfem.model import Point
 
-        obj = self._lookup(ref)
+        obj = self._lookup(ref, "point", (Point,))
         if not isinstance(obj, Point):
             raise TypeError(f"{ref!r} is not a point")
         return self._column(obj.x), self._column(obj.y)
@@ -191,7 +195,7 @@ class Analysis:
     ) -> FloatArray:
         from mechfem.model import Coordinate, Point, Row
 
-        obj = self._lookup(ref)
+        obj = self._lookup(ref, "point, co-ordinate, row or output", (Point, Coordinate, Row))
         if isinstance(obj, Point):
             return coord([self._column(obj.x), self._column(obj.y)])
         if isinstance(obj, Coordinate):
@@ -216,34 +220,64 @@ class Analysis:
         order: int = 0,
         wrt: InputKey = None,
         wrt2: InputKey = None,
+        unit: Unit | None = None,
     ) -> FloatArray:
         """A point (positions x 2), co-ordinate, row or output at every position (``order`` 0), or its transfer
-        function of first (d/d ``wrt``) or second order (d2/d ``wrt`` d ``wrt2``; ``wrt2`` defaults to ``wrt``)."""
+        function of first (d/d ``wrt``) or second order (d2/d ``wrt`` d ``wrt2``; ``wrt2`` defaults to ``wrt``).
+        ``unit="deg"`` gives every angle in degrees: an angle's value, and a transfer function per degree of an
+        angle input (d psi / d alpha of two angles is the same in either unit)."""
         if order == 0:
-            return self._select(name, lambda cols: self.coords[:, cols].copy(), lambda k: self._e0[:, k].copy())
+            out = self._select(name, lambda cols: self.coords[:, cols].copy(), lambda k: self._e0[:, k].copy())
+            return self._in_unit(out, name, (), unit)
         j = self._dof(wrt)
         if order == 1:
-            return self._select(name, lambda cols: self._kx1[:, cols, j].copy(), lambda k: self._ke1[:, k, j].copy())
+            out = self._select(name, lambda cols: self._kx1[:, cols, j].copy(), lambda k: self._ke1[:, k, j].copy())
+            return self._in_unit(out, name, (j,), unit)
         if order == 2:
             m = j if wrt2 is None else self._dof(wrt2)
-            return self._select(
+            out = self._select(
                 name, lambda cols: self._kx2[:, cols, j, m].copy(), lambda k: self._ke2[:, k, j, m].copy()
             )
+            return self._in_unit(out, name, (j, m), unit)
         raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
 
-    def position(self, name: str | Point | Coordinate | Row | FormParameter) -> FloatArray:
-        """The same as ``value(name)``: a point's (x, y), a co-ordinate, a row or an output."""
-        return self.value(name)
+    def _in_unit(self, values: FloatArray, ref: object, dofs: Sequence[int], unit: Unit | None) -> FloatArray:
+        """``values`` of ``ref`` differentiated by the inputs ``dofs`` (0-based) in ``unit``: with ``"deg"``, an
+        angle's value times 180/pi, divided by 180/pi for each angle input it is differentiated by."""
+        if check_unit(unit) != "deg":
+            return values
+        from mechfem.model import Coordinate, Row
+
+        obj = self._lookup(ref)
+        angle = (isinstance(obj, Coordinate) and obj.kind == "angle") or (isinstance(obj, Row) and obj.is_angle)
+        power = int(angle) - sum(self.numbering.inputs[j].is_angle for j in dofs)
+        if not angle and power == 0:
+            name = getattr(obj, "name", ref)
+            raise ValueError(
+                f"{name!r} is not an angle, and neither is an input it is differentiated by: unit='deg' applies to "
+                "angles only"
+            )
+        return values * factor("deg") ** power if power else values
+
+    def position(self, name: str | Point | Coordinate | Row | FormParameter, unit: Unit | None = None) -> FloatArray:
+        """The same as ``value(name)``: a point's (x, y), a co-ordinate, a row or an output (an angle in ``unit``,
+        ``"rad"`` or ``"deg"``)."""
+        return self.value(name, unit=unit)
 
     def output(
-        self, name: str | Row | FormParameter, order: int = 0, wrt: InputKey = None, wrt2: InputKey = None
+        self,
+        name: str | Row | FormParameter,
+        order: int = 0,
+        wrt: InputKey = None,
+        wrt2: InputKey = None,
+        unit: Unit | None = None,
     ) -> FloatArray:
         """An output (or any row: a prescribed value, an input) and its transfer functions; see :meth:`value`."""
         from mechfem.model import Row
 
-        if not isinstance(self._lookup(name), Row):
+        if not isinstance(self._lookup(name, "output or row", (Row,)), Row):
             raise TypeError(f"{name!r} is not a row or output")
-        return self.value(name, order, wrt, wrt2)
+        return self.value(name, order, wrt, wrt2, unit)
 
     def transfer(
         self,
@@ -251,23 +285,32 @@ class Analysis:
         order: int = 1,
         wrt: InputKey = None,
         wrt2: InputKey = None,
+        unit: Unit | None = None,
     ) -> FloatArray:
         """Transfer function of first or second order; see :meth:`value`."""
         if order not in (1, 2):
             raise ValueError(f"a transfer function has order 1 or 2, not {order!r}")
-        return self.value(name, order, wrt, wrt2)
+        return self.value(name, order, wrt, wrt2, unit)
 
-    def velocity(self, name: str | Point | Coordinate | Row | FormParameter) -> FloatArray:
-        """Velocity (time derivative) of a point (positions x 2), co-ordinate, row or output."""
-        return self._select(name, lambda cols: self._vx[:, cols].copy(), lambda k: self._ve[:, k].copy())
+    def velocity(self, name: str | Point | Coordinate | Row | FormParameter, unit: Unit | None = None) -> FloatArray:
+        """Velocity (time derivative) of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit``
+        per time)."""
+        out = self._select(name, lambda cols: self._vx[:, cols].copy(), lambda k: self._ve[:, k].copy())
+        return self._in_unit(out, name, (), unit)
 
-    def acceleration(self, name: str | Point | Coordinate | Row | FormParameter) -> FloatArray:
-        """Acceleration of a point (positions x 2), co-ordinate, row or output."""
-        return self._select(name, lambda cols: self._ax[:, cols].copy(), lambda k: self._ae[:, k].copy())
+    def acceleration(
+        self, name: str | Point | Coordinate | Row | FormParameter, unit: Unit | None = None
+    ) -> FloatArray:
+        """Acceleration of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit`` per time
+        squared)."""
+        out = self._select(name, lambda cols: self._ax[:, cols].copy(), lambda k: self._ae[:, k].copy())
+        return self._in_unit(out, name, (), unit)
 
-    def input(self, name: InputKey = None) -> FloatArray:
-        """The value of an input at every position (under free motion: where it went)."""
-        return self.inputs[:, self._dof(name)].copy()
+    def input(self, name: InputKey = None, unit: Unit | None = None) -> FloatArray:
+        """The value of an input at every position (under free motion: where it went), an angle in ``unit``
+        (``"rad"``, the default, or ``"deg"``)."""
+        j = self._dof(name)
+        return self._in_unit(self.inputs[:, j].copy(), self.numbering.inputs[j], (), unit)
 
     # -- inverse dynamics
 
@@ -302,7 +345,7 @@ class Analysis:
         from mechfem.model import Row
 
         self._dynamics("stresses")
-        obj = self._lookup(row)
+        obj = self._lookup(row, "prescribed value or input", (Row,))
         if not isinstance(obj, Row):
             raise TypeError(f"{row!r} is not a row")
         dest = self.numbering.row_dest[obj]
@@ -315,7 +358,7 @@ class Analysis:
         from mechfem.model import Coordinate, Point
 
         self._dynamics("reactions")
-        obj = self._lookup(point_or_coordinate)
+        obj = self._lookup(point_or_coordinate, "point or co-ordinate", (Point, Coordinate))
         coords = [obj.x, obj.y] if isinstance(obj, Point) else [obj] if isinstance(obj, Coordinate) else None
         if coords is None:
             raise TypeError(f"{point_or_coordinate!r} is not a point or co-ordinate")

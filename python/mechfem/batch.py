@@ -18,8 +18,10 @@ variant, the ``measures`` (Python functions of its :class:`~mechfem.Analysis`) g
 
 from __future__ import annotations
 
+import inspect
 import itertools
 import math
+import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -29,9 +31,10 @@ import numpy.typing as npt
 
 from mechfem import _core, cluster
 from mechfem.analysis import Analysis, _pandas
-from mechfem.errors import MechfemError
+from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
 from mechfem.limits import memory_limit
 from mechfem.model import Coordinate, Mechanism, Motion, Row, Storage
+from mechfem.names import unknown_name
 
 if TYPE_CHECKING:
     from mechfem import deckio
@@ -73,6 +76,7 @@ def run_many(
     executor: object | None = None,
     chunk_size: int | None = None,
     retries: int = cluster.RETRIES,
+    raise_on_stop: bool = False,
 ) -> list[Analysis | MechfemError]:
     """Runs every mechanism (each with ``motion``, default its own :attr:`~Mechanism.motion`) on ``workers``
     threads (default: one per core), computing the transfer functions of ``order`` (see
@@ -83,9 +87,48 @@ def run_many(
     out in chunks of ``chunk_size`` (see :func:`sweep`), each run on ``workers`` threads of its worker (default
     1); an :class:`Analysis` that comes back holds a copy of its mechanism, and a chunk that could not be run
     gives a :class:`MechfemError` with the reason for each of its mechanisms.
+
+    A run whose motion stops before its last position gives its :class:`Analysis` all the same (its
+    ``stop_reason()`` says why), and the call warns once with :class:`~mechfem.IncompleteRunWarning`; with
+    ``raise_on_stop`` such a run gives a :class:`~mechfem.RunStoppedError` carrying its :class:`Analysis` instead.
     """
     if executor is not None:
-        return _run_many_on(executor, list(mechanisms), motion, storage, workers, progress, order, chunk_size, retries)
+        out = _run_many_on(executor, list(mechanisms), motion, storage, workers, progress, order, chunk_size, retries)
+    else:
+        out = _run_many_here(mechanisms, motion, storage, workers, progress, order)
+    return _stopped_runs(out, raise_on_stop)
+
+
+def _stopped_runs(results: list[Analysis | MechfemError], raise_on_stop: bool) -> list[Analysis | MechfemError]:
+    """``results`` with each run that stopped early as a :class:`RunStoppedError` (``raise_on_stop``), or as it
+    is after one warning that counts them."""
+    stopped = [k for k, r in enumerate(results) if isinstance(r, Analysis) and r._raw["report"]["stop"] is not None]
+    for k in stopped if raise_on_stop else ():
+        a = results[k]
+        assert isinstance(a, Analysis)
+        results[k] = RunStoppedError(a.stop_reason() or "", a)
+    if stopped and not raise_on_stop:
+        first = results[stopped[0]]
+        assert isinstance(first, Analysis)
+        warnings.warn(
+            f"{len(stopped)} of {len(results)} runs stopped before their last position; the first, index "
+            f"{stopped[0]} (mechanism {first.mechanism.name!r}): {first.stop_reason()} (raise_on_stop=True gives "
+            "a RunStoppedError for each of them instead)",
+            IncompleteRunWarning,
+            stacklevel=user_stacklevel(),
+        )
+    return results
+
+
+def _run_many_here(
+    mechanisms: Sequence[Mechanism],
+    motion: Motion | None,
+    storage: Storage | None,
+    workers: int | None,
+    progress: Progress,
+    order: int | None,
+) -> list[Analysis | MechfemError]:
+    """:func:`run_many` on the threads of this process."""
     from mechfem import deckio
 
     # One deck per distinct mechanism: the same mechanism given many times is read and compiled once.
@@ -122,7 +165,7 @@ class _ManyChunk:
 
 
 def _run_many_chunk(c: _ManyChunk) -> list[Analysis | MechfemError]:
-    return run_many(c.mechanisms, c.motion, c.storage, workers=c.workers, progress=False, order=c.order)
+    return _run_many_here(c.mechanisms, c.motion, c.storage, c.workers, False, c.order)
 
 
 def _run_many_on(
@@ -219,7 +262,8 @@ def _run_variants(
 class Study:
     """The table of a design study: one row per variant, columns by name (numpy arrays).
 
-    Columns: the parameters, ``ok`` (position 1 was computed), ``complete`` (every position),
+    Columns: the parameters, ``ok`` (the variant ran: position 1 was computed, and with ``raise_on_stop`` every
+    position), ``complete`` (every position),
     ``positions``, ``limits`` (limit positions met), ``error`` (the error's text, "" when ok), then the
     measures (NaN for a variant that failed). ``results`` keeps every :class:`Analysis` (or error) when
     the study was run with ``keep_results=True``.
@@ -312,6 +356,7 @@ class _Chunk:
     order: int | None
     keep: bool
     workers: int | None
+    raise_on_stop: bool = False
 
 
 Rows = tuple[list[list[Any]], list["Analysis | MechfemError | None"]]
@@ -342,6 +387,13 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
         kept[k] = a if c.keep else None
         # What the table needs of the report, from the run's own dict (cheaper than the full report).
         report = o["report"]
+        if report["stop"] is not None and c.raise_on_stop:
+            # A stopped run counts as failed: its measures would cover part of the motion only.
+            reason = a.stop_reason() or ""
+            kept[k] = RunStoppedError(reason, a) if c.keep else None
+            done = [False, False, a.positions, len(report["limits"]), reason]
+            rows[k] = [*(_plain(p.get(n, math.nan)) for n in c.names), *done, *(math.nan,) * len(c.measures)]
+            return
         values, errors = [], []
         for name, fn in c.measures.items():
             try:
@@ -370,6 +422,7 @@ def sweep(
     executor: object | None = None,
     chunk_size: int | None = None,
     retries: int = cluster.RETRIES,
+    raise_on_stop: bool = False,
 ) -> Study:
     """Runs a design study and tabulates it.
 
@@ -389,6 +442,11 @@ def sweep(
     ``workers`` threads of its worker (default 1: Dask runs one task per worker thread), and sends back the
     rows (and the full results with ``keep_results``). A Dask task that raises is run again up to ``retries``
     times; a chunk that cannot be run at all is a set of rows with ``ok`` False and the reason in ``error``.
+
+    A variant whose motion stops before its last position has ``complete`` False and measures of the positions it
+    computed, and the study warns once with :class:`~mechfem.IncompleteRunWarning`; with ``raise_on_stop`` such
+    a variant fails instead: ``ok`` False, NaN measures, the stop reason in ``error`` (and a
+    :class:`~mechfem.RunStoppedError` carrying its :class:`Analysis` in ``results``).
     """
     from mechfem import deckio
 
@@ -404,6 +462,7 @@ def sweep(
         variants = [(0, _changes(model._targets(p), base.numbering)) for p in sets]
         decks, mechanisms = [base], [model]
     else:
+        _check_arguments(model, sets)
         for k, p in enumerate(sets):
             m = model(**p)
             if not isinstance(m, Mechanism):
@@ -422,9 +481,9 @@ def sweep(
         # A chunk carries each deck text it needs once.
         some, vs = sets[r.start : r.stop], variants[r.start : r.stop]
         if isinstance(model, Mechanism):
-            return _Chunk(decks, mechanisms, vs, some, names, chosen, order, keep_results, threads)
+            return _Chunk(decks, mechanisms, vs, some, names, chosen, order, keep_results, threads, raise_on_stop)
         ts, ms, vs = decks[r.start : r.stop], mechanisms[r.start : r.stop], [(j, []) for j in range(len(r))]
-        return _Chunk(ts, ms, vs, some, names, chosen, order, keep_results, threads)
+        return _Chunk(ts, ms, vs, some, names, chosen, order, keep_results, threads, raise_on_stop)
 
     if executor is None:
         rows, kept = _study_rows(part(range(len(sets)), workers), progress)
@@ -445,4 +504,29 @@ def sweep(
     results = [r for r in kept if r is not None] if keep_results else None
     arrays = {n: _column(v) for n, v in columns.items()}
     arrays["error"] = _column(columns["error"], object)
+    stopped = int(np.sum(arrays["ok"] & ~arrays["complete"])) if len(rows) else 0
+    if stopped:
+        warnings.warn(
+            f"{stopped} of {len(rows)} variants stopped before their last position: their rows have complete False, "
+            "and their measures cover the positions computed only (raise_on_stop=True makes them failed rows with "
+            "the reason in error)",
+            IncompleteRunWarning,
+            stacklevel=user_stacklevel(),
+        )
     return Study(arrays, names, list(chosen), results)
+
+
+def _check_arguments(model: Callable[..., Mechanism], sets: list[dict[str, Any]]) -> None:
+    """A study's parameter that the model function does not take is an error that names the closest it takes."""
+    try:
+        signature = inspect.signature(model)
+    except (TypeError, ValueError):
+        return
+    kinds = {p.kind for p in signature.parameters.values()}
+    if inspect.Parameter.VAR_KEYWORD in kinds:
+        return
+    takes = [n for n, p in signature.parameters.items() if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+    for name in dict.fromkeys(k for p in sets for k in p):
+        if name not in takes:
+            where = f" of the model function {getattr(model, '__name__', model)!r}"
+            raise unknown_name("parameter", name, takes, where)

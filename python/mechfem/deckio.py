@@ -6,7 +6,7 @@ so every result of a model is, by construction, the result of a deck. This modul
 * writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line
   with the model's names in comments, keeping a note of what each line declares;
 * reads a deck into a mechanism with generated names (:func:`read`);
-* runs a mechanism (:func:`run`) and gives its errors the model's names (:func:`translate`).
+* runs a mechanism (:func:`run`) and gives its errors the model's words (:func:`mechfem.explain.translate`).
 """
 
 from __future__ import annotations
@@ -24,7 +24,8 @@ import numpy as np
 
 from mechfem import _core, loads
 from mechfem.analysis import Analysis
-from mechfem.errors import AssemblyError, DeckError, LimitPositionError, MechfemError, RunInterrupted
+from mechfem.errors import DeckError, MechfemError, RunInterrupted
+from mechfem.explain import names_in, translate, with_attributes
 from mechfem.limits import memory_limit
 from mechfem.model import (
     BUFFER_ARGS,
@@ -49,6 +50,7 @@ from mechfem.model import (
     To,
     input_dof,
 )
+from mechfem.motion import check_units
 from mechfem.output import atomic_text
 from mechfem.storage import check_file_names, from_described
 
@@ -234,6 +236,13 @@ def write(
         for text, note, comment in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
             out.add(text, note, comment)
     if motion is not None:
+        if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
+            raise ValueError(
+                f"free motion (Motion.free, Free) needs a mechanism with one input, and {mech.name!r} has {n_dof} "
+                f"({', '.join(r.name for r in nb.inputs) or 'none'}): drive them with Motion.by, Motion.to or "
+                "Motion.table"
+            )
+        check_units(motion, nb.inputs)
         per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
         for key, im in motion.inputs.items():
             j = nb.dof(key)
@@ -250,17 +259,17 @@ def write(
             name = nb.inputs[j - 1].name
             note = ("motion of input", name)
             if isinstance(im, By):
-                out.add(f"MOV_RELE {j} {number(im.delta)}", note, name)
+                out.add(f"MOV_RELE {j} {number(im.value)}", note, name)
             elif isinstance(im, To):
-                out.add(f"MOV_ABSE {j} {number(im.end)}", note, name)
+                out.add(f"MOV_ABSE {j} {number(im.value)}", note, name)
             elif isinstance(im, Free):
                 out.add(f"MOV_FREE {j} {number(im.ds)}", note, name)
             elif isinstance(im, Dynamic):
-                out.add(f"MOV_DYN {j} {number(im.v0)}", note, name)
+                out.add(f"MOV_DYN {j} {number(im.value)}", note, name)
             elif isinstance(im, Table):
                 file = im.file or f"{_file_stem(mech.name)}_input{j}.dat"
                 if any(ch.isspace() or ch == ";" for ch in file):
-                    raise ValueError(f"a MOV_FUNC file name cannot hold blanks or ';': {file!r}")
+                    raise ValueError(f"a table motion's file name (Table.file) cannot hold blanks or ';': {file!r}")
                 loads.add_table(tables, file, _table_text(im.rows(motion.dt), name))
                 out.add(f"MOV_FUNC {j} {file}", note, name)
             else:
@@ -336,83 +345,6 @@ def tables_dir(tables: Mapping[str, str]) -> Iterator[str]:
         yield d
 
 
-# --- errors with the model's names ----------------------------------------------------------------------------------
-
-
-def _row_names(nb: Numbering, dests: list[int]) -> list[str]:
-    rows = nb.prescribed
-    return [rows[r - 1].name if 1 <= r <= len(rows) else str(r) for r in dests]
-
-
-def _coord_names(nb: Numbering, numbers: list[int]) -> list[str]:
-    return [nb.coords[i - 1].name if 1 <= i <= len(nb.coords) else str(i) for i in numbers]
-
-
-def _with(err: MechfemError, **attributes: object) -> MechfemError:
-    for key, value in attributes.items():
-        setattr(err, key, value)
-    return err
-
-
-def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
-    """The error with the model's names: the element, rows, co-ordinates or deck line it is about."""
-    nb = deck.numbering
-    if isinstance(err, DeckError):
-        line = int(getattr(err, "line", 0) or 0)
-        what, name = deck.notes.get(line, ("", ""))
-        where = f"{what} '{name}'" if what else "the model"
-        new = DeckError(
-            f"in the Python model '{model}', {where} (line {line} of the deck written for it):\n{err}"
-            if line
-            else f"in the Python model '{model}':\n{err}"
-        )
-        return _with(new, path=getattr(err, "path", deck.path), line=line, name=name or None, deck=deck.text)
-    if isinstance(err, AssemblyError):
-        k = int(getattr(err, "element", 0) or 0)
-        e = nb.elements[k - 1] if 1 <= k <= len(nb.elements) else None
-        text = str(err)
-        if e is not None:
-            text = re.sub(rf"^element {k} \((\w+)\)", rf"element '{e.name}' (\1, {_slot_names(e)})", text)
-        return _with(AssemblyError(text), element=k, element_name=None if e is None else e.name)
-    if isinstance(err, LimitPositionError):
-        rows = list(getattr(err, "rows", []))
-        coords = list(getattr(err, "coords", []))
-        text = names_in(str(err), nb)
-        if rows:
-            text += f"; rows named {', '.join(_row_names(nb, rows))}"
-        if coords:
-            text += f"; co-ordinates named {', '.join(_coord_names(nb, coords))}"
-        names = {"row_names": _row_names(nb, rows), "coord_names": _coord_names(nb, coords)}
-        return _with(LimitPositionError(text), rows=rows, coords=coords, **names)
-    text = names_in(str(err), nb)
-    if deck.simulated and "MOV_DYN" in text:
-        text += f" (the inputs that move under the forces: {', '.join(map(repr, deck.simulated))})"
-    return type(err)(text)
-
-
-def names_in(text: str, nb: Numbering) -> str:
-    """Adds the model's names to the deck numbers a solver message mentions."""
-
-    def element(m: re.Match[str]) -> str:
-        k = int(m.group(1))
-        if 1 <= k <= len(nb.elements):
-            return f"element {k} '{nb.elements[k - 1].name}' ({m.group(2)})"
-        return m.group(0)
-
-    def coordinate(m: re.Match[str]) -> str:
-        i = int(m.group(1))
-        return f"co-ordinate {i} ({nb.coords[i - 1].name})" if 1 <= i <= len(nb.coords) else m.group(0)
-
-    def inp(m: re.Match[str]) -> str:
-        j = int(m.group(1))
-        inputs = nb.inputs
-        return f"input {j} ({inputs[j - 1].name})" if 1 <= j <= len(inputs) else m.group(0)
-
-    text = re.sub(r"element (\d+) \((\w+)\)", element, text)
-    text = re.sub(r"co-ordinate (\d+)\b", coordinate, text)
-    return re.sub(r"input (\d+)\b", inp, text)
-
-
 # --- running ---------------------------------------------------------------------------------------------------------
 
 
@@ -468,7 +400,9 @@ def read(path: Path) -> Mechanism:
     try:
         text = path.read_bytes().decode("utf-8", errors="replace")
     except OSError as e:
-        raise _with(DeckError(f"error: cannot read the deck: {e}\n --> {path}"), path=os.fspath(path), line=0) from None
+        raise with_attributes(
+            DeckError(f"error: cannot read the deck: {e}\n --> {path}"), path=os.fspath(path), line=0
+        ) from None
     return read_text(text, path.stem, path.parent if str(path.parent) else Path("."), os.fspath(path))
 
 
@@ -596,4 +530,4 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
     return m
 
 
-__all__ = ["DeckText", "Numbering", "read", "read_text", "run", "save", "translate", "write", "FORMS"]
+__all__ = ["DeckText", "Numbering", "names_in", "read", "read_text", "run", "save", "translate", "write", "FORMS"]

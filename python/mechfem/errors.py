@@ -15,7 +15,12 @@ All of them derive from :class:`MechfemError`:
 
 A motion that stops after position 1 is not an error: the run returns what
 it computed and says why it stopped (:attr:`mechfem.RunReport.stop`), and
-warns with :class:`IncompleteRunWarning` so that a script notices.
+warns with :class:`IncompleteRunWarning` so that a script notices; with
+``raise_on_stop=True`` it raises :class:`RunStoppedError` instead, which
+carries the positions computed in ``result``.
+
+A motion of an angle input that changes it by more than 100 rad without
+saying its unit warns with :class:`UnitWarning`: degrees were probably meant.
 
 Ctrl-C during a run raises :class:`RunInterrupted`, a ``KeyboardInterrupt``
 that carries the positions computed before it in ``result``, so a script
@@ -24,6 +29,8 @@ still stops while the command line writes them.
 
 from __future__ import annotations
 
+import os
+import sys
 import warnings
 from typing import Generic, TypeVar
 
@@ -46,11 +53,55 @@ class IncompleteRunWarning(UserWarning):
     and its ``stop_reason()`` says why (the warning's message says it too)."""
 
 
-def warn_incomplete(reason: str | None, stacklevel: int = 3) -> None:
+class RunStoppedError(MechfemError, Generic[R]):  # type: ignore[misc]
+    """The motion (or simulation) stopped before its last position, and the run was asked to raise then
+    (``raise_on_stop=True``): ``result`` holds every position computed up to the stop, ``reason`` says why and
+    where (as the result's ``stop_reason()``)."""
+
+    def __init__(self, reason: str, result: R) -> None:
+        super().__init__(reason)
+        self.reason = reason
+        self.result = result
+
+    def __reduce__(self) -> tuple[object, ...]:
+        return (type(self), (self.reason, self.result))
+
+
+class UnitWarning(UserWarning):
+    """A motion changes an angle input by more than 100 rad and says nothing of its unit: degrees were probably
+    meant (``unit="deg"``); ``unit="rad"`` says that radians are meant and silences it."""
+
+
+_PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def user_stacklevel() -> int:
+    """The ``stacklevel`` for :func:`warnings.warn`, called by the caller of this function, that points at the
+    first line outside mechfem: the user's call, however deep inside mechfem the warning is given."""
+    frame = sys._getframe(1)
+    level = 1
+    while frame.f_back is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        frame = frame.f_back
+        level += 1
+    return level
+
+
+def warn_incomplete(reason: str | None, stacklevel: int | None = None) -> None:
     """Warns with :class:`IncompleteRunWarning` when ``reason`` (a run's stop reason) is not None; ``stacklevel``
-    counts from the caller of this function, as :func:`warnings.warn` does."""
+    counts from the caller of this function, as :func:`warnings.warn` does (default: the user's line)."""
     if reason is not None:
-        warnings.warn(f"the motion stopped early: {reason}", IncompleteRunWarning, stacklevel=stacklevel)
+        level = user_stacklevel() if stacklevel is None else stacklevel
+        warnings.warn(f"the motion stopped early: {reason}", IncompleteRunWarning, stacklevel=level)
+
+
+def on_stop(result: R, reason: str | None, raise_on_stop: bool) -> R:
+    """``result`` when its run was complete (``reason`` None); for a run that stopped early, raises
+    :class:`RunStoppedError` with ``raise_on_stop``, else warns with :class:`IncompleteRunWarning` and returns it."""
+    if reason is not None and raise_on_stop:
+        raise RunStoppedError(reason, result)
+    if reason is not None:
+        warnings.warn(f"the motion stopped early: {reason}", IncompleteRunWarning, stacklevel=user_stacklevel())
+    return result
 
 
 __all__ = [
@@ -62,4 +113,6 @@ __all__ = [
     "MechfemError",
     "ResourceError",
     "RunInterrupted",
+    "RunStoppedError",
+    "UnitWarning",
 ]

@@ -332,7 +332,7 @@ def add_load_table(
             f"{what}: the time {float(t[k + 1])!r} comes before the time {float(t[k])!r}; give the times in order"
         )
     if file is not None and (not file or any(ch.isspace() or ch == ";" for ch in file)):
-        raise ValueError(f"{what}: a LOADFUNC file name cannot be empty or hold blanks or ';': {file!r}")
+        raise ValueError(f"{what}: the file name of a load table cannot be empty or hold blanks or ';': {file!r}")
     return _add(mech, LoadTable(r, t, q, file))
 
 
@@ -379,7 +379,7 @@ def mode(mech: Mechanism, simulated: Sequence[str]) -> str:
         raise ValueError(
             f"the motion lets {', '.join(map(repr, simulated))} of the mechanism {mech.name!r} move under the forces "
             "(Dynamic), but the mechanism has no masses or loads to move it: give them with Mechanism.mass, "
-            "point_mass, inertia, gravity, force, load, spring or motor (a DYN SIM deck needs a DYNAMICS block)"
+            "point_mass, inertia, gravity, force, load, spring or motor"
         )
     return "KIN ANA" if mech.loads is None else "DYN SIM" if simulated else "DYN ANA"
 

@@ -3,10 +3,15 @@
 :class:`Motion` is the MOVEMENT block of a deck: ``steps`` steps of ``dt`` each, and per input
 :class:`By` (MOV_RELE), :class:`To` (MOV_ABSE), :class:`Free` (MOV_FREE), :class:`Table` (MOV_FUNC) or
 :class:`Dynamic` (MOV_DYN: the input moves under the forces, and the deck simulates, mode ``DYN SIM``).
+
+The value of an angle input may be given in degrees (``unit="deg"``); the deck gets it in radians
+(:mod:`mechfem.units`). A change of an angle input larger than 100 rad given without a unit warns with
+:class:`~mechfem.errors.UnitWarning`: it was probably meant in degrees.
 """
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeAlias, Union
@@ -15,6 +20,9 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem.checks import finite
+from mechfem.errors import UnitWarning, user_stacklevel
+from mechfem.names import unknown_name
+from mechfem.units import LARGE_ANGLE, Unit, array_to_radians, check_unit, to_radians
 
 if TYPE_CHECKING:
     from mechfem.model import FormParameter, Mechanism, Row
@@ -24,26 +32,59 @@ FloatArray = npt.NDArray[np.float64]
 MAX_ITER = 1000
 """The most Newton iterations per position a motion may allow (MAXITER of the deck reader)."""
 
+MAX_STEPS = 10_000_000
+"""The most steps a motion may have (TSTEPE of the deck reader)."""
+
 
 @dataclass(frozen=True)
 class By:
-    """Equidistant steps that change the input by ``delta`` in total (MOV_RELE)."""
+    """Equidistant steps that change the input by ``delta`` in total (MOV_RELE); an angle in ``unit`` (``"rad"``,
+    the default, or ``"deg"``)."""
 
     delta: float
+    unit: Unit | None = None
+
+    def __post_init__(self) -> None:
+        check_unit(self.unit)
+
+    @property
+    def value(self) -> float:
+        """``delta`` in the model's unit (radians for an angle)."""
+        return to_radians(self.delta, self.unit)
 
 
 @dataclass(frozen=True)
 class To:
-    """Equidistant steps from the input's value at position 1 to ``end`` (MOV_ABSE)."""
+    """Equidistant steps from the input's value at position 1 to ``end`` (MOV_ABSE); an angle in ``unit``
+    (``"rad"``, the default, or ``"deg"``)."""
 
     end: float
+    unit: Unit | None = None
+
+    def __post_init__(self) -> None:
+        check_unit(self.unit)
+
+    @property
+    def value(self) -> float:
+        """``end`` in the model's unit (radians for an angle)."""
+        return to_radians(self.end, self.unit)
 
 
 @dataclass(frozen=True)
 class Free:
-    """Free motion through limit positions with step ``ds`` in co-ordinate space (MOV_FREE; one input only)."""
+    """Free motion through limit positions with step ``ds`` in co-ordinate space (MOV_FREE; one input only).
+
+    ``ds`` is the Euclidean length of a step over every moving co-ordinate at once (lengths and angles together),
+    not an angle, so it has no unit; its sign sets the direction the input starts in."""
 
     ds: float
+
+    def __post_init__(self) -> None:
+        if finite(self.ds, "the step ds of free motion") == 0.0:
+            raise ValueError(
+                "the step ds of free motion must not be 0: give the distance the moving co-ordinates travel per "
+                "step, e.g. Motion.free(steps, ds=0.01) (negative to start the other way)"
+            )
 
 
 @dataclass(frozen=True, eq=False)
@@ -51,7 +92,8 @@ class Table:
     """The input's value (and velocity, acceleration) at every position (MOV_FUNC).
 
     ``time`` defaults to ``k * dt``, velocities and accelerations to 0. ``file`` is the file name a
-    deck written by :meth:`Mechanism.save_deck` uses for it.
+    deck written by :meth:`Mechanism.save_deck` uses for it. ``unit`` (``"rad"``, the default, or ``"deg"``) is
+    the unit of an angle's values, velocities (per time) and accelerations.
     """
 
     values: FloatArray
@@ -59,31 +101,47 @@ class Table:
     accelerations: FloatArray | None = None
     time: FloatArray | None = None
     file: str | None = None
+    unit: Unit | None = None
+
+    def __post_init__(self) -> None:
+        check_unit(self.unit)
 
     def rows(self, dt: float) -> FloatArray:
-        """The four columns ``t value velocity acceleration``, one row per position."""
-        v = np.asarray(self.values, dtype=np.float64)
+        """The four columns ``t value velocity acceleration``, one row per position, in the model's units."""
+        v = array_to_radians(self.values, self.unit)
         n = v.shape[0]
 
         def column(a: npt.ArrayLike | None, default: FloatArray) -> FloatArray:
             if a is None:
                 return default
-            out = np.asarray(a, dtype=np.float64)
+            out = array_to_radians(a, self.unit)
             if out.shape != (n,):
                 raise ValueError(f"a motion table needs {n} values per column, one per position, got {out.shape}")
             return out
 
         zero = np.zeros(n)
-        t = column(self.time, dt * np.arange(n, dtype=np.float64))
+        t = np.asarray(self.time, dtype=np.float64) if self.time is not None else dt * np.arange(n, dtype=np.float64)
+        if t.shape != (n,):
+            raise ValueError(f"a motion table needs {n} times, one per position, got {t.shape}")
         return np.column_stack([t, v, column(self.velocities, zero), column(self.accelerations, zero)])
 
 
 @dataclass(frozen=True)
 class Dynamic:
     """The input moves under the forces, starting with the speed ``v0`` (MOV_DYN): the run is a simulation (mode
-    ``DYN SIM``), which needs masses (:meth:`Mechanism.mass`, ...)."""
+    ``DYN SIM``), which needs masses (:meth:`Mechanism.mass`, ...). ``unit`` ``"deg"`` gives an angle's speed in
+    degrees per time."""
 
     v0: float = 0.0
+    unit: Unit | None = None
+
+    def __post_init__(self) -> None:
+        check_unit(self.unit)
+
+    @property
+    def value(self) -> float:
+        """``v0`` in the model's unit (radians per time for an angle)."""
+        return to_radians(self.v0, self.unit)
 
 
 InputMotion: TypeAlias = By | To | Free | Table | Dynamic
@@ -113,14 +171,22 @@ class Motion:
     def __post_init__(self) -> None:
         if int(self.steps) != self.steps or self.steps < 1:
             raise ValueError(f"a motion needs at least one step, got {self.steps!r}")
+        if self.steps > MAX_STEPS:
+            raise ValueError(f"a motion has at most {MAX_STEPS} steps, got {self.steps!r}: use fewer, longer steps")
         if not self.dt > 0:
             raise ValueError(f"the time per step must be positive, got {self.dt!r}")
+        if not np.isfinite(self.steps * float(self.dt)):
+            raise ValueError(
+                f"{self.steps} steps of dt = {self.dt!r} last longer than the largest time a number can hold: give a "
+                "shorter dt (steps * dt must stay below about 1.8e308)"
+            )
         if self.max_iter is not None and not 1 <= self.max_iter <= MAX_ITER:
-            raise ValueError(f"max_iter must be from 1 to {MAX_ITER} (as MAXITER in a deck), got {self.max_iter!r}")
+            raise ValueError(f"max_iter must be from 1 to {MAX_ITER}, got {self.max_iter!r}")
         for key, im in self.inputs.items():
             if isinstance(im, Table) and len(np.asarray(im.values)) != self.steps + 1:
                 raise ValueError(
-                    f"the table of input {key!r} has {len(np.asarray(im.values))} values; {self.steps} steps "
+                    f"the table of {'the input' if key is None else f'input {key!r}'} has "
+                    f"{len(np.asarray(im.values))} values; {self.steps} steps "
                     f"make {self.steps + 1} positions"
                 )
         if self.simulated:
@@ -137,7 +203,7 @@ class Motion:
             )
         for what, tol in (("rtol", self.rtol), ("atol", self.atol)):
             if tol is not None and not finite(tol, what) > 0:
-                raise ValueError(f"{what} must be positive (as in INTTOL), got {tol!r}")
+                raise ValueError(f"{what} must be positive, got {tol!r}")
 
     @property
     def simulated(self) -> bool:
@@ -146,11 +212,12 @@ class Motion:
 
     @staticmethod
     def _per_input(
-        value: float | Mapping[InputKey, float], make: Callable[[float], InputMotion]
+        value: float | Mapping[InputKey, float], make: Callable[[float, Unit | None], InputMotion], unit: Unit | None
     ) -> dict[InputKey, InputMotion]:
+        check_unit(unit)
         if isinstance(value, Mapping):
-            return {k: make(finite(v, "a motion value")) for k, v in value.items()}
-        return {None: make(finite(value, "a motion value"))}
+            return {k: make(finite(v, "a motion value"), unit) for k, v in value.items()}
+        return {None: make(finite(value, "a motion value"), unit)}
 
     @classmethod
     def by(
@@ -159,11 +226,13 @@ class Motion:
         delta: float | Mapping[InputKey, float],
         dt: float = 1.0,
         *,
+        unit: Unit | None = None,
         accuracy: float | None = None,
         max_iter: int | None = None,
     ) -> Motion:
-        """Equidistant steps changing the input by ``delta`` (a mapping for several inputs)."""
-        return cls(steps, cls._per_input(delta, By), dt, accuracy, max_iter)
+        """Equidistant steps changing the input by ``delta`` (a mapping for several inputs); an angle in ``unit``
+        (``"rad"``, the default, or ``"deg"``: ``Motion.by(72, 360, unit="deg")`` is one turn)."""
+        return cls(steps, cls._per_input(delta, By, unit), dt, accuracy, max_iter)
 
     @classmethod
     def to(
@@ -172,11 +241,13 @@ class Motion:
         end: float | Mapping[InputKey, float],
         dt: float = 1.0,
         *,
+        unit: Unit | None = None,
         accuracy: float | None = None,
         max_iter: int | None = None,
     ) -> Motion:
-        """Equidistant steps from position 1 to ``end`` (a mapping for several inputs)."""
-        return cls(steps, cls._per_input(end, To), dt, accuracy, max_iter)
+        """Equidistant steps from position 1 to ``end`` (a mapping for several inputs); an angle in ``unit``
+        (``"rad"``, the default, or ``"deg"``)."""
+        return cls(steps, cls._per_input(end, To, unit), dt, accuracy, max_iter)
 
     @classmethod
     def free(
@@ -188,7 +259,8 @@ class Motion:
         accuracy: float | None = None,
         max_iter: int | None = None,
     ) -> Motion:
-        """Free motion of a one-input mechanism: ``steps`` steps of length ``ds`` in co-ordinate space."""
+        """Free motion of a one-input mechanism: ``steps`` steps of length ``ds`` in co-ordinate space (lengths and
+        angles together, so ``ds`` has no unit; its sign sets the direction the input starts in)."""
         return cls(steps, {None: Free(finite(ds, "ds"))}, dt, accuracy, max_iter)
 
     @classmethod
@@ -200,11 +272,13 @@ class Motion:
         time: npt.ArrayLike | None = None,
         dt: float = 1.0,
         *,
+        unit: Unit | None = None,
         accuracy: float | None = None,
         max_iter: int | None = None,
     ) -> Motion:
         """The inputs' values at every position (one array per input; a mapping for several inputs),
-        optionally with velocities and accelerations (for velocity and acceleration results) and times."""
+        optionally with velocities and accelerations (for velocity and acceleration results) and times; an
+        angle's values in ``unit`` (``"rad"``, the default, or ``"deg"``)."""
 
         def per(a: object) -> dict[InputKey, FloatArray | None]:
             if a is None:
@@ -224,7 +298,7 @@ class Motion:
         inputs: dict[InputKey, InputMotion] = {}
         for key, v in vals.items():
             assert v is not None
-            inputs[key] = Table(v, vels.get(key), accs.get(key), t)
+            inputs[key] = Table(v, vels.get(key), accs.get(key), t, unit=check_unit(unit))
         return cls(n - 1, inputs, dt, accuracy, max_iter)
 
     @classmethod
@@ -239,12 +313,14 @@ class Motion:
         atol: float | None = None,
         accuracy: float | None = None,
         max_iter: int | None = None,
+        unit: Unit | None = None,
     ) -> Motion:
         """A simulation from time 0 to ``t_end`` in ``steps`` output steps (``dt = t_end / steps``): the inputs
-        of ``v0`` (a number: the only input; a mapping for several) move under the forces from those speeds, the
-        inputs of ``drive`` follow their motion. :meth:`Mechanism.simulate` fills in the inputs left out."""
+        of ``v0`` (a number: the only input; a mapping for several) move under the forces from those speeds (an
+        angle's in ``unit`` per time, ``"rad"`` or ``"deg"``), the inputs of ``drive`` follow their motion.
+        :meth:`Mechanism.simulate` fills in the inputs left out."""
         dt = _step(t_end, steps)
-        inputs: dict[InputKey, InputMotion] = cls._per_input(v0, Dynamic)
+        inputs: dict[InputKey, InputMotion] = cls._per_input(v0, Dynamic, unit)
         for key, im in (drive or {}).items():
             if key in inputs:
                 raise ValueError(f"input {key!r} is given a speed in v0 and a motion in drive: it can have only one")
@@ -281,21 +357,62 @@ def input_dof(key: InputKey, inputs: Sequence[Row]) -> int:
     """The DOF number (1-based) of the input ``key`` among the input rows ``inputs`` (DOF order): by name, DOF
     number, row or the form parameter it holds; None for the only input."""
     if key is None:
+        if not inputs:
+            raise ValueError(
+                "the mechanism has no inputs: make a form parameter an input with Driven() (e.g. angle=Driven()) or "
+                "Mechanism.drive"
+            )
         if len(inputs) != 1:
-            names = ", ".join(repr(r.name) for r in inputs) or "none"
-            raise ValueError(f"the mechanism has {len(inputs)} inputs ({names}): say which one")
+            names = ", ".join(repr(r.name) for r in inputs)
+            raise ValueError(f"the mechanism has {len(inputs)} inputs ({names}): name the one meant")
         return 1
     if isinstance(key, bool):
         raise TypeError(f"not an input: {key!r}")
     if isinstance(key, int):
         if not 1 <= key <= len(inputs):
-            raise ValueError(f"input number {key} is out of range 1..{len(inputs)}")
+            names = ", ".join(f"{j} ({r.name})" for j, r in enumerate(inputs, 1)) or "none"
+            raise ValueError(f"the mechanism has no input number {key}; its inputs are {names}")
         return key
     for j, r in enumerate(inputs, 1):
         if key is r or r.name == key or r.terms == ((1.0, key),):
             return j
-    names = ", ".join(repr(r.name) for r in inputs) or "none"
-    raise KeyError(f"{key!r} is not an input; the inputs are {names}")
+    name = getattr(key, "label", getattr(key, "name", key))
+    raise unknown_name("input", name, [r.name for r in inputs])
+
+
+def check_units(motion: Motion, inputs: Sequence[Row]) -> None:
+    """Refuses degrees for an input that is not an angle, and warns with :class:`~mechfem.errors.UnitWarning` when
+    a motion given without a unit changes an angle input by more than :data:`~mechfem.units.LARGE_ANGLE` radians
+    (``inputs``: the input rows in DOF order)."""
+    for key, im in motion.inputs.items():
+        row = inputs[input_dof(key, inputs) - 1]
+        unit = getattr(im, "unit", None)
+        if unit == "deg" and not row.is_angle:
+            raise ValueError(
+                f"the motion gives the input {row.name!r} in degrees (unit='deg'), but it is not an angle "
+                f"({row.formula()}): give its motion in its own unit, without unit='deg'"
+            )
+        change = 0.0 if unit is not None or not row.is_angle else _change(im, row.value)
+        if change > LARGE_ANGLE:
+            warnings.warn(
+                f"the motion changes the angle input {row.name!r} by {change:.6g} rad ({change / (2 * np.pi):.3g} "
+                "turns): if degrees were meant, say so with unit='deg' (as in Motion.by(steps, 360, unit='deg')); "
+                "unit='rad' says that radians are meant and silences this warning",
+                UnitWarning,
+                stacklevel=user_stacklevel(),
+            )
+
+
+def _change(im: InputMotion, start: float | None) -> float:
+    """How far a motion given without a unit moves its input (from ``start``, or 0 when it is not given)."""
+    if isinstance(im, By):
+        return abs(im.delta)
+    if isinstance(im, To):
+        return abs(im.end - (start or 0.0))
+    if isinstance(im, Table):
+        v = np.asarray(im.values, dtype=np.float64)
+        return float(np.nanmax(np.abs(v - v[0]))) if v.size else 0.0
+    return 0.0
 
 
 def simulation(
@@ -309,10 +426,11 @@ def simulation(
     atol: float | None = None,
     accuracy: float | None = None,
     max_iter: int | None = None,
+    unit: Unit | None = None,
 ) -> Motion:
     """The motion of :meth:`Mechanism.simulate` for ``mech``: the inputs of ``drive`` follow their motion, every
     other one moves under the forces from its speed in ``v0`` (a number for the only such input, a mapping by
-    input, None: from rest); the other arguments are :class:`Motion`'s."""
+    input, None: from rest; an angle's in ``unit`` per time); the other arguments are :class:`Motion`'s."""
     dt = _step(t_end, steps)
     mechanism, inputs = mech.name, mech.inputs
     if not inputs:
@@ -349,6 +467,7 @@ def simulation(
             )
         speeds[free[0].name] = finite(v0, f"the initial speed v0 of input {free[0].name!r}")
     inputs_motion: dict[InputKey, InputMotion] = {
-        r.name: driven[r.name] if r.name in driven else Dynamic(speeds.get(r.name, 0.0)) for r in inputs
+        r.name: driven[r.name] if r.name in driven else Dynamic(speeds.get(r.name, 0.0), check_unit(unit))
+        for r in inputs
     }
     return Motion(steps, inputs_motion, dt, accuracy, max_iter, rtol, atol)

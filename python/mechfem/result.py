@@ -15,6 +15,9 @@ import numpy.typing as npt
 
 from mechfem import _core
 from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
+from mechfem.words import Words, words_of
+from mechfem.words import free_motion_line as free_motion_line  # named here as before
+from mechfem.words import input_name as input_name
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -72,9 +75,10 @@ class Limit:
             return f"at position {self.after}"
         return f"between positions {self.after} and {self.after + 1}"
 
-    def what(self, names: Sequence[str] = ()) -> str:
-        """The kind in words; ``names`` are the inputs' rows (:attr:`RunReport.input_names`)."""
-        inp = input_name(1, names) if len(self.inputs) == 1 else "an input"
+    def what(self, names: Sequence[str] | Words = ()) -> str:
+        """The kind in words; ``names`` are the inputs' rows (:attr:`RunReport.input_names`), or the :class:`Words`
+        to name things with."""
+        inp = words_of(names).input(1) if len(self.inputs) == 1 else "an input"
         return {
             "sign_change": "det(D^c) changes sign: the driven motion passed a singular position",
             "near_zero": "det(D^c) has a minimum near zero: close to a limit position, the transfer quality is poor",
@@ -82,24 +86,14 @@ class Limit:
             "passed": f"free motion passes a limit position of {inp}, which turns back there",
         }.get(self.kind, "a limit position")
 
-    def values(self) -> str:
+    def values(self, names: Sequence[str] | Words = ()) -> str:
         """``input 1 = ..., det(D^c) = ...``."""
-        at = [f"input {j} = {v:.12g}" for j, v in enumerate(self.inputs, 1)]
+        at = [words_of(names).at(j, v, 12) for j, v in enumerate(self.inputs, 1)]
         return ", ".join([*at, f"det(D^c) = {self.det:.3g}"])
 
-    def describe(self, names: Sequence[str] = ()) -> str:
+    def describe(self, names: Sequence[str] | Words = ()) -> str:
         """One sentence: what, where, the input values and det(D^c)."""
-        return f"{self.what(names)}, {self.where} ({self.values()})."
-
-
-def input_name(j: int, names: Sequence[str] = ()) -> str:
-    """``the input of DOF j``, with its row and form parameters when ``names`` has them."""
-    return f"the input of DOF {j} ({names[j - 1]})" if len(names) >= j else f"the input of DOF {j}"
-
-
-def free_motion_line(j: int, ds: float) -> str:
-    """The deck line ``MOV_FREE j ds``, with ds rounded to two significant digits."""
-    return f"MOV_FREE {j} {float(f'{ds:.2g}'):g}"
+        return f"{self.what(names)}, {self.where} ({self.values(names)})."
 
 
 @dataclass(frozen=True)
@@ -126,13 +120,20 @@ class Stop:
         return cls(d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit)
 
     def describe(
-        self, total: int, names: Sequence[str] = (), free_step: float | None = None, written: bool = False
+        self,
+        total: int,
+        names: Sequence[str] | Words = (),
+        free_step: float | None = None,
+        written: bool = False,
     ) -> str:
         """One paragraph: where the motion stopped, why, and what to change.
 
-        ``names`` are the inputs' rows (:attr:`RunReport.input_names`), ``free_step`` the ds to suggest for
-        MOV_FREE, and ``written`` says whether the positions computed have been written to output files.
+        ``names`` are the inputs' rows (:attr:`RunReport.input_names`), or the :class:`Words` to say it with;
+        ``free_step`` the ds to suggest for free motion, and ``written`` says whether the positions computed
+        have been written to output files.
         """
+        words = words_of(names)
+        message = words.message(self.message)
         k = self.last_good
         kept = "written to the output files" if written else "kept in the result"
         kept = (
@@ -144,61 +145,57 @@ class Stop:
             return f"The motion was interrupted after position {k} of {total}. {kept}"
         if self.kind == "simulation":
             return (
-                f"The simulation stopped after position {k} of {total}: {self.message}. {kept} "
+                f"The simulation stopped after position {k} of {total}: {message}. {kept} "
                 "A collapsing step usually means a limit position (no position exists beyond it); a very stiff "
-                "spring or damper needs far more steps than its outputs: soften it, or loosen INTTOL."
+                f"spring or damper needs far more steps than its outputs: soften it, or loosen {words.tolerances}."
             )
         limit = self.limit
         if limit is not None and limit.kind == "input_limit" and len(self.inputs) == 1 == len(limit.inputs):
             return (
-                f"The motion stopped after position {k} of {total}: {input_name(1, names)} reached its limit "
-                f"position at input 1 = {limit.inputs[0]:.12g}, located between positions {k} and {k + 1} "
+                f"The motion stopped after position {k} of {total}: {words.input(1)} reached its limit "
+                f"position at {words.at(1, limit.inputs[0], 12)}, located between positions {k} and {k + 1} "
                 f"(det(D^c) = {limit.det:.2g} there), and cannot be driven on to {self.inputs[0]:.10g}. {kept} A "
                 "driven input cannot move the mechanism through its limit position; free motion can. "
-                f"{self._free_advice(free_step)} (At the smallest step the solver reported: {self.message}.)"
+                f"{self._free_advice(free_step, words, total)} (At the smallest step the solver reported: "
+                f"{message}.)"
             )
-        frm = ", ".join(f"input {j} = {v:.10g}" for j, v in enumerate(self.last_inputs, 1))
-        to = ", ".join(f"input {j} = {v:.10g}" for j, v in enumerate(self.inputs, 1))
+        frm = ", ".join(words.at(j, v, 10) for j, v in enumerate(self.last_inputs, 1))
+        to = ", ".join(words.at(j, v, 10) for j, v in enumerate(self.inputs, 1))
         step = f"the step from {frm} to {to}" if to else f"the free-motion step from {frm}"
-        located = "" if limit is None else f" Located: {limit.describe(names)}"
-        hint = _HINTS.get(self.kind, _HINTS["other"])
+        located = "" if limit is None else f" Located: {limit.describe(words)}"
+        hint = _hint(self.kind, words)
         if not self.inputs and self.kind != "element":
-            hint = "Try a smaller ds in MOV_FREE, with a larger n in TSTEPE to cover the same path."
+            hint = words.smaller_free_step
         elif len(self.inputs) == 1 and self.kind != "element":
-            hint += f" If the input is near a limit position, use free motion. {self._free_advice(free_step)}"
+            advice = self._free_advice(free_step, words, total)
+            hint += f" If the input is near a limit position, use free motion. {advice}"
         elif self.kind != "element":
             hint += (
                 " Near a limit position, drive the mechanism with other inputs or stop the motion before it "
-                "(free motion, MOV_FREE, needs a mechanism with one degree of freedom)."
+                f"({words.free_needs_one_input})."
             )
         return (
             f"The motion stopped after position {k} of {total}: {step} failed, even with smaller steps: "
-            f"{self.message}.{located} {kept} {hint}"
+            f"{message}.{located} {kept} {hint}"
         )
 
-    def _free_advice(self, free_step: float | None) -> str:
-        """The MOV_FREE line to use instead of the driven one, for a one-DOF driven motion."""
+    def _free_advice(self, free_step: float | None, words: Words, total: int) -> str:
+        """The free motion to use instead of the driven one, for a one-DOF driven motion of ``total`` positions."""
         direction = -1.0 if self.inputs and self.inputs[0] < self.last_inputs[0] else 1.0
         ds = abs(free_step) if free_step else 0.01
-        line = free_motion_line(1, direction * ds)
-        size = "about the size of the steps made so far" if free_step else "choose it small against the mechanism"
-        return (
-            f"Replace the MOV_ line of DOF 1 by `{line}`: each of the n steps of TSTEPE then moves the co-ordinates "
-            f"a Euclidean distance {abs(float(line.split()[-1])):g} ({size}) through the limit positions, the "
-            f"sign of ds keeps the input's direction, and BUFINP 1 records where the input goes."
-        )
+        return words.free_advice(direction * ds, bool(free_step), total - 1)
 
 
-_HINTS = {
-    "singular": "D^c became singular: an input is in a limit position and cannot drive the mechanism through it. "
-    "Stop the motion before it, or drive the mechanism with another input.",
-    "no_convergence": "Try more, smaller steps (a larger n in TSTEPE).",
-    "branch_jump": "The corrector kept jumping to another assembly branch. Try more, smaller steps (a larger n in "
-    "TSTEPE).",
-    "element": "An element could not be evaluated (two of its points coincide, or a belt lost its free span); "
-    "check the dimensions or stop the motion earlier.",
-    "other": "Try more, smaller steps (a larger n in TSTEPE).",
-}
+def _hint(kind: str, words: Words) -> str:
+    """What to change after a stop of ``kind``."""
+    more = f"Try more, smaller steps ({words.more_steps})."
+    return {
+        "singular": "D^c became singular: an input is in a limit position and cannot drive the mechanism through "
+        "it. Stop the motion before it, or drive the mechanism with another input.",
+        "branch_jump": f"The corrector kept jumping to another assembly branch. {more}",
+        "element": "An element could not be evaluated (two of its points coincide, or a belt lost its free span); "
+        "check the dimensions or stop the motion earlier.",
+    }.get(kind, more)
 
 
 @dataclass(frozen=True)
@@ -253,13 +250,17 @@ class RunReport:
     def warnings(self) -> list[str]:
         """What deserves a second look, one sentence each: sign changes and near-zero minima of det(D^c) in a
         driven motion, and positions where no transfer functions exist."""
-        out = [x.describe(self.input_names) for x in self.limits if x.kind in ("sign_change", "near_zero")]
+        return self.describe_warnings()
+
+    def describe_warnings(self, words: Words | None = None) -> list[str]:
+        """:attr:`warnings`, said with ``words`` (default: the deck's)."""
+        w = words or Words(self.input_names)
+        out = [x.describe(w) for x in self.limits if x.kind in ("sign_change", "near_zero")]
         if self.singular_positions:
             at = ", ".join(map(str, self.singular_positions))
             out.append(
                 f"D^c is singular at position{'s' if len(self.singular_positions) > 1 else ''} {at}: the mechanism "
-                "is in a limit position of its input there, no transfer functions exist, and every buffer made from "
-                "them (first and second order, velocities, accelerations) holds NaN there."
+                f"is in a limit position of its input there, no transfer functions exist, and {w.singular_results}."
             )
         return out
 
@@ -268,12 +269,12 @@ class RunReport:
         """True when every position asked for was computed."""
         return self.stop is None
 
-    def stop_reason(self, written: bool = False) -> str | None:
+    def stop_reason(self, written: bool = False, words: Words | None = None) -> str | None:
         """The paragraph saying why the motion stopped, or None when it did not; ``written`` says that the
-        positions computed have been written to output files."""
+        positions computed have been written to output files, ``words`` how to say it (default: the deck's)."""
         if self.stop is None:
             return None
-        return self.stop.describe(self.steps + 1, self.input_names, self.free_step, written)
+        return self.stop.describe(self.steps + 1, words or self.input_names, self.free_step, written)
 
 
 @dataclass(frozen=True)

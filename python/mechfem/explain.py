@@ -1,0 +1,385 @@
+"""What the Python API says when a named model fails or stops early: the model's names and the Python calls that
+change it, never deck keywords or deck line numbers.
+
+A :class:`~mechfem.Mechanism` runs as a deck written for it, so the deck reader and the solver report its
+mistakes in the deck's terms. This module words them for the model:
+
+* :func:`translate` turns an error of the deck reader or of position 1 into the same exception with a message
+  in the model's words, built from what the error carries (the deck line's model part, the element, the rows
+  and co-ordinates at fault) and from the model itself; the attributes stay (``line``, ``name``, ``deck``,
+  ``element``, ``rows``, ``coords``, ...);
+* :class:`PythonWords` says why a motion stopped (:meth:`mechfem.Analysis.stop_reason`) and what deserves a
+  second look (:attr:`mechfem.Analysis.warnings`), with the inputs' names and ``Motion.free``.
+
+The deck path (``mechfem.run_deck``, the command line) keeps the deck's words.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
+from mechfem.names import listing
+from mechfem.parts import ELEMENT_WORDS, Coordinate, Element, Point, Row
+from mechfem.words import Words
+
+if TYPE_CHECKING:
+    from mechfem.deckio import DeckText, Numbering
+
+
+def element_words(e: Element) -> str:
+    """``the bar 'crank' (A0, A)``: the element by its method's word, its name and its points and co-ordinates."""
+    return f"the {ELEMENT_WORDS.get(e.type, 'element')} {e.name!r} ({', '.join(s.name for s in e.slots)})"
+
+
+def _names(items: Sequence[Coordinate | Row | Point]) -> str:
+    return listing(x.name for x in items)
+
+
+def with_attributes(err: MechfemError, **attributes: object) -> MechfemError:
+    for key, value in attributes.items():
+        setattr(err, key, value)
+    return err
+
+
+# --- solver messages ------------------------------------------------------------------------------------------------
+
+
+def names_in(text: str, nb: Numbering) -> str:
+    """A solver message with the model's names for the deck numbers it mentions (elements, co-ordinates, inputs)."""
+
+    def element(m: re.Match[str]) -> str:
+        k = int(m.group(1))
+        return element_words(nb.elements[k - 1]) if 1 <= k <= len(nb.elements) else m.group(0)
+
+    def coordinates(m: re.Match[str]) -> str:
+        numbers = [int(x) for x in m.group(2).split(", ")]
+        if not all(1 <= i <= len(nb.coords) for i in numbers):
+            return m.group(0)
+        return f"{m.group(1)} {', '.join(nb.coords[i - 1].name for i in numbers)}"
+
+    def inp(m: re.Match[str]) -> str:
+        j = int(m.group(1))
+        inputs = nb.inputs
+        return f"the input {inputs[j - 1].name!r}" if 1 <= j <= len(inputs) else m.group(0)
+
+    whole = re.fullmatch(r"element (\d+) \((\w+)\): (.*)", text, re.S)
+    if whole and 1 <= int(whole.group(1)) <= len(nb.elements):
+        e = nb.elements[int(whole.group(1)) - 1]
+        return f"{element_words(e)}: {element_detail(whole.group(3), e)}"
+    text = re.sub(r"element (\d+) \((\w+)\)", element, text)
+    text = re.sub(r"(co-ordinates?) (\d+(?:, \d+)*)\b", coordinates, text)
+    text = re.sub(r"(?:input|DOF) (\d+)\b", inp, text)
+    for deck, python in _SOLVER_TERMS:
+        text = text.replace(deck, python)
+    return text
+
+
+_SOLVER_TERMS = (
+    ("a degree of freedom", "an input"),
+    ("(MOV_DYN)", "(Dynamic)"),
+    ("(MOV_FREE)", "(Motion.free)"),
+    ("(DYN SIM)", "(Mechanism.simulate)"),
+)
+"""The deck's terms in the few fixed sentences of the solver that name them, and the Python API's."""
+
+
+# --- stop reasons ---------------------------------------------------------------------------------------------------
+
+
+class PythonWords(Words):
+    """The words of the Python API for a stop reason, a limit position or a warning: inputs by name,
+    ``Motion.free`` and the Motion's steps instead of deck keywords."""
+
+    more_steps = "a larger number of steps in the Motion"
+    smaller_free_step = "Try a smaller ds in Motion.free, with more steps to cover the same path."
+    free_needs_one_input = "free motion, Motion.free, needs a mechanism with one input"
+    tolerances = "rtol and atol"
+    singular_results = (
+        "every result made from them (transfer functions of first and second order, velocities, accelerations) is "
+        "NaN there"
+    )
+
+    def __init__(self, numbering: Numbering) -> None:
+        super().__init__([r.name for r in numbering.inputs])
+        self.numbering = numbering
+
+    def input(self, j: int) -> str:
+        return f"the input {self.names[j - 1]!r}" if 1 <= j <= len(self.names) else f"input number {j}"
+
+    def at(self, j: int, value: float, digits: int) -> str:
+        name = self.names[j - 1] if 1 <= j <= len(self.names) else f"input {j}"
+        return f"{name} = {value:.{digits}g}"
+
+    def free_advice(self, ds: float, known: bool, steps: int) -> str:
+        step = float(f"{ds:.2g}")
+        size = "about the size of the steps made so far" if known else "choose it small against the mechanism"
+        return (
+            f"Use free motion instead, `Motion.free({steps}, ds={step:g})`: each of its {steps} steps moves the "
+            f"co-ordinates a Euclidean distance {abs(step):g} ({size}) through the limit positions, the sign of ds "
+            "keeps the input's direction, and Analysis.input() gives where the input goes."
+        )
+
+    def message(self, text: str) -> str:
+        return names_in(text, self.numbering)
+
+
+# --- errors ---------------------------------------------------------------------------------------------------------
+
+
+def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
+    """The error in the model's words, of the same type and with the attributes it had (deck numbers) and the
+    model's names for them."""
+    nb = deck.numbering
+    if isinstance(err, DeckError):
+        return deck_error(err, deck, model)
+    if isinstance(err, AssemblyError):
+        k = int(getattr(err, "element", 0) or 0)
+        e = nb.elements[k - 1] if 1 <= k <= len(nb.elements) else None
+        detail = str(err).split(": ", 1)[-1]
+        if e is None:
+            text = f"position 1 of the mechanism {model!r} cannot be computed: {names_in(str(err), nb)}"
+        else:
+            text = (
+                f"position 1 of the mechanism {model!r} cannot be computed: {element_words(e)} cannot be evaluated "
+                f"there: {element_detail(detail, e)}; {_ESTIMATES.format(points=_moving_points(nb))}"
+            )
+        return with_attributes(AssemblyError(text), element=k, element_name=None if e is None else e.name)
+    if isinstance(err, LimitPositionError):
+        rows = list(getattr(err, "rows", []))
+        coords = list(getattr(err, "coords", []))
+        row_names = [nb.prescribed[r - 1].name if 1 <= r <= len(nb.prescribed) else str(r) for r in rows]
+        coord_names = [nb.coords[i - 1].name if 1 <= i <= len(nb.coords) else str(i) for i in coords]
+        text = singular_at_start(str(err), model, row_names, coord_names)
+        return with_attributes(
+            LimitPositionError(text), rows=rows, coords=coords, row_names=row_names, coord_names=coord_names
+        )
+    if isinstance(err, ConvergenceError):
+        text = (
+            f"position 1 of the mechanism {model!r} cannot be computed: {names_in(str(err), nb)}; "
+            f"{_ESTIMATES.format(points=_moving_points(nb))}"
+        )
+        return ConvergenceError(text)
+    if isinstance(err, ResourceError):
+        facts = str(err).split(". Ask for", 1)[0]
+        return ResourceError(
+            f"{facts}; ask for fewer steps (the Motion's steps) or a smaller model, or raise the limit with the "
+            "environment variable MECHFEM_MEMORY_LIMIT (for example 8G)"
+        )
+    text = names_in(str(err), nb)
+    if deck.simulated and "under the forces" in text:
+        text += f" (the inputs that move under the forces: {', '.join(map(repr, deck.simulated))})"
+    return type(err)(text)
+
+
+_ESTIMATES = (
+    "give the moving points ({points}) estimates near a position that fits (the (x, y) of Mechanism.point, or "
+    "Mechanism.set; angles are taken as principal values in (-pi, pi]), and check the prescribed values"
+)
+
+
+def _moving_points(nb: Numbering) -> str:
+    moving = [c for c in nb.coords if not c.fixed]
+    names = [c.point.name if c.point is not None else c.name for c in moving]
+    return listing(names)
+
+
+def element_detail(detail: str, e: Element) -> str:
+    """Why an element cannot be evaluated (the core's words), with the element's own point and co-ordinate names."""
+    slots = [s.name for s in e.slots]
+    points = [p.name for p in e.points]
+    if "coincide" in detail and len(points) >= 2:
+        p, q = points[0], points[1]
+        return f"its points {p} and {q} coincide, so the direction {p}->{q} is undefined"
+    m = re.match(r"the belt has no free span: centre distance (\S+) <= \|R_P - R_Q\| = (\S+)", detail)
+    if m and len(slots) == 6:
+        return (
+            f"the belt has no free span: the distance {m.group(1)} between the wheel centres {slots[0]} and {slots[2]} "
+            f"is not larger than |{slots[4]} - {slots[5]}| = {m.group(2)}"
+        )
+    m = re.match(r"the gear radius (R_a|R_c) is zero", detail)
+    if m and e.type == "GR2":
+        return f"the gear radius {slots[3] if m.group(1) == 'R_a' else slots[4]} is zero"
+    return detail
+
+
+def singular_at_start(message: str, model: str, rows: list[str], coords: list[str]) -> str:
+    """Position 1 is singular: which prescribed values depend on each other and which co-ordinates can still move."""
+    rank = re.search(r"rank (\d+) of (\d+)", message)
+    of = f" (rank {rank.group(1)} of {rank.group(2)})" if rank else ""
+    head = f"position 1 of the mechanism {model!r} cannot be computed: D^c is singular there{of}"
+    if not rows:
+        return (
+            f"{head}: the mechanism is in a limit position at position 1, or the model cannot move as described; "
+            "check which form parameters are prescribed or inputs, and which co-ordinates are fixed"
+        )
+    which = (
+        f"the prescribed value {rows[0]!r} is superfluous"
+        if len(rows) == 1
+        else f"the prescribed values {', '.join(map(repr, rows))} depend on each other"
+    )
+    return (
+        f"{head}: {which}, and the co-ordinates {', '.join(coords)} can move with every prescribed value held; the "
+        "mechanism is in a limit position at position 1, or the model cannot move as described: leave a "
+        "superfluous form parameter free (None), or give the moving points estimates of another position"
+    )
+
+
+# --- mistakes the deck reader finds ---------------------------------------------------------------------------------
+
+
+@dataclass
+class _Context:
+    """What a rule knows: the mechanism's name, its numbering and the model part the refused line declares."""
+
+    model: str
+    nb: Numbering
+    what: str
+    name: str
+
+
+Rule = Callable[[re.Match[str], _Context], str]
+
+
+def _unused(m: re.Match[str], c: _Context) -> str:
+    i = int(m.group(1))
+    coord = c.nb.coords[i - 1] if 1 <= i <= len(c.nb.coords) else None
+    part = (
+        f"the point {coord.point.name!r}"
+        if coord is not None and coord.point is not None
+        else f"the co-ordinate {coord.name if coord is not None else c.name!r}"
+    )
+    return f"{part} of the mechanism {c.model!r} is used by no element; connect it to an element, or leave it out"
+
+
+def _count(m: re.Match[str], c: _Context) -> str:
+    nb = c.nb
+    moving = [x for x in nb.coords if not x.fixed]
+    k, few = int(m.group(3)), m.group(4) == "few"
+    rows = _counted(len(nb.prescribed), "form parameter or combination", "form parameters or combinations")
+    text = (
+        f"the mechanism {c.model!r} prescribes {rows}, inputs included ({_names(nb.prescribed)}), for "
+        f"{_counted(len(moving), 'moving co-ordinate', 'moving co-ordinates')} ({_names(moving)}): {k} too "
+        f"{m.group(4)}"
+    )
+    more = _counted(k, "more co-ordinate", "more co-ordinates")
+    if not few:
+        return f"{text}; leave {k} of them free (None instead of a number, Keep() or Driven()), or make {more} moving"
+    involved = {x for r in nb.prescribed for _, p in r.terms for x in p.element.coordinates}
+    loose = [x for x in moving if x not in involved]
+    if loose:
+        text += (
+            f"; no prescribed form parameter involves the moving co-ordinates {_names(loose)}, which may move freely"
+        )
+    return (
+        f"{text}; prescribe {k} more (a number or Keep() for a form parameter of an element, or "
+        f"Mechanism.prescribe), make {k} more an input (Driven()), or fix {more} (Mechanism.fixed, or fixed= of "
+        "Mechanism.point)"
+    )
+
+
+def _counted(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"
+
+
+def _no_inputs(m: re.Match[str], c: _Context) -> str:
+    return (
+        f"the mechanism {c.model!r} has no inputs; make a form parameter an input with Driven() (e.g. "
+        "angle=Driven()) or Mechanism.drive"
+    )
+
+
+def _length(m: re.Match[str], c: _Context) -> str:
+    k = int(m.group(2))
+    e = c.nb.elements[k - 1] if 1 <= k <= len(c.nb.elements) else None
+    points = [p.name for p in e.points] if e is not None else []
+    between = f"between {points[0]} and {points[1]}" if len(points) >= 2 else "between the element's two points"
+    return (
+        f"{c.name!r} prescribes the length of {element_words(e) if e else 'an element'} as {m.group(3)}, but a "
+        f"length must be greater than zero; give the distance {between}, a positive number (points that coincide "
+        "have no direction)"
+    )
+
+
+def _element(m: re.Match[str], c: _Context) -> str:
+    k = int(m.group(1))
+    e = c.nb.elements[k - 1] if 1 <= k <= len(c.nb.elements) else None
+    if e is None:
+        return f"an element of the mechanism {c.model!r} cannot be evaluated at the given co-ordinates: {m.group(3)}"
+    return (
+        f"{element_words(e)} cannot be evaluated at the given co-ordinates: {element_detail(m.group(3), e)}; change "
+        "the initial positions of its points (Mechanism.point, or Mechanism.set) or its dimensions"
+    )
+
+
+def _free_many(m: re.Match[str], c: _Context) -> str:
+    inputs = c.nb.inputs
+    return (
+        f"free motion (Motion.free, Free) needs a mechanism with one input, and {c.model!r} has {len(inputs)} "
+        f"({_names(inputs)}); drive them with Motion.by, Motion.to or Motion.table"
+    )
+
+
+def _free_dynamic(m: re.Match[str], c: _Context) -> str:
+    return (
+        f"free motion (Motion.free, Free) cannot drive the mechanism {c.model!r}, which has masses or loads: free "
+        "motion has no timing, so its run has no velocities or accelerations; drive the input with Motion.by, "
+        "Motion.to or Motion.table, or let it move under the forces (Mechanism.simulate)"
+    )
+
+
+def _rate(m: re.Match[str], c: _Context) -> str:
+    return (
+        f"the motion asks the input {c.name!r} to change by {m.group(2)} in a time of {m.group(3)}, faster than a "
+        "number can hold; give a longer dt or a smaller change"
+    )
+
+
+def _no_frame(m: re.Match[str], c: _Context) -> str:
+    k = int(m.group(1))
+    e = c.nb.elements[k - 1] if 1 <= k <= len(c.nb.elements) else None
+    what = element_words(e) if e is not None else "the element"
+    return f"{what} has no frame to carry a mass; give the mass to a bar, half beam or ternary element"
+
+
+_RULES: list[tuple[re.Pattern[str], Rule]] = [
+    (re.compile(r"co-ordinate (\d+) is used by no element"), _unused),
+    (re.compile(r"(\d+) prescribed rows? for (\d+) moving co-ordinates?: (\d+) too (few|many)"), _count),
+    (re.compile(r"NRDOF must be at least 1"), _no_inputs),
+    (re.compile(r"row (\d+) prescribes the length LENL of element (\d+) \(\w+\) as (\S+), but"), _length),
+    (re.compile(r"element (\d+) \((\w+)\) cannot be evaluated at the initial co-ordinates: (.*)"), _element),
+    (re.compile(r"MOV_FREE needs a mechanism with one degree of freedom"), _free_many),
+    (re.compile(r"MOV_FREE cannot drive a DYN ANA deck"), _free_dynamic),
+    (re.compile(r"(\S+) asks DOF (\d+) to change by (\S+) in a time of (\S+), faster"), _rate),
+    (re.compile(r"element (\d+) is an? (\w+), which has no frame to carry a mass"), _no_frame),
+]
+
+
+def deck_error(err: DeckError, deck: DeckText, model: str) -> DeckError:
+    """A mistake the deck reader found in the deck written for ``model``, in the model's words; ``line`` and
+    ``deck`` still say where it is in the written deck (``name`` names the model part of that line)."""
+    line = int(getattr(err, "line", 0) or 0)
+    what, name = deck.notes.get(line, ("", ""))
+    text = str(err)
+    headline = next((x[len("error: ") :] for x in text.splitlines() if x.startswith("error: ")), text)
+    context = _Context(model, deck.numbering, what, name)
+    for pattern, rule in _RULES:
+        m = pattern.search(headline)
+        if m is not None:
+            message = rule(m, context)
+            break
+    else:
+        where = f"{what} {name!r}" if what else "the model"
+        message = (
+            f"in the mechanism {model!r}, {where}: the deck written for it was refused: "
+            f"{names_in(headline, deck.numbering)} (e.deck holds that deck, e.line the line)"
+        )
+    new = DeckError(message)
+    with_attributes(new, path=getattr(err, "path", deck.path), line=line, name=name or None, deck=deck.text)
+    return new
+
+
+__all__ = ["PythonWords", "deck_error", "element_words", "names_in", "translate"]
