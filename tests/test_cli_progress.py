@@ -68,6 +68,9 @@ def test_quiet_says_nothing_and_keeps_the_exit_status(cli: Cli, tmp_path: Path) 
     assert [p.name for p in (tmp_path / "report").iterdir()] == ["supply.html"]
     proc = cli("check", SUPPLY, "--quiet")
     assert (proc.returncode, proc.stdout, proc.stderr) == (0, "", "")
+    proc = cli("draw", SUPPLY, "-o", tmp_path / "draw", "--format", "svg", "--quiet")
+    assert (proc.returncode, proc.stdout, proc.stderr) == (0, "", "")
+    assert [p.name for p in (tmp_path / "draw").iterdir()] == ["supply_pos1.svg"]
 
 
 def test_quiet_still_says_errors(cli: Cli, tmp_path: Path) -> None:

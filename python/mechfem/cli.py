@@ -14,7 +14,7 @@
 A progress bar on stderr names each phase (computing, data set, print file, pictures, animation, report) when
 stderr is a terminal; each output file is announced on stdout as soon as it is complete. --quiet says nothing
 but errors.
-    mechfem draw DECK [-o OUTDIR] [--position N] [--format dxf,svg] [--no-paths] [--units UNIT]
+    mechfem draw DECK [-o OUTDIR] [--position N] [--format dxf,svg] [--no-paths] [--units UNIT] [--quiet]
                                    run the deck and write the mechanism at position N (default 1) with the paths
                                    of its moving points as DECK-stem_posN.dxf and .svg
 
@@ -391,6 +391,7 @@ def add_draw(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> N
         help="the deck's length unit, declared in the DXF file (co-ordinates are not scaled; default unitless)",
     )
     add_memory_limit(draw)
+    add_quiet(draw)
     draw.set_defaults(func=cmd_draw)
 
 
@@ -421,32 +422,31 @@ def cmd_draw(args: argparse.Namespace) -> int:
 
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
+    console: Console = args.console
     if "dxf" in args.format and not export.dxf_available():
-        print(
+        console.error(
             "error: writing DXF needs ezdxf, which is not installed: pip install 'mechfem[dxf]' (or pip install "
-            "ezdxf), or ask for SVG only with --format svg",
-            file=sys.stderr,
+            "ezdxf), or ask for SVG only with --format svg"
         )
         return EXIT_FAILED
     if optimisation(deck) is not None:
-        print(
+        console.note(
             f"note: {deck} is a KIN OPT deck: this drawing shows its start design; `mechfem run` optimises it and "
-            "writes the final design as a deck, which `mechfem draw` draws",
-            file=sys.stderr,
+            "writes the final design as a deck, which `mechfem draw` draws"
         )
-    result, interrupted = run_with_progress(deck, args.memory_limit)
+    result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
+    console.bar.close()
     if args.position > result.positions:
-        print(
+        console.error(
             f"error: {deck}: --position {args.position}: the run has {count(result.positions, 'position')}, so "
-            f"--position must be from 1 to {result.positions}",
-            file=sys.stderr,
+            f"--position must be from 1 to {result.positions}"
         )
         return EXIT_FAILED
     files = export.draw_files(result, outdir, args.position, args.format, not args.no_paths, args.units)
-    print(f"{deck}: {count(result.positions, 'position')} computed")
+    console.say(f"{deck}: {count(result.positions, 'position')} computed")
     for path in files:
-        print(f"wrote {path}")
-    return exit_status(deck, result, interrupted)
+        console.say(f"wrote {path}")
+    return exit_status(deck, result, interrupted, console)
 
 
 _HINTS: dict[type[MechfemError], str] = {

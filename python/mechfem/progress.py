@@ -89,7 +89,7 @@ class ProgressBar:
         # The first report of a phase whose total was not known: show the total at once.
         bar.total = total
         bar.unit_scale = _scaled(total)
-        bar.bar_format = None
+        bar.bar_format = _format(total, bar.unit)
         bar.n = done
         bar.refresh()
 
@@ -118,11 +118,12 @@ def _scaled(total: int | None) -> bool:
     return total is not None and total >= SCALED_FROM
 
 
-def _format(total: int | None, unit: str | None) -> str | None:
-    """tqdm's bar_format for a phase: its own (None) when the total is known, the count and the time taken when
-    only the unit is, the name alone for a single step."""
+def _format(total: int | None, unit: str | None) -> str:
+    """tqdm's bar_format for a phase: the bar, the count and the time taken and left when the total is known (no
+    rate: tqdm shows a slow one as ``9.10s/ pictures``), the count and the time taken when only the unit is, the
+    name alone for a single step."""
     if total is not None:
-        return None
+        return "{l_bar}{bar}| {n_fmt}/{total_fmt}{unit} [{elapsed}<{remaining}]"
     return "{desc}: {n_fmt}{unit} [{elapsed}]" if unit else "{desc}"
 
 
