@@ -117,3 +117,18 @@ def test_parquet_without_pyarrow_names_the_extra(tmp_path: Path, monkeypatch: py
     with pytest.raises(MissingDependency, match=r"pip install 'mechfem\[parquet\]'"):
         write_parquet(result, tmp_path / "s.parquet")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_binary_data_set_with_nan_gets_its_notes(tmp_path: Path) -> None:
+    from mechfem.output import write_outputs
+
+    result = mechfem.run_deck(SUPPLY)
+    result.buffers[101][5] = np.nan
+    written = write_outputs(result, tmp_path, fmt="npz")
+    assert [p.name for p in written] == ["supply.npz", "supply.notes.txt", "supply.prt"]
+    notes = (tmp_path / "supply.notes.txt").read_text()
+    assert notes.startswith("Notes on supply.npz, the data set of ")
+    assert "column 101 (BUFKE1 -1 1) holds nan at position 6 and nowhere else" in notes
+    with np.load(tmp_path / "supply.npz") as z:
+        column = z["101 dANGB(8)/dinput1"]
+        assert np.isnan(column[5]) and not np.isnan(np.delete(column, 5)).any()
