@@ -1,0 +1,353 @@
+"""What the interactive report charts: named columns of values and the charts drawn from them.
+
+Every quantity the page shows is a *column* (a buffer, det(D^c), the time, the position number, a co-ordinate,
+a drive force...) with its name, unit and CSV header from :mod:`mechfem.labels`, sent once and referred to by key.
+A *card* is one picture of the deck (or a default one) holding one or more charts; a chart draws columns against
+one horizontal column (``function``), or as curves in the plane (``xy``). Quantities of different kind or unit
+never share a vertical axis: a picture whose PLOTFUNC lines mix them becomes a stack of charts, one per kind.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from mechfem.drawing import points_of
+from mechfem.labels import Label, buffer_labels, coordinate_name, input_name, point_name, row_unit, stress_unit
+from mechfem.plots import hodograph, picture_title
+from mechfem.result import RunResult
+
+
+def num(v: float) -> float | None:
+    """A number for JSON: 6 significant digits; NaN and infinities become null."""
+    v = float(v)
+    if not math.isfinite(v):
+        return None
+    return float(f"{v:.6g}")
+
+
+def nums(values: Any) -> list[float | None]:
+    return [num(v) for v in np.asarray(values, dtype=np.float64).ravel()]
+
+
+def with_unit(name: str, unit: str) -> str:
+    """``name [unit]``, or the name alone for a quantity without a unit."""
+    return f"{name} [{unit}]" if unit else name
+
+
+@dataclass
+class Columns:
+    """The columns of a report, by key, each sampled at the report's frames."""
+
+    frames: np.ndarray
+    table: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def add(
+        self, key: str, name: str, unit: str, kind: str, values: Any, header: str | None = None, text: str = ""
+    ) -> str:
+        if key not in self.table:
+            self.table[key] = {
+                "name": name,
+                "unit": unit,
+                "kind": kind,
+                "axis": with_unit(name, unit),
+                "header": with_unit(header or name, unit),
+                "text": text or name,
+                "values": nums(np.asarray(values, dtype=np.float64)[self.frames]),
+            }
+        return key
+
+    def buffer(self, result: RunResult, lab: Label) -> str:
+        return self.add(
+            f"b{lab.number}", lab.name, lab.unit, lab.kind, result.buffers[lab.number], lab.header(), lab.text
+        )
+
+    def coordinate(self, result: RunResult, i: int, unit: str = "length") -> str:
+        return self.add(f"c{i}", coordinate_name(result, i), unit, "position", result.coords[:, i - 1])
+
+    def derivative(self, result: RunResult, i: int, unit: str) -> str | None:
+        """d x_i / d input 1, recorded for the co-ordinates a PLOTHODO names."""
+        if i not in result.kx1:
+            return None
+        name = f"d{coordinate_name(result, i)}/d{input_name(result, 1)}"
+        return self.add(f"k{i}", name, unit, "first order", result.kx1[i])
+
+    def values(self, key: str) -> list[float | None]:
+        return list(self.table[key]["values"])
+
+
+def _monotonic(values: list[float | None]) -> bool:
+    """Strictly increasing or strictly decreasing, with every value known."""
+    if len(values) < 2 or any(v is None for v in values):
+        return False
+    d = np.diff(np.asarray(values, dtype=np.float64))
+    return bool(np.all(d > 0) or np.all(d < 0))
+
+
+def input_buffer(result: RunResult, labels: dict[int, Label], j: int = 1) -> Label | None:
+    """The label of the first BUFINP buffer of input ``j``."""
+    for b in result.storage.buffers:
+        if b.keyword == "BUFINP" and b.args[:1] == [j]:
+            return labels[b.number]
+    return None
+
+
+def main_axis(result: RunResult, labels: dict[int, Label], cols: Columns) -> str:
+    """The horizontal column of the det(D^c) chart and of the default charts: input 1 when it moves one way
+    through the run, else the time of a dynamics run, else the position number (free motion turns its input
+    back)."""
+    inp = input_buffer(result, labels)
+    if inp is not None:
+        key = cols.buffer(result, inp)
+        if _monotonic(cols.values(key)):
+            return key
+    if result.model.mode.startswith("DYN"):
+        time = cols.add("time", "time", "s", "time", result.time)
+        if _monotonic(cols.values(time)):
+            return time
+    return cols.add("pos", "position", "", "position", np.arange(1, result.positions + 1, dtype=np.float64))
+
+
+def _function_charts(xkey: str, ys: list[str], cols: Columns) -> list[dict[str, Any]]:
+    """The columns ``ys`` against ``xkey``, one chart per kind and unit (in order of first appearance)."""
+    groups: dict[tuple[str, str], list[str]] = {}
+    for y in ys:
+        c = cols.table[y]
+        kind = "position" if c["kind"] == "input" else c["kind"]
+        groups.setdefault((kind, c["unit"]), []).append(y)
+    charts = []
+    for (kind, unit), members in groups.items():
+        names = [cols.table[y]["name"] for y in members]
+        ylabel = with_unit(", ".join(names), unit) if len(members) <= 3 else with_unit(kind, unit)
+        chart: dict[str, Any] = {"ylabel": ylabel, "xlabel": cols.table[xkey]["axis"]}
+        if _monotonic(cols.values(xkey)):
+            chart.update(type="function", x=xkey, series=[{"y": y} for y in members])
+        else:
+            chart.update(type="xy", equal=False, series=[{"x": xkey, "y": y} for y in members])
+        charts.append(chart)
+    return charts
+
+
+def _buffer_points(result: RunResult) -> list[tuple[int, int]]:
+    """(x, y) co-ordinate numbers of every point of the mechanism."""
+    out: list[tuple[int, int]] = []
+    for e in result.model.elements:
+        for px, py in points_of(e.type, e.coords):
+            if (px + 1, py + 1) not in out:
+                out.append((px + 1, py + 1))
+    return out
+
+
+def traced_points(result: RunResult) -> list[tuple[int, int]]:
+    """The points whose paths the mechanism drawing traces: those a PLOTHODO names, then those whose x and y the
+    deck records (BUFX0 buffers, as in a PLOTCURV of a coupler curve)."""
+    out: list[tuple[int, int]] = []
+    for pic in result.storage.pictures:
+        for p in pic.plots:
+            if p.keyword == "PLOTHODO" and (p.a, p.b) not in out:
+                out.append((p.a, p.b))
+    recorded = {b.args[0] for b in result.storage.buffers if b.keyword == "BUFX0" and b.args}
+    for px, py in _buffer_points(result):
+        moving = result.model.coordinates[px - 1].moving or result.model.coordinates[py - 1].moving
+        if px in recorded and py in recorded and moving and (px, py) not in out:
+            out.append((px, py))
+    return out
+
+
+def paths(result: RunResult, cols: Columns) -> list[dict[str, Any]]:
+    """The traced points with their paths and, for PLOTHODO points, their first-order vectors."""
+    out = []
+    for ix, iy in traced_points(result):
+        h = hodograph(result, ix, iy)
+        out.append(
+            {
+                "name": point_name(result, ix, iy),
+                "x": cols.coordinate(result, ix),
+                "y": cols.coordinate(result, iy),
+                "vx": cols.derivative(result, ix, _per_input(result, "length")),
+                "vy": cols.derivative(result, iy, _per_input(result, "length")),
+                "scale": num(h.scale),
+            }
+        )
+    return out
+
+
+def _per_input(result: RunResult, unit: str) -> str:
+    """``unit`` per unit of input 1: ``length/rad`` for a crank."""
+    if not result.model.dofs:
+        return unit
+    den = row_unit(result.model, result.model.prescribed[result.model.dofs[0] - 1])
+    return f"{unit}/{den}" if den else unit
+
+
+def _hodograph(result: RunResult, ix: int, iy: int, cols: Columns) -> dict[str, Any]:
+    h = hodograph(result, ix, iy)
+    return {
+        "name": f"path of {point_name(result, ix, iy)}",
+        "arrows": f"(d{coordinate_name(result, ix)}, d{coordinate_name(result, iy)})/d{input_name(result, 1)}, "
+        f"drawn x {h.scale:.3g}",
+        "x": cols.coordinate(result, ix),
+        "y": cols.coordinate(result, iy),
+        "vx": cols.derivative(result, ix, _per_input(result, "length")),
+        "vy": cols.derivative(result, iy, _per_input(result, "length")),
+        "at": [int(k) for k in h.at],
+        "ax": nums(h.x[h.at]),
+        "ay": nums(h.y[h.at]),
+        "avx": nums(h.vx),
+        "avy": nums(h.vy),
+        "scale": num(h.scale),
+    }
+
+
+def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) -> list[dict[str, Any]]:
+    """One card per picture of the deck."""
+    cards = []
+    for index, pic in enumerate(result.storage.pictures):
+        charts: list[dict[str, Any]] = []
+        funcs = [p for p in pic.plots if p.keyword == "PLOTFUNC" and p.a in labels and p.b in labels]
+        for xb in dict.fromkeys(p.a for p in funcs):
+            xkey = cols.buffer(result, labels[xb])
+            ys = [cols.buffer(result, labels[p.b]) for p in funcs if p.a == xb]
+            charts += _function_charts(xkey, list(dict.fromkeys(ys)), cols)
+        hodos = [_hodograph(result, p.a, p.b, cols) for p in pic.plots if p.keyword == "PLOTHODO"]
+        curves: dict[tuple[str, str], list[dict[str, str]]] = {}
+        for p in pic.plots:
+            if p.keyword == "PLOTCURV" and p.a in labels and p.b in labels:
+                la, lb = labels[p.a], labels[p.b]
+                curves.setdefault((la.unit, lb.unit), []).append(
+                    {"x": cols.buffer(result, la), "y": cols.buffer(result, lb), "name": f"{lb.name} against {la.name}"}
+                )
+        if hodos:
+            # Curves in the plane of the mechanism join the hodographs, over the mechanism drawn faintly.
+            series = curves.pop(("length", "length"), [])
+            charts.append(
+                {
+                    "type": "xy",
+                    "equal": True,
+                    "mechanism": True,
+                    "xlabel": with_unit("x", "length"),
+                    "ylabel": with_unit("y", "length"),
+                    "series": series,
+                    "hodographs": hodos,
+                }
+            )
+        for (ux, uy), series in curves.items():
+            xs = list(dict.fromkeys(cols.table[s["x"]]["name"] for s in series))
+            ys = list(dict.fromkeys(cols.table[s["y"]]["name"] for s in series))
+            charts.append(
+                {
+                    "type": "xy",
+                    "equal": ux == uy,
+                    "xlabel": with_unit(", ".join(xs), ux),
+                    "ylabel": with_unit(", ".join(ys), uy),
+                    "series": series,
+                }
+            )
+        cards.append({"title": picture_title(result, index).replace("\n", " "), "picture": index + 1, "charts": charts})
+    return cards
+
+
+def default_card(result: RunResult, labels: dict[int, Label], cols: Columns, xkey: str) -> dict[str, Any] | None:
+    """For a deck that asks for no picture: every recorded quantity against the main axis, one chart per kind."""
+    ys = [cols.buffer(result, lab) for lab in labels.values() if lab.kind != "det" and f"b{lab.number}" != xkey]
+    if not ys:
+        return None
+    return {
+        "title": f"recorded quantities against {cols.table[xkey]['name']}",
+        "picture": None,
+        "charts": _function_charts(xkey, ys, cols),
+    }
+
+
+def limit_markers(result: RunResult, xkey: str) -> list[dict[str, Any]]:
+    """Every located limit position: where the page's slider goes (0-based position) and where on the det chart."""
+    report = result.report
+    xs = np.asarray(_full(result, xkey), dtype=np.float64)
+    out = []
+    for lim in report.located_limits:
+        k = min(max(lim.after - 1, 0), result.positions - 1)
+        if lim.kind == "near_zero" or k + 1 >= result.positions:
+            nxt = k
+        else:
+            nxt = k + 1
+        if xkey.startswith("b") and _is_input(result, xkey) and lim.inputs:
+            x = lim.inputs[0]
+        elif nxt == k and lim.kind != "near_zero":
+            # The motion stopped there: the limit lies half a step beyond the last position.
+            x = xs[k] + 0.5 * (xs[k] - xs[k - 1]) if k > 0 else xs[k]
+        else:
+            x = 0.5 * (xs[k] + xs[nxt])
+        out.append(
+            {
+                "kind": lim.kind,
+                "position": k,
+                "where": lim.where,
+                "text": lim.describe(report.input_names),
+                "x": num(x),
+                "det": num(lim.det),
+            }
+        )
+    return out
+
+
+def _is_input(result: RunResult, key: str) -> bool:
+    number = int(key[1:])
+    return any(b.number == number and b.keyword == "BUFINP" for b in result.storage.buffers)
+
+
+def _full(result: RunResult, key: str) -> np.ndarray:
+    """A column at every position (the limits fall between positions the report may not show)."""
+    if key == "time":
+        return result.time
+    if key == "pos":
+        return np.arange(1, result.positions + 1, dtype=np.float64)
+    return result.buffers[int(key[1:])]
+
+
+def dynamics_cards(result: RunResult, cols: Columns) -> list[dict[str, Any]]:
+    """A DYN deck's report always shows the drive forces and the energies, against input 1 for one input and
+    against time for several."""
+    dyn = result.dynamic
+    if dyn is None or dyn.drive.shape[1] == 0:
+        return []
+    nd = dyn.drive.shape[1]
+    model = result.model
+    if nd == 1:
+        unit = row_unit(model, model.prescribed[model.dofs[0] - 1]) if model.dofs else ""
+        xkey = cols.add("in1", input_name(result, 1), unit, "input", dyn.inputs[:, 0])
+    else:
+        xkey = cols.add("time", "time", "s", "time", result.time)
+    drives = []
+    for j in range(nd):
+        unit = stress_unit(row_unit(model, model.prescribed[model.dofs[j] - 1])) if j < len(model.dofs) else ""
+        drives.append(cols.add(f"drv{j + 1}", f"drive of {input_name(result, j + 1)}", unit, "force", dyn.drive[:, j]))
+    energies = [
+        cols.add("ekin", "T", "energy", "energy", dyn.kinetic, text="kinetic energy T"),
+        cols.add("epot", "V", "energy", "energy", dyn.potential, text="potential energy V"),
+        cols.add("etot", "T+V", "energy", "energy", dyn.kinetic + dyn.potential, text="T + V"),
+    ]
+    power = cols.add("power", "drive power", "power", "power", dyn.power)
+    against = "time" if nd > 1 else _input_words(result, 1)
+    return [
+        {
+            "title": f"drive force or torque against {against}",
+            "picture": None,
+            "charts": _function_charts(xkey, drives, cols),
+        },
+        {"title": f"energies against {against}", "picture": None, "charts": _function_charts(xkey, energies, cols)},
+        {"title": f"drive power against {against}", "picture": None, "charts": _function_charts(xkey, [power], cols)},
+    ]
+
+
+def _input_words(result: RunResult, j: int) -> str:
+    """``input 1`` for a deck, the model's own name for a named model's input."""
+    name = input_name(result, j)
+    return f"input {j}" if name == f"input{j}" else name
+
+
+def all_labels(result: RunResult) -> dict[int, Label]:
+    """Every buffer's label (the buffers the storage defines but the run did not record are left out)."""
+    return {n: lab for n, lab in buffer_labels(result).items() if n in result.buffers}
