@@ -85,11 +85,12 @@ def page_requests(netlog: Path) -> list[tuple[str, str]]:
     return out
 
 
-def self_test(tmp: Path, page: Path) -> tuple[dict[str, Any], list[tuple[str, str]]]:
-    """Opens ``page#selftest``; returns what the page reported and the requests the page itself made."""
+def self_test(tmp: Path, page: Path, *args: str) -> tuple[dict[str, Any], list[tuple[str, str]]]:
+    """Opens ``page#selftest`` (with Chromium's ``args``, e.g. a window size); returns what the page reported and
+    the requests the page itself made."""
     netlog = tmp / f"{page.stem}.netlog.json"
     proc = chromium(
-        tmp, f"--log-net-log={netlog}", "--virtual-time-budget=5000", "--dump-dom", page.as_uri() + "#selftest"
+        tmp, f"--log-net-log={netlog}", "--virtual-time-budget=5000", *args, "--dump-dom", page.as_uri() + "#selftest"
     )
     assert proc.returncode == 0, proc.stderr[-2000:]
     found = re.search(r'<pre id="selftest">(.*?)</pre>', proc.stdout, re.S)

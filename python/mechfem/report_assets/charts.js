@@ -384,7 +384,8 @@ const MechfemCharts = (function () {
   // ---- the chart's numbers as CSV: the position, then every column the chart draws ----
   Chart.prototype.columns = function () {
     const keys = [];
-    const add = (k) => { if (k && this.D.columns[k] && !keys.includes(k)) keys.push(k); };
+    // The position is the first column already.
+    const add = (k) => { if (k && k !== "pos" && this.D.columns[k] && !keys.includes(k)) keys.push(k); };
     if (this.spec.type === "function") add(this.spec.x);
     for (const c of this.curves) {
       add(c.x); add(c.y);
