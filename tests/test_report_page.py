@@ -11,6 +11,7 @@ how docs/images/report_*.png are made).
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import math
@@ -46,9 +47,10 @@ def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Page]:
     tmp = tmp_path_factory.mktemp("report-pages")
     out = {}
     for name, (deck, _) in DECKS.items():
-        with warnings.catch_warnings():
+        # Run from the repository's folder, so that the page names the deck as the docs do.
+        with warnings.catch_warnings(), contextlib.chdir(ROOT):
             warnings.simplefilter("ignore")
-            result = mechfem.run_deck(deck)
+            result = mechfem.run_deck(deck.relative_to(ROOT))
         if name == "limits":
             # A value the run could not compute (as a transfer function at a singular position) is NaN.
             result.buffers[5][100] = math.nan
