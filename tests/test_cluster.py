@@ -119,7 +119,7 @@ def test_failing_variants_and_chunks_are_rows_with_their_reason(client: Any, tmp
     sets = [{"rocker": 3.0}, {"rocker": 10.0}, {"rocker": 2.8}, {"rocker": 3.2}]
     study = mechfem.sweep(fourbar, sets, {"stroke": picky}, motion=MOTION, progress=False, executor=client)
     assert list(study["ok"]) == [True, False, True, True]
-    assert study["error"][1].startswith("Newton iteration did not converge")
+    assert study["error"][1].startswith("position 1 of the mechanism 'fourbar' cannot be computed: Newton iteration")
     assert study["error"][2] == "measure 'stroke': ZeroDivisionError: no stroke for this one"
     assert math.isnan(study["stroke"][2]) and study["stroke"][3] > 0 and study["error"][3] == ""
     same_table(study, mechfem.sweep(fourbar, sets, {"stroke": picky}, motion=MOTION, progress=False))

@@ -136,6 +136,12 @@ def pendulum() -> Mechanism:
     return m
 
 
+def gears() -> Mechanism:
+    m = Mechanism("gears")
+    m.gear_pair("mesh", m.angle("a", 0.0), m.angle("carrier", 0.0, fixed=True), m.angle("b", 0.0), ratio=-2.0)
+    return m
+
+
 def unused_point() -> Mechanism:
     m = fourbar()
     m.point("C", 5.0, 5.0)
@@ -180,6 +186,10 @@ BATTERY: dict[str, Callable[[], object]] = {
     "a simulation without masses": lambda: fourbar().simulate(1.0, 10),
     "a table file name with blanks": lambda: fourbar().to_deck(Motion(2, {None: Table(np.zeros(3), file="a b")})),
     "a run too large for the memory limit": lambda: fourbar().run(Motion.by(2_000_000, 1.0)),
+    "a name used twice": lambda: fourbar().point("crank", 0.0, 0.0),
+    "a form parameter of another mechanism": lambda: fourbar().output("other", fourbar()["crank"].angle),
+    "a mass on a gear pair": lambda: gears().mass("mesh", 1.0),
+    "a change faster than a number can hold": lambda: fourbar().run(Motion.by(3, 1e300, dt=1e-300, unit="rad")),
     "unknown output": lambda: fourbar().run(Motion.by(4, 0.5)).output("psii"),
     "unknown point of a result": lambda: fourbar().run(Motion.by(4, 0.5)).x("Aa"),
     "unknown input of a result": lambda: fourbar().run(Motion.by(4, 0.5)).input("crank.angel"),

@@ -40,6 +40,7 @@ def _names(items: Sequence[Coordinate | Row | Point]) -> str:
 
 
 def with_attributes(err: MechfemError, **attributes: object) -> MechfemError:
+    """``err`` with ``attributes`` set on it (the facts a caller reads besides the message)."""
     for key, value in attributes.items():
         setattr(err, key, value)
     return err
@@ -111,7 +112,7 @@ class PythonWords(Words):
         return f"the input {self.names[j - 1]!r}" if 1 <= j <= len(self.names) else f"input number {j}"
 
     def at(self, j: int, value: float, digits: int) -> str:
-        name = self.names[j - 1] if 1 <= j <= len(self.names) else f"input {j}"
+        name = self.names[j - 1] if 1 <= j <= len(self.names) else f"input number {j}"
         return f"{name} = {value:.{digits}g}"
 
     def free_advice(self, ds: float, known: bool, steps: int) -> str:
@@ -333,7 +334,7 @@ def _free_dynamic(m: re.Match[str], c: _Context) -> str:
 
 def _rate(m: re.Match[str], c: _Context) -> str:
     return (
-        f"the motion asks the input {c.name!r} to change by {m.group(2)} in a time of {m.group(3)}, faster than a "
+        f"the motion asks the input {c.name!r} to change by {m.group(3)} in a time of {m.group(4)}, faster than a "
         "number can hold; give a longer dt or a smaller change"
     )
 

@@ -26,6 +26,7 @@ import numpy.typing as npt
 from mechfem import _core
 from mechfem.checks import finite
 from mechfem.model import Combination, Coordinate, Element, FormParameter, Mechanism, Point, Row
+from mechfem.parts import ELEMENT_WORDS
 
 if TYPE_CHECKING:
     from mechfem.deckio import Numbering
@@ -253,14 +254,15 @@ def _frame(e: Element) -> None:
         return
     if e.type == "CRD":
         raise ValueError(
-            f"element {e.name!r} is a CRD, which has no frame to carry a mass: it only constrains a co-ordinate; "
+            f"element {e.name!r} is a single co-ordinate element, which has no frame to carry a mass: it only "
+            "constrains a co-ordinate; "
             "put a mass at a point with point_mass(), or a body on a bar, half beam or ternary element with mass()"
         )
     angles = ", ".join(repr(s.name) for s in e.slots if isinstance(s, Coordinate) and s.kind == "angle")
     raise ValueError(
-        f"element {e.name!r} is a {e.type}, which has no frame to carry a mass: it only couples wheels; put the "
-        "wheel's mass on its half beam (HLF) or ternary-1 (TR1) element with mass(), or its inertia on its angle "
-        f"co-ordinate with inertia() (the angles of {e.name!r}: {angles})"
+        f"element {e.name!r} is a {ELEMENT_WORDS.get(e.type, e.type)}, which has no frame to carry a mass: it "
+        "only couples wheels; put the wheel's mass on its half beam or ternary-1 element with mass(), or its "
+        f"inertia on its angle co-ordinate with inertia() (the angles of {e.name!r}: {angles})"
     )
 
 

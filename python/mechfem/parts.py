@@ -180,7 +180,8 @@ class FormParameter(_Expr):
         return hash((id(self.element), self.form))
 
     def __repr__(self) -> str:
-        return f"<{self.label} ({self.form} of {self.element.type} {self.element.name!r})>"
+        what = ELEMENT_WORDS.get(self.element.type, self.element.type)
+        return f"<{self.label}: the {self.attribute} of the {what} {self.element.name!r}>"
 
 
 class Combination(_Expr):
@@ -339,7 +340,7 @@ class Element:
 
     def __repr__(self) -> str:
         names = " ".join(s.name for s in self.slots)
-        return f"Element({self.name!r}, {self.type}: {names})"
+        return f"Element({self.name!r}, {ELEMENT_WORDS.get(self.type, self.type)}: {names})"
 
 
 # --- the mechanism -------------------------------------------------------------------------------------------------
