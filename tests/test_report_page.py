@@ -91,6 +91,14 @@ def test_the_page_loads_draws_its_charts_and_asks_for_nothing(pages: dict[str, P
 
 
 @needs_chromium
+def test_a_path_keeps_its_shape(pages: dict[str, Page]) -> None:
+    hodograph = pages["supply"][2]["charts"][1]
+    assert hodograph["type"] == "xy" and hodograph["curves"] == ["path of (x13, x14)"]
+    sx, sy = hodograph["pixels_per_unit"]
+    assert sx > 100 and sy == pytest.approx(sx, rel=1e-3)
+
+
+@needs_chromium
 def test_quantities_of_different_units_never_share_an_axis(pages: dict[str, Page]) -> None:
     charts = pages["gears"][2]["charts"]
     # PLOTFUNC 1 2 (the slider, a length) and PLOTFUNC 1 5 (the pinion, an angle) of one picture: two charts.

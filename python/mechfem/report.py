@@ -1,13 +1,16 @@
 """The interactive report: one self-contained HTML file ``<stem>.html`` that opens offline in any browser.
 
-It holds the mechanism, animated on a canvas with play/pause and a position slider; every picture of the
-deck as a chart whose cursor follows the slider; the limit positions, warnings and stop reason of the run;
-and a table of the buffers. Everything (script, style, data as JSON) is inside the file: it loads nothing,
-and its Content-Security-Policy forbids it to. Runs with more than :data:`MAX_REPORT_POSITIONS` positions
-are subsampled evenly for the slider, the charts and the table; the report says so.
+It holds the mechanism, animated on a canvas with play/pause, a play speed and a position slider, its traced
+paths each in a colour of its own; det(D^c) with every located limit position marked and listed; every picture
+of the deck (or default charts) as uPlot charts with a readout under the pointer, zoom, a CSV of their numbers
+and the slider's marker; the status of the run; and a table of the buffers. Everything (uPlot, the page's style
+and scripts from ``report_assets/``, the data as JSON) is inside the file: it loads nothing, and its
+Content-Security-Policy forbids it to. Runs with more than :data:`MAX_REPORT_POSITIONS` positions are
+subsampled evenly for the slider, the charts and the table; the report says so. What is charted, with which
+names and units, is worked out in :mod:`mechfem.report_charts`.
 
-The page's own check, used by the tests: opened as ``<stem>.html#selftest`` it draws, moves the slider and
-writes what it saw as JSON into ``<pre id="selftest">``.
+The page's own check, used by the tests: opened as ``<stem>.html#selftest`` it draws, moves the slider, clicks,
+zooms, plays, and writes what it saw as JSON into ``<pre id="selftest">``.
 """
 
 from __future__ import annotations

@@ -131,7 +131,6 @@ const MechfemCharts = (function () {
       const w = Math.max(this.plot.clientWidth, 240);
       if (Math.abs(w - this.u.width) < 2) return;
       this.u.setSize({ width: w, height: HEIGHT });
-      if (spec.type === "xy") this.resetZoom();
     }).observe(this.plot);
   }
 
@@ -147,6 +146,13 @@ const MechfemCharts = (function () {
       drawAxes: [(u) => this.drawBehind(u)],
       draw: [(u) => this.drawMarks(u)],
       setCursor: [(u) => this.onCursor(u)],
+      setSelect: [() => { this.zoomed = true; }],
+      // The axes take their width from their tick labels, which changes the plot's size: equal scales are
+      // fitted again to the size the plot ends up with, unless the reader zoomed.
+      setSize: [(u) => {
+        const fit = this.fitted;
+        if (this.spec.type === "xy" && !this.zoomed && fit && (fit[0] !== u.bbox.width || fit[1] !== u.bbox.height)) this.resetZoom();
+      }],
     };
   };
 
@@ -244,6 +250,7 @@ const MechfemCharts = (function () {
 
   Chart.prototype.resetZoom = function () {
     const u = this.u;
+    this.zoomed = false;
     if (this.spec.type === "function") {
       const xs = u.data[0];
       u.setScale("x", { min: xs[0], max: xs[xs.length - 1] });
@@ -256,6 +263,7 @@ const MechfemCharts = (function () {
       const cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
       [x0, x1, y0, y1] = [cx - w / 2 / s, cx + w / 2 / s, cy - h / 2 / s, cy + h / 2 / s];
     }
+    this.fitted = [u.bbox.width, u.bbox.height];
     u.batch(() => { u.setScale("x", { min: x0, max: x1 }); u.setScale("y", { min: y0, max: y1 }); });
   };
 

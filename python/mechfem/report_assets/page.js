@@ -331,6 +331,8 @@
         xlabel: c.spec.xlabel, ylabel: c.spec.ylabel, ink: shot.ink, changed_pixels: changed(shots0[i], shot),
         cursor_before: dots0[i], cursor_after: c.cursorDots.slice(), readout: c.readout.textContent, csv: c.csv(),
         width: c.u.width,
+        // CSS pixels per unit along x and along y (equal for a path in the plane).
+        pixels_per_unit: [c.u.valToPos(1, "x") - c.u.valToPos(0, "x"), c.u.valToPos(0, "y") - c.u.valToPos(1, "y")],
       };
     });
     const detShot = snapshot(detChart.u.ctx.canvas);
