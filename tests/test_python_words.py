@@ -273,7 +273,7 @@ def test_assembly_errors_name_the_element_and_its_points() -> None:
 
     deck = deckio.write(fourbar())
     err = mechfem.AssemblyError("element 2 (BIN): the points P and Q coincide, so the direction P->Q is undefined")
-    err.element = 2  # type: ignore[attr-defined]
+    err.element = 2
     new = deckio.translate(err, deck, "fourbar")
     assert isinstance(new, mechfem.AssemblyError)
     assert new.element == 2 and new.element_name == "coupler"  # type: ignore[attr-defined]
@@ -387,10 +387,10 @@ def test_element_slots_may_be_given_by_name() -> None:
     m = Mechanism("named")
     m.fixed("A0", 0.0, 0.0)
     m.point("A", 1.0, 0.0)
-    bar = m.bar("crank", "A0", "A", length=1.0, angle=Driven())  # type: ignore[arg-type]
+    bar = m.bar("crank", "A0", "A", length=1.0, angle=Driven())
     assert bar.points == (m["A0"], m["A"])
     with pytest.raises(TypeError, match="'crank' is an element of the mechanism 'named', not a point"):
-        m.bar("other", "A0", "crank")  # type: ignore[arg-type]
+        m.bar("other", "A0", "crank")
 
 
 # --- early stops ----------------------------------------------------------------------------------------------------

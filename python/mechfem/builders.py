@@ -5,7 +5,7 @@ points and co-ordinates they are given (objects of the mechanism, or their names
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 from mechfem.parts import (
     ATTRIBUTES,
@@ -21,6 +21,12 @@ from mechfem.parts import (
     role_row,
     unknown_form,
 )
+
+PointArg: TypeAlias = Point | str
+"""A point given to an element method: the point, or its name."""
+
+CoordinateArg: TypeAlias = Coordinate | float | str
+"""A co-ordinate given to an element method: the co-ordinate, its name, or a number for a new one."""
 
 
 class ElementMethods:
@@ -47,7 +53,7 @@ class ElementMethods:
 
         def scalar(self, name: str, value: float, *, fixed: bool = True) -> Coordinate: ...
 
-    def _slot(self, element: str, what: str, obj: Slot | float, kind: Literal["angle", "scalar"]) -> Coordinate:
+    def _slot(self, element: str, what: str, obj: Slot | float | str, kind: Literal["angle", "scalar"]) -> Coordinate:
         if isinstance(obj, str):
             obj = self.find(obj, "co-ordinate", lambda o: isinstance(o, Coordinate))
         if isinstance(obj, Point):
@@ -89,13 +95,13 @@ class ElementMethods:
             self.rows.append(r)
         return e
 
-    def bar(self, name: str, p: Point, q: Point, *, length: Role = None, angle: Role = None) -> Element:
+    def bar(self, name: str, p: PointArg, q: PointArg, *, length: Role = None, angle: Role = None) -> Element:
         """A binary element (BIN) from ``p`` to ``q``: ``length`` |PQ| and ``angle`` the direction P->Q."""
         return self._element(
             name, "BIN", [self._pt(name, "p", p), self._pt(name, "q", q)], {"LENL": length, "ANGB": angle}
         )
 
-    def half_beam(self, name: str, p: Point, beta: Coordinate | float, *, angle: Role = None) -> Element:
+    def half_beam(self, name: str, p: PointArg, beta: CoordinateArg, *, angle: Role = None) -> Element:
         """A half beam (HLF): point ``p`` with the angle co-ordinate ``beta`` (a number makes a moving one)."""
         return self._element(
             name, "HLF", [self._pt(name, "p", p), self._slot(name, "beta", beta, "angle")], {"ANGV": angle}
@@ -104,9 +110,9 @@ class ElementMethods:
     def ternary1(
         self,
         name: str,
-        p: Point,
-        beta: Coordinate | float,
-        r: Point,
+        p: PointArg,
+        beta: CoordinateArg,
+        r: PointArg,
         *,
         angle: Role = None,
         u: Role = None,
@@ -120,9 +126,9 @@ class ElementMethods:
     def ternary2(
         self,
         name: str,
-        p: Point,
-        q: Point,
-        r: Point,
+        p: PointArg,
+        q: PointArg,
+        r: PointArg,
         *,
         length: Role = None,
         angle: Role = None,
@@ -137,12 +143,12 @@ class ElementMethods:
     def gear_pair(
         self,
         name: str,
-        a: Coordinate | float,
-        b: Coordinate | float,
-        c: Coordinate | float,
+        a: CoordinateArg,
+        b: CoordinateArg,
+        c: CoordinateArg,
         *,
-        ratio: Coordinate | float | None = None,
-        radii: tuple[Coordinate | float, Coordinate | float] | None = None,
+        ratio: CoordinateArg | None = None,
+        radii: tuple[CoordinateArg, CoordinateArg] | None = None,
         gear: Role = None,
     ) -> Element:
         """A gear pair on the angle co-ordinates of wheel ``a``, carrier ``b`` and wheel ``c``.
@@ -162,11 +168,11 @@ class ElementMethods:
     def rack1(
         self,
         name: str,
-        p: Point,
-        beta_b: Coordinate | float,
-        q: Point,
-        ratio: Coordinate | float,
-        beta_a: Coordinate | float,
+        p: PointArg,
+        beta_b: CoordinateArg,
+        q: PointArg,
+        ratio: CoordinateArg,
+        beta_a: CoordinateArg,
         *,
         gear: Role = None,
     ) -> Element:
@@ -184,11 +190,11 @@ class ElementMethods:
     def rack2(
         self,
         name: str,
-        p: Point,
-        q: Point,
-        r: Point,
-        ratio: Coordinate | float,
-        beta_a: Coordinate | float,
+        p: PointArg,
+        q: PointArg,
+        r: PointArg,
+        ratio: CoordinateArg,
+        beta_a: CoordinateArg,
         *,
         gear: Role = None,
     ) -> Element:
@@ -206,12 +212,12 @@ class ElementMethods:
     def belt(
         self,
         name: str,
-        p: Point,
-        beta_a: Coordinate | float,
-        q: Point,
-        beta_c: Coordinate | float,
-        r_p: Coordinate | float,
-        r_q: Coordinate | float,
+        p: PointArg,
+        beta_a: CoordinateArg,
+        q: PointArg,
+        beta_c: CoordinateArg,
+        r_p: CoordinateArg,
+        r_q: CoordinateArg,
         *,
         length: Role = None,
         angle: Role = None,
@@ -229,11 +235,11 @@ class ElementMethods:
         ]
         return self._element(name, "BLT", slots, {"LENL": length, "ANGB": angle, "BELT": belt})
 
-    def single_coordinate(self, name: str, coordinate: Coordinate, *, value: Role = None) -> Element:
+    def single_coordinate(self, name: str, coordinate: Coordinate | str, *, value: Role = None) -> Element:
         """A single-co-ordinate element (CRD) on ``coordinate`` (e.g. a slider's ``B.x``), to prescribe or drive it."""
         return self._element(name, "CRD", [self._slot(name, "x", coordinate, "scalar")], {"COOR": value})
 
-    def element(self, name: str, type: str, slots: Sequence[Slot], **roles: Role) -> Element:
+    def element(self, name: str, type: str, slots: Sequence[Slot | str], **roles: Role) -> Element:
         """Any element by its deck type (``BIN``, ``TR2``, ...) with its points and co-ordinates in deck order
         (``elements.md``); ``roles`` by attribute or deck name (``length=0.4`` or ``LENL=0.4``)."""
         ty = type.upper()

@@ -53,7 +53,7 @@ class IncompleteRunWarning(UserWarning):
     and its ``stop_reason()`` says why (the warning's message says it too)."""
 
 
-class RunStoppedError(MechfemError, Generic[R]):  # type: ignore[misc]
+class RunStoppedError(MechfemError, Generic[R]):
     """The motion (or simulation) stopped before its last position, and the run was asked to raise then
     (``raise_on_stop=True``): ``result`` holds every position computed up to the stop, ``reason`` says why and
     where (as the result's ``stop_reason()``)."""

@@ -27,7 +27,7 @@ probably meant in degrees: it warns with :class:`~mechfem.errors.UnitWarning`.""
 def check_unit(unit: object, what: str = "unit") -> Unit | None:
     """``unit`` when it is None, ``"rad"`` or ``"deg"``; a ValueError otherwise."""
     if unit is None or unit == "rad" or unit == "deg":
-        return unit  # type: ignore[return-value]
+        return unit
     raise ValueError(f"{what} must be 'rad' or 'deg', got {unit!r}")
 
 
