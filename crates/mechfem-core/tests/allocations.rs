@@ -82,7 +82,8 @@ fn allocations_do_not_grow_with_the_number_of_positions() {
 /// Allocations of a simulation of the four-bar swinging from rest with its
 /// coupler as a body, 50 outputs, at tolerance `tol`.
 fn count_simulation(tol: f64) -> (usize, usize) {
-    use mechfem_core::dynamics::{simulate, Body, Dynamics, Integration};
+    use mechfem_core::dynamics::{Body, Dynamics, Integration};
+    use mechfem_core::run::simulate;
     let (mech, state) = fourbar();
     let dynamics = Dynamics {
         bodies: vec![Body { element: 1, mass: 2.0, u: 1.0, v: 0.5, inertia: 0.2 }],

@@ -60,7 +60,8 @@
 //!   reference to a relative error below 1e-8, |q - q_ref| < 1e-8 |q_ref|
 //!   (the smallest, gamma, is 0.041, so none is near zero);
 
-use mechfem_core::dynamics::{simulate, Body, Dynamics, Integration, Load, LoadKind};
+use mechfem_core::dynamics::{Body, Dynamics, Integration, Load, LoadKind};
+use mechfem_core::run::simulate;
 use mechfem_core::{
     ElementType, FormRef, InputMotion, Mechanism, MechanismBuilder, Motion, Params, Quantity, Recorder, State, Term,
 };

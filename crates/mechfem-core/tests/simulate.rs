@@ -7,9 +7,8 @@
 #[path = "common/dynamics.rs"]
 mod models;
 
-use mechfem_core::dynamics::{
-    simulate, simulate_within, Body, Dynamics, Integration, InverseDynamics, Load, LoadKind, PointMass,
-};
+use mechfem_core::dynamics::{Body, Dynamics, Integration, Load, LoadKind, PointMass};
+use mechfem_core::run::{simulate, simulate_within, InverseDynamics};
 use mechfem_core::{
     run, ElementType, FormRef, InputMotion, Mechanism, MechanismBuilder, Motion, Params, Quantity, Recorder, State,
     Term,

@@ -2,7 +2,8 @@
 //! names a co-ordinate, row, element, DOF or position is converted to the
 //! deck's 1-based numbering here.
 
-use mechfem_core::dynamics::{Dynamics, LoadKind, SimReport};
+use mechfem_core::dynamics::{Dynamics, LoadKind};
+use mechfem_core::run::SimReport;
 use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
 use numpy::{PyArray1, PyArrayMethods};

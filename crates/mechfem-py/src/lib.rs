@@ -4,18 +4,18 @@
 //!
 //! A tour:
 //!
-//! * [`check_deck`] reads a deck with [`mechfem_deck::load`] and computes
-//!   position 1 with [`mechfem_core::run`] (no motion).
-//! * [`run_deck`] runs the deck's whole motion and returns the buffers, the
+//! * `check_deck` reads a deck with [`mechfem_deck::load`] and computes
+//!   position 1 with [`mechfem_core::run()`] (no motion).
+//! * `run_deck` runs the deck's whole motion and returns the buffers, the
 //!   co-ordinates, time and det(D^c) per position as numpy arrays, plus the
 //!   run report, the model echo and the storage requests as dicts
-//!   ([`convert`]). For the hodographs it also records d x_i / d input 1
+//!   (`convert`). For the hodographs it also records d x_i / d input 1
 //!   of every co-ordinate a PLOTHODO line names. The run releases the GIL;
-//!   [`observe`] attaches only to report progress.
-//! * [`text`] runs deck text (what the Python model API writes) and records
-//!   every quantity of the buffer table; [`batch`] runs many variants of a
+//!   `observe` attaches only to report progress.
+//! * `text` runs deck text (what the Python model API writes) and records
+//!   every quantity of the buffer table; `batch` runs many variants of a
 //!   few deck texts on worker threads without the GIL, for design studies.
-//! * [`errors`] defines `MechfemError` and its subclasses and maps deck
+//! * `errors` defines `MechfemError` and its subclasses and maps deck
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.
 
@@ -28,7 +28,7 @@ mod text;
 
 use std::path::{Path, PathBuf};
 
-use mechfem_core::dynamics::SimReport;
+use mechfem_core::run::SimReport;
 use mechfem_core::{InputMotion, Mechanism, Motion, Quantity, RunReport};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;

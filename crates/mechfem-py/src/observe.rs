@@ -4,7 +4,8 @@
 //! Python about every 1% of positions ([`Progress`], which the observer of
 //! deck-text runs shares).
 
-use mechfem_core::dynamics::{Dynamics, InverseDynamics};
+use mechfem_core::dynamics::Dynamics;
+use mechfem_core::run::InverseDynamics;
 use mechfem_core::{Mechanism, Observer, PositionView, Quantity, Recorder, TransferOrder};
 use pyo3::prelude::*;
 

@@ -14,7 +14,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use mechfem_core::dynamics::{simulate, Dynamics, Integration, InverseDynamics, SimReport};
+use mechfem_core::dynamics::{Dynamics, Integration};
+use mechfem_core::run::{simulate, InverseDynamics, SimReport};
 use mechfem_core::SolveError;
 use mechfem_core::{
     record, run, FormRef, InputMotion, Mechanism, Motion, Observer, Params, PositionView, Quantity, RunReport, State,

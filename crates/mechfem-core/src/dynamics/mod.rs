@@ -1,5 +1,6 @@
-//! Masses and loads on a mechanism: inverse dynamics (mode `DYN ANA`) and
-//! forward simulation (mode `DYN SIM`).
+//! Masses and loads on a mechanism: the model that inverse dynamics
+//! (mode `DYN ANA`, [`crate::run::InverseDynamics`]) and forward simulation
+//! (mode `DYN SIM`, [`crate::run::simulate`]) evaluate.
 //!
 //! The dynamics need no constraint machinery of their own: the motion of
 //! every co-ordinate follows from the degrees of freedom through the
@@ -14,20 +15,18 @@
 //!   co-ordinates, gravity, constant point [`Force`]s, and generalised
 //!   [`Load`]s on form parameters (constant, tabulated in time, springs
 //!   with dampers, motors).
-//! * [`InverseDynamics`] evaluates it at a position of a run: stresses,
-//!   drive forces, reactions, energies, drive power and the mass matrix.
-//! * [`simulate`] integrates the equations of motion of the degrees of
-//!   freedom that move under the forces (mode `DYN SIM`).
+//! * [`crate::run::InverseDynamics`] evaluates it at a position of a run:
+//!   stresses, drive forces, reactions, energies, drive power and the mass
+//!   matrix.
+//! * [`crate::run::simulate`] integrates the equations of motion of the
+//!   degrees of freedom that move under the forces, with the tolerances of
+//!   an [`Integration`].
 //!
 //! Units are the user's, consistent (SI recommended); angles in radians.
 
 mod body;
-mod inverse;
-mod simulate;
 
 pub use body::Frame;
-pub use inverse::InverseDynamics;
-pub use simulate::{simulate, simulate_within, SimReport};
 
 use crate::elements::ElementType;
 use crate::model::{FormRef, Mechanism};

@@ -2,7 +2,7 @@
 //! laws, and the model's checks.
 
 use super::*;
-use crate::{MechanismBuilder, Term};
+use crate::model::{MechanismBuilder, Term};
 
 /// Co-ordinates of a bar frame (P, Q) and an angle frame (P, beta), with
 /// velocities and accelerations, all as smooth functions of time.

@@ -106,7 +106,8 @@ fn null_vector(a: &[f64], n: usize) -> (usize, Option<Vec<f64>>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{ElementType, MechanismBuilder, Term};
+    use crate::elements::ElementType;
+    use crate::model::{MechanismBuilder, Term};
 
     #[test]
     fn names_the_superfluous_row_and_the_free_coordinates() {

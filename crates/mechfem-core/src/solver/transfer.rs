@@ -88,7 +88,9 @@ impl Kinematics {
     /// Allocates every buffer for `mech`. D^c is stored as blocks when it
     /// splits into groups of co-ordinates that can be solved one after the
     /// other, a large block as a band when it can be ordered into a narrow
-    /// one, anything else dense (see [`Lu::for_pattern`]).
+    /// one, anything else dense; that choice is made once for every
+    /// structure of D^c on a thread, and the workspaces of mechanisms of
+    /// that structure start from it.
     pub fn new(mech: &Mechanism) -> Kinematics {
         Self::with_plan(mech, DcPlan::of(mech))
     }
@@ -139,14 +141,14 @@ impl Kinematics {
     }
 
     /// Whether D^c, or one of its diagonal blocks, is stored as a band
-    /// (see [`Lu::for_pattern`]).
+    /// (see [`Self::new`]).
     pub fn is_banded(&self) -> bool {
         self.lu.is_banded()
     }
 
     /// The sizes of the diagonal blocks D^c is factorised in, in the order
     /// they are solved (one block of every moving co-ordinate when it does
-    /// not split; see [`Lu::for_pattern`]).
+    /// not split; see [`Self::new`]).
     pub fn block_sizes(&self) -> Vec<usize> {
         self.lu.block_sizes()
     }

@@ -5,7 +5,8 @@
 
 #![allow(dead_code)] // shared by the dynamics and simulation tests, each using a part
 
-use mechfem_core::dynamics::{Body, Dynamics, Force, Inertia, InverseDynamics, Load, LoadKind, PointMass};
+use mechfem_core::dynamics::{Body, Dynamics, Force, Inertia, Load, LoadKind, PointMass};
+use mechfem_core::run::InverseDynamics;
 use mechfem_core::{
     run, ElementType, FormRef, Mechanism, MechanismBuilder, Motion, Observer, Params, PositionView, Quantity, Recorder,
     State, Term,

@@ -13,7 +13,7 @@ mod generator;
 use std::path::Path;
 
 use mechfem_core::design::{evaluate, ExtremumSpec};
-use mechfem_core::dynamics::simulate_within;
+use mechfem_core::run::simulate_within;
 use mechfem_core::{
     run, DesignVar, FormRef, InputMotion, Motion, Observer, PositionView, Quantity, Recorder, SolveError,
 };

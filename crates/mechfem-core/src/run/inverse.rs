@@ -18,9 +18,9 @@
 //! mechanism there, balancing the rows' forces and the loads that act on it
 //! directly.
 
-use super::{Dynamics, Frame, LoadKind};
+use super::observe::PositionView;
+use crate::dynamics::{Dynamics, Frame, LoadKind};
 use crate::model::{FormRef, Mechanism, FIXED};
-use crate::motion::PositionView;
 use crate::solver::{Kinematics, TransferOrder};
 
 /// The workspace and results of inverse dynamics at one position; every

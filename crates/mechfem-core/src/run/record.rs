@@ -1,7 +1,10 @@
 //! What can be recorded at every position: the quantities of the deck's
 //! buffer table, named with 0-based indices.
 
-pub use crate::model::FormRef;
+use super::inverse::InverseDynamics;
+use super::observe::{Observer, PositionView};
+use crate::model::{FormRef, Mechanism};
+use crate::solver::{DesignVar, Sensitivity, TransferOrder};
 
 /// One recordable quantity (one buffer of the deck).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -59,10 +62,6 @@ pub enum Quantity {
     /// Entry (j, m) of the mass matrix in the degrees of freedom (BUFMRED).
     Mred(usize, usize),
 }
-
-use crate::dynamics::InverseDynamics;
-use crate::motion::{Observer, PositionView};
-use crate::solver::{DesignVar, Sensitivity, TransferOrder};
 
 impl Quantity {
     /// Whether the quantity is one of the dynamics (it needs a mass and load
@@ -239,7 +238,7 @@ impl Quantity {
 
     /// The value of a [dynamic](Self::is_dynamic) quantity from inverse
     /// dynamics evaluated at the position (NaN for any other quantity).
-    pub fn dynamic_value(&self, mech: &crate::Mechanism, d: &InverseDynamics) -> f64 {
+    pub fn dynamic_value(&self, mech: &Mechanism, d: &InverseDynamics) -> f64 {
         match *self {
             Quantity::Sigma(r) => d.sigma(r),
             Quantity::Drive(j) => d.drive(mech, j),

@@ -30,10 +30,13 @@ use nalgebra::{allocator::Allocator, Const, DefaultAllocator, Dim, Dyn, OVector,
 use ode_solvers::{Dopri5, OutputType, System};
 use std::cell::RefCell;
 
-use super::{Dynamics, Integration, InverseDynamics};
+use super::inverse::InverseDynamics;
+use super::kinematic::run;
+use super::observe::{Observer, PositionView, RunReport, Stop};
+use crate::dynamics::{Dynamics, Integration};
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};
-use crate::motion::{run, InputMotion, Motion, Observer, PositionView, RunReport, Stop};
+use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, correct, Kinematics, Params, TransferOrder};
 
 /// What a simulation did: the integrator's work, and the run through the
@@ -410,7 +413,7 @@ fn stats(s: &ode_solvers::dop_shared::Stats) -> (usize, usize, usize) {
 /// the velocities of `motion`'s [`InputMotion::Dynamic`] inputs; the other
 /// inputs follow their prescribed motion. The output times are those of
 /// `motion` (`steps` steps of `dt`); `observer` sees every output position
-/// with its velocities and accelerations, as in [`crate::run`].
+/// with its velocities and accelerations, as in [`run`].
 ///
 /// An error is returned only when position 1 cannot be computed, or the
 /// motion cannot be simulated at all (a free DOF without mass, free motion

@@ -12,10 +12,12 @@
 //! b_q is b's sensitivity to the input row's prescribed value, at fixed
 //! everything else, which [`Sensitivity`] computes like any other.
 
+use super::kinematic::run;
+use super::observe::{Observer, PositionView, RunReport};
+use super::record::Quantity;
 use crate::error::SolveError;
 use crate::model::{FormRef, Mechanism, State};
-use crate::motion::{run, Motion, Observer, PositionView, RunReport};
-use crate::record::Quantity;
+use crate::motion::Motion;
 use crate::solver::{correct, DesignVar, Kinematics, Params, Sensitivity, TransferOrder};
 
 /// A quantity wanted where a reference quantity has its extrema.

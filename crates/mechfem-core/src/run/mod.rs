@@ -1,0 +1,27 @@
+//! The run modes, a file each, over the stepping core of [`crate::motion`]:
+//!
+//! * `kinematic.rs`, [`run`]: the kinematic run (mode `KIN ANA`), which the
+//!   other modes move the mechanism with.
+//! * `inverse.rs`, [`InverseDynamics`]: inverse dynamics (mode `DYN ANA`)
+//!   at each position of a kinematic run.
+//! * `simulate.rs`, [`simulate`]: forward dynamics (mode `DYN SIM`), its
+//!   output times replayed through a kinematic run.
+//! * [`design`]: one design of an optimiser (mode `KIN OPT`), a kinematic
+//!   run with the design sensitivities and the extrema of chosen quantities.
+//!
+//! Every mode hands its positions to an [`Observer`] and ends with a
+//! [`RunReport`] (`observe.rs`); a [`Recorder`] (`record.rs`) keeps the
+//! [`Quantity`]s of the deck's buffer table.
+
+pub mod design;
+mod inverse;
+mod kinematic;
+mod observe;
+mod record;
+mod simulate;
+
+pub use inverse::InverseDynamics;
+pub use kinematic::run;
+pub use observe::{Observer, PositionView, RunReport, Stop};
+pub use record::{record, Quantity, Recorder};
+pub use simulate::{simulate, simulate_within, SimReport};
