@@ -63,6 +63,7 @@ browser:
 test: install browser
 	cargo test --workspace --exclude mechfem-py
 	cargo clippy --workspace --all-targets -- -D warnings
+	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 	cargo fmt --all --check
 	$(BIN)/ruff check python tests
 	$(PY) -m pytest -q tests
