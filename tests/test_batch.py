@@ -6,6 +6,7 @@ import io
 import math
 import subprocess
 import sys
+import types
 
 import numpy as np
 import pytest
@@ -191,3 +192,12 @@ def test_the_bench_script_runs() -> None:
     proc = subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert "4 variants of the supply mechanism" in proc.stdout and "speed-up" in proc.stdout
+
+
+def test_the_progress_bar_shows_in_a_jupyter_kernel(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A kernel's stderr is a pipe, not a terminal, yet Jupyter shows it under the cell.
+    monkeypatch.setitem(sys.modules, "ipykernel", types.ModuleType("ipykernel"))
+    mechfem.sweep(fourbar, {"rocker": [2.8, 3.0, 3.2]}, motion=MOTION, progress=True)
+    assert "/3 " in capsys.readouterr().err

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 import tempfile
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
@@ -349,14 +350,16 @@ def tables_dir(tables: Mapping[str, str]) -> Iterator[str]:
 
 
 def progress_callback(progress: Progress, what: str) -> Callable[[int, int], object] | None:
-    """A callable for ``_core``: None, the user's own, or for ``True`` a progress bar counting ``what`` on stderr
-    (drawn on a terminal only)."""
+    """A callable for ``_core``: None, the user's own, or for ``True`` a progress bar counting ``what`` on stderr,
+    drawn when stderr is a terminal or the code runs in a Jupyter kernel (whose stderr is no terminal but shows
+    the bar under the cell), and left out when output is redirected."""
     if progress is None or progress is False:
         return None
     if progress is True:
         from mechfem.progress import ProgressBar
 
-        bar = ProgressBar()
+        # A Jupyter kernel has imported ipykernel: its stderr is a pipe, yet the bar belongs under the cell.
+        bar = ProgressBar(show=True if "ipykernel" in sys.modules else None)
         bar.phase("running", unit=what)
         return bar
     return progress
