@@ -24,8 +24,9 @@ from typing import BinaryIO
 import numpy as np
 import numpy.typing as npt
 
-from mechfem.drawing import MechanismDrawing, MplMechanism
+from mechfem.drawing import MechanismDrawing
 from mechfem.labels import buffer_labels
+from mechfem.mpl_drawing import MplMechanism
 from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, atomic_path, fit_equal, hodograph
 from mechfem.result import RunResult
 

@@ -3,8 +3,7 @@
 A :class:`MechanismDrawing` looks at the model once (which points are fixed pivots, which binaries are
 sliders, where the gear wheels sit) and then turns a vector of co-ordinates into a list of
 :class:`Shape` objects. The list has the same length, kinds and roles at every position, so a renderer
-makes its artists once and only moves them: :class:`MplMechanism` does that with matplotlib (pictures,
-animation); the interactive report draws the same shapes on a canvas.
+makes its artists once and only moves them (:mod:`mechfem.mpl_drawing` for matplotlib, the report, the export).
 
 How each element type is drawn:
 
@@ -598,66 +597,3 @@ def arc_points(cx: float, cy: float, r: float, a0: float, a1: float, n: int = 48
     """Points along an arc, for renderers without arcs."""
     t = np.linspace(a0, a1, n)
     return cx + r * np.cos(t), cy + r * np.sin(t)
-
-
-class MplMechanism:
-    """The shapes of a :class:`MechanismDrawing` as matplotlib artists on ``ax``; :meth:`update` moves them."""
-
-    def __init__(self, ax: object, drawing: MechanismDrawing, x: FloatArray, alpha: float = 1.0) -> None:
-        from matplotlib.axes import Axes
-        from matplotlib.collections import LineCollection
-        from matplotlib.lines import Line2D
-        from matplotlib.patches import Circle, Polygon
-
-        assert isinstance(ax, Axes)
-        self.drawing = drawing
-        self.artists: list[object] = []
-        for s in drawing.shapes(x):
-            st = STYLES[s.role]
-            z = 2.0 + st.layer * 0.1
-            common = {"zorder": z, "alpha": alpha}
-            artist: object
-            if s.kind in ("line", "arc"):
-                artist = Line2D([], [], color=st.edge, lw=st.width, ls="--" if st.dash else "-", **common)
-                ax.add_line(artist)
-            elif s.kind == "polygon":
-                artist = Polygon(np.zeros((3, 2)), closed=True, fc=st.fill or "none", ec=st.edge, lw=st.width, **common)
-                ax.add_patch(artist)
-            elif s.kind == "circle":
-                artist = Circle(
-                    (0, 0), 1, fc=st.fill or "none", ec=st.edge, lw=st.width, ls="--" if st.dash else "-", **common
-                )
-                ax.add_patch(artist)
-            else:
-                artist = LineCollection([], colors=st.edge, linewidths=st.width, **common)
-                ax.add_collection(artist)
-            self.artists.append(artist)
-        self.update(x)
-
-    def update(self, x: FloatArray) -> list[object]:
-        """Moves every artist to the position with co-ordinates ``x``; returns the artists."""
-        from matplotlib.collections import LineCollection
-        from matplotlib.lines import Line2D
-        from matplotlib.patches import Circle, Polygon
-
-        for artist, s in zip(self.artists, self.drawing.shapes(x), strict=True):
-            d = np.asarray(s.data, dtype=np.float64)
-            ok = bool(np.isfinite(d).all())
-            if isinstance(artist, Line2D):
-                if s.kind == "arc" and ok:
-                    artist.set_data(*arc_points(*d))
-                elif ok:
-                    artist.set_data(d[0::2], d[1::2])
-                artist.set_visible(ok)
-            elif isinstance(artist, Polygon):
-                if ok:
-                    artist.set_xy(d.reshape(-1, 2))
-                artist.set_visible(ok)
-            elif isinstance(artist, Circle):
-                if ok:
-                    artist.set_center((d[0], d[1]))
-                    artist.set_radius(d[2])
-                artist.set_visible(ok)
-            elif isinstance(artist, LineCollection):
-                artist.set_segments(list(d.reshape(-1, 2, 2)) if ok else [])
-        return self.artists

@@ -30,7 +30,8 @@ PATH_COLOURS = ["#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b"
 
 
 def _draw_mechanism(ax: Axes, a: Analysis, position: int = 0, names: bool = True) -> tuple[float, float, float, float]:
-    from mechfem.drawing import MechanismDrawing, MplMechanism
+    from mechfem.drawing import MechanismDrawing
+    from mechfem.mpl_drawing import MplMechanism
 
     rr = a.run_result()
     drawing = MechanismDrawing(rr.model, rr.coords)

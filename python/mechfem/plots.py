@@ -27,8 +27,9 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from mechfem.drawing import MechanismDrawing, MplMechanism
+from mechfem.drawing import MechanismDrawing
 from mechfem.labels import Label, buffer_labels, coordinate_axis, input_name, label, point_name
+from mechfem.mpl_drawing import MplMechanism
 from mechfem.result import Picture, Plot, RunResult
 
 FloatArray = npt.NDArray[np.float64]
