@@ -538,3 +538,11 @@ def test_free_motion_has_no_unit_and_a_zero_step_is_refused() -> None:
         Motion.free(10, 0.0)
     with pytest.raises(TypeError):
         Motion.free(10, 0.1, unit="deg")  # type: ignore[call-arg]
+
+
+def test_a_name_passed_where_a_number_belongs_is_named_in_the_error() -> None:
+    # Driven's first argument is the start value; a name there must not surface as float()'s own message.
+    m = Mechanism("f")
+    a0, a = m.fixed("A0", 0.0, 0.0), m.point("A", 0.0, 1.0)
+    with pytest.raises(ValueError, match=r"the start value of crank\.angle must be a number, not 'phi'"):
+        m.bar("crank", a0, a, length=1.0, angle=Driven("phi"))  # type: ignore[arg-type]

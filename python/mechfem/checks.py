@@ -7,7 +7,10 @@ import math
 
 def finite(value: float, what: str) -> float:
     """``value`` as a float; a ValueError naming ``what`` when it is NaN or infinite."""
-    v = float(value)
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what} must be a number, not {value!r}") from None
     if not math.isfinite(v):
         raise ValueError(f"{what} must be a finite number, not {value!r}")
     return v
