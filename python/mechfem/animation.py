@@ -268,10 +268,10 @@ def write_animation(
     # paths, which may have many points): rendering those once is most of the time of a frame.
     moving = sorted(
         [*mech.artists, *(a for _, trace, arrow, head in traces for a in (trace, arrow, head))],
-        key=lambda a: a.get_zorder(),  # type: ignore[attr-defined]
+        key=lambda a: a.get_zorder(),
     )
     for a in [*moving, title]:
-        a.set_animated(True)  # type: ignore[attr-defined]
+        a.set_animated(True)
     canvas.draw()
     background = canvas.copy_from_bbox(fig.bbox)
 
@@ -292,7 +292,7 @@ def write_animation(
         title.set_text(_title(result, name, int(k)))
         canvas.restore_region(background)
         for a in moving:
-            ax.draw_artist(a)  # type: ignore[arg-type]
+            ax.draw_artist(a)
         fig.draw_artist(title)
         return np.asarray(canvas.buffer_rgba())[:, :, :3]
 

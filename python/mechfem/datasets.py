@@ -9,6 +9,7 @@ written under a temporary name and renamed when complete, like every output.
 
 from __future__ import annotations
 
+import importlib
 import os
 import secrets
 from collections.abc import Iterator
@@ -74,21 +75,23 @@ def write_npz(result: RunResult, path: Path) -> Path:
     hardly compress, and a big run's file is then written as fast as the disk takes it)."""
     arrays = {POSITION: positions(result), **columns(result)}
     with atomic_binary(path) as f:
-        np.savez(f, **arrays)
+        # mypy matches a **dict against every keyword of savez, its allow_pickle: bool among them, though the
+        # arrays go to **kwds.
+        np.savez(f, **arrays)  # type: ignore[arg-type]
     return path
 
 
 def pyarrow() -> ModuleType:
     """The pyarrow module, or a :class:`MissingDependency` saying how to install it."""
     try:
-        import pyarrow
-        import pyarrow.parquet  # noqa: F401  (the writer is a submodule)
+        # Imported by name, like pandas and ezdxf: pyarrow ships no annotations, and the caller needs only the module.
+        importlib.import_module("pyarrow.parquet")  # the writer is a submodule; this imports pyarrow too
+        return importlib.import_module("pyarrow")
     except ImportError:
         raise MissingDependency(
             "the Parquet data set needs pyarrow, which is not installed: install it with "
             "`pip install 'mechfem[parquet]'`, or write the data set as csv or npz (--format)"
         ) from None
-    return pyarrow
 
 
 def write_parquet(result: RunResult, path: Path) -> Path:

@@ -521,14 +521,14 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             atol,
         )
 
-    def name(kind: str, v: int) -> Ref:
+    def ref_name(kind: str, v: int) -> Ref:
         if kind == "i":
             return nb.coords[v - 1].name
         if kind == "r":
             return nb.prescribed[v - 1].name if v > 0 else nb.dependent[-v - 1].name
         return nb.inputs[v - 1].name
 
-    m.storage = from_described(d["storage"], name)
+    m.storage = from_described(d["storage"], ref_name)
     loads.read(m, nb, d.get("dynamics"))
     return m
 

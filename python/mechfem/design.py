@@ -305,6 +305,15 @@ class Solution:
         return self.final.position_one
 
 
+@dataclass
+class _Best:
+    """The last design the optimiser moved to: where an infeasible one falls back to, without another run."""
+
+    x: FloatArray
+    f: float
+    e: Evaluation
+
+
 def solve(problem: Problem, report: Callable[[Iteration], object] | None = None) -> Solution:
     """Optimises from the deck's design; ``report`` is called with every iteration."""
     from scipy import optimize
@@ -318,17 +327,16 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         raise Infeasible(f"the start design is infeasible: {err}") from None
     f0, _ = objective(problem, e0)
     history: list[Iteration] = [Iteration(0, f0, violation(problem, e0), 0.0, ev.runs, np.array(x0))]
-    # The last design the optimiser moved to: where an infeasible one falls back to, without another run.
-    best: dict[str, Any] = {"x": x0, "f": f0, "e": e0}
+    best = _Best(x0, f0, e0)
     if report is not None:
         report(history[0])
 
     def note(x: FloatArray, e: Evaluation) -> None:
         f, _ = objective(problem, e)
-        step = float(np.max(np.abs(x - best["x"])))
+        step = float(np.max(np.abs(x - best.x)))
         it = Iteration(len(history), f, violation(problem, e), step, ev.runs, np.array(x))
         history.append(it)
-        best.update(x=np.array(x), f=f, e=e)
+        best.x, best.f, best.e = np.array(x), f, e
         if report is not None:
             report(it)
 
@@ -337,7 +345,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         try:
             return ev(x)
         except Infeasible:
-            return best["e"]
+            return best.e
 
     least_squares = not problem.bounds and problem.objective is None and problem.custom is None
     if least_squares:
@@ -346,17 +354,20 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             try:
                 e = ev(x)
             except Infeasible:
-                return 1e3 * (1.0 + np.abs(residuals(problem, best["e"])[0]))
+                return 1e3 * (1.0 + np.abs(residuals(problem, best.e)[0]))
             r, _ = residuals(problem, e)
-            if float(r @ r) < best["f"]:
+            if float(r @ r) < best.f:
                 note(x, e)
             return r
+
+        def jac(x: FloatArray) -> FloatArray:
+            return residuals(problem, feasible(x))[1]
 
         tol = problem.tol if problem.tol is not None else 1e-12
         out = optimize.least_squares(
             fun,
             x0,
-            jac=lambda x: residuals(problem, feasible(x))[1],
+            jac=jac,
             bounds=(problem.lo, problem.hi),
             method="trf",
             x_scale="jac",
@@ -373,7 +384,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             try:
                 e = ev(x)
             except Infeasible:
-                return 1e3 * (1.0 + abs(best["f"])), last_good["g"]
+                return 1e3 * (1.0 + abs(best.f)), last_good["g"]
             f, g = objective(problem, e)
             last_good["g"] = g
             return f, g
@@ -382,7 +393,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             try:
                 return constraints(problem, ev(x))[0]
             except Infeasible:
-                return -np.ones_like(constraints(problem, best["e"])[0])
+                return -np.ones_like(constraints(problem, best.e)[0])
 
         def callback(xk: FloatArray) -> None:
             try:
@@ -390,16 +401,19 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             except Infeasible:
                 pass
 
-        cons_jac = {"jac": lambda x: constraints(problem, feasible(x))[1]}
-        cons_list = [{"type": "ineq", "fun": cons, **cons_jac}] if problem.bounds else []
+        def cons_jac(x: FloatArray) -> FloatArray:
+            return constraints(problem, feasible(x))[1]
+
         tol = problem.tol if problem.tol is not None else 1e-10
-        out = optimize.minimize(
+        # scipy-stubs types a constraint's "fun" as scalar-valued; SLSQP takes a vector of constraints from one
+        # function (and its Jacobian as a matrix), as used here.
+        out = optimize.minimize(  # type: ignore[call-overload]
             fg,
             x0,
             jac=True,
             method="SLSQP",
             bounds=list(zip(problem.lo, problem.hi, strict=True)),
-            constraints=cons_list,
+            constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
             callback=callback,
             options={"maxiter": max(problem.steps, 1), "ftol": tol * max(1.0, abs(f0))},
         )
@@ -407,9 +421,9 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
     try:
         e = ev(x)
     except Infeasible:
-        x, e = best["x"], best["e"]
+        x, e = best.x, best.e
     f, _ = objective(problem, e)
-    if not np.array_equal(x, best["x"]):
+    if not np.array_equal(x, best.x):
         note(x, e)
     return Solution(
         start=x0,

@@ -261,9 +261,9 @@ class MechanismDrawing:
             case "RK2":
                 self._add_rack((i[0], i[1]), i[6], i[7], rack_point=(i[4], i[5]), rack_along=(i[2], i[3]))
             case "BLT":
-                p, q = (i[0], i[1]), (i[3], i[4])
-                self._add_wheel(_Wheel(i[2], p, lambda x, k=i[6]: float(x[k])))
-                self._add_wheel(_Wheel(i[5], q, lambda x, k=i[7]: float(x[k])))
+                p, q, rp, rq = (i[0], i[1]), (i[3], i[4]), i[6], i[7]
+                self._add_wheel(_Wheel(i[2], p, lambda x: float(x[rp])))
+                self._add_wheel(_Wheel(i[5], q, lambda x: float(x[rq])))
                 self._add(STYLES["belt"].layer, self._belt_part(p, q, i[6], i[7]))
 
     # -- parts -------------------------------------------------------------------------------------
@@ -378,9 +378,9 @@ class MechanismDrawing:
                 internal = va * vc < 0 and abs(d - abs(abs(va) - abs(vc))) <= 1e-3 * max(abs(va), abs(vc))
                 ring_a, ring_c = internal and va < 0, internal and vc < 0
             if ca is not None:
-                self._add_wheel(_Wheel(a, ca, lambda x, k=ra: float(x[k]), ring_a))
+                self._add_wheel(_Wheel(a, ca, lambda x: float(x[ra]), ring_a))
             if cc is not None:
-                self._add_wheel(_Wheel(c, cc, lambda x, k=rc: float(x[k]), ring_c))
+                self._add_wheel(_Wheel(c, cc, lambda x: float(x[rc]), ring_c))
         elif ratio is not None and ca is not None and cc is not None:
             pa, pc, ir = ca, cc, ratio
 

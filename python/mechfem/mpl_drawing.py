@@ -4,9 +4,14 @@ without matplotlib."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from mechfem.drawing import STYLES, FloatArray, MechanismDrawing, arc_points
+
+if TYPE_CHECKING:
+    from matplotlib.artist import Artist
 
 
 class MplMechanism:
@@ -20,30 +25,38 @@ class MplMechanism:
 
         assert isinstance(ax, Axes)
         self.drawing = drawing
-        self.artists: list[object] = []
+        self.artists: list[Artist] = []
         for s in drawing.shapes(x):
             st = STYLES[s.role]
             z = 2.0 + st.layer * 0.1
-            common = {"zorder": z, "alpha": alpha}
-            artist: object
+            artist: Artist
             if s.kind in ("line", "arc"):
-                artist = Line2D([], [], color=st.edge, lw=st.width, ls="--" if st.dash else "-", **common)
+                artist = Line2D([], [], color=st.edge, lw=st.width, ls="--" if st.dash else "-", zorder=z, alpha=alpha)
                 ax.add_line(artist)
             elif s.kind == "polygon":
-                artist = Polygon(np.zeros((3, 2)), closed=True, fc=st.fill or "none", ec=st.edge, lw=st.width, **common)
+                artist = Polygon(
+                    np.zeros((3, 2)), closed=True, fc=st.fill or "none", ec=st.edge, lw=st.width, zorder=z, alpha=alpha
+                )
                 ax.add_patch(artist)
             elif s.kind == "circle":
                 artist = Circle(
-                    (0, 0), 1, fc=st.fill or "none", ec=st.edge, lw=st.width, ls="--" if st.dash else "-", **common
+                    (0, 0),
+                    1,
+                    fc=st.fill or "none",
+                    ec=st.edge,
+                    lw=st.width,
+                    ls="--" if st.dash else "-",
+                    zorder=z,
+                    alpha=alpha,
                 )
                 ax.add_patch(artist)
             else:
-                artist = LineCollection([], colors=st.edge, linewidths=st.width, **common)
+                artist = LineCollection([], colors=st.edge, linewidths=st.width, zorder=z, alpha=alpha)
                 ax.add_collection(artist)
             self.artists.append(artist)
         self.update(x)
 
-    def update(self, x: FloatArray) -> list[object]:
+    def update(self, x: FloatArray) -> list[Artist]:
         """Moves every artist to the position with co-ordinates ``x``; returns the artists."""
         from matplotlib.collections import LineCollection
         from matplotlib.lines import Line2D

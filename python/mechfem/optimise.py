@@ -289,11 +289,11 @@ def optimize(
     written = deckio.write(mechanism, motion, deck.storage)
     variables = [_variable(mechanism, written.numbering, name) for name in vary]
     positions = motion.steps + 1
-    for t in terms:
-        if isinstance(t, design.ValuesTerm) and len(t.values) != positions:
-            raise ValueError(f"a Target has {len(t.values)} values for the motion's {positions} positions")
-        if isinstance(t, design.AtTerm) and not 0 <= t.position < positions:
-            raise ValueError(f"TargetAt position {t.position} is outside 0..{positions - 1}")
+    for term in terms:
+        if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
+            raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
+        if isinstance(term, design.AtTerm) and not 0 <= term.position < positions:
+            raise ValueError(f"TargetAt position {term.position} is outside 0..{positions - 1}")
     lo = np.array([float(v[0]) for v in vary.values()])
     hi = np.array([float(v[1]) for v in vary.values()])
     for name, (_, _, start), a, b in zip(vary, variables, lo, hi, strict=True):

@@ -203,18 +203,18 @@ def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
             out.append(f"  {t.buffer:>8} {t.reference:>10} {at:>18.12g} {value:>18.6e} {t.value:>12.6g}")
     # A TARGETEXT whose reference has no extremum along the motion adds nothing to the objective: said here.
     found = {id(t) for t, _, _ in outcome.extrema}
-    for t in p.terms:
-        if isinstance(t, design.ExtremumTerm) and id(t) not in found:
+    for term in p.terms:
+        if isinstance(term, design.ExtremumTerm) and id(term) not in found:
             out.append(
-                f"  TARGETEXT {t.buffer} {t.reference}: buffer {t.reference} has no extremum along the motion at the "
-                "final design, so this target contributes nothing to the objective"
+                f"  TARGETEXT {term.buffer} {term.reference}: buffer {term.reference} has no extremum along the motion "
+                "at the final design, so this target contributes nothing to the objective"
             )
     if outcome.opt["targets"]:
         out += ["", "  targets at the final design (the largest difference from the value asked for):"]
-        for t, (d, k) in zip(outcome.opt["targets"], outcome.misses, strict=True):
+        for target, (d, k) in zip(outcome.opt["targets"], outcome.misses, strict=True):
             where = f" at position {k + 1}" if k is not None else ""
-            kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[t["kind"]]
-            out.append(f"  {kw} on line {t['line']} (buffer {t['buffer']}): {d:.6g}{where}")
+            kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[target["kind"]]
+            out.append(f"  {kw} on line {target['line']} (buffer {target['buffer']}): {d:.6g}{where}")
     if written is not None:
         out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
     return [*out, ""]

@@ -411,9 +411,10 @@ def write_pictures(result: RunResult, outdir: Path, on_file: Callable[[Path, int
     for index, (png, svg) in enumerate(picture_files(result, outdir)):
         fig = picture_figure(result, index, drawing)
         assert isinstance(fig, Figure)
-        for path, fmt, extra in ((png, "png", {"dpi": PNG_DPI}), (svg, "svg", {})):
+        # dpi=None: matplotlib's default (rc savefig.dpi), as when the keyword is left out.
+        for path, fmt, dpi in ((png, "png", PNG_DPI), (svg, "svg", None)):
             with atomic_path(path) as tmp:
-                fig.savefig(tmp, format=fmt, **extra)
+                fig.savefig(tmp, format=fmt, dpi=dpi)
             written.append(path)
             if on_file is not None:
                 on_file(path, index + 1)
