@@ -5,10 +5,27 @@ Numbers that name things are the deck's, 1-based (destinations signed); position
 
 import os
 from collections.abc import Callable
-from typing import Any, Literal, NotRequired, TypedDict
+from typing import Any, Literal, NotRequired, TypedDict, final, type_check_only
 
 import numpy as np
 import numpy.typing as npt
+
+# The names of the compiled module; the TypedDicts below exist only for the type checker (@type_check_only).
+__all__ = [
+    "MechfemError",
+    "DeckError",
+    "AssemblyError",
+    "ConvergenceError",
+    "LimitPositionError",
+    "ResourceError",
+    "check_deck",
+    "run_deck",
+    "run_deck_text",
+    "describe_deck_text",
+    "run_deck_variants",
+    "DesignModel",
+    "optimised_deck_text",
+]
 
 _F64 = npt.NDArray[np.float64]
 
@@ -41,6 +58,7 @@ class LimitPositionError(MechfemError):
     coords: list[int]
     """Co-ordinates that can move with every prescribed value held (empty when not found)."""
 
+@type_check_only
 class AdjustDict(TypedDict):
     iterations: int
     stages: int
@@ -48,6 +66,7 @@ class AdjustDict(TypedDict):
     """Per prescribed row: value at the given co-ordinates minus the prescribed value."""
     residual: float
 
+@type_check_only
 class LimitDict(TypedDict):
     kind: str
     """``sign_change``, ``near_zero``, ``input_limit`` or ``passed``."""
@@ -57,6 +76,7 @@ class LimitDict(TypedDict):
     coords: list[float]
     det: float
 
+@type_check_only
 class StopDict(TypedDict):
     last_good: int
     inputs: list[float]
@@ -67,6 +87,7 @@ class StopDict(TypedDict):
     message: str
     limit: LimitDict | None
 
+@type_check_only
 class ReportDict(TypedDict):
     adjust: AdjustDict
     positions: int
@@ -76,6 +97,7 @@ class ReportDict(TypedDict):
     singular_positions: list[int]
     stop: StopDict | None
 
+@type_check_only
 class ElementDict(TypedDict):
     number: int
     type: str
@@ -83,6 +105,7 @@ class ElementDict(TypedDict):
     coord_names: list[str]
     line: int
 
+@type_check_only
 class TermDict(TypedDict):
     seq: int
     element: int
@@ -90,6 +113,7 @@ class TermDict(TypedDict):
     factor: float
     line: int
 
+@type_check_only
 class RowDict(TypedDict):
     dest: int
     terms: list[TermDict]
@@ -99,12 +123,14 @@ class RowDict(TypedDict):
     value: float
     """Value at position 1."""
 
+@type_check_only
 class CoordDict(TypedDict):
     number: int
     moving: bool
     given: float
     adjusted: float
 
+@type_check_only
 class BodyDict(TypedDict):
     element: float
     """The element's number (a whole number, given as a float)."""
@@ -113,17 +139,20 @@ class BodyDict(TypedDict):
     v: float
     inertia: float
 
+@type_check_only
 class PointMassDict(TypedDict):
     x: float
     """Co-ordinate numbers (whole numbers, given as floats)."""
     y: float
     mass: float
 
+@type_check_only
 class InertiaDict(TypedDict):
     coord: float
     """The co-ordinate's number (a whole number, given as a float)."""
     inertia: float
 
+@type_check_only
 class ForceDict(TypedDict):
     x: float
     """Co-ordinate numbers (whole numbers, given as floats)."""
@@ -131,6 +160,7 @@ class ForceDict(TypedDict):
     fx: float
     fy: float
 
+@type_check_only
 class LoadDict(TypedDict):
     dest: int
     """The row: r > 0 prescribed, -k dependent."""
@@ -147,6 +177,7 @@ class LoadDict(TypedDict):
     t0: NotRequired[float]
     w0: NotRequired[float]
 
+@type_check_only
 class DynamicsDict(TypedDict):
     """The masses and loads of a DYN ANA deck, in the deck's numbering."""
 
@@ -158,6 +189,7 @@ class DynamicsDict(TypedDict):
     forces: list[ForceDict]
     loads: list[LoadDict]
 
+@type_check_only
 class ModelDict(TypedDict):
     elements: list[ElementDict]
     prescribed: list[RowDict]
@@ -170,22 +202,26 @@ class ModelDict(TypedDict):
     dynamics: DynamicsDict | None
     """The masses and loads (None for a KIN ANA deck)."""
 
+@type_check_only
 class BufferDict(TypedDict):
     number: int
     keyword: str
     args: list[int]
     line: int
 
+@type_check_only
 class PlotDict(TypedDict):
     keyword: str
     a: int
     b: int
 
+@type_check_only
 class PictureDict(TypedDict):
     title: str
     line: int
     plots: list[PlotDict]
 
+@type_check_only
 class StorageDict(TypedDict):
     buffers: list[BufferDict]
     printbuf: list[int] | None
@@ -194,6 +230,7 @@ class StorageDict(TypedDict):
     animate: str | None
     pictures: list[PictureDict]
 
+@type_check_only
 class CheckDict(TypedDict):
     n_coords: int
     n_moving: int
@@ -205,6 +242,7 @@ class CheckDict(TypedDict):
     adjust: AdjustDict
     model: ModelDict
 
+@type_check_only
 class SimulationDict(TypedDict):
     """What the integrator of a DYN SIM run did."""
 
@@ -219,6 +257,7 @@ class SimulationDict(TypedDict):
     reached: float
     """The time the integration reached."""
 
+@type_check_only
 class DynamicRunDict(TypedDict):
     """The inverse dynamics of a DYN ANA run, per position."""
 
@@ -230,6 +269,7 @@ class DynamicRunDict(TypedDict):
     epot: _F64
     power: _F64
 
+@type_check_only
 class RunDict(TypedDict):
     buffer_numbers: list[int]
     buffer_values: _F64
@@ -261,6 +301,7 @@ def run_deck(
 
 # --- deck text, for the model API (mechfem.Mechanism) and batch runs ---
 
+@type_check_only
 class TextRunDict(TypedDict):
     buffer_numbers: list[int]
     n_buffers: int
@@ -288,29 +329,34 @@ class TextRunDict(TypedDict):
     interrupted: bool
     """Ctrl-C stopped the run; the positions before it are here (absent in batch results)."""
 
+@type_check_only
 class DescribedCoordDict(TypedDict):
     number: int
     moving: bool
     value: float
 
+@type_check_only
 class DescribedElementDict(TypedDict):
     number: int
     type: str
     coords: list[int]
     line: int
 
+@type_check_only
 class DescribedTermDict(TypedDict):
     element: int
     form: str
     factor: float
     line: int
 
+@type_check_only
 class DescribedRowDict(TypedDict):
     dest: int
     terms: list[DescribedTermDict]
     para: float | None
     input: int | None
 
+@type_check_only
 class DescribedInputDict(TypedDict):
     kind: str
     """``by`` (MOV_RELE), ``to`` (MOV_ABSE), ``table`` (MOV_FUNC), ``free`` (MOV_FREE) or ``dynamic`` (MOV_DYN)."""
@@ -321,11 +367,13 @@ class DescribedInputDict(TypedDict):
     file: str | None
     """A table's file name as the deck gives it."""
 
+@type_check_only
 class DescribedMotionDict(TypedDict):
     steps: int
     dt: float
     inputs: list[DescribedInputDict]
 
+@type_check_only
 class VaryDict(TypedDict):
     """A design variable: VARY (kind 1, a prescribed row) or VARYX (kind 0, a fixed co-ordinate)."""
 
@@ -335,6 +383,7 @@ class VaryDict(TypedDict):
     hi: float
     line: int
 
+@type_check_only
 class TargetDict(TypedDict):
     """TARGET (``values`` from ``file``, None where not compared), TARGETAT (``position``, 1-based, and
     ``value``) or TARGETEXT (``reference`` and ``value``); the other keys are None."""
@@ -349,18 +398,21 @@ class TargetDict(TypedDict):
     weight: float
     line: int
 
+@type_check_only
 class BoundDict(TypedDict):
     buffer: int
     lo: float
     hi: float
     line: int
 
+@type_check_only
 class ObjectiveDict(TypedDict):
     sense: Literal["minimise", "maximise"]
     reduce: Literal["max", "maxabs", "rms", "end"]
     buffer: int
     line: int
 
+@type_check_only
 class OptimiseDict(TypedDict):
     """The OPTIMISE block of a KIN OPT deck."""
 
@@ -373,6 +425,7 @@ class OptimiseDict(TypedDict):
     line: int
     """Line of the OPTIMISE header."""
 
+@type_check_only
 class DescribedDeckDict(TypedDict):
     coordinates: list[DescribedCoordDict]
     elements: list[DescribedElementDict]
@@ -392,13 +445,15 @@ class DescribedDeckDict(TypedDict):
     optimise: NotRequired[OptimiseDict | None]
     """The OPTIMISE block of a KIN OPT deck; None for any other mode."""
 
+# The compiled signatures show a default other than None or a bool as "...": order is 2 (first- and second-order
+# transfer functions), memory_limit unlimited.
 def run_deck_text(
     text: str,
     path: str | os.PathLike[str],
     base_dir: str | os.PathLike[str],
     motion: bool = True,
     progress: Callable[[int, int], object] | None = None,
-    order: int | None = 2,
+    order: int | None = ...,
     memory_limit: int = ...,
 ) -> TextRunDict: ...
 def describe_deck_text(
@@ -412,25 +467,26 @@ def run_deck_variants(
     workers: int | None = None,
     progress: Callable[[int, int], object] | None = None,
     on_result: Callable[[int, TextRunDict | MechfemError], object] | None = None,
-    order: int | None = 2,
+    order: int | None = ...,
     memory_limit: int = ...,
 ) -> list[TextRunDict | MechfemError]:
     """Each variant is (index into ``texts``, changes); a change is (0, co-ordinate, value) or
     (1, prescribed row, value), numbered as in the deck."""
 
+@final
 class DesignModel:
     """A compiled deck kept for an optimiser: designs evaluated one after another, each from position 1 of the
     last design assembled."""
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         text: str,
         path: str | os.PathLike[str],
         base_dir: str | os.PathLike[str],
         variables: list[tuple[int, int]],
         buffers: list[int],
         extrema: list[tuple[int, int]],
-    ) -> None: ...
+    ) -> DesignModel: ...
     @property
     def runs(self) -> int: ...
     def start(self) -> list[float]: ...
