@@ -66,6 +66,7 @@ test: install browser
 	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 	cargo fmt --all --check
 	$(BIN)/ruff check python tests
+	$(BIN)/mypy --strict python/mechfem
 	$(PY) -m pytest -q tests
 
 # The documentation site: docs/*.md with mkdocs (a dev dependency) into site/; --strict fails on any warning,
