@@ -398,15 +398,15 @@ class Analysis:
         single = len(inputs) == 1
         out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
 
-        def add(name: str, ref: object) -> None:
-            out[name] = self.value(ref)  # type: ignore[arg-type]
+        def add(name: str, ref: Coordinate | Row) -> None:
+            out[name] = self.value(ref)
             for j, a in enumerate(inputs):
-                out[f"{name}'" if single else f"{name}'({a})"] = self.value(ref, 1, j + 1)  # type: ignore[arg-type]
+                out[f"{name}'" if single else f"{name}'({a})"] = self.value(ref, 1, j + 1)
                 for m, b in enumerate(inputs[j:], j):
                     key = f"{name}''" if single else f"{name}''({a},{b})"
-                    out[key] = self.value(ref, 2, j + 1, m + 1)  # type: ignore[arg-type]
-            out[f"{name}_dot"] = self.velocity(ref)  # type: ignore[arg-type]
-            out[f"{name}_ddot"] = self.acceleration(ref)  # type: ignore[arg-type]
+                    out[key] = self.value(ref, 2, j + 1, m + 1)
+            out[f"{name}_dot"] = self.velocity(ref)
+            out[f"{name}_ddot"] = self.acceleration(ref)
 
         for r in nb.inputs:
             out[r.name] = self.input(r)

@@ -142,7 +142,7 @@ class _Deck:
         if spec.order not in (0, 1, 2):
             raise ValueError(f"{spec!r}: order must be 0, 1 or 2")
         keyword = ("BUFX0", "BUFKX1", "BUFKX2")[spec.order] if coord else ("BUFE0", "BUFKE1", "BUFKE2")[spec.order]
-        dofs: tuple[object, ...] = ()
+        dofs: tuple[int, ...] = ()
         if spec.order >= 1:
             from mechfem.motion import input_dof
 
@@ -152,7 +152,7 @@ class _Deck:
         key = (keyword, (obj, *dofs))
         if key not in self.keys:
             number = len(self.keys) + 1
-            self.storage.buffer(number, keyword, obj, *dofs)  # type: ignore[arg-type]
+            self.storage.buffer(number, keyword, obj, *dofs)
             self.keys[key] = number
         return self.keys[key]
 
