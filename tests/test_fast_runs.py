@@ -148,3 +148,39 @@ def test_a_deck_that_is_gone_is_an_error_not_the_kept_model(tmp_path: Path) -> N
     path.unlink()
     with pytest.raises(mechfem.DeckError, match="cannot read the deck"):
         mechfem.run_deck(path)
+
+
+def test_a_compiled_model_run_with_changes_is_the_deck_that_says_so(tmp_path: Path) -> None:
+    from mechfem import _core
+
+    model = _core.Model(FOURBAR, "fourbar.mec", str(tmp_path))
+    # The crank 1.1 long and its pin started at (1.1, 0), as a change and as deck text.
+    changed = model.run([(1, 1, 1.1), (0, 5, 1.1)])
+    text = FOURBAR.replace("PARA 1 1.0", "PARA 1 1.1").replace("XMOV 5 1.0", "XMOV 5 1.1")
+    want = _core.run_deck_text(text, "fourbar.mec", str(tmp_path))
+    assert np.array_equal(changed["coords"], want["coords"]) and np.array_equal(changed["table"], want["table"])
+    again = model.run()
+    plain = _core.run_deck_text(FOURBAR, "fourbar.mec", str(tmp_path))
+    assert np.array_equal(again["coords"], plain["coords"]) and np.array_equal(again["table"], plain["table"])
+    with pytest.raises(ValueError, match="no prescribed row 99"):
+        model.run([(1, 99, 1.0)])
+
+
+def test_a_named_model_compiles_once_per_topology(tmp_path: Path) -> None:
+    from mechfem import deckio
+
+    mech = mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR)))
+    deckio._COMPILED.clear()
+    first = mech.run(progress=False)
+    assert len(deckio._COMPILED) == 1
+    (kept,) = deckio._COMPILED.values()
+    # Other numbers: the same compiled model, and to the last bit the results of the deck text path.
+    other = mech.variant({"E1.length": 1.1})
+    second = other.run(progress=False)
+    assert list(deckio._COMPILED.values()) == [kept]
+    text = deckio.write(other, other.motion, other.storage)
+    want = mechfem._core.run_deck_text(text.text, text.path, ".")
+    assert np.array_equal(second.coords, want["coords"]) and not np.array_equal(second.coords, first.coords)
+    # Another deck (one more buffer): compiled anew.
+    mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR + "BUFDET 5\n", "det.mec"))).run(progress=False)
+    assert len(deckio._COMPILED) == 2
