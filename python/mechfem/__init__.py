@@ -97,6 +97,7 @@ def run_deck(
     memory_limit: int | str | None = None,
     *,
     raise_on_stop: bool = False,
+    det: bool = True,
 ) -> RunResult:
     """Reads the deck at ``path`` and runs it through its whole motion.
 
@@ -106,9 +107,15 @@ def run_deck(
     :class:`RunInterrupted` with the positions computed so far in its ``result``. A motion that stops early
     returns the positions up to there and warns with :class:`IncompleteRunWarning`, or with ``raise_on_stop``
     raises :class:`RunStoppedError` carrying them in its ``result``.
+
+    ``det=False`` computes det(D^c) only when a buffer records it (BUFDET): ``result.det`` is NaN after position
+    1 otherwise, the run does not watch det(D^c) change sign (``report.limits`` lists no limit position passed on
+    the way), and a deck whose buffers are all positions and values computes positions only, the fastest run. A
+    driven input that reaches its limit position still stops the run there, located as always. A deck file run
+    again unchanged is not read into a model again.
     """
     deck = Path(path)
-    d = _core.run_deck(os.fspath(deck), progress, limits.memory_limit(memory_limit))
+    d = _core.run_deck(os.fspath(deck), progress, limits.memory_limit(memory_limit), det)
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)

@@ -297,6 +297,7 @@ def run_deck(
     path: str | os.PathLike[str],
     progress: Callable[[int, int], object] | None = None,
     memory_limit: int = ...,
+    det: bool = True,
 ) -> RunDict: ...
 
 # --- deck text, for the model API (mechfem.Mechanism) and batch runs ---
@@ -459,6 +460,26 @@ def run_deck_text(
 def describe_deck_text(
     text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
 ) -> DescribedDeckDict: ...
+
+class Model:
+    """A deck compiled once, run many times with other numbers (no text written or parsed again)."""
+
+    def __init__(self, text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]) -> None: ...
+    @staticmethod
+    def from_path(path: str | os.PathLike[str]) -> Model: ...
+    @property
+    def n_coords(self) -> int: ...
+    @property
+    def n_prescribed(self) -> int: ...
+    def run(
+        self,
+        changes: list[tuple[int, int, float]] = ...,
+        motion: bool = True,
+        progress: Callable[[int, int], object] | None = None,
+        order: int | None = 2,
+        memory_limit: int = ...,
+    ) -> TextRunDict: ...
+
 def run_deck_variants(
     texts: list[str],
     variants: list[tuple[int, list[tuple[int, int, float]]]],

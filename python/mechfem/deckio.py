@@ -365,6 +365,32 @@ def progress_callback(progress: Progress, what: str) -> Callable[[int, int], obj
     return progress
 
 
+# A named model is compiled once per topology: its deck text with the numbers of XFIX, XMOV and PARA blanked keys
+# the compiled model, and the numbers are passed to each run as changes (the least recently used model goes first).
+_GEOMETRY_NUMBER = re.compile(r"^(XFIX|XMOV|PARA) (\d+) (\S+)", re.MULTILINE)
+_COMPILED: dict[tuple[str, str], _core.Model] = {}
+_KEEP = 16
+
+
+def compiled(deck: DeckText, base: str) -> tuple[_core.Model, list[tuple[int, int, float]]]:
+    """The compiled model of ``deck`` (compiled again only when its topology changed) and its numbers as changes:
+    (0, co-ordinate, value) for XFIX and XMOV, (1, row, value) for PARA."""
+    changes: list[tuple[int, int, float]] = []
+
+    def blank(m: re.Match[str]) -> str:
+        changes.append((1 if m[1] == "PARA" else 0, int(m[2]), float(m[3])))
+        return f"{m[1]} {m[2]} _"
+
+    key = (_GEOMETRY_NUMBER.sub(blank, deck.text), deck.path)
+    model = _COMPILED.pop(key, None)
+    if model is None:
+        model = _core.Model(deck.text, deck.path, base)
+        if len(_COMPILED) >= _KEEP:
+            del _COMPILED[next(iter(_COMPILED))]
+    _COMPILED[key] = model
+    return model, changes
+
+
 def run(
     mech: Mechanism,
     motion: Motion | None,
@@ -379,9 +405,13 @@ def run(
     callback = progress_callback(progress, "positions")
     with tables_dir(deck.tables) as base:
         try:
-            d = _core.run_deck_text(
-                deck.text, deck.path, base, with_motion and motion is not None, callback, order, memory_limit()
-            )
+            moving = with_motion and motion is not None
+            if deck.tables:
+                # Tables are read from a directory that lives for this call only: no model is kept.
+                d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
+            else:
+                model, changes = compiled(deck, base)
+                d = model.run(changes, moving, callback, order, memory_limit())
         except MechfemError as e:
             raise translate(e, deck, mech.name) from None
         finally:

@@ -324,13 +324,19 @@ def limit_lines(result: RunResult) -> list[str]:
         return []
     out = ["LIMIT POSITIONS"]
     det = np.abs(result.det)
-    k_min, k_max = int(np.nanargmin(det)), int(np.nanargmax(det))
-    out += paragraph(
-        f"det(D^c), the measure of transfer quality, ranges from {np.nanmin(result.det):.6g} to "
-        f"{np.nanmax(result.det):.6g}; its magnitude is smallest at position {k_min + 1} ({det[k_min]:.3g}) and "
-        f"largest at position {k_max + 1} ({det[k_max]:.3g}). Its value depends on units and on the choice of rows: "
-        "compare it only along one run. Where it is zero, an input is in a limit position."
-    )
+    if not np.isfinite(det[1:]).any():
+        out += paragraph(
+            "det(D^c) was not computed (a run with det=False): no sign change of it was watched for, and only a "
+            "driven input stopped at its limit position would be located."
+        )
+    else:
+        k_min, k_max = int(np.nanargmin(det)), int(np.nanargmax(det))
+        out += paragraph(
+            f"det(D^c), the measure of transfer quality, ranges from {np.nanmin(result.det):.6g} to "
+            f"{np.nanmax(result.det):.6g}; its magnitude is smallest at position {k_min + 1} ({det[k_min]:.3g}) "
+            f"and largest at position {k_max + 1} ({det[k_max]:.3g}). Its value depends on units and on the choice "
+            "of rows: compare it only along one run. Where it is zero, an input is in a limit position."
+        )
     limits = report.located_limits
     if not limits:
         out += ["", "  no limit position met"]

@@ -541,7 +541,10 @@ def run_result(deck: Path, d: _core.RunDict) -> RunResult:
         coords=coords,
         time=np.asarray(d["time"], dtype=np.float64),
         det=np.asarray(d["det"], dtype=np.float64),
-        report=RunReport.from_core(d["report"], names, mean_step(coords, model)),
+        # The mean step only serves a stop message's advice: a pass over every position saved when none stopped.
+        report=RunReport.from_core(
+            d["report"], names, None if d["report"]["stop"] is None else mean_step(coords, model)
+        ),
         model=model,
         storage=Storage.from_core(d["storage"]),
         kx1={n: np.ascontiguousarray(kx1[:, k]) for k, n in enumerate(d["kx1_coords"])},

@@ -17,6 +17,12 @@ pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) ->
     Ok(PyArray1::from_vec(py, data).reshape([rows, cols])?.into_any())
 }
 
+/// A rows x cols array from `data` given column by column (Fortran order):
+/// a view of one numpy array, whose columns are contiguous.
+pub fn columns<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
+    array2(py, data, cols, rows)?.getattr("T")
+}
+
 /// `AdjustInfo` as a dict.
 pub fn adjust<'py>(py: Python<'py>, a: &AdjustInfo) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);

@@ -15,14 +15,19 @@
 //! * `text` runs deck text (what the Python model API writes) and records
 //!   every quantity of the buffer table; `batch` runs many variants of a
 //!   few deck texts on worker threads without the GIL, for design studies.
+//! * `model` keeps a compiled deck for Python (`Model`), run again with
+//!   other numbers without reading text; `cache` keeps the decks `run_deck`
+//!   read, so that a file run again unchanged is not parsed again.
 //! * `errors` defines `MechfemError` and its subclasses and maps deck
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.
 
 mod batch;
+mod cache;
 mod convert;
 mod design;
 mod errors;
+mod model;
 mod observe;
 mod text;
 
@@ -38,9 +43,9 @@ use pyo3::types::PyDict;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
 use crate::observe::Recording;
 
-/// Reads and compiles a deck, without the GIL.
+/// Reads and compiles a deck (or takes it from [`cache`]), without the GIL.
 fn load(py: Python<'_>, path: &Path) -> PyResult<Compiled> {
-    py.detach(|| mechfem_deck::load(path)).map_err(|d| errors::deck_error(py, path, &d))
+    py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))
 }
 
 /// The co-ordinates (0-based, in order of first appearance) of the
@@ -84,13 +89,15 @@ struct Ran {
 
 /// Runs the compiled deck (its motion only when `with_motion`), without the
 /// GIL; refuses before it starts when the results would take more than
-/// `memory_limit` bytes.
+/// `memory_limit` bytes. `det` asks for det(D^c) at every position (see
+/// [`Recording::new`]).
 fn execute(
     py: Python<'_>,
     mut c: Compiled,
     with_motion: bool,
     progress: Option<Py<PyAny>>,
     memory_limit: u64,
+    det: bool,
 ) -> PyResult<Ran> {
     let given = c.state.x.clone();
     // Position 1 of a free-motion deck is computed as its run computes it:
@@ -115,7 +122,7 @@ fn execute(
         extra.extend(dynamic_quantities(&c.mechanism));
     }
     let total = motion.map_or(0, |m| m.steps) + 1;
-    let mut rec = Recording::new(&quantities, &extra, total, progress);
+    let mut rec = Recording::new(&quantities, &extra, total, progress, det);
     rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
     let n = c.mechanism.n_coords();
     if let Some(message) = errors::memory_refusal(total, rec.recorder.values_per_position(n), memory_limit) {
@@ -138,7 +145,7 @@ fn execute(
 /// position 1, the adjustment that led there, and the model echo.
 #[pyfunction]
 fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
-    let Ran { compiled: c, given, rec, report, .. } = execute(py, load(py, &path)?, false, None, u64::MAX)?;
+    let Ran { compiled: c, given, rec, report, .. } = execute(py, load(py, &path)?, false, None, u64::MAX, true)?;
     let mech = &c.mechanism;
     let n = mech.n_coords();
     let at_1 = rec.recorder.coords()[..n].to_vec();
@@ -168,24 +175,31 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// that PLOTHODO lines name (for the hodographs). For a DYN deck `dynamic`
 /// holds every input, every drive force, the kinetic and potential energy
 /// and the drive power per position (None otherwise).
+///
+/// With `det=False` det(D^c) is computed only where a buffer asks for it:
+/// `det` holds NaN otherwise, no sign change of det(D^c) is watched for,
+/// and a deck whose buffers are all positions and values computes
+/// positions only. Array columns (`buffer_values[:, k]` and the like) are
+/// contiguous. A deck file run again unchanged is not read into a model
+/// again ([`cache`]).
 #[pyfunction]
-#[pyo3(signature = (path, progress=None, memory_limit=u64::MAX))]
+#[pyo3(signature = (path, progress=None, memory_limit=u64::MAX, det=true))]
 fn run_deck(
     py: Python<'_>,
     path: PathBuf,
     progress: Option<Py<PyAny>>,
     memory_limit: u64,
+    det: bool,
 ) -> PyResult<Bound<'_, PyDict>> {
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
-        execute(py, load(py, &path)?, true, progress, memory_limit)?;
+        execute(py, load(py, &path)?, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
     let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
     let width = nb + 2 + rec.n_extra;
     let data = rec.recorder.data();
     let column = |q: usize| -> Vec<f64> { (0..positions).map(|k| data[k * width + q]).collect() };
-    let block = |from: usize, to: usize| -> Vec<f64> {
-        (0..positions).flat_map(|k| data[k * width + from..k * width + to].iter().copied()).collect()
-    };
+    // Column by column, so that each column of the array Python gets is contiguous.
+    let block = |from: usize, to: usize| -> Vec<f64> { (from..to).flat_map(column).collect() };
     let values = block(0, nb);
     let n_dynamic = if c.dynamics.is_some() { dynamic_quantities(mech).len() } else { 0 };
     let n_kx1 = rec.n_extra - n_dynamic;
@@ -194,17 +208,17 @@ fn run_deck(
 
     let d = PyDict::new(py);
     d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
-    d.set_item("buffer_values", convert::array2(py, values, positions, nb)?)?;
+    d.set_item("buffer_values", convert::columns(py, values, positions, nb)?)?;
     d.set_item("coords", convert::array2(py, coords.to_vec(), positions, n)?)?;
     d.set_item("time", PyArray1::from_vec(py, column(nb)))?;
     d.set_item("det", PyArray1::from_vec(py, column(nb + 1)))?;
     d.set_item("kx1_coords", kx1_coords.iter().map(|i| i + 1).collect::<Vec<_>>())?;
-    d.set_item("kx1_values", convert::array2(py, block(nb + 2, nb + 2 + n_kx1), positions, n_kx1)?)?;
+    d.set_item("kx1_values", convert::columns(py, block(nb + 2, nb + 2 + n_kx1), positions, n_kx1)?)?;
     let dynamic = if n_dynamic > 0 {
         let (nd, at) = (mech.n_dof(), nb + 2 + n_kx1);
         let dd = PyDict::new(py);
-        dd.set_item("inputs", convert::array2(py, block(at, at + nd), positions, nd)?)?;
-        dd.set_item("drive", convert::array2(py, block(at + nd, at + 2 * nd), positions, nd)?)?;
+        dd.set_item("inputs", convert::columns(py, block(at, at + nd), positions, nd)?)?;
+        dd.set_item("drive", convert::columns(py, block(at + nd, at + 2 * nd), positions, nd)?)?;
         dd.set_item("ekin", PyArray1::from_vec(py, column(at + 2 * nd)))?;
         dd.set_item("epot", PyArray1::from_vec(py, column(at + 2 * nd + 1)))?;
         dd.set_item("power", PyArray1::from_vec(py, column(at + 2 * nd + 2)))?;
@@ -237,6 +251,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
+    m.add_class::<model::Model>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     Ok(())

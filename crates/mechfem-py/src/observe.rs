@@ -24,6 +24,8 @@ pub struct Recording {
     pub dependent_at_1: Vec<f64>,
     /// Progress reporting; its error stops the run.
     pub progress: Progress,
+    /// The transfer functions the run computes at every position.
+    order: Option<TransferOrder>,
 }
 
 /// Progress reporting of a single run: attaches to Python about every 1%
@@ -80,8 +82,25 @@ impl Progress {
 
 impl Recording {
     /// Records `buffers` and `extra` (quantities no buffer asks for) over a
-    /// run of `total` positions.
-    pub fn new(buffers: &[Quantity], extra: &[Quantity], total: usize, progress: Option<Py<PyAny>>) -> Recording {
+    /// run of `total` positions. With `det`, det(D^c) is computed at every
+    /// position (and with it the first order, and the watch for limit
+    /// positions by its sign); without, its column holds NaN unless a
+    /// buffer asks for it, and a run whose quantities are all positions and
+    /// values computes positions only.
+    pub fn new(
+        buffers: &[Quantity],
+        extra: &[Quantity],
+        total: usize,
+        progress: Option<Py<PyAny>>,
+        det: bool,
+    ) -> Recording {
+        let order = buffers
+            .iter()
+            .chain(extra)
+            .map(Quantity::transfer_order)
+            .max()
+            .flatten()
+            .max(det.then_some(TransferOrder::First));
         let mut quantities = buffers.to_vec();
         quantities.extend([Quantity::Time, Quantity::Det]);
         quantities.extend_from_slice(extra);
@@ -92,6 +111,7 @@ impl Recording {
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
             progress: Progress::new(progress, total),
+            order,
         }
     }
 }
@@ -128,9 +148,9 @@ impl Observer for Recording {
         self.progress.error.is_some()
     }
 
-    /// What the recorded quantities need (det(D^c) is always recorded, so
-    /// at least the first order).
+    /// What the recorded quantities need, and det(D^c) when asked for (see
+    /// [`Recording::new`]).
     fn transfer_order(&self) -> Option<TransferOrder> {
-        self.recorder.transfer_order()
+        self.order
     }
 }

@@ -1,0 +1,84 @@
+//! A compiled model kept by Python ([`Model`]): deck text or a deck file is
+//! read and compiled once, and run again with other prescribed values,
+//! fixed co-ordinates or start values without any text written or parsed.
+
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+
+use mechfem_deck::Compiled;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::observe::Progress;
+use crate::text::{compile_text, execute, outcome_dict, transfer_order, Change, Outcome};
+use crate::{cache, errors};
+
+/// A deck compiled once, to be run many times: `Model(text, path, base_dir)`
+/// compiles deck text (named `path` in messages; MOV_FUNC files are read
+/// from `base_dir`), `Model.from_path(path)` a deck file.
+#[pyclass(module = "mechfem._core", frozen)]
+pub struct Model {
+    compiled: Compiled,
+    path: PathBuf,
+}
+
+#[pymethods]
+impl Model {
+    #[new]
+    fn new(py: Python<'_>, text: &str, path: PathBuf, base_dir: PathBuf) -> PyResult<Model> {
+        let compiled =
+            py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+        Ok(Model { compiled, path })
+    }
+
+    /// The deck file at `path`, compiled (or taken from the decks kept by `run_deck`).
+    #[staticmethod]
+    fn from_path(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
+        let compiled = py.detach(|| cache::load(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
+        Ok(Model { compiled, path })
+    }
+
+    /// Number of co-ordinates.
+    #[getter]
+    fn n_coords(&self) -> usize {
+        self.compiled.mechanism.n_coords()
+    }
+
+    /// Number of prescribed rows.
+    #[getter]
+    fn n_prescribed(&self) -> usize {
+        self.compiled.mechanism.n_prescribed()
+    }
+
+    /// Runs a copy of the model with `changes` made, each `(kind, number,
+    /// value)` as for `run_deck_variants` (kind 0: co-ordinate `number`
+    /// gets `value`, its XFIX or XMOV value; kind 1: prescribed row
+    /// `number`, its PARA value), and returns what `run_deck_text` returns
+    /// for deck text that says so. `motion`, `progress`, `order` and
+    /// `memory_limit` are `run_deck_text`'s.
+    #[pyo3(signature = (changes=Vec::new(), motion=true, progress=None, order=Some(2), memory_limit=u64::MAX))]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        changes: Vec<(u8, usize, f64)>,
+        motion: bool,
+        progress: Option<Py<PyAny>>,
+        order: Option<u8>,
+        memory_limit: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let mut c = self.compiled.clone();
+        for ch in changes {
+            Change::from_triple(ch)?.apply(&mut c).map_err(PyValueError::new_err)?;
+        }
+        let order = transfer_order(&c, order)?;
+        let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
+        let cancel = AtomicBool::new(false);
+        let (outcome, raised) =
+            py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
+        let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
+        let d = outcome_dict(py, outcome, &self.path)?;
+        d.set_item("interrupted", interrupted)?;
+        Ok(d)
+    }
+}
