@@ -61,7 +61,7 @@ pub(crate) fn dc_positions(mech: &Mechanism, lu: &Lu) -> Vec<[usize; MAX_COORDS]
 
 /// The co-ordinates of prescribed term k that it depends on and that move:
 /// (position in the element, column of D^c).
-pub(crate) fn moving_columns(rows: &Rows, k: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
+fn moving_columns(rows: &Rows, k: usize) -> impl Iterator<Item = (usize, usize)> + '_ {
     let (t, s) = (&rows.terms()[k], &rows.slots()[k]);
     let mask = s.ty.depends(t.form);
     (0..s.n).filter(move |&a| mask & (1 << a) != 0 && s.cols[a] != FIXED).map(move |a| (a, s.cols[a]))

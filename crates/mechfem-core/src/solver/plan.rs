@@ -13,9 +13,9 @@
 //!
 //! [`Kinematics`]: super::Kinematics
 
-use super::assemble::{dc_pattern, dc_positions, moving_columns, writes_every_place_once, NO_ENTRY};
+use super::assemble::{dc_pattern, dc_positions, writes_every_place_once};
 use super::lu::Lu;
-use crate::elements::MAX_COORDS;
+use crate::elements::{ElementType, MAX_COORDS};
 use crate::model::Mechanism;
 use std::cell::RefCell;
 
@@ -64,13 +64,21 @@ thread_local! {
 }
 
 /// A plan and the structure of D^c it was made for: the number of moving
-/// co-ordinates and [`entries`]. Everything the plan is made from.
+/// co-ordinates and the [`Entry`] of every prescribed term, everything the
+/// plan is made from.
 #[derive(Debug)]
 struct Kept {
     n: usize,
-    entries: Vec<(usize, [usize; MAX_COORDS])>,
+    entries: Vec<Entry>,
     plan: DcPlan,
 }
+
+/// Where a prescribed term's gradient enters D^c: its row, its element's
+/// type and its form parameter (which of the element's co-ordinates it
+/// depends on), and the column of D^c of each of the element's
+/// co-ordinates. Read straight from the compiled rows, so that finding a
+/// kept plan costs a run a comparison of a few numbers per term.
+type Entry = (usize, ElementType, usize, [usize; MAX_COORDS]);
 
 impl Kept {
     /// Whether `mech`'s D^c has the structure this plan was made for.
@@ -81,19 +89,10 @@ impl Kept {
     }
 }
 
-/// Where each prescribed term's gradient enters D^c: its row, and for each
-/// of its element's co-ordinates the column of D^c it enters, or
-/// [`NO_ENTRY`] where the term does not depend on the co-ordinate or the
-/// co-ordinate is fixed.
-fn entries(mech: &Mechanism) -> impl Iterator<Item = (usize, [usize; MAX_COORDS])> + '_ {
+/// The [`Entry`] of every prescribed term of `mech`, in order.
+fn entries(mech: &Mechanism) -> impl Iterator<Item = Entry> + '_ {
     let rows = &mech.prescribed;
-    (0..rows.terms().len()).map(move |k| {
-        let mut cols = [NO_ENTRY; MAX_COORDS];
-        for (a, c) in moving_columns(rows, k) {
-            cols[a] = c;
-        }
-        (rows.row_of()[k], cols)
-    })
+    rows.row_of().iter().zip(rows.terms()).zip(rows.slots()).map(|((&row, t), s)| (row, s.ty, t.form, s.cols))
 }
 
 #[cfg(test)]

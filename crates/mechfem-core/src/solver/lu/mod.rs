@@ -57,7 +57,10 @@ impl Lu {
     /// Storage for an n x n matrix whose structural non-zeros are, in row
     /// i, the columns `rows[i]` (columns may repeat): blocks when the
     /// pattern splits into more than one, otherwise a band when the matrix
-    /// is large and its band cheap to factorise, otherwise dense.
+    /// is large and its band cheap to factorise, otherwise dense. Cold: it
+    /// runs once for every structure of D^c on a thread (the solver keeps
+    /// what it chose), and is kept out of the workspace's constructor.
+    #[cold]
     pub fn for_pattern(n: usize, rows: &[Vec<usize>]) -> Lu {
         if let Some(order) = block_order(n, rows) {
             if order.starts.len() > 2 {
