@@ -18,6 +18,8 @@ __all__ = [
     "ConvergenceError",
     "LimitPositionError",
     "ResourceError",
+    "DEFAULTS",
+    "catalogue",
     "check_deck",
     "run_deck",
     "run_deck_text",
@@ -51,6 +53,7 @@ class DeckError(MechfemError):
     diagnostics: list[DiagnosticDict]
     """Every mistake's fields; the attributes above are the first one's."""
 
+@type_check_only
 class DiagnosticDict(TypedDict):
     kind: str
     path: str
@@ -336,6 +339,7 @@ class RunDict(TypedDict):
 
 # --- the element catalogue and the solver's defaults (crates/mechfem-py/src/catalogue.rs) ---
 
+@type_check_only
 class CatalogueDict(TypedDict):
     type: str
     coordinates: list[tuple[str, str]]
@@ -344,6 +348,7 @@ class CatalogueDict(TypedDict):
     forms: list[tuple[str, str]]
     frame: bool
 
+@type_check_only
 class DefaultsDict(TypedDict):
     accuracy: float
     max_iter: int

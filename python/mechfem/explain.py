@@ -148,9 +148,7 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
                 f"position 1 of the mechanism {model!r} cannot be computed: {element_words(e)} cannot be evaluated "
                 f"there: {element_detail(detail, e)}; {_ESTIMATES.format(points=_moving_points(nb))}"
             )
-        return with_attributes(
-            AssemblyError(text), **_solver_fields(err), element_name=None if e is None else e.name
-        )
+        return with_attributes(AssemblyError(text), **_solver_fields(err), element_name=None if e is None else e.name)
     if isinstance(err, LimitPositionError):
         rows = list(getattr(err, "rows", []))
         coords = list(getattr(err, "coords", []))
