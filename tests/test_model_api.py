@@ -408,6 +408,7 @@ def test_assembly_errors_get_the_element_name() -> None:
     deck = deckio.write(supply())
     err = mechfem.AssemblyError("element 6 (TR2): the points P and Q coincide")
     err.element = 6  # type: ignore[attr-defined]
+    err.detail = "the points P and Q coincide"  # type: ignore[attr-defined]  # the field the binding sets
     new = deckio.translate(err, deck, "supply")
     assert isinstance(new, mechfem.AssemblyError) and new.element_name == "lever"  # type: ignore[attr-defined]
     assert "the ternary-2 'lever' (G0, H, G) cannot be evaluated there: its points G0 and H coincide" in str(new)

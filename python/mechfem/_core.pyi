@@ -18,6 +18,8 @@ __all__ = [
     "ConvergenceError",
     "LimitPositionError",
     "ResourceError",
+    "DEFAULTS",
+    "catalogue",
     "check_deck",
     "run_deck",
     "run_deck_text",
@@ -38,14 +40,50 @@ class DeckError(MechfemError):
     path: str
     line: int
     """Line of the first mistake (0: the file as a whole)."""
+    column: int
+    """1-based character of the line where the mistake starts (0 with line 0)."""
+    kind: str
+    """Stable code of the diagnostic's kind, snake case (``coordinate_unused``)."""
+    text: str
+    message: str
+    hint: str | None
+    element: int | None
+    coordinate: int | None
+    detail: str | None
+    diagnostics: list[DiagnosticDict]
+    """Every mistake's fields; the attributes above are the first one's."""
+
+@type_check_only
+class DiagnosticDict(TypedDict):
+    kind: str
+    path: str
+    line: int
+    column: int
+    text: str
+    message: str
+    hint: str | None
+    element: int | None
+    coordinate: int | None
+    detail: str | None
 
 class AssemblyError(MechfemError):
     """The model cannot be evaluated at position 1."""
 
+    position: int
+    reason: str
     element: int
+    element_type: str | None
+    detail: str
 
 class ConvergenceError(MechfemError):
     """Newton iteration cannot reach position 1."""
+
+    position: int
+    reason: str
+    """``no_convergence``, ``branch_jump``, ``non_finite`` or ``simulation``."""
+    iterations: int
+    """Only with reason ``no_convergence``, as ``residual``."""
+    residual: float
 
 class ResourceError(MechfemError):
     """The results would take more memory than the limit; the run was refused before it started."""
@@ -57,6 +95,13 @@ class LimitPositionError(MechfemError):
     """Prescribed rows that depend on each other (empty when not found)."""
     coords: list[int]
     """Co-ordinates that can move with every prescribed value held (empty when not found)."""
+    rank: int | None
+    size: int | None
+    """Rank and order of D^c (None when the analysis did not find them)."""
+    coordinate: int | None
+    """The co-ordinate at whose column the pivot vanished."""
+    position: int
+    reason: str
 
 @type_check_only
 class AdjustDict(TypedDict):
@@ -292,6 +337,29 @@ class RunDict(TypedDict):
     simulation: SimulationDict | None
     """None unless the deck is a DYN SIM one."""
 
+# --- the element catalogue and the solver's defaults (crates/mechfem-py/src/catalogue.rs) ---
+
+@type_check_only
+class CatalogueDict(TypedDict):
+    type: str
+    coordinates: list[tuple[str, str]]
+    """Name and dimension (``length``, ``angle``, ``ratio``, ``any``) of each co-ordinate, deck order."""
+    slots: str
+    forms: list[tuple[str, str]]
+    frame: bool
+
+@type_check_only
+class DefaultsDict(TypedDict):
+    accuracy: float
+    max_iter: int
+    max_halvings: int
+    min_integration_tolerance: float
+    max_iter_limit: int
+    max_steps: int
+
+DEFAULTS: DefaultsDict
+
+def catalogue() -> list[CatalogueDict]: ...
 def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
 def run_deck(
     path: str | os.PathLike[str],

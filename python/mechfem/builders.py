@@ -7,10 +7,9 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
+from mechfem.catalogue import FORMS, SLOTS
 from mechfem.parts import (
     ATTRIBUTES,
-    FORMS,
-    SLOTS,
     Coordinate,
     Element,
     FormParameter,

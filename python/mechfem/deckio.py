@@ -25,6 +25,7 @@ import numpy as np
 
 from mechfem import _core, loads
 from mechfem.analysis import Analysis
+from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.errors import DeckError, MechfemError, RunInterrupted
 from mechfem.explain import names_in, translate, with_attributes
 from mechfem.limits import memory_limit
@@ -54,9 +55,6 @@ from mechfem.model import (
 from mechfem.motion import check_units
 from mechfem.output import atomic_text
 from mechfem.storage import check_file_names, from_described
-
-DEFAULT_ACCURACY = 1e-10
-DEFAULT_MAX_ITER = 25
 
 Progress = bool | Callable[[int, int], object] | None
 
@@ -280,8 +278,8 @@ def write(
         if motion.max_iter is not None:
             out.add(f"MAXITER {int(motion.max_iter)}", ("motion", "max_iter"))
         if motion.rtol is not None or motion.atol is not None:
-            # INTTOL takes both; the one not given is ACCURACY, as the deck reader's default (at least 1e-13).
-            tol = max(motion.accuracy or DEFAULT_ACCURACY, 1e-13)
+            # INTTOL takes both; the one not given is ACCURACY, as the deck reader's default (with the core's floor).
+            tol = max(motion.accuracy or DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE)
             rtol, atol = (tol if v is None else v for v in (motion.rtol, motion.atol))
             out.add(f"INTTOL {number(rtol)} {number(atol)}", ("motion", "rtol and atol"))
 

@@ -4,8 +4,11 @@ All of them derive from :class:`MechfemError`:
 
 * :class:`DeckError` — the deck has a mistake; ``str(error)`` is the rendered
   diagnostic (file, line, the line's text, a caret and a hint), and the
-  attributes ``path`` and ``line`` say where (``line`` is 0 when the mistake
-  concerns the file as a whole).
+  attributes ``path``, ``line`` and ``column`` say where (``line`` is 0 when the
+  mistake concerns the file as a whole); ``kind`` is a stable code of the
+  mistake (``coordinate_unused``), ``text``, ``message`` and ``hint`` the
+  line, what is wrong and how to fix it, ``element`` and ``coordinate`` what it
+  is about (deck numbers, or None), ``diagnostics`` every mistake's fields.
 * :class:`AssemblyError` — the model cannot be evaluated at the given
   co-ordinates (for example two points of a binary coincide).
 * :class:`ConvergenceError` — position 1 cannot be reached by Newton iteration.

@@ -140,7 +140,7 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
     if isinstance(err, AssemblyError):
         k = int(getattr(err, "element", 0) or 0)
         e = nb.elements[k - 1] if 1 <= k <= len(nb.elements) else None
-        detail = str(err).split(": ", 1)[-1]
+        detail = str(getattr(err, "detail", "") or "")
         if e is None:
             text = f"position 1 of the mechanism {model!r} cannot be computed: {names_in(str(err), nb)}"
         else:
@@ -148,22 +148,23 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
                 f"position 1 of the mechanism {model!r} cannot be computed: {element_words(e)} cannot be evaluated "
                 f"there: {element_detail(detail, e)}; {_ESTIMATES.format(points=_moving_points(nb))}"
             )
-        return with_attributes(AssemblyError(text), element=k, element_name=None if e is None else e.name)
+        return with_attributes(AssemblyError(text), **_solver_fields(err), element_name=None if e is None else e.name)
     if isinstance(err, LimitPositionError):
         rows = list(getattr(err, "rows", []))
         coords = list(getattr(err, "coords", []))
         row_names = [nb.prescribed[r - 1].name if 1 <= r <= len(nb.prescribed) else str(r) for r in rows]
         coord_names = [nb.coords[i - 1].name if 1 <= i <= len(nb.coords) else str(i) for i in coords]
-        text = singular_at_start(str(err), model, row_names, coord_names)
+        rank, size = getattr(err, "rank", None), getattr(err, "size", None)
+        text = singular_at_start(rank, size, model, row_names, coord_names)
         return with_attributes(
-            LimitPositionError(text), rows=rows, coords=coords, row_names=row_names, coord_names=coord_names
+            LimitPositionError(text), **_solver_fields(err), row_names=row_names, coord_names=coord_names
         )
     if isinstance(err, ConvergenceError):
         text = (
             f"position 1 of the mechanism {model!r} cannot be computed: {names_in(str(err), nb)}; "
             f"{_ESTIMATES.format(points=_moving_points(nb))}"
         )
-        return ConvergenceError(text)
+        return with_attributes(ConvergenceError(text), **_solver_fields(err))
     if isinstance(err, ResourceError):
         facts = str(err).split(". Ask for", 1)[0]
         return ResourceError(
@@ -174,6 +175,27 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
     if deck.simulated and "under the forces" in text:
         text += f" (the inputs that move under the forces: {', '.join(map(repr, deck.simulated))})"
     return type(err)(text)
+
+
+_SOLVER_FIELDS = (
+    "position",
+    "reason",
+    "element",
+    "element_type",
+    "detail",
+    "coordinate",
+    "rows",
+    "coords",
+    "rank",
+    "size",
+    "iterations",
+    "residual",
+)
+"""The fields a solver error carries (deck numbers), which the model's error keeps beside its names."""
+
+
+def _solver_fields(err: MechfemError) -> dict[str, object]:
+    return {k: getattr(err, k) for k in _SOLVER_FIELDS if hasattr(err, k)}
 
 
 _ESTIMATES = (
@@ -207,10 +229,10 @@ def element_detail(detail: str, e: Element) -> str:
     return detail
 
 
-def singular_at_start(message: str, model: str, rows: list[str], coords: list[str]) -> str:
-    """Position 1 is singular: which prescribed values depend on each other and which co-ordinates can still move."""
-    rank = re.search(r"rank (\d+) of (\d+)", message)
-    of = f" (rank {rank.group(1)} of {rank.group(2)})" if rank else ""
+def singular_at_start(rank: int | None, size: int | None, model: str, rows: list[str], coords: list[str]) -> str:
+    """Position 1 is singular (D^c of ``rank`` of ``size`` when known): which prescribed values depend on each other
+    and which co-ordinates can still move."""
+    of = f" (rank {rank} of {size})" if rank is not None and size is not None else ""
     head = f"position 1 of the mechanism {model!r} cannot be computed: D^c is singular there{of}"
     if not rows:
         return (
@@ -234,20 +256,38 @@ def singular_at_start(message: str, model: str, rows: list[str], coords: list[st
 
 @dataclass
 class _Context:
-    """What a rule knows: the mechanism's name, its numbering and the model part the refused line declares."""
+    """What a rule knows: the mechanism's name, its numbering, the model part the refused line declares and the
+    diagnostic's fields (``kind``, ``text``, ``element``, ``coordinate``, ``detail``, ``message``)."""
 
     model: str
     nb: Numbering
     what: str
     name: str
+    err: DeckError
+    mode: str
+    """The written deck's mode line (``KIN ANA``, ``DYN SIM``, ...)."""
+
+    def field(self, key: str) -> object:
+        return getattr(self.err, key, None)
+
+    def element(self) -> Element | None:
+        """The element the diagnostic is about, from its ``element`` field."""
+        k = self.field("element")
+        return self.nb.elements[k - 1] if isinstance(k, int) and 1 <= k <= len(self.nb.elements) else None
+
+    def keyword(self) -> str:
+        """The keyword of the refused deck line."""
+        words = str(self.field("text") or "").split()
+        return words[0].upper() if words else ""
 
 
-Rule = Callable[[re.Match[str], _Context], str]
+Rule = Callable[[_Context], "str | None"]
+"""Words a diagnostic of one kind in the model's terms, or None to leave it to the general wording."""
 
 
-def _unused(m: re.Match[str], c: _Context) -> str:
-    i = int(m.group(1))
-    coord = c.nb.coords[i - 1] if 1 <= i <= len(c.nb.coords) else None
+def _unused(c: _Context) -> str:
+    i = c.field("coordinate")
+    coord = c.nb.coords[i - 1] if isinstance(i, int) and 1 <= i <= len(c.nb.coords) else None
     part = (
         f"the point {coord.point.name!r}"
         if coord is not None and coord.point is not None
@@ -256,15 +296,16 @@ def _unused(m: re.Match[str], c: _Context) -> str:
     return f"{part} of the mechanism {c.model!r} is used by no element; connect it to an element, or leave it out"
 
 
-def _count(m: re.Match[str], c: _Context) -> str:
+def _count(c: _Context) -> str:
+    # The deck is the model's, so the rows and moving co-ordinates it counted are the model's own.
     nb = c.nb
     moving = [x for x in nb.coords if not x.fixed]
-    k, few = int(m.group(3)), m.group(4) == "few"
+    k, few = abs(len(nb.prescribed) - len(moving)), len(nb.prescribed) < len(moving)
     rows = _counted(len(nb.prescribed), "form parameter or combination", "form parameters or combinations")
     text = (
         f"the mechanism {c.model!r} prescribes {rows}, inputs included ({_names(nb.prescribed)}), for "
         f"{_counted(len(moving), 'moving co-ordinate', 'moving co-ordinates')} ({_names(moving)}): {k} too "
-        f"{m.group(4)}"
+        f"{'few' if few else 'many'}"
     )
     more = _counted(k, "more co-ordinate", "more co-ordinates")
     if not few:
@@ -286,37 +327,44 @@ def _counted(n: int, one: str, many: str) -> str:
     return f"{n} {one if n == 1 else many}"
 
 
-def _no_inputs(m: re.Match[str], c: _Context) -> str:
-    return (
-        f"the mechanism {c.model!r} has no inputs; make a form parameter an input with Driven() (e.g. "
-        "angle=Driven()) or Mechanism.drive"
-    )
+def _bad_value(c: _Context) -> str | None:
+    e = c.element()
+    if c.keyword() == "NRDOF":
+        return (
+            f"the mechanism {c.model!r} has no inputs; make a form parameter an input with Driven() (e.g. "
+            "angle=Driven()) or Mechanism.drive"
+        )
+    if c.keyword() == "PARA" and e is not None:
+        # The value is the one the deck's row gives the length (its PARA value over the term's factor).
+        m = re.search(r" as (\S+), but", str(c.field("message")))
+        value = m.group(1) if m else "a value that is not positive"
+        points = [p.name for p in e.points]
+        between = f"between {points[0]} and {points[1]}" if len(points) >= 2 else "between the element's two points"
+        return (
+            f"{c.name!r} prescribes the length of {element_words(e)} as {value}, but a length must be greater than "
+            f"zero; give the distance {between}, a positive number (points that coincide have no direction)"
+        )
+    m = re.search(r"to change by (\S+) in a time of (\S+), faster", str(c.field("message")))
+    if m is not None:
+        return (
+            f"the motion asks the input {c.name!r} to change by {m.group(1)} in a time of {m.group(2)}, faster than "
+            "a number can hold; give a longer dt or a smaller change"
+        )
+    return None
 
 
-def _length(m: re.Match[str], c: _Context) -> str:
-    k = int(m.group(2))
-    e = c.nb.elements[k - 1] if 1 <= k <= len(c.nb.elements) else None
-    points = [p.name for p in e.points] if e is not None else []
-    between = f"between {points[0]} and {points[1]}" if len(points) >= 2 else "between the element's two points"
-    return (
-        f"{c.name!r} prescribes the length of {element_words(e) if e else 'an element'} as {m.group(3)}, but a "
-        f"length must be greater than zero; give the distance {between}, a positive number (points that coincide "
-        "have no direction)"
-    )
-
-
-def _element(m: re.Match[str], c: _Context) -> str:
-    k = int(m.group(1))
-    e = c.nb.elements[k - 1] if 1 <= k <= len(c.nb.elements) else None
+def _element(c: _Context) -> str | None:
+    e = c.element()
     if e is None:
-        return f"an element of the mechanism {c.model!r} cannot be evaluated at the given co-ordinates: {m.group(3)}"
+        return None
     return (
-        f"{element_words(e)} cannot be evaluated at the given co-ordinates: {element_detail(m.group(3), e)}; change "
-        "the initial positions of its points (Mechanism.point, or Mechanism.set) or its dimensions"
+        f"{element_words(e)} cannot be evaluated at the given co-ordinates: "
+        f"{element_detail(str(c.field('detail') or ''), e)}; change the initial positions of its points "
+        "(Mechanism.point, or Mechanism.set) or its dimensions"
     )
 
 
-def _free_many(m: re.Match[str], c: _Context) -> str:
+def _free_many(c: _Context) -> str:
     inputs = c.nb.inputs
     return (
         f"free motion (Motion.free, Free) needs a mechanism with one input, and {c.model!r} has {len(inputs)} "
@@ -324,7 +372,9 @@ def _free_many(m: re.Match[str], c: _Context) -> str:
     )
 
 
-def _free_dynamic(m: re.Match[str], c: _Context) -> str:
+def _wrong_mode(c: _Context) -> str | None:
+    if c.keyword() != "MOV_FREE" or not c.mode.startswith("DYN"):
+        return None
     return (
         f"free motion (Motion.free, Free) cannot drive the mechanism {c.model!r}, which has masses or loads: free "
         "motion has no timing, so its run has no velocities or accelerations; drive the input with Motion.by, "
@@ -332,55 +382,50 @@ def _free_dynamic(m: re.Match[str], c: _Context) -> str:
     )
 
 
-def _rate(m: re.Match[str], c: _Context) -> str:
-    return (
-        f"the motion asks the input {c.name!r} to change by {m.group(3)} in a time of {m.group(4)}, faster than a "
-        "number can hold; give a longer dt or a smaller change"
-    )
-
-
-def _no_frame(m: re.Match[str], c: _Context) -> str:
-    k = int(m.group(1))
-    e = c.nb.elements[k - 1] if 1 <= k <= len(c.nb.elements) else None
+def _no_frame(c: _Context) -> str:
+    e = c.element()
     what = element_words(e) if e is not None else "the element"
     return f"{what} has no frame to carry a mass; give the mass to a bar, half beam or ternary element"
 
 
-_RULES: list[tuple[re.Pattern[str], Rule]] = [
-    (re.compile(r"co-ordinate (\d+) is used by no element"), _unused),
-    (re.compile(r"(\d+) prescribed rows? for (\d+) moving co-ordinates?: (\d+) too (few|many)"), _count),
-    (re.compile(r"NRDOF must be at least 1"), _no_inputs),
-    (re.compile(r"row (\d+) prescribes the length LENL of element (\d+) \(\w+\) as (\S+), but"), _length),
-    (re.compile(r"element (\d+) \((\w+)\) cannot be evaluated at the initial co-ordinates: (.*)"), _element),
-    (re.compile(r"MOV_FREE needs a mechanism with one degree of freedom"), _free_many),
-    (re.compile(r"MOV_FREE cannot drive a DYN ANA deck"), _free_dynamic),
-    (re.compile(r"(\S+) asks DOF (\d+) to change by (\S+) in a time of (\S+), faster"), _rate),
-    (re.compile(r"element (\d+) is an? (\w+), which has no frame to carry a mass"), _no_frame),
-]
+_RULES: dict[str, Rule] = {
+    "coordinate_unused": _unused,
+    "not_square": _count,
+    "bad_value": _bad_value,
+    "model": _element,
+    "free_motion_dof": _free_many,
+    "wrong_mode": _wrong_mode,
+    "no_frame": _no_frame,
+}
+"""The model's words for a diagnostic, by its ``kind`` (the deck reader's stable code)."""
 
 
 def deck_error(err: DeckError, deck: DeckText, model: str) -> DeckError:
     """A mistake the deck reader found in the deck written for ``model``, in the model's words; ``line`` and
-    ``deck`` still say where it is in the written deck (``name`` names the model part of that line)."""
+    ``deck`` still say where it is in the written deck (``name`` names the model part of that line), and the
+    diagnostic's fields (``kind``, ``column``, ``hint``, ...) stay."""
     line = int(getattr(err, "line", 0) or 0)
     what, name = deck.notes.get(line, ("", ""))
-    text = str(err)
-    headline = next((x[len("error: ") :] for x in text.splitlines() if x.startswith("error: ")), text)
-    context = _Context(model, deck.numbering, what, name)
-    for pattern, rule in _RULES:
-        m = pattern.search(headline)
-        if m is not None:
-            message = rule(m, context)
-            break
-    else:
+    mode = next((x.split(";", 1)[0].strip().upper() for x in deck.text.splitlines() if x.split(";", 1)[0].strip()), "")
+    context = _Context(model, deck.numbering, what, name, err, mode)
+    rule = _RULES.get(str(getattr(err, "kind", "")))
+    message = rule(context) if rule is not None else None
+    if message is None:
+        headline = str(getattr(err, "message", "") or str(err))
         where = f"{what} {name!r}" if what else "the model"
         message = (
             f"in the mechanism {model!r}, {where}: the deck written for it was refused: "
             f"{names_in(headline, deck.numbering)} (e.deck holds that deck, e.line the line)"
         )
     new = DeckError(message)
+    fields = {k: getattr(err, k) for k in _DECK_FIELDS if hasattr(err, k)}
+    with_attributes(new, **fields)
     with_attributes(new, path=getattr(err, "path", deck.path), line=line, name=name or None, deck=deck.text)
     return new
+
+
+_DECK_FIELDS = ("kind", "column", "text", "message", "hint", "element", "coordinate", "detail", "diagnostics")
+"""The fields of the deck reader's diagnostic that a model's error keeps (deck numbers, the written deck's line)."""
 
 
 __all__ = ["PythonWords", "deck_error", "element_words", "names_in", "translate"]

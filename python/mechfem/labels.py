@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from mechfem.catalogue import CATALOGUE, FORMS, Dimension, coordinate_dimensions, form_dimension
 from mechfem.result import Buffer, Model, Row, RunResult
 
 ANGLE = "rad"
@@ -42,30 +43,14 @@ KINDS = (
     "mass",
 )
 
-#: The unit of each co-ordinate of an element type, in deck order (``None``: the co-ordinate's unit comes from
-#: the other elements that share it). The ``i`` of a rack element is the pinion's radius, a length; the ``i`` of a
-#: ``GR1`` is a ratio.
-SLOT_UNITS: dict[str, tuple[str | None, ...]] = {
-    "BIN": (LENGTH,) * 4,
-    "HLF": (LENGTH, LENGTH, ANGLE),
-    "TR1": (LENGTH, LENGTH, ANGLE, LENGTH, LENGTH),
-    "TR2": (LENGTH,) * 6,
-    "GR1": (ANGLE, ANGLE, ANGLE, RATIO),
-    "GR2": (ANGLE, ANGLE, ANGLE, LENGTH, LENGTH),
-    "RK1": (LENGTH, LENGTH, ANGLE, LENGTH, LENGTH, LENGTH, ANGLE),
-    "RK2": (LENGTH,) * 7 + (ANGLE,),
-    "BLT": (LENGTH, LENGTH, ANGLE, LENGTH, LENGTH, ANGLE, LENGTH, LENGTH),
-    "CRD": (None,),
-}
+UNITS: dict[Dimension, str | None] = {"length": LENGTH, "angle": ANGLE, "ratio": RATIO, "any": None}
+"""The unit of each of the catalogue's dimensions (``any``: the unit comes from the other elements that share the
+co-ordinate)."""
 
-#: The unit of each form parameter (``GEAR`` and ``COOR`` depend on the element: see :func:`form_unit`).
-FORM_UNITS: dict[str, str] = {
-    "LENL": LENGTH,
-    "ANGB": ANGLE,
-    "ANGV": ANGLE,
-    "LENU": LENGTH,
-    "LENV": LENGTH,
-    "BELT": LENGTH,
+#: The unit of each co-ordinate of an element type, in deck order, from the core's catalogue. The ``i`` of a rack
+#: element is the pinion's radius, a length; the ``i`` of a ``GR1`` is a ratio.
+SLOT_UNITS: dict[str, tuple[str | None, ...]] = {
+    t: tuple(UNITS[k] for k in coordinate_dimensions(t)) for t in CATALOGUE
 }
 
 
@@ -135,14 +120,15 @@ def coordinate_units(model: Model) -> dict[int, str]:
 
 
 def form_unit(model: Model, form: str, element: int, coords: dict[int, str] | None = None) -> str:
-    """The unit of form parameter ``form`` of element ``element``."""
-    if form in FORM_UNITS:
-        return FORM_UNITS[form]
+    """The unit of form parameter ``form`` of element ``element``, from the catalogue's dimension (a gear pair's
+    ``GEAR`` is an assembly angle, a rack's an assembly length; a ``COOR`` has its co-ordinate's unit)."""
     e = next((x for x in model.elements if x.number == element), None)
-    if form == "GEAR":
-        # A gear pair's g is an assembly angle; a rack's is an assembly length (its i is the pinion's radius).
-        return LENGTH if e is not None and e.type in ("RK1", "RK2") else ANGLE
-    if form == "COOR" and e is not None and e.coords:
+    if e is None or form not in FORMS.get(e.type, ()):
+        return RATIO
+    unit = UNITS[form_dimension(e.type, form)]
+    if unit is not None:
+        return unit
+    if e.coords:
         return (coords if coords is not None else coordinate_units(model)).get(e.coords[0], LENGTH)
     return RATIO
 

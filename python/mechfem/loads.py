@@ -24,6 +24,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
+from mechfem.catalogue import FRAMES
 from mechfem.checks import finite
 from mechfem.model import Combination, Coordinate, Element, FormParameter, Mechanism, Point, Row
 from mechfem.parts import ELEMENT_WORDS
@@ -32,10 +33,6 @@ if TYPE_CHECKING:
     from mechfem.deckio import Numbering
 
 FloatArray = npt.NDArray[np.float64]
-
-FRAMES = ("BIN", "HLF", "TR1", "TR2")
-"""The element types with a frame, which can carry a body (MASS)."""
-
 
 # --- the masses and loads ---------------------------------------------------------------------------------------------
 

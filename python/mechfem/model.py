@@ -34,13 +34,12 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy.typing as npt
 
 from mechfem.builders import ElementMethods
+from mechfem.catalogue import FORMS, MAX_ITER, SLOTS
 from mechfem.checks import check_name, finite
-from mechfem.motion import MAX_ITER, By, Dynamic, Free, InputKey, InputMotion, Motion, Table, To, input_dof, simulation
+from mechfem.motion import By, Dynamic, Free, InputKey, InputMotion, Motion, Table, To, input_dof, simulation
 from mechfem.names import article, plural, suggestion, unknown_name
 from mechfem.parts import (
     ATTRIBUTES,
-    FORMS,
-    SLOTS,
     Combination,
     Coordinate,
     Driven,

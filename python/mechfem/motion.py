@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, TypeAlias, Union
 import numpy as np
 import numpy.typing as npt
 
+from mechfem.catalogue import MAX_ITER, MAX_STEPS
 from mechfem.checks import finite
 from mechfem.errors import UnitWarning, user_stacklevel
 from mechfem.names import unknown_name
@@ -28,12 +29,6 @@ if TYPE_CHECKING:
     from mechfem.model import FormParameter, Mechanism, Row
 
 FloatArray = npt.NDArray[np.float64]
-
-MAX_ITER = 1000
-"""The most Newton iterations per position a motion may allow (MAXITER of the deck reader)."""
-
-MAX_STEPS = 10_000_000
-"""The most steps a motion may have (TSTEPE of the deck reader)."""
 
 
 @dataclass(frozen=True)

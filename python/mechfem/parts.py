@@ -1,7 +1,8 @@
 """The parts of a :class:`~mechfem.Mechanism`: co-ordinates, points, elements, form parameters and their
 combinations, what a form parameter does (:class:`Keep`, :class:`Driven`, :class:`Output`) and the rows of D^c.
 
-The element catalogue's facts used everywhere (:data:`FORMS`, :data:`SLOTS`, :data:`ATTRIBUTES`) live here too.
+The Python names of the catalogue's form parameters (:data:`ATTRIBUTES`) live here too; the catalogue itself
+(:data:`FORMS`, :data:`SLOTS`) is the core's, read by :mod:`mechfem.catalogue`.
 """
 
 from __future__ import annotations
@@ -10,37 +11,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal, TypeAlias
 
+from mechfem.catalogue import FORMS, form_dimension
 from mechfem.checks import finite
 from mechfem.names import suggestion
 from mechfem.units import Unit, check_unit, to_radians
-
-FORMS: dict[str, tuple[str, ...]] = {
-    "BIN": ("LENL", "ANGB"),
-    "HLF": ("ANGV",),
-    "TR1": ("ANGV", "LENU", "LENV"),
-    "TR2": ("LENL", "ANGB", "LENU", "LENV"),
-    "GR1": ("GEAR",),
-    "GR2": ("GEAR",),
-    "RK1": ("GEAR",),
-    "RK2": ("GEAR",),
-    "BLT": ("LENL", "ANGB", "BELT"),
-    "CRD": ("COOR",),
-}
-"""The form parameters of every element type (deck names, in the catalogue's order)."""
-
-SLOTS: dict[str, str] = {
-    "BIN": "PP",
-    "HLF": "Pa",
-    "TR1": "PaP",
-    "TR2": "PPP",
-    "GR1": "aaas",
-    "GR2": "aaass",
-    "RK1": "PaPsa",
-    "RK2": "PPPsa",
-    "BLT": "PaPass",
-    "CRD": "s",
-}
-"""What an element type's co-ordinates are, in deck order: ``P`` a point (x, y), ``a`` an angle, ``s`` a scalar."""
 
 ATTRIBUTES: dict[str, str] = {
     "LENL": "length",
@@ -53,9 +27,6 @@ ATTRIBUTES: dict[str, str] = {
     "COOR": "value",
 }
 """The Python attribute of each form parameter (``bar.length`` is ``LENL``)."""
-
-ANGLES = frozenset({"ANGB", "ANGV", "GEAR"})
-"""The form parameters that are angles (a ``COOR`` is one when its co-ordinate is)."""
 
 # --- co-ordinates and points -------------------------------------------------------------------------------------
 
@@ -164,11 +135,12 @@ class FormParameter(_Expr):
 
     @property
     def is_angle(self) -> bool:
-        """True for an angle: a direction, an angle co-ordinate, a gear's assembly angle, or the co-ordinate of a
-        single-co-ordinate element on an angle."""
-        if self.form == "COOR":
+        """True for an angle, as the catalogue says: a direction, an angle co-ordinate, a gear pair's assembly
+        angle, or the co-ordinate of a single-co-ordinate element on an angle."""
+        dimension = form_dimension(self.element.type, self.form)
+        if dimension == "any":
             return any(c.kind == "angle" for c in self.element.coordinates)
-        return self.form in ANGLES
+        return dimension == "angle"
 
     def terms(self) -> tuple[tuple[float, FormParameter], ...]:
         return ((1.0, self),)

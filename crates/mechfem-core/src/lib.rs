@@ -36,7 +36,7 @@ pub mod motion;
 pub mod run;
 pub mod solver;
 
-pub use elements::{Element, ElementType, FormEval, Order};
+pub use elements::{Dimension, Element, ElementType, FormEval, Order, Slot};
 pub use error::{ElementError, ModelError, SolveError};
 pub use model::{FormRef, Mechanism, MechanismBuilder, State, Term};
 pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};

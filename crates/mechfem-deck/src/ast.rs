@@ -71,6 +71,9 @@ pub(crate) fn diagnostic_at(
         text,
         message: message.into(),
         hint: None,
+        element: None,
+        coordinate: None,
+        detail: None,
     })
 }
 

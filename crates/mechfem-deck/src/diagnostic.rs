@@ -180,6 +180,67 @@ pub enum DiagnosticKind {
     OutputName,
 }
 
+impl DiagnosticKind {
+    /// A stable name for the kind, in snake case (`coordinate_unused`): what
+    /// front ends match on instead of the message, which may be reworded.
+    pub fn code(self) -> &'static str {
+        match self {
+            DiagnosticKind::Io => "io",
+            DiagnosticKind::MissingMode => "missing_mode",
+            DiagnosticKind::UnknownMode => "unknown_mode",
+            DiagnosticKind::UnknownKeyword => "unknown_keyword",
+            DiagnosticKind::NothingToRepeat => "nothing_to_repeat",
+            DiagnosticKind::WrongBlock => "wrong_block",
+            DiagnosticKind::DuplicateBlock => "duplicate_block",
+            DiagnosticKind::MissingBlock => "missing_block",
+            DiagnosticKind::WrongMode => "wrong_mode",
+            DiagnosticKind::ArgumentCount => "argument_count",
+            DiagnosticKind::NotANumber => "not_a_number",
+            DiagnosticKind::NotAWholeNumber => "not_a_whole_number",
+            DiagnosticKind::NumberOutOfRange => "number_out_of_range",
+            DiagnosticKind::BadValue => "bad_value",
+            DiagnosticKind::UnknownElementType => "unknown_element_type",
+            DiagnosticKind::ElementSequence => "element_sequence",
+            DiagnosticKind::DuplicateKeyword => "duplicate_keyword",
+            DiagnosticKind::TstepeNotFirst => "tstepe_not_first",
+            DiagnosticKind::MissingTstepe => "missing_tstepe",
+            DiagnosticKind::PictureStructure => "picture_structure",
+            DiagnosticKind::CoordinateOutOfRange => "coordinate_out_of_range",
+            DiagnosticKind::CoordinateDeclaredTwice => "coordinate_declared_twice",
+            DiagnosticKind::CoordinateNotDeclared => "coordinate_not_declared",
+            DiagnosticKind::CoordinateMissing => "coordinate_missing",
+            DiagnosticKind::CoordinateUnused => "coordinate_unused",
+            DiagnosticKind::UnknownElement => "unknown_element",
+            DiagnosticKind::NoFrame => "no_frame",
+            DiagnosticKind::UnknownFormName => "unknown_form_name",
+            DiagnosticKind::ZeroDestination => "zero_destination",
+            DiagnosticKind::RowGap => "row_gap",
+            DiagnosticKind::DependentGap => "dependent_gap",
+            DiagnosticKind::MissingNrdof => "missing_nrdof",
+            DiagnosticKind::NrdofTooLarge => "nrdof_too_large",
+            DiagnosticKind::NotSquare => "not_square",
+            DiagnosticKind::UnknownRow => "unknown_row",
+            DiagnosticKind::DuplicatePara => "duplicate_para",
+            DiagnosticKind::UnknownDof => "unknown_dof",
+            DiagnosticKind::DuplicateMotion => "duplicate_motion",
+            DiagnosticKind::MissingMotion => "missing_motion",
+            DiagnosticKind::FreeMotionDof => "free_motion_dof",
+            DiagnosticKind::MotionFile => "motion_file",
+            DiagnosticKind::LoadFile => "load_file",
+            DiagnosticKind::NotFixed => "not_fixed",
+            DiagnosticKind::DuplicateBuffer => "duplicate_buffer",
+            DiagnosticKind::UnknownBuffer => "unknown_buffer",
+            DiagnosticKind::DesignVariable => "design_variable",
+            DiagnosticKind::NothingToOptimise => "nothing_to_optimise",
+            DiagnosticKind::TargetFile => "target_file",
+            DiagnosticKind::ExtremumReference => "extremum_reference",
+            DiagnosticKind::NoSensitivity => "no_sensitivity",
+            DiagnosticKind::Model => "model",
+            DiagnosticKind::OutputName => "output_name",
+        }
+    }
+}
+
 /// The longest output name (in bytes) a deck may give, so that the name
 /// with its extension stays well below the 255 bytes a file name may have.
 pub const MAX_OUTPUT_NAME: usize = 200;
@@ -225,6 +286,13 @@ pub struct Diagnostic {
     pub message: String,
     /// How to fix it.
     pub hint: Option<String>,
+    /// The element the mistake is about (1-based), when it is about one.
+    pub element: Option<usize>,
+    /// The co-ordinate the mistake is about (1-based), when it is about one.
+    pub coordinate: Option<usize>,
+    /// Why the core refused an element, in its own words (`its points P and Q
+    /// coincide`), without the deck's numbering around it.
+    pub detail: Option<String>,
 }
 
 impl Diagnostic {
@@ -238,6 +306,9 @@ impl Diagnostic {
             text: String::new(),
             message: message.into(),
             hint: None,
+            element: None,
+            coordinate: None,
+            detail: None,
         }
     }
 
@@ -258,6 +329,32 @@ pub(crate) trait Hint {
 impl Hint for Box<Diagnostic> {
     fn with_hint(mut self, hint: impl Into<String>) -> Self {
         self.hint = Some(hint.into());
+        self
+    }
+}
+
+/// Names what a boxed diagnostic is about, so that a front end can name it
+/// in its own words without reading the message.
+pub(crate) trait Subject {
+    /// The element (0-based index) the mistake is about.
+    fn about_element(self, index: usize) -> Self;
+    /// The co-ordinate (1-based, as the deck numbers it) the mistake is about.
+    fn about_coordinate(self, number: usize) -> Self;
+    /// The core's own reason.
+    fn with_detail(self, detail: impl Into<String>) -> Self;
+}
+
+impl Subject for Box<Diagnostic> {
+    fn about_element(mut self, index: usize) -> Self {
+        self.element = Some(index + 1);
+        self
+    }
+    fn about_coordinate(mut self, number: usize) -> Self {
+        self.coordinate = Some(number);
+        self
+    }
+    fn with_detail(mut self, detail: impl Into<String>) -> Self {
+        self.detail = Some(detail.into());
         self
     }
 }

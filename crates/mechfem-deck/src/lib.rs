@@ -106,6 +106,7 @@ pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostic
 pub use keywords::{Block, Keyword};
 pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};
 pub use parse::{parse_file, parse_str};
+pub use statements::{MAX_ITER, MAX_STEPS};
 
 /// Reads, checks and compiles the deck at `path`; MOV_FUNC, LOADFUNC and
 /// TARGET files are read from the deck's folder.

@@ -15,11 +15,11 @@ use crate::lexer::{Line, Word};
 use crate::parse::Parser;
 
 /// The largest number of steps TSTEPE accepts: every position is stored.
-const MAX_STEPS: i64 = 10_000_000;
+pub const MAX_STEPS: i64 = 10_000_000;
 /// The largest MAXITER: Newton iterations that neither converge nor diverge
 /// would otherwise go on for as long as the deck says, at every subdivision
 /// of a failing step.
-const MAX_ITER: i64 = 1000;
+pub const MAX_ITER: i64 = 1000;
 
 impl Parser<'_> {
     /// Reads the arguments of one keyword line into the deck being built.

@@ -6,9 +6,10 @@
 use std::path::Path;
 
 use mechfem_core::{diagnose, Mechanism, SolveError, State};
-use mechfem_deck::Diagnostics;
+use mechfem_deck::{Diagnostic, Diagnostics};
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use pyo3::{create_exception, PyErr};
 
 create_exception!(mechfem.errors, MechfemError, PyException, "Base class of every error mechfem raises.");
@@ -16,15 +17,27 @@ create_exception!(
     mechfem.errors,
     DeckError,
     MechfemError,
-    "The deck has a mistake: str() is the rendered diagnostic; `path` and `line` say where (line 0: the whole file)."
+    "The deck has a mistake: str() is the rendered diagnostic; `kind`, `path`, `line`, `column`, `text`, `message`, \
+     `hint`, `element`, `coordinate` and `detail` are the first one's fields, `diagnostics` every one's."
 );
-create_exception!(mechfem.errors, AssemblyError, MechfemError, "The model cannot be evaluated at position 1.");
-create_exception!(mechfem.errors, ConvergenceError, MechfemError, "Newton iteration cannot reach position 1.");
+create_exception!(
+    mechfem.errors,
+    AssemblyError,
+    MechfemError,
+    "The model cannot be evaluated at position 1: `element` (deck number), `element_type` and the core's `detail`."
+);
+create_exception!(
+    mechfem.errors,
+    ConvergenceError,
+    MechfemError,
+    "Newton iteration cannot reach position 1: `reason` (a stable code), `iterations` and `residual` when it ran out."
+);
 create_exception!(
     mechfem.errors,
     LimitPositionError,
     MechfemError,
-    "D^c is singular at position 1: `rows` that depend on each other, `coords` that can still move (deck numbers)."
+    "D^c is singular at position 1: `rows` that depend on each other, `coords` that can still move (deck numbers), \
+     `rank` and `size` of D^c, `coordinate` at whose column the pivot vanished."
 );
 
 create_exception!(
@@ -73,14 +86,46 @@ fn bytes_text(bytes: u128) -> String {
     }
 }
 
-/// A `DeckError` carrying every diagnostic, with the place of the first.
+/// The fields of one diagnostic, as a dict: `kind` (a stable code,
+/// [`DiagnosticKind::code`](mechfem_deck::DiagnosticKind::code)), `path`,
+/// `line` and `column` (1-based; 0: the file as a whole), `text` (the
+/// line), `message`, `hint`, and what it is about: `element`, `coordinate`
+/// (deck numbers) and `detail` (the core's reason), None when it is about
+/// none.
+fn diagnostic_fields<'py>(py: Python<'py>, d: &Diagnostic) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    out.set_item("kind", d.kind.code())?;
+    out.set_item("path", d.path.to_string_lossy().into_owned())?;
+    out.set_item("line", d.line)?;
+    out.set_item("column", if d.line == 0 { 0 } else { d.columns.start + 1 })?;
+    out.set_item("text", &d.text)?;
+    out.set_item("message", &d.message)?;
+    out.set_item("hint", d.hint.as_deref())?;
+    out.set_item("element", d.element)?;
+    out.set_item("coordinate", d.coordinate)?;
+    out.set_item("detail", d.detail.as_deref())?;
+    Ok(out)
+}
+
+/// A `DeckError` carrying every diagnostic: str() renders them all, the
+/// attributes are the first one's fields (see [`diagnostic_fields`]) and
+/// `diagnostics` holds every one's, so that a front end names things from
+/// the fields instead of reading the message.
 pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyErr {
     let err = DeckError::new_err(diagnostics.to_string());
-    let (file, line) = diagnostics.iter().next().map_or((path.to_path_buf(), 0), |d| (d.path.clone(), d.line));
     let value = err.value(py);
-    // Setting attributes on a fresh exception instance cannot fail.
-    let _ = value.setattr("path", file.to_string_lossy().into_owned());
-    let _ = value.setattr("line", line);
+    // Setting attributes on a fresh exception instance cannot fail; building
+    // the dicts only fails when Python is out of memory, and then the
+    // message alone still says what is wrong.
+    let _ = value.setattr("path", path.to_string_lossy().into_owned());
+    let _ = value.setattr("line", 0);
+    let all: Vec<Bound<'_, PyDict>> = diagnostics.iter().filter_map(|d| diagnostic_fields(py, d).ok()).collect();
+    if let Some(first) = all.first() {
+        for (key, item) in first.iter() {
+            let _ = value.setattr(key.extract::<String>().unwrap_or_default(), item);
+        }
+    }
+    let _ = value.setattr("diagnostics", all);
     err
 }
 
@@ -137,15 +182,38 @@ pub fn describe(mech: &Mechanism, err: &SolveError) -> String {
 /// at the co-ordinates where it was met, to name the rows and co-ordinates
 /// at fault.
 pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> PyErr {
+    let e = position_one_exception(py, mech, state, err);
+    let value = e.value(py);
+    // Every failure here is at position 1; a front end words it from this
+    // and the fields below instead of from the message.
+    let _ = value.setattr("position", 1);
+    let _ = value.setattr("reason", kind(err));
+    match err {
+        SolveError::Element { element, source } => {
+            let _ = value.setattr("element", element + 1);
+            let _ = value.setattr("element_type", mech.elements().get(*element).map(|e| e.ty.name()));
+            let _ = value.setattr("detail", source.to_string());
+        }
+        SolveError::Singular { column, .. } => {
+            let _ = value.setattr("coordinate", mech.moving_coords().get(*column).map(|i| i + 1));
+        }
+        SolveError::NoConvergence { iterations, residual } => {
+            let _ = value.setattr("iterations", *iterations);
+            let _ = value.setattr("residual", *residual);
+        }
+        _ => {}
+    }
+    e
+}
+
+/// The exception of [`position_one_error`], with its message and the fields
+/// only its analysis finds (the rows and co-ordinates of a singular D^c).
+fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> PyErr {
     let message = describe(mech, err);
     match err {
-        SolveError::Element { element, .. } => {
-            let e = AssemblyError::new_err(message);
-            let _ = e.value(py).setattr("element", element + 1);
-            e
-        }
+        SolveError::Element { .. } => AssemblyError::new_err(message),
         SolveError::Singular { .. } => {
-            let (rows, coords, text) = match diagnose(mech, state) {
+            let (rows, coords, text, rank) = match diagnose(mech, state) {
                 Ok(m) if m.rank < m.n => {
                     let rows: Vec<usize> = m.dependent_rows.iter().map(|r| r + 1).collect();
                     let coords: Vec<usize> = m.free_coords.iter().map(|i| i + 1).collect();
@@ -160,13 +228,16 @@ pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, e
                         m.n,
                         list(&coords)
                     );
-                    (rows, coords, text)
+                    (rows, coords, text, Some((m.rank, m.n)))
                 }
-                _ => (Vec::new(), Vec::new(), message),
+                _ => (Vec::new(), Vec::new(), message, None),
             };
             let e = LimitPositionError::new_err(text);
-            let _ = e.value(py).setattr("rows", rows);
-            let _ = e.value(py).setattr("coords", coords);
+            let value = e.value(py);
+            let _ = value.setattr("rows", rows);
+            let _ = value.setattr("coords", coords);
+            let _ = value.setattr("rank", rank.map(|r| r.0));
+            let _ = value.setattr("size", rank.map(|r| r.1));
             e
         }
         SolveError::NoConvergence { .. }

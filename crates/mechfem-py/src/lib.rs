@@ -18,12 +18,15 @@
 //! * `model` keeps a compiled deck for Python (`Model`), run again with
 //!   other numbers without reading text; `cache` keeps the decks `run_deck`
 //!   read, so that a file run again unchanged is not parsed again.
+//! * `catalogue` hands the element catalogue and the solver's defaults and
+//!   limits to Python, which repeats none of them.
 //! * `errors` defines `MechfemError` and its subclasses and maps deck
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.
 
 mod batch;
 mod cache;
+mod catalogue;
 mod convert;
 mod design;
 mod errors;
@@ -246,6 +249,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
     m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
     m.add("ResourceError", py.get_type::<ResourceError>())?;
+    m.add("DEFAULTS", catalogue::defaults(py)?)?;
+    m.add_function(wrap_pyfunction!(catalogue::catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;
     m.add_function(wrap_pyfunction!(run_deck, m)?)?;
     m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;

@@ -342,11 +342,15 @@ pub struct Integration {
 }
 
 impl Integration {
+    /// The smallest tolerance the integrator takes: below it a step's
+    /// rounding dominates.
+    pub const MIN_TOLERANCE: f64 = 1e-13;
+
     /// Both tolerances at the Newton tolerance `tol` (deck ACCURACY), so
     /// that the integrator is as accurate as the positions it moves
-    /// through; at least 1e-13, below which a step's rounding dominates.
+    /// through; at least [`Self::MIN_TOLERANCE`].
     pub fn from_accuracy(tol: f64) -> Integration {
-        let t = tol.max(1e-13);
+        let t = tol.max(Self::MIN_TOLERANCE);
         Integration { rtol: t, atol: t }
     }
 }

@@ -2,7 +2,7 @@
 //! (theory eqs. 5.2-5.7, 5.23, 5.24).
 
 use super::local::{diff, spread_pq, Polar};
-use super::{tracked_atan2, Element, FormEval, Order};
+use super::{tracked_atan2, Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Binary element `BIN`: co-ordinates `xP yP xQ yQ`, form parameters
@@ -13,6 +13,9 @@ impl Element for Bin {
     const NAME: &'static str = "BIN";
     const COORDS: &'static [&'static str] = &["xP", "yP", "xQ", "yQ"];
     const FORMS: &'static [&'static str] = &["LENL", "ANGB"];
+    const COORD_DIMENSIONS: &'static [Dimension] =
+        &[Dimension::Length, Dimension::Length, Dimension::Length, Dimension::Length];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Length, Dimension::Angle];
 
     fn eval(form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         let (dx, dy) = (x[2] - x[0], x[3] - x[1]);

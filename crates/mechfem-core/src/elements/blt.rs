@@ -12,7 +12,7 @@
 //! `G_ld = -d/(l l*)`, `G_beta d = -1`, `G_dd = 1/l*`.
 
 use super::local::{spread_pq, zero_hess, Polar};
-use super::{tracked_atan2, Bin, Element, FormEval, Order};
+use super::{tracked_atan2, Bin, Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Belt `BLT`: co-ordinates `xP yP beta_a xQ yQ beta_c R_P R_Q`, form
@@ -27,6 +27,17 @@ impl Element for Blt {
     const NAME: &'static str = "BLT";
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta_a", "xQ", "yQ", "beta_c", "R_P", "R_Q"];
     const FORMS: &'static [&'static str] = &["LENL", "ANGB", "BELT"];
+    const COORD_DIMENSIONS: &'static [Dimension] = &[
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Angle,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Angle,
+        Dimension::Length,
+        Dimension::Length,
+    ];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Length, Dimension::Angle, Dimension::Length];
 
     /// The bar P->Q involves neither the wheels' angles nor their radii.
     fn depends(form: usize) -> u32 {

@@ -2,7 +2,7 @@
 //! and serves as the temporary input of free motion (theory, section 5.5.3).
 
 use super::local::zero_hess;
-use super::{Element, FormEval, Order};
+use super::{Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Single co-ordinate `CRD`: co-ordinate `x`, form parameter `COOR = x`.
@@ -12,6 +12,8 @@ impl Element for Crd {
     const NAME: &'static str = "CRD";
     const COORDS: &'static [&'static str] = &["x"];
     const FORMS: &'static [&'static str] = &["COOR"];
+    const COORD_DIMENSIONS: &'static [Dimension] = &[Dimension::Any];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Any];
 
     fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         out.value = x[0];

@@ -2,7 +2,7 @@
 //! 5.4.5, fig. 5.4.9, eq. 5.36).
 
 use super::local::zero_hess;
-use super::{Element, FormEval, Order};
+use super::{Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Gear pair `GR1`: co-ordinates `beta_a beta_b beta_c i`, form parameter
@@ -16,6 +16,9 @@ impl Element for Gr1 {
     const NAME: &'static str = "GR1";
     const COORDS: &'static [&'static str] = &["beta_a", "beta_b", "beta_c", "i"];
     const FORMS: &'static [&'static str] = &["GEAR"];
+    const COORD_DIMENSIONS: &'static [Dimension] =
+        &[Dimension::Angle, Dimension::Angle, Dimension::Angle, Dimension::Ratio];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Angle];
 
     fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         let (ba, bb, bc, i) = (x[0], x[1], x[2], x[3]);

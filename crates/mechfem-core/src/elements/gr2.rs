@@ -4,7 +4,7 @@
 //! slip (a negative radius: wheels turning the same way, or a ring gear).
 
 use super::local::zero_hess;
-use super::{Element, FormEval, Order};
+use super::{Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Gear pair `GR2`: co-ordinates `beta_a beta_b beta_c R_a R_c`, form
@@ -15,6 +15,9 @@ impl Element for Gr2 {
     const NAME: &'static str = "GR2";
     const COORDS: &'static [&'static str] = &["beta_a", "beta_b", "beta_c", "R_a", "R_c"];
     const FORMS: &'static [&'static str] = &["GEAR"];
+    const COORD_DIMENSIONS: &'static [Dimension] =
+        &[Dimension::Angle, Dimension::Angle, Dimension::Angle, Dimension::Length, Dimension::Length];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Angle];
 
     fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         let (ba, bb, bc, ra, rc) = (x[0], x[1], x[2], x[3], x[4]);

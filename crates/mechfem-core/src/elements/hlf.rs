@@ -2,7 +2,7 @@
 //! (theory, section 5.4.3). Used for wheels and as an angular reference.
 
 use super::local::zero_hess;
-use super::{Element, FormEval, Order};
+use super::{Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Half beam `HLF`: co-ordinates `xP yP beta`, form parameter `ANGV = beta`.
@@ -12,6 +12,8 @@ impl Element for Hlf {
     const NAME: &'static str = "HLF";
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta"];
     const FORMS: &'static [&'static str] = &["ANGV"];
+    const COORD_DIMENSIONS: &'static [Dimension] = &[Dimension::Length, Dimension::Length, Dimension::Angle];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Angle];
 
     fn depends(_form: usize) -> u32 {
         0b100

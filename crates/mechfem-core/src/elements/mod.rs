@@ -80,6 +80,61 @@ impl Default for FormEval {
     }
 }
 
+/// What a co-ordinate or a form parameter measures. Decks have no unit of
+/// length, so this is the whole of a quantity's unit: the front ends name
+/// units and convert degrees from it, and tell a point's pair of
+/// co-ordinates from an angle.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dimension {
+    /// A length (a point's x or y, a radius, a distance).
+    Length,
+    /// An angle in radians.
+    Angle,
+    /// A pure number (a transmission ratio).
+    Ratio,
+    /// Whatever the co-ordinate is: the single co-ordinate element takes the
+    /// dimension of the co-ordinate it is put on, which other elements set.
+    Any,
+}
+
+impl Dimension {
+    /// The word the binding and the documentation use: `length`, `angle`,
+    /// `ratio`, `any`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dimension::Length => "length",
+            Dimension::Angle => "angle",
+            Dimension::Ratio => "ratio",
+            Dimension::Any => "any",
+        }
+    }
+}
+
+/// How a deck's ELEM line gives an element's co-ordinates: a point is two
+/// co-ordinate numbers (x, y) that the named front end takes as one point,
+/// an angle and a scalar one number each.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Slot {
+    /// A point: the two co-ordinates `x<name>`, `y<name>` in a row.
+    Point,
+    /// An angle co-ordinate.
+    Angle,
+    /// Any other single co-ordinate (a ratio, a radius, a CRD's value).
+    Scalar,
+}
+
+impl Slot {
+    /// One letter per slot, as the Python front spells an element's slots:
+    /// `P`, `a`, `s`.
+    pub fn letter(self) -> char {
+        match self {
+            Slot::Point => 'P',
+            Slot::Angle => 'a',
+            Slot::Scalar => 's',
+        }
+    }
+}
+
 /// Behaviour shared by every element type.
 ///
 /// `branch` is the element's angle memory: an element whose form parameters
@@ -94,6 +149,10 @@ pub trait Element {
     const COORDS: &'static [&'static str];
     /// Four-character names of the form parameters.
     const FORMS: &'static [&'static str];
+    /// What each co-ordinate measures, in the order of `COORDS`.
+    const COORD_DIMENSIONS: &'static [Dimension];
+    /// What each form parameter measures, in the order of `FORMS`.
+    const FORM_DIMENSIONS: &'static [Dimension];
 
     /// Evaluates form parameter `form` (an index into `FORMS`) at the
     /// element's co-ordinates `x` up to `order`.
@@ -250,6 +309,40 @@ impl ElementType {
         dispatch!(self, T => T::FORMS)
     }
 
+    /// What each co-ordinate measures, in deck order.
+    pub fn coord_dimensions(self) -> &'static [Dimension] {
+        dispatch!(self, T => T::COORD_DIMENSIONS)
+    }
+
+    /// What each form parameter measures, in the order of [`Self::form_names`].
+    pub fn form_dimensions(self) -> &'static [Dimension] {
+        dispatch!(self, T => T::FORM_DIMENSIONS)
+    }
+
+    /// The co-ordinates grouped as a deck's front end names them: a length
+    /// co-ordinate `x<name>` followed by `y<name>` is a point, an angle is
+    /// an angle, anything else a scalar.
+    pub fn slots(self) -> Vec<Slot> {
+        let (names, dims) = (self.coord_names(), self.coord_dimensions());
+        let mut out = Vec::with_capacity(names.len());
+        let mut k = 0;
+        while k < names.len() {
+            let pair = names.get(k + 1).is_some_and(|next| {
+                dims[k] == Dimension::Length
+                    && names[k].strip_prefix('x').is_some_and(|p| !p.is_empty() && next.strip_prefix('y') == Some(p))
+            });
+            out.push(if pair {
+                Slot::Point
+            } else if dims[k] == Dimension::Angle {
+                Slot::Angle
+            } else {
+                Slot::Scalar
+            });
+            k += if pair { 2 } else { 1 };
+        }
+        out
+    }
+
     /// Index of the form parameter with this name (case-insensitive).
     pub fn form_index(self, name: &str) -> Option<usize> {
         self.form_names().iter().position(|f| f.eq_ignore_ascii_case(name))
@@ -358,3 +451,41 @@ pub(crate) fn tracked_atan2(dy: f64, dx: f64, branch: &mut f64) -> f64 {
 
 #[cfg(test)]
 pub(crate) mod fd;
+
+#[cfg(test)]
+mod catalogue_tests {
+    use super::{Dimension, ElementType};
+
+    /// The slots and dimensions of every type, as the deck specification's
+    /// element table gives them (written out here, not computed).
+    #[test]
+    fn slots_and_dimensions_follow_the_specification() {
+        let expected = [
+            ("BIN", "PP", "LLLL", "LA"),
+            ("HLF", "Pa", "LLA", "A"),
+            ("TR1", "PaP", "LLALL", "ALL"),
+            ("TR2", "PPP", "LLLLLL", "LALL"),
+            ("GR1", "aaas", "AAAR", "A"),
+            ("GR2", "aaass", "AAALL", "A"),
+            ("RK1", "PaPsa", "LLALLLA", "L"),
+            ("RK2", "PPPsa", "LLLLLLLA", "L"),
+            ("BLT", "PaPass", "LLALLALL", "LAL"),
+            ("CRD", "s", "*", "*"),
+        ];
+        let letter = |d: &Dimension| match d {
+            Dimension::Length => 'L',
+            Dimension::Angle => 'A',
+            Dimension::Ratio => 'R',
+            Dimension::Any => '*',
+        };
+        assert_eq!(ElementType::ALL.len(), expected.len());
+        for (ty, (name, slots, coords, forms)) in ElementType::ALL.into_iter().zip(expected) {
+            assert_eq!(ty.name(), name);
+            assert_eq!(ty.slots().iter().map(|s| s.letter()).collect::<String>(), slots, "{name}");
+            assert_eq!(ty.coord_dimensions().iter().map(letter).collect::<String>(), coords, "{name}");
+            assert_eq!(ty.form_dimensions().iter().map(letter).collect::<String>(), forms, "{name}");
+            assert_eq!(ty.coord_dimensions().len(), ty.n_coords(), "{name}");
+            assert_eq!(ty.form_dimensions().len(), ty.form_names().len(), "{name}");
+        }
+    }
+}

@@ -3,7 +3,7 @@
 //! pinion's angle beta_a turns with the distance Q covers along the rack.
 
 use super::local::{local_coordinate, Axis, FrameAngle};
-use super::{Element, FormEval, Order, MAX_COORDS};
+use super::{Dimension, Element, FormEval, Order, MAX_COORDS};
 use crate::error::ElementError;
 
 /// Pinion and rack `RK1`: co-ordinates `xP yP beta_b xQ yQ i beta_a`,
@@ -15,6 +15,16 @@ impl Element for Rk1 {
     const NAME: &'static str = "RK1";
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta_b", "xQ", "yQ", "i", "beta_a"];
     const FORMS: &'static [&'static str] = &["GEAR"];
+    const COORD_DIMENSIONS: &'static [Dimension] = &[
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Angle,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Angle,
+    ];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Length];
 
     fn eval(_form: usize, x: &[f64], _branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         const N: usize = 7;

@@ -3,7 +3,7 @@
 //! co-ordinate, and R is the point that travels along it.
 
 use super::local::{local_coordinate, spread_pq, Axis, FrameAngle, Polar};
-use super::{tracked_atan2, Element, FormEval, Order};
+use super::{tracked_atan2, Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Pinion and rack `RK2`: co-ordinates `xP yP xQ yQ xR yR i beta_a`, form
@@ -15,6 +15,17 @@ impl Element for Rk2 {
     const NAME: &'static str = "RK2";
     const COORDS: &'static [&'static str] = &["xP", "yP", "xQ", "yQ", "xR", "yR", "i", "beta_a"];
     const FORMS: &'static [&'static str] = &["GEAR"];
+    const COORD_DIMENSIONS: &'static [Dimension] = &[
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Angle,
+    ];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Length];
 
     fn eval(_form: usize, x: &[f64], branch: &mut f64, order: Order, out: &mut FormEval) -> Result<(), ElementError> {
         const N: usize = 8;

@@ -3,7 +3,7 @@
 //! when R coincides with P.
 
 use super::local::{diff, local_coordinate, local_second, zero_hess, Axis, FrameAngle};
-use super::{Element, FormEval, Order, MAX_COORDS};
+use super::{Dimension, Element, FormEval, Order, MAX_COORDS};
 use crate::error::ElementError;
 
 /// Ternary-1 `TR1`: co-ordinates `xP yP beta xR yR`, form parameters
@@ -14,6 +14,9 @@ impl Element for Tr1 {
     const NAME: &'static str = "TR1";
     const COORDS: &'static [&'static str] = &["xP", "yP", "beta", "xR", "yR"];
     const FORMS: &'static [&'static str] = &["ANGV", "LENU", "LENV"];
+    const COORD_DIMENSIONS: &'static [Dimension] =
+        &[Dimension::Length, Dimension::Length, Dimension::Angle, Dimension::Length, Dimension::Length];
+    const FORM_DIMENSIONS: &'static [Dimension] = &[Dimension::Angle, Dimension::Length, Dimension::Length];
 
     /// ANGV is the angle co-ordinate alone.
     fn depends(form: usize) -> u32 {

@@ -2,7 +2,7 @@
 //! P->Q (theory, section 5.4.4, fig. 5.4.6).
 
 use super::local::{diff, local_coordinate, local_second, spread_pq, Axis, FrameAngle, Polar};
-use super::{Bin, Element, FormEval, Order};
+use super::{Bin, Dimension, Element, FormEval, Order};
 use crate::error::ElementError;
 
 /// Ternary-2 `TR2`: co-ordinates `xP yP xQ yQ xR yR`, form parameters
@@ -16,6 +16,16 @@ impl Element for Tr2 {
     const NAME: &'static str = "TR2";
     const COORDS: &'static [&'static str] = &["xP", "yP", "xQ", "yQ", "xR", "yR"];
     const FORMS: &'static [&'static str] = &["LENL", "ANGB", "LENU", "LENV"];
+    const COORD_DIMENSIONS: &'static [Dimension] = &[
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+        Dimension::Length,
+    ];
+    const FORM_DIMENSIONS: &'static [Dimension] =
+        &[Dimension::Length, Dimension::Angle, Dimension::Length, Dimension::Length];
 
     /// The bar P->Q does not involve R.
     fn depends(form: usize) -> u32 {

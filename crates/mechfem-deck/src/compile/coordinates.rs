@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use crate::ast::{CoordDef, Deck};
-use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint};
+use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Subject};
 
 /// Checks XFIX/XMOV against the elements: every co-ordinate 1..N declared
 /// once and used by an element. Returns the declarations by number.
@@ -83,6 +83,7 @@ pub(crate) fn coordinates(deck: &Deck) -> Result<BTreeMap<i64, &CoordDef>, Box<D
         if !used.contains_key(&i) {
             return Err(deck
                 .error(DiagnosticKind::CoordinateUnused, c.index.span, format!("co-ordinate {i} is used by no element"))
+                .about_coordinate(usize::try_from(i).unwrap_or_default())
                 .with_hint(format!(
                     "connect it to an element, or remove its {} line and renumber the co-ordinates above it",
                     if c.moving { "XMOV" } else { "XFIX" }

@@ -9,7 +9,7 @@ use mechfem_core::Mechanism;
 use super::refs::{coordinate, form, Sizes};
 use super::table::{self, Layout};
 use crate::ast::{self, missing_dynamics, Deck, LoadDefKind, MassDef};
-use crate::diagnostic::{count, numbered, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
+use crate::diagnostic::{count, numbered, Diagnostic, DiagnosticKind, Hint, Span, Spanned, Subject};
 use crate::keywords::Keyword;
 
 /// The largest LOADFUNC file read: a load table is a few thousand rows at
@@ -109,6 +109,7 @@ fn element(deck: &Deck, m: &MassDef) -> Result<usize, Box<Diagnostic>> {
             m.element.span,
             format!("element {k} is a {}, which has no frame to carry a mass", ty.name()),
         )
+        .about_element(index)
         .with_hint(no_frame_hint(e)))
 }
 

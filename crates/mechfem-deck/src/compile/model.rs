@@ -7,7 +7,7 @@ use super::index;
 use super::rows::{check_square, degrees_of_freedom, paras, resolve_forms, rows, Resolved};
 use crate::ast::Deck;
 use crate::compiled::{ElementInfo, RowInfo, TermInfo};
-use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span};
+use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Subject};
 
 /// The compiled model and its description for the print file.
 pub(crate) struct Model {
@@ -118,6 +118,7 @@ fn check_lengths(deck: &Deck, constant: &[Vec<&Resolved>]) -> Result<(), Box<Dia
                         t.ty.name()
                     ),
                 )
+                .about_element(t.element)
                 .with_hint("give the distance between the element's two points, a positive number; points that coincide have no direction"));
         }
     }
@@ -151,6 +152,8 @@ fn model_error(deck: &Deck, e: ModelError) -> Box<Diagnostic> {
                         def.ty.value.name()
                     ),
                 )
+                .about_element(*element)
+                .with_detail(source.to_string())
                 .with_hint(hint);
         }
     }

@@ -1,0 +1,103 @@
+"""The element catalogue and the solver's defaults and limits, as the compiled core defines them.
+
+The core is the one place these facts are written (``_core.catalogue()``, ``_core.DEFAULTS``); this module reads
+them once at import and gives them the shapes the Python front uses. Nothing here is typed in by hand, so an
+element type, a form parameter or a default changes in Rust alone.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal, cast
+
+from mechfem import _core
+
+Dimension = Literal["length", "angle", "ratio", "any"]
+"""What a co-ordinate or form parameter measures; ``any``: that of the co-ordinate a ``CRD`` element is put on."""
+
+
+@dataclass(frozen=True)
+class ElementType:
+    """One element type of the catalogue."""
+
+    type: str
+    """The deck's three-letter name (``BIN``)."""
+    coordinates: tuple[tuple[str, Dimension], ...]
+    """Each co-ordinate's name and dimension, in deck order (``("xP", "length")``)."""
+    slots: str
+    """The co-ordinates as a named model gives them: ``P`` a point (x, y), ``a`` an angle, ``s`` a scalar."""
+    forms: tuple[tuple[str, Dimension], ...]
+    """Each form parameter's deck name and dimension (``("LENL", "length")``)."""
+    frame: bool
+    """Whether the element has a frame that can carry a mass."""
+
+
+def _read() -> dict[str, ElementType]:
+    out: dict[str, ElementType] = {}
+    for d in _core.catalogue():
+        out[d["type"]] = ElementType(
+            type=d["type"],
+            coordinates=tuple((n, cast(Dimension, k)) for n, k in d["coordinates"]),
+            slots=d["slots"],
+            forms=tuple((n, cast(Dimension, k)) for n, k in d["forms"]),
+            frame=bool(d["frame"]),
+        )
+    return out
+
+
+CATALOGUE: dict[str, ElementType] = _read()
+"""Every element type by its deck name, in the catalogue's order."""
+
+FORMS: dict[str, tuple[str, ...]] = {t: tuple(f for f, _ in e.forms) for t, e in CATALOGUE.items()}
+"""The form parameters of every element type (deck names, in the catalogue's order)."""
+
+SLOTS: dict[str, str] = {t: e.slots for t, e in CATALOGUE.items()}
+"""What an element type's co-ordinates are, in deck order: ``P`` a point (x, y), ``a`` an angle, ``s`` a scalar."""
+
+FRAMES: tuple[str, ...] = tuple(t for t, e in CATALOGUE.items() if e.frame)
+"""The element types with a frame that can carry a mass."""
+
+
+def form_dimension(type: str, form: str) -> Dimension:
+    """What form parameter ``form`` of an element of type ``type`` measures (``any`` for a ``CRD``'s ``COOR``:
+    that of its co-ordinate)."""
+    return dict(CATALOGUE[type].forms)[form]
+
+
+def coordinate_dimensions(type: str) -> tuple[Dimension, ...]:
+    """What each co-ordinate of an element of type ``type`` measures, in deck order."""
+    return tuple(k for _, k in CATALOGUE[type].coordinates)
+
+
+_DEFAULTS = _core.DEFAULTS
+
+DEFAULT_ACCURACY: float = float(_DEFAULTS["accuracy"])
+"""How closely Newton meets the prescribed values unless a motion says otherwise (ACCURACY)."""
+
+DEFAULT_MAX_ITER: int = int(_DEFAULTS["max_iter"])
+"""Newton iterations per position unless a motion says otherwise (MAXITER)."""
+
+MIN_INTEGRATION_TOLERANCE: float = float(_DEFAULTS["min_integration_tolerance"])
+"""The smallest tolerance a simulation's integrator takes (INTTOL, or ACCURACY when INTTOL is not given)."""
+
+MAX_ITER: int = int(_DEFAULTS["max_iter_limit"])
+"""The most Newton iterations per position a motion may allow (the largest MAXITER the deck reader accepts)."""
+
+MAX_STEPS: int = int(_DEFAULTS["max_steps"])
+"""The most steps a motion may have (the largest TSTEPE the deck reader accepts)."""
+
+__all__ = [
+    "CATALOGUE",
+    "DEFAULT_ACCURACY",
+    "DEFAULT_MAX_ITER",
+    "FORMS",
+    "FRAMES",
+    "MAX_ITER",
+    "MAX_STEPS",
+    "MIN_INTEGRATION_TOLERANCE",
+    "SLOTS",
+    "Dimension",
+    "ElementType",
+    "coordinate_dimensions",
+    "form_dimension",
+]
