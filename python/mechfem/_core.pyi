@@ -26,6 +26,7 @@ __all__ = [
     "describe_deck_text",
     "run_deck_variants",
     "DesignModel",
+    "Model",
     "optimised_deck_text",
 ]
 
@@ -529,10 +530,11 @@ def describe_deck_text(
     text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
 ) -> DescribedDeckDict: ...
 
+@final
 class Model:
     """A deck compiled once, run many times with other numbers (no text written or parsed again)."""
 
-    def __init__(self, text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]) -> None: ...
+    def __new__(cls, text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]) -> Model: ...
     @staticmethod
     def from_path(path: str | os.PathLike[str]) -> Model: ...
     @property
@@ -544,7 +546,7 @@ class Model:
         changes: list[tuple[int, int, float]] = ...,
         motion: bool = True,
         progress: Callable[[int, int], object] | None = None,
-        order: int | None = 2,
+        order: int | None = ...,
         memory_limit: int = ...,
     ) -> TextRunDict: ...
 

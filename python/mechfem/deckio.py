@@ -26,7 +26,7 @@ import numpy as np
 from mechfem import _core, loads
 from mechfem.analysis import Analysis
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
-from mechfem.errors import DeckError, MechfemError, RunInterrupted
+from mechfem.errors import AssemblyError, DeckError, MechfemError, RunInterrupted
 from mechfem.explain import names_in, translate, with_attributes
 from mechfem.limits import memory_limit
 from mechfem.model import (
@@ -409,7 +409,13 @@ def run(
                 d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
             else:
                 model, changes = compiled(deck, base)
-                d = model.run(changes, moving, callback, order, memory_limit())
+                try:
+                    d = model.run(changes, moving, callback, order, memory_limit())
+                except AssemblyError:
+                    # The deck reader checks the given numbers (coincident points, a zero length) when it
+                    # compiles; a kept model that only takes new numbers meets them in the core instead. The
+                    # text path names the same mistake as the deck reader does, whatever was compiled before.
+                    d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
         except MechfemError as e:
             raise translate(e, deck, mech.name) from None
         finally:
