@@ -8,7 +8,8 @@ import pytest
 
 import mechfem
 from conftest import SUPPLY
-from mechfem.output import atomic_text, print_file_lines, write_outputs
+from mechfem.atomic import atomic_text
+from mechfem.output import print_file_lines, write_outputs
 
 
 def test_atomic_text_leaves_nothing_behind_on_failure(tmp_path: Path) -> None:

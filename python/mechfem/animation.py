@@ -24,10 +24,11 @@ from typing import BinaryIO
 import numpy as np
 import numpy.typing as npt
 
+from mechfem.atomic import atomic_path
 from mechfem.drawing import MechanismDrawing
 from mechfem.labels import buffer_labels
 from mechfem.mpl_drawing import MplMechanism
-from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, atomic_path, fit_equal, hodograph
+from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, fit_equal, hodograph
 from mechfem.result import RunResult
 
 IntArray = npt.NDArray[np.int64]

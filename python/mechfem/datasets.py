@@ -10,17 +10,13 @@ written under a temporary name and renamed when complete, like every output.
 from __future__ import annotations
 
 import importlib
-import os
-import secrets
-from collections.abc import Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from types import ModuleType
-from typing import BinaryIO
 
 import numpy as np
 import numpy.typing as npt
 
+from mechfem.atomic import atomic_binary
 from mechfem.errors import MechfemError
 from mechfem.labels import buffer_labels
 from mechfem.result import RunResult
@@ -54,20 +50,6 @@ def columns(result: RunResult) -> dict[str, npt.NDArray[np.float64]]:
 def positions(result: RunResult) -> npt.NDArray[np.int64]:
     """The position numbers 1 to ``result.positions``."""
     return np.arange(1, result.positions + 1, dtype=np.int64)
-
-
-@contextmanager
-def atomic_binary(path: Path) -> Iterator[BinaryIO]:
-    """A new temporary file beside ``path``, opened for writing bytes and renamed to ``path`` when the block
-    succeeds (removed when it fails); as :func:`mechfem.output.atomic_text` does for text."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")
-    try:
-        with open(tmp, "xb") as f:
-            yield f
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 def write_npz(result: RunResult, path: Path) -> Path:

@@ -25,6 +25,7 @@ import numpy as np
 
 from mechfem import _core, loads
 from mechfem.analysis import Analysis
+from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.errors import AssemblyError, DeckError, MechfemError, RunInterrupted
 from mechfem.explain import names_in, translate, with_attributes
@@ -53,7 +54,6 @@ from mechfem.model import (
     input_dof,
 )
 from mechfem.motion import check_units
-from mechfem.output import atomic_text
 from mechfem.storage import check_file_names, from_described
 
 Progress = bool | Callable[[int, int], object] | None

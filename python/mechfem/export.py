@@ -33,9 +33,9 @@ import numpy.typing as npt
 
 from mechfem import labels
 from mechfem.animation import path_sample
+from mechfem.atomic import atomic_path
 from mechfem.drawing import STYLES, MechanismDrawing, Shape, arc_points
 from mechfem.figures import PATH_COLOURS
-from mechfem.plots import atomic_path
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:

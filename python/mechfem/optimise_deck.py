@@ -17,8 +17,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mechfem import _core, design
+from mechfem.atomic import atomic_text
 from mechfem.errors import MechfemError
-from mechfem.output import atomic_text, count
+from mechfem.output import count
 
 if TYPE_CHECKING:
     from mechfem._core import DescribedDeckDict, OptimiseDict

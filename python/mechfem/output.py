@@ -8,16 +8,14 @@ never sees half a file and an interrupted run leaves no stray temporary file beh
 from __future__ import annotations
 
 import csv
-import os
-import secrets
 import textwrap
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, TextIO
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mechfem.atomic import atomic_text
 from mechfem.datasets import write_binary
 from mechfem.inverse_dynamics import summary_lines
 from mechfem.labels import Label, buffer_labels
@@ -33,24 +31,6 @@ COLUMNS_PER_TABLE = 6
 def count(n: int, singular: str, plural: str | None = None) -> str:
     """``1 stage``, ``2 stages``; ``plural`` when adding an s is not right."""
     return f"{n} {singular if n == 1 else plural or singular + 's'}"
-
-
-@contextmanager
-def atomic_text(path: Path) -> Iterator[TextIO]:
-    """Opens a temporary file beside ``path`` for writing; renames it to ``path`` when the block succeeds.
-
-    The temporary file is created like any other file (so the umask applies), under a name no other
-    writer uses, and never through a link (``x`` mode). The rename replaces whatever is at ``path``, a
-    symbolic link included, so a link already in the output folder is not followed out of it.
-    """
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")
-    try:
-        with open(tmp, "x", encoding="utf-8", newline="\n") as f:
-            yield f
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 def write_outputs(

@@ -16,17 +16,15 @@ legends name the buffers with their units (:mod:`mechfem.labels`: ``dANGB(8)/din
 from __future__ import annotations
 
 import math
-import os
-import secrets
 import textwrap
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 
+from mechfem.atomic import atomic_path
 from mechfem.drawing import MechanismDrawing
 from mechfem.labels import Label, buffer_labels, coordinate_axis, input_name, label, point_name
 from mechfem.mpl_drawing import MplMechanism
@@ -44,18 +42,6 @@ PNG_DPI = 120
 
 PATH_COLOUR = "#d62728"
 ARROW_COLOUR = "#2ca02c"
-
-
-@contextmanager
-def atomic_path(path: Path) -> Iterator[Path]:
-    """A temporary name beside ``path`` (same suffix) to write to; renamed to ``path`` when the block succeeds."""
-    tmp = path.with_name(f".{path.stem}.{os.getpid()}.{secrets.token_hex(4)}.tmp{path.suffix}")
-    try:
-        yield tmp
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 # -- what the buffers hold ---------------------------------------------------------------------------

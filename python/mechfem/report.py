@@ -24,8 +24,8 @@ from typing import Any
 
 import numpy as np
 
+from mechfem.atomic import atomic_path
 from mechfem.drawing import STYLES, MechanismDrawing
-from mechfem.plots import atomic_path
 from mechfem.report_charts import (
     Columns,
     all_labels,

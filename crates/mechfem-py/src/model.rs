@@ -3,15 +3,13 @@
 //! fixed co-ordinates or start values without any text written or parsed.
 
 use std::path::PathBuf;
-use std::sync::atomic::AtomicBool;
 
 use mechfem_deck::Compiled;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::observe::Progress;
-use crate::text::{compile_text, execute, outcome_dict, transfer_order, Change, Outcome};
+use crate::text::{compile_text, run_compiled, Change};
 use crate::{cache, errors};
 
 /// A deck compiled once, to be run many times: `Model(text, path, base_dir)`
@@ -71,14 +69,6 @@ impl Model {
         for ch in changes {
             Change::from_triple(ch)?.apply(&mut c).map_err(PyValueError::new_err)?;
         }
-        let order = transfer_order(&c, order)?;
-        let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
-        let cancel = AtomicBool::new(false);
-        let (outcome, raised) =
-            py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
-        let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
-        let d = outcome_dict(py, outcome, &self.path)?;
-        d.set_item("interrupted", interrupted)?;
-        Ok(d)
+        run_compiled(py, c, &self.path, motion, progress, order, memory_limit)
     }
 }

@@ -407,13 +407,28 @@ pub fn run_deck_text<'py>(
     memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+    run_compiled(py, c, &path, motion, progress, order, memory_limit)
+}
+
+/// Runs a compiled deck (its motion when `motion`) and returns the run's
+/// dict with `interrupted` set: what `run_deck_text` and a kept
+/// `Model` return alike.
+pub fn run_compiled<'py>(
+    py: Python<'py>,
+    c: Compiled,
+    path: &Path,
+    motion: bool,
+    progress: Option<Py<PyAny>>,
+    order: Option<u8>,
+    memory_limit: u64,
+) -> PyResult<Bound<'py, PyDict>> {
     let order = transfer_order(&c, order)?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
     let cancel = AtomicBool::new(false);
     let (outcome, raised) =
         py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
     let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
-    let d = outcome_dict(py, outcome, &path)?;
+    let d = outcome_dict(py, outcome, path)?;
     d.set_item("interrupted", interrupted)?;
     Ok(d)
 }
