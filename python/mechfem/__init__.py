@@ -36,12 +36,12 @@ to the last good one, says why it stopped and warns with
 
 from __future__ import annotations
 
-import os
-from collections.abc import Callable
-from importlib.metadata import PackageNotFoundError, version
-from pathlib import Path
+import os as _os
+from collections.abc import Callable as _Callable
+from pathlib import Path as _Path
 
 from mechfem import _core, limits
+from mechfem._version import __version__
 from mechfem.analysis import Analysis
 from mechfem.batch import Study, run_many, sweep
 from mechfem.design import Infeasible
@@ -82,17 +82,15 @@ from mechfem.result import (
 )
 from mechfem.tolerance import Spread, ToleranceStudy, tolerance_study
 
-try:
-    __version__ = version("mechfem")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
-    __version__ = "0+unknown"
+# Every module that fills a hook of a lower layer (docs/architecture.md), so that `import mechfem` has them all.
+from mechfem import deckio, figures, notebook, running  # noqa: F401  isort: skip
 
-Progress = Callable[[int, int], object]
+Progress = _Callable[[int, int], object]
 """Called as ``progress(done, total)`` with the number of positions computed so far."""
 
 
 def run_deck(
-    path: str | os.PathLike[str],
+    path: str | _os.PathLike[str],
     progress: Progress | None = None,
     memory_limit: int | str | None = None,
     *,
@@ -114,18 +112,18 @@ def run_deck(
     driven input that reaches its limit position still stops the run there, located as always. A deck file run
     again unchanged is not read into a model again.
     """
-    deck = Path(path)
-    d = _core.run_deck(os.fspath(deck), progress, limits.memory_limit(memory_limit), det)
+    deck = _Path(path)
+    d = _core.run_deck(_os.fspath(deck), progress, limits.memory_limit(memory_limit), det)
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)
     return on_stop(result, result.report.stop_reason(), raise_on_stop)
 
 
-def check_deck(path: str | os.PathLike[str]) -> CheckResult:
+def check_deck(path: str | _os.PathLike[str]) -> CheckResult:
     """Reads the deck at ``path``, compiles it and computes position 1, without any motion."""
-    deck = Path(path)
-    return check_result(deck, _core.check_deck(os.fspath(deck)))
+    deck = _Path(path)
+    return check_result(deck, _core.check_deck(_os.fspath(deck)))
 
 
 __all__ = [

@@ -22,13 +22,14 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
+from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import Simulation
 from mechfem.result import Limit, ModelNames, RunReport, RunResult
 from mechfem.units import Unit, check_unit, factor
 
 if TYPE_CHECKING:
-    from mechfem.deckio import Numbering
     from mechfem.model import Coordinate, FormParameter, InputKey, Mechanism, Motion, Point, Row
+    from mechfem.numbering import Numbering
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -326,10 +327,8 @@ class Analysis:
         prescribed values or fixed co-ordinates, as for :func:`mechfem.optimize`): positions x variables, or one
         value per position for a single name. ``quantity`` is a name (its value) or ``Q(name, order, wrt)`` for a
         transfer function. Exact: from the factorisation of D^c at each position (one more run of the motion)."""
-        from mechfem import optimise
-
         names = [wrt] if isinstance(wrt, str) else list(wrt)
-        out = optimise.sensitivity(self, quantity, names)
+        out = SENSITIVITY.call(self, quantity, names)
         return out[:, 0].copy() if isinstance(wrt, str) else out
 
     def drive_torque(self, input: InputKey = None) -> FloatArray:
@@ -463,16 +462,12 @@ class Analysis:
         """A figure (``matplotlib.figure.Figure``): the mechanism at position 1 with the paths of its moving points,
         beside the ``outputs`` (default: every output) against the first input. Options: ``picture=k`` draws
         picture k of the storage as the deck does; ``points=[...]`` chooses the paths; ``against="time"``."""
-        from mechfem import figures
-
-        return figures.result_figure(self, outputs, **options)
+        return PLOT.call(self, outputs, **options)
 
     def animate(self, path: str | Path, points: Sequence[str] | None = None) -> list[Path]:
         """Writes an animation of the motion to ``path`` (GIF; also MP4 when ffmpeg is installed) with the paths
         of ``points`` (default: every moving point); returns the files written."""
-        from mechfem import figures
-
-        return figures.animate(self, path, points)
+        return ANIMATE.call(self, path, points)
 
     def to_dxf(
         self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True, units: str | None = None
@@ -480,29 +475,38 @@ class Analysis:
         """Writes the mechanism at ``position`` (1-based) as a DXF file with the paths of its moving points
         (``paths``: True, False or point names) and the points' names, one layer per kind of shape; ``units``
         ("mm", "m", ...) declares the length unit. Needs ezdxf (``pip install 'mechfem[dxf]'``)."""
-        from mechfem import export
-
-        return export.write_dxf(export.analysis_drawing(self, position, paths), path, units)
+        return TO_DXF.call(self, path, position, paths, units)
 
     def to_svg(self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True) -> Path:
         """Writes the mechanism at ``position`` (1-based) as an SVG file, as :meth:`to_dxf` does a DXF file."""
-        from mechfem import export
-
-        return export.write_svg(export.analysis_drawing(self, position, paths), path)
+        return TO_SVG.call(self, path, position, paths)
 
     def _repr_png_(self) -> bytes | None:
-        from mechfem import notebook
-
-        return notebook.analysis_png(self)
+        return PNG.call(self)
 
     def _repr_html_(self) -> str:
-        from mechfem import notebook
-
-        return notebook.analysis_html(self)
+        return HTML.call(self)
 
     def __repr__(self) -> str:
         state = "complete" if self.complete else f"stopped after position {self.positions}"
         return f"Analysis({self.mechanism.name!r}: {self.positions} positions, {state}, {len(self.limits)} limit(s))"
+
+
+# The methods above whose work an upper layer does (docs/architecture.md), filled by mechfem.optimise,
+# mechfem.figures, mechfem.export and mechfem.notebook when they are imported.
+SENSITIVITY: Hook[Callable[[Analysis, Any, list[str]], FloatArray]] = Hook("Analysis.sensitivity", "mechfem.optimise")
+PLOT: Hook[Callable[..., Any]] = Hook("Analysis.plot", "mechfem.figures")
+ANIMATE: Hook[Callable[[Analysis, str | Path, Sequence[str] | None], list[Path]]] = Hook(
+    "Analysis.animate", "mechfem.figures"
+)
+TO_DXF: Hook[Callable[[Analysis, str | Path, int, bool | Sequence[str], str | None], Path]] = Hook(
+    "Analysis.to_dxf", "mechfem.export"
+)
+TO_SVG: Hook[Callable[[Analysis, str | Path, int, bool | Sequence[str]], Path]] = Hook(
+    "Analysis.to_svg", "mechfem.export"
+)
+PNG: Hook[Callable[[Analysis], bytes | None]] = Hook("Analysis._repr_png_", "mechfem.notebook")
+HTML: Hook[Callable[[Analysis], str]] = Hook("Analysis._repr_html_", "mechfem.notebook")
 
 
 def _pandas() -> Any:

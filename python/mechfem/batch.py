@@ -32,6 +32,7 @@ import numpy.typing as npt
 from mechfem import _core, cluster
 from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
+from mechfem.hooks import Hook
 from mechfem.limits import memory_limit
 from mechfem.model import Coordinate, Mechanism, Motion, Row, Storage
 from mechfem.names import unknown_name
@@ -308,9 +309,7 @@ class Study:
         return _pandas().DataFrame(self.columns)
 
     def _repr_html_(self) -> str:
-        from mechfem import notebook
-
-        return notebook.study_html(self)
+        return HTML.call(self)
 
     def __repr__(self) -> str:
         ok = int(np.sum(self.columns["ok"])) if "ok" in self.columns else 0
@@ -530,3 +529,7 @@ def _check_arguments(model: Callable[..., Mechanism], sets: list[dict[str, Any]]
         if name not in takes:
             where = f" of the model function {getattr(model, '__name__', model)!r}"
             raise unknown_name("parameter", name, takes, where)
+
+
+# Study._repr_html_ is drawn by mechfem.notebook, a layer above (docs/architecture.md), which fills this hook.
+HTML: Hook[Callable[[Study], str]] = Hook("Study._repr_html_", "mechfem.notebook")

@@ -17,19 +17,17 @@ import sys
 import tempfile
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
 
 from mechfem import _core, loads
-from mechfem.analysis import Analysis
+from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
-from mechfem.errors import AssemblyError, DeckError, MechfemError, RunInterrupted
+from mechfem.errors import DeckError
 from mechfem.explain import names_in, translate, with_attributes
-from mechfem.limits import memory_limit
 from mechfem.model import (
     BUFFER_ARGS,
     FORMS,
@@ -51,53 +49,12 @@ from mechfem.model import (
     Storage,
     Table,
     To,
-    input_dof,
 )
 from mechfem.motion import check_units
+from mechfem.numbering import DeckText, Numbering, number
 from mechfem.storage import check_file_names, from_described
 
 Progress = bool | Callable[[int, int], object] | None
-
-
-def number(v: float) -> str:
-    """A float as deck text that reads back as exactly the same double."""
-    return repr(float(v))
-
-
-@dataclass
-class Numbering:
-    """How a written deck numbers the model: co-ordinates, elements, rows and inputs."""
-
-    coords: list[Coordinate]
-    """Co-ordinate number i is ``coords[i - 1]``."""
-    elements: list[Element]
-    """Element number k is ``elements[k - 1]``."""
-    prescribed: list[Row]
-    """Prescribed row r is ``prescribed[r - 1]``; the last ``n_dof`` are the inputs, in DOF order."""
-    dependent: list[Row]
-    """Dependent form parameter -k (an output) is ``dependent[k - 1]``."""
-    coord_number: dict[Coordinate, int] = field(default_factory=dict)
-    row_dest: dict[Row, int] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        self.coord_number = {c: i for i, c in enumerate(self.coords, 1)}
-        self.row_dest = {r: k for k, r in enumerate(self.prescribed, 1)}
-        self.row_dest.update({r: -k for k, r in enumerate(self.dependent, 1)})
-
-    @property
-    def inputs(self) -> list[Row]:
-        """The input rows in DOF order."""
-        return [r for r in self.prescribed if r.kind == "input"]
-
-    @property
-    def rows(self) -> list[Row]:
-        """Prescribed rows, then outputs: the row order of the results."""
-        return self.prescribed + self.dependent
-
-    def dof(self, key: InputKey) -> int:
-        """The DOF number (1-based) of an input given by name, DOF number, row or form parameter (None: the only
-        input)."""
-        return input_dof(key, self.inputs)
 
 
 def number_model(mech: Mechanism) -> Numbering:
@@ -114,22 +71,6 @@ def number_model(mech: Mechanism) -> Numbering:
     prescribed = [r for r in mech.rows if r.kind == "prescribed"] + [r for r in mech.rows if r.kind == "input"]
     dependent = [r for r in mech.rows if r.kind == "output"]
     return Numbering(coords, list(mech.elements), prescribed, dependent)
-
-
-@dataclass
-class DeckText:
-    """A written deck: its text, what each line declares, the numbering and the files of its table motions."""
-
-    text: str
-    path: str
-    """The name diagnostics show."""
-    notes: dict[int, tuple[str, str]]
-    """Line -> (what, name), e.g. ``(element, crank)``."""
-    numbering: Numbering
-    tables: dict[str, str]
-    """MOV_FUNC file name -> its text."""
-    simulated: list[str] = field(default_factory=list)
-    """The inputs that move under the forces (MOV_DYN)."""
 
 
 class _Lines:
@@ -389,46 +330,6 @@ def compiled(deck: DeckText, base: str) -> tuple[_core.Model, list[tuple[int, in
     return model, changes
 
 
-def run(
-    mech: Mechanism,
-    motion: Motion | None,
-    storage: Storage | None,
-    progress: Progress = None,
-    with_motion: bool = True,
-    order: int | None = 2,
-) -> Analysis:
-    """Runs the mechanism through ``motion`` (position 1 only without one, or with ``with_motion=False``),
-    computing the transfer functions of ``order`` (see :meth:`Mechanism.run`)."""
-    deck = write(mech, motion, storage)
-    callback = progress_callback(progress, "positions")
-    with tables_dir(deck.tables) as base:
-        try:
-            moving = with_motion and motion is not None
-            if deck.tables:
-                # Tables are read from a directory that lives for this call only: no model is kept.
-                d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
-            else:
-                model, changes = compiled(deck, base)
-                try:
-                    d = model.run(changes, moving, callback, order, memory_limit())
-                except AssemblyError:
-                    # The deck reader checks the given numbers (coincident points, a zero length) when it
-                    # compiles; a kept model that only takes new numbers meets them in the core instead. The
-                    # text path names the same mistake as the deck reader does, whatever was compiled before.
-                    d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
-        except MechfemError as e:
-            raise translate(e, deck, mech.name) from None
-        finally:
-            close = getattr(callback, "close", None)
-            if close is not None:
-                close()
-    analysis = Analysis(mech, deck.numbering, d, path=deck.path)
-    analysis.motion = motion if with_motion else None
-    if d["interrupted"]:
-        raise RunInterrupted(analysis)
-    return analysis
-
-
 # --- reading decks -------------------------------------------------------------------------------------------------
 
 
@@ -563,8 +464,56 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
         return nb.inputs[v - 1].name
 
     m.storage = from_described(d["storage"], ref_name)
-    loads.read(m, nb, d.get("dynamics"))
+    read_loads(m, nb, d.get("dynamics"))
     return m
 
 
-__all__ = ["DeckText", "Numbering", "names_in", "read", "read_text", "run", "save", "translate", "write", "FORMS"]
+def read_loads(mech: Mechanism, nb: Numbering, d: _core.DynamicsDict | None) -> None:
+    """Gives ``mech`` (read from a deck with the numbering ``nb``) the masses and loads of the deck's DYNAMICS
+    block as the deck reader compiled them (``d``, None for a deck without one)."""
+    if d is None:
+        return
+    mech.loads = loads.Loads()
+
+    def row(dest: int) -> Row:
+        return nb.prescribed[dest - 1] if dest > 0 else nb.dependent[-dest - 1]
+
+    def point(x: float, y: float) -> tuple[Coordinate, Coordinate]:
+        return nb.coords[int(x) - 1], nb.coords[int(y) - 1]
+
+    for b in d["bodies"]:
+        mech.mass(nb.elements[int(b["element"]) - 1], b["mass"], b["u"], b["v"], b["inertia"])
+    for p in d["point_masses"]:
+        mech.point_mass(point(p["x"], p["y"]), p["mass"])
+    for i in d["inertias"]:
+        mech.inertia(nb.coords[int(i["coord"]) - 1], i["inertia"])
+    if tuple(d["gravity"]) != (0.0, 0.0):
+        mech.gravity(*d["gravity"])
+    for f in d["forces"]:
+        mech.force(point(f["x"], f["y"]), f["fx"], f["fy"])
+    for ld in d["loads"]:
+        r = row(ld["dest"])
+        match ld["kind"]:
+            case "LOAD":
+                mech.load(r, ld["value"])
+            case "LOADFUNC":
+                t, values = zip(*ld["rows"], strict=True)
+                mech.load_table(r, list(t), list(values), file=ld["file"])
+            case "SPRING":
+                mech.spring(r, ld["k"], ld["e0"], ld["c"])
+            case _:
+                mech.motor(r, ld["t0"], ld["w0"])
+
+
+@_model.TO_DECK.register
+def write_text(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> str:
+    """The deck text of ``mech`` (:meth:`Mechanism.to_deck`)."""
+    return write(mech, motion, storage).text
+
+
+_model.SAVE_DECK.register(save)
+_model.READ_DECK.register(read)
+_model.READ_DECK_TEXT.register(read_text)
+
+
+__all__ = ["DeckText", "Numbering", "names_in", "read", "read_text", "save", "translate", "write", "FORMS"]

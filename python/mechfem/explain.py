@@ -27,7 +27,7 @@ from mechfem.parts import ELEMENT_WORDS, Coordinate, Element, Point, Row
 from mechfem.words import Words
 
 if TYPE_CHECKING:
-    from mechfem.deckio import DeckText, Numbering
+    from mechfem.numbering import DeckText, Numbering
 
 
 def element_words(e: Element) -> str:

@@ -31,6 +31,7 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 import numpy.typing as npt
 
+from mechfem import analysis as _analysis
 from mechfem import labels
 from mechfem.animation import path_sample
 from mechfem.atomic import atomic_path
@@ -462,3 +463,17 @@ def draw_files(
     outdir.mkdir(parents=True, exist_ok=True)
     name = f"{result.deck.stem}_pos{d.position}"
     return [write(d, outdir / f"{name}.{fmt}", fmt, units) for fmt in formats]
+
+
+@_analysis.TO_DXF.register
+def analysis_dxf(
+    a: Analysis, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str], units: str | None
+) -> Path:
+    """:meth:`Analysis.to_dxf`: the mechanism at ``position`` with the paths of its moving points as a DXF file."""
+    return write_dxf(analysis_drawing(a, position, paths), path, units)
+
+
+@_analysis.TO_SVG.register
+def analysis_svg(a: Analysis, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str]) -> Path:
+    """:meth:`Analysis.to_svg`: as :func:`analysis_dxf`, an SVG file."""
+    return write_svg(analysis_drawing(a, position, paths), path)

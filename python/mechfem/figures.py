@@ -17,6 +17,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mechfem import analysis as _analysis
+from mechfem import model as _model
 from mechfem.errors import MechfemError
 
 if TYPE_CHECKING:
@@ -212,3 +214,9 @@ def animate(
     rr = dataclasses.replace(rr, storage=storage)
     info = write_animation(rr, target.parent, max_frames=max_frames or MAX_FRAMES)
     return list(info.files)
+
+
+_model.FIGURE.register(mechanism_figure)
+_model.PNG.register(mechanism_png)
+_analysis.PLOT.register(result_figure)
+_analysis.ANIMATE.register(animate)

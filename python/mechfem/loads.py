@@ -18,19 +18,32 @@ from __future__ import annotations
 
 from collections.abc import Iterator, MutableMapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, TypeAlias, TypeVar
+from typing import TYPE_CHECKING, Any, Protocol, TypeAlias, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import _core
 from mechfem.catalogue import FRAMES
 from mechfem.checks import finite
-from mechfem.model import Combination, Coordinate, Element, FormParameter, Mechanism, Point, Row
-from mechfem.parts import ELEMENT_WORDS
+from mechfem.parts import ELEMENT_WORDS, Combination, Coordinate, Element, Expression, FormParameter, Point, Row
 
 if TYPE_CHECKING:
-    from mechfem.deckio import Numbering
+    from mechfem.numbering import Numbering
+
+
+class Mechanism(Protocol):
+    """What the loads need of a :class:`~mechfem.Mechanism` (which sits above them: it offers the loads as methods)."""
+
+    name: str
+    rows: list[Row]
+    loads: Loads | None
+
+    def __getitem__(self, name: str) -> Any: ...
+
+    def __contains__(self, name: object) -> bool: ...
+
+    def _terms(self, expr: Expression) -> tuple[tuple[float, FormParameter], ...]: ...
+
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -436,43 +449,6 @@ def add_table(tables: MutableMapping[str, str], file: str, text: str) -> None:
     tables[file] = text
 
 
-def read(mech: Mechanism, nb: Numbering, d: _core.DynamicsDict | None) -> None:
-    """Gives ``mech`` (read from a deck with the numbering ``nb``) the masses and loads of the deck's DYNAMICS
-    block as the deck reader compiled them (``d``, None for a deck without one)."""
-    if d is None:
-        return
-    mech.loads = Loads()
-
-    def row(dest: int) -> Row:
-        return nb.prescribed[dest - 1] if dest > 0 else nb.dependent[-dest - 1]
-
-    def point(x: float, y: float) -> tuple[Coordinate, Coordinate]:
-        return nb.coords[int(x) - 1], nb.coords[int(y) - 1]
-
-    for b in d["bodies"]:
-        mech.mass(nb.elements[int(b["element"]) - 1], b["mass"], b["u"], b["v"], b["inertia"])
-    for p in d["point_masses"]:
-        mech.point_mass(point(p["x"], p["y"]), p["mass"])
-    for i in d["inertias"]:
-        mech.inertia(nb.coords[int(i["coord"]) - 1], i["inertia"])
-    if tuple(d["gravity"]) != (0.0, 0.0):
-        mech.gravity(*d["gravity"])
-    for f in d["forces"]:
-        mech.force(point(f["x"], f["y"]), f["fx"], f["fy"])
-    for ld in d["loads"]:
-        r = row(ld["dest"])
-        match ld["kind"]:
-            case "LOAD":
-                mech.load(r, ld["value"])
-            case "LOADFUNC":
-                t, values = zip(*ld["rows"], strict=True)
-                mech.load_table(r, list(t), list(values), file=ld["file"])
-            case "SPRING":
-                mech.spring(r, ld["k"], ld["e0"], ld["c"])
-            case _:
-                mech.motor(r, ld["t0"], ld["w0"])
-
-
 __all__ = [
     "Body",
     "Force",
@@ -488,5 +464,4 @@ __all__ = [
     "deck_lines",
     "find_row",
     "mode",
-    "read",
 ]

@@ -14,7 +14,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, TypeAlias, Union
+from typing import TYPE_CHECKING, Protocol, TypeAlias, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -26,9 +26,18 @@ from mechfem.names import unknown_name
 from mechfem.units import LARGE_ANGLE, Unit, array_to_radians, check_unit, to_radians
 
 if TYPE_CHECKING:
-    from mechfem.model import FormParameter, Mechanism, Row
+    from mechfem.parts import FormParameter, Row
 
 FloatArray = npt.NDArray[np.float64]
+
+
+class Mechanism(Protocol):
+    """What a simulation's motion needs of a :class:`~mechfem.Mechanism` (which sits above the motion)."""
+
+    name: str
+
+    @property
+    def inputs(self) -> list[Row]: ...
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechfem import analysis as _analysis
+from mechfem import batch as _batch
 from mechfem import labels
+from mechfem import result as _result
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
@@ -264,3 +267,9 @@ def study_html(study: Study) -> str:
     if more:
         parts.append(f"<div><em>{esc('; '.join(more))} (Study.to_pandas() has them all)</em></div>")
     return block(f"Study of {n} variant{'s' if n != 1 else ''}", *parts)
+
+
+_analysis.PNG.register(analysis_png)
+_analysis.HTML.register(analysis_html)
+_result.HTML.register(run_result_html)
+_batch.HTML.register(study_html)

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
+from mechfem import analysis as _analysis
 from mechfem import deckio, design
 from mechfem.design import FloatArray, Iteration
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
@@ -467,6 +468,9 @@ def _named(
         return float(f), np.asarray(g, dtype=np.float64)
 
     return call
+
+
+_analysis.SENSITIVITY.register(sensitivity)
 
 
 __all__ = [

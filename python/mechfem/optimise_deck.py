@@ -232,7 +232,7 @@ def interrupted_lines(
     deck: Path, opt: OptimiseDict, history: list[design.Iteration], written: Path | None
 ) -> list[str]:
     """The print file of an optimisation stopped by Ctrl-C: the history so far, and the design it had reached."""
-    from mechfem import __version__
+    from mechfem._version import __version__
 
     out = [f"mechfem {__version__} - print file", f"deck: {deck}", "", "OPTIMISATION (interrupted)"]
     out.append(f"  OPTIMISE block at line {opt['line']}; variables: {names_and_lines(opt)}")

@@ -114,7 +114,7 @@ def write_print_file(result: RunResult, path: Path, media: Sequence[str] = ()) -
 
 def print_file_lines(result: RunResult) -> list[str]:
     """The lines of the print file."""
-    from mechfem import __version__
+    from mechfem._version import __version__
 
     out = [f"mechfem {__version__} - print file", f"deck: {result.deck}", ""]
     out += model_lines(result.model)

@@ -71,7 +71,7 @@ def _scene(result: RunResult, drawing: MechanismDrawing, frames: np.ndarray) -> 
 
 def report_data(result: RunResult) -> dict[str, Any]:
     """Everything the page shows, as plain JSON-ready data."""
-    from mechfem import __version__
+    from mechfem._version import __version__
 
     frames = report_positions(result.positions)
     drawing = MechanismDrawing(result.model, result.coords)

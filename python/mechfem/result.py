@@ -6,7 +6,7 @@ Numbers that name things (co-ordinates, elements, rows, DOFs, buffers, positions
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import _core
+from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
 from mechfem.words import Words, words_of
 from mechfem.words import free_motion_line as free_motion_line  # named here as before
@@ -493,9 +494,7 @@ class RunResult:
         return int(self.coords.shape[0])
 
     def _repr_html_(self) -> str:
-        from mechfem import notebook
-
-        return notebook.run_result_html(self)
+        return HTML.call(self)
 
 
 @dataclass(frozen=True)
@@ -567,3 +566,7 @@ def check_result(deck: Path, d: _core.CheckDict) -> CheckResult:
         adjust=AdjustInfo.from_core(d["adjust"]),
         model=Model.from_core(d["model"]),
     )
+
+
+# RunResult._repr_html_ is drawn by mechfem.notebook, a layer above (docs/architecture.md), which fills this hook.
+HTML: Hook[Callable[[RunResult], str]] = Hook("RunResult._repr_html_", "mechfem.notebook")

@@ -11,7 +11,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
 
     from mechfem import _core
-    from mechfem.model import Coordinate, FormParameter, Point, Row
+    from mechfem.parts import Coordinate, FormParameter, Point, Row
 
 Ref: TypeAlias = Union[int, str, "Coordinate", "Point", "FormParameter", "Row"]
 """Something a buffer or plot refers to: a deck number, a name, or the object itself."""
