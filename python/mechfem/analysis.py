@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import _core
+import mechfem._core as _core
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import Simulation
 from mechfem.result import Limit, ModelNames, RunReport, RunResult

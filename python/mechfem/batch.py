@@ -29,7 +29,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import _core, cluster
+import mechfem._core as _core
+from mechfem import cluster
 from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
 from mechfem.hooks import Hook

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal, cast
 
-from mechfem import _core
+import mechfem._core as _core
 
 Dimension = Literal["length", "angle", "ratio", "any"]
 """What a co-ordinate or form parameter measures; ``any``: that of the co-ordinate a ``CRD`` element is put on."""

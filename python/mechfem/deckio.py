@@ -22,7 +22,8 @@ from typing import Literal
 
 import numpy as np
 
-from mechfem import _core, loads
+import mechfem._core as _core
+from mechfem import loads
 from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE

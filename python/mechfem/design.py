@@ -24,7 +24,7 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import _core
+import mechfem._core as _core
 from mechfem.errors import MechfemError
 
 FloatArray = npt.NDArray[np.float64]

@@ -427,7 +427,7 @@ def sensitivity(analysis: Analysis, quantity: Quantity, wrt: Sequence[str]) -> F
     written = deckio.write(mech, motion, deck.storage)
     variables = [_variable(mech, written.numbering, name) for name in wrt]
     with deckio.tables_dir(written.tables) as base:
-        from mechfem import _core
+        import mechfem._core as _core
 
         model = _core.DesignModel(written.text, written.path, base, [(k, n) for k, n, _ in variables], [b], [])
         d = model.evaluate([v for _, _, v in variables])

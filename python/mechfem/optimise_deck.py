@@ -16,7 +16,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechfem import _core, design
+import mechfem._core as _core
+from mechfem import design
 from mechfem.atomic import atomic_text
 from mechfem.errors import MechfemError
 from mechfem.output import count

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import _core
+import mechfem._core as _core
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
 from mechfem.words import Words, words_of

@@ -7,7 +7,8 @@ layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when i
 
 from __future__ import annotations
 
-from mechfem import _core, deckio
+import mechfem._core as _core
+from mechfem import deckio
 from mechfem import model as _model
 from mechfem.analysis import Analysis
 from mechfem.deckio import Progress

@@ -10,7 +10,7 @@ from mechfem.checks import name_problem
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
 
-    from mechfem import _core
+    import mechfem._core as _core
     from mechfem.parts import Coordinate, FormParameter, Point, Row
 
 Ref: TypeAlias = Union[int, str, "Coordinate", "Point", "FormParameter", "Row"]
