@@ -181,12 +181,24 @@ class Analysis:
         return self.numbering.dof(wrt) - 1
 
     def _point(self, ref: str | Point) -> tuple[int, int]:
+        obj = self._point_named(ref)
+        return self._column(obj.x), self._column(obj.y)
+
+    def _point_named(self, ref: str | Point) -> Point:
         from mechfem.model import Point
 
         obj = self._lookup(ref, "point", (Point,))
         if not isinstance(obj, Point):
             raise TypeError(f"{ref!r} is not a point")
-        return self._column(obj.x), self._column(obj.y)
+        return obj
+
+    def _traced_points(self, names: Sequence[str] | None = None) -> list[Point]:
+        """The points whose paths a picture, animation or drawing traces: those called ``names``, or by default
+        every moving point whose two co-ordinates the run computed."""
+        if names is None:
+            cols = self.numbering.coord_number
+            return [p for p in self.mechanism.points if not p.fixed and p.x in cols and p.y in cols]
+        return [self._point_named(name) for name in names]
 
     def _select(
         self,

@@ -197,22 +197,11 @@ def analysis_drawing(
 ) -> ExportDrawing:
     """The drawing of an :class:`~mechfem.Analysis` at ``position``; ``paths``: True for every moving point, False
     for none, or the names of the points whose paths to draw; ``names`` writes the points' names."""
-    from mechfem.model import Point
 
     rr = a.run_result()
     k = check_position(position, rr.positions) - 1
     cols = a.numbering.coord_number
-    if paths is True:
-        chosen = [p for p in a.mechanism.points if not p.fixed and p.x in cols and p.y in cols]
-    elif paths is False:
-        chosen = []
-    else:
-        chosen = []
-        for name in paths:
-            p = a.mechanism[name]
-            if not isinstance(p, Point):
-                raise TypeError(f"{name!r} is not a point")
-            chosen.append(p)
+    chosen = [] if paths is False else a._traced_points(None if paths is True else paths)
     keys = [(cols[p.x], cols[p.y]) for p in chosen]
     base = result_drawing(rr, k + 1, keys)
     tracks = [Path2D(p.name, t.x, t.y) for p, t in zip(chosen, base.paths, strict=True)]

@@ -26,7 +26,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from mechfem.analysis import Analysis
-    from mechfem.model import Mechanism, Point
+    from mechfem.model import Mechanism
 
 PATH_COLOURS = ["#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f"]
 
@@ -74,21 +74,6 @@ def mechanism_figure(mech: Mechanism, names: bool = True) -> Figure:
     return fig
 
 
-def _points(a: Analysis, names: Sequence[str] | None) -> list[Point]:
-    """The points called ``names`` (default: every moving point of the run)."""
-    from mechfem.model import Point
-
-    if names is None:
-        return [p for p in a.mechanism.points if not p.fixed and p.x in a.numbering.coord_number]
-    out = []
-    for name in names:
-        p = a.mechanism[name]
-        if not isinstance(p, Point):
-            raise TypeError(f"{name!r} is not a point")
-        out.append(p)
-    return out
-
-
 def result_figure(
     a: Analysis,
     outputs: Sequence[str] = (),
@@ -120,7 +105,7 @@ def result_figure(
     grid = fig.add_gridspec(max(1, len(units)), 2 if names else 1)
     ax = fig.add_subplot(grid[:, 0])
     x0, x1, y0, y1 = _draw_mechanism(ax, a)
-    chosen = _points(a, points)
+    chosen = a._traced_points(points)
     for k, p in enumerate(chosen):
         xy = a.value(p)
         label = f"path of {p.name}"
@@ -209,7 +194,9 @@ def animate(
 
     target = Path(path)
     rr = a.run_result()
-    plots = [Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in _points(a, points)]
+    plots = [
+        Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in a._traced_points(points)
+    ]
     storage = dataclasses.replace(rr.storage, animate=target.stem, pictures=[Picture("", 0, plots)])
     rr = dataclasses.replace(rr, storage=storage)
     info = write_animation(rr, target.parent, max_frames=max_frames or MAX_FRAMES)
