@@ -84,8 +84,13 @@ class Label:
 
     @property
     def group(self) -> tuple[str, str]:
-        """Which quantities may share one axis: the same kind (an input counts as a position) and unit."""
-        return ("position" if self.kind == "input" else self.kind, self.unit)
+        """Which quantities may share one axis (:func:`axis_group`)."""
+        return axis_group(self.kind, self.unit)
+
+
+def axis_group(kind: str, unit: str) -> tuple[str, str]:
+    """Which quantities may share one axis: the same kind (an input counts as a position) and unit."""
+    return ("position" if kind == "input" else kind, unit)
 
 
 # -- units --------------------------------------------------------------------------------------------------------

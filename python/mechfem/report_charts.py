@@ -16,7 +16,17 @@ from typing import Any
 import numpy as np
 
 from mechfem.drawing import points_of
-from mechfem.labels import Label, buffer_labels, coordinate_name, input_name, point_name, row_unit, stress_unit
+from mechfem.labels import (
+    Label,
+    axis_group,
+    buffer_labels,
+    coordinate_name,
+    input_name,
+    point_name,
+    row_unit,
+    stress_unit,
+    with_unit,
+)
 from mechfem.plots import hodograph, picture_title
 from mechfem.result import RunResult
 
@@ -31,11 +41,6 @@ def num(v: float) -> float | None:
 
 def nums(values: Any) -> list[float | None]:
     return [num(v) for v in np.asarray(values, dtype=np.float64).ravel()]
-
-
-def with_unit(name: str, unit: str) -> str:
-    """``name [unit]``, or the name alone for a quantity without a unit."""
-    return f"{name} [{unit}]" if unit else name
 
 
 @dataclass
@@ -116,8 +121,7 @@ def _function_charts(xkey: str, ys: list[str], cols: Columns) -> list[dict[str, 
     groups: dict[tuple[str, str], list[str]] = {}
     for y in ys:
         c = cols.table[y]
-        kind = "position" if c["kind"] == "input" else c["kind"]
-        groups.setdefault((kind, c["unit"]), []).append(y)
+        groups.setdefault(axis_group(c["kind"], c["unit"]), []).append(y)
     charts = []
     for (kind, unit), members in groups.items():
         names = [cols.table[y]["name"] for y in members]
