@@ -1,17 +1,14 @@
 //! Compiled decks kept between calls of `run_deck` and `check_deck`: a deck
 //! file run again unchanged is not parsed or compiled again.
 //!
-//! A deck is known by its path, its size, its modification time and a hash
-//! of its text; the text is read on every call (a few microseconds), so an
-//! edit that keeps the size and the time stamp is still seen. A deck that
+//! A deck is known by its path and its whole text, read on every call (a
+//! few microseconds for a deck): any edit is seen, whatever the file's time
+//! stamp says, and no two texts can be taken for one another. A deck that
 //! reads MOV_FUNC or LOADFUNC tables from other files is not kept: those
 //! files could change without the deck.
 
-use std::collections::hash_map::DefaultHasher;
-use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
-use std::time::SystemTime;
 
 use mechfem_deck::ast::{Deck, LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostic, DiagnosticKind, Diagnostics};
@@ -19,13 +16,11 @@ use mechfem_deck::{Compiled, Diagnostic, DiagnosticKind, Diagnostics};
 /// How many compiled decks are kept (the least recently used goes first).
 const CAPACITY: usize = 16;
 
-/// What identifies one version of a deck file.
+/// What identifies one version of a deck file: its path and its text.
 #[derive(PartialEq, Eq, Clone)]
 struct Key {
     path: PathBuf,
-    size: u64,
-    modified: Option<SystemTime>,
-    hash: u64,
+    text: Vec<u8>,
 }
 
 /// The kept decks, most recently used last.
@@ -47,11 +42,7 @@ pub fn load(path: &Path) -> Result<Compiled, Diagnostics> {
     let io = |e: std::io::Error| -> Diagnostics {
         Diagnostic::file(DiagnosticKind::Io, path, format!("cannot read the deck: {e}")).into()
     };
-    let meta = std::fs::metadata(path).map_err(io)?;
-    let bytes = std::fs::read(path).map_err(io)?;
-    let mut hasher = DefaultHasher::new();
-    bytes.hash(&mut hasher);
-    let key = Key { path: path.to_path_buf(), size: meta.len(), modified: meta.modified().ok(), hash: hasher.finish() };
+    let key = Key { path: path.to_path_buf(), text: std::fs::read(path).map_err(io)? };
     {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(k) = kept.iter().position(|(k, _)| *k == key) {
@@ -61,7 +52,7 @@ pub fn load(path: &Path) -> Result<Compiled, Diagnostics> {
             return Ok(compiled);
         }
     }
-    let deck = mechfem_deck::parse_str(&String::from_utf8_lossy(&bytes), path)?;
+    let deck = mechfem_deck::parse_str(&String::from_utf8_lossy(&key.text), path)?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let compiled = mechfem_deck::compile(&deck, dir)?;
     if !reads_files(&deck) {
