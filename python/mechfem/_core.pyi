@@ -374,15 +374,17 @@ def run_deck(
 @type_check_only
 class TextRunDict(TypedDict):
     buffer_numbers: list[int]
-    n_buffers: int
+    buffer_values: _F64
+    """positions x the deck's buffers, in the order of ``buffer_numbers`` (Fortran order: each buffer contiguous)."""
+    layout: dict[str, tuple[int, tuple[int, ...]]]
+    """The core's full layout of ``table``: block name -> (first column, shape at one position), for N co-ordinates,
+    D inputs and R rows (prescribed, then dependent): ``inputs`` (D), ``kx1`` (N, D), ``kx2`` (N, D, D), ``vx``,
+    ``ax`` (N), ``e0`` (R), ``ke1`` (R, D), ``ke2`` (R, D, D), ``ve``, ``ae`` (R); when ``dynamic``, ``sigma``
+    (prescribed rows), ``drive`` (D), ``reaction`` (N; NaN for a moving co-ordinate), ``ekin``, ``epot``, ``power``
+    (one value each), ``mass`` (D, D); then ``time`` and ``det`` (one value each). The blocks cover the columns once,
+    in this order. Every run of one deck shares the same dict."""
     table: _F64
-    """positions x columns: the deck's buffers (in the order of ``buffer_numbers``), then every quantity in the
-    layout of ``mechfem.analysis`` (N co-ordinates, D inputs, R rows = prescribed then dependent: D input values;
-    per co-ordinate D first-order and D x D second-order transfer functions, velocity, acceleration; per row
-    value, D first-order, D x D second-order, velocity, acceleration), then, when ``dynamic``, the inverse dynamics
-    (the stress of every prescribed row, the drive force of every input, the reaction on every co-ordinate (NaN for
-    a moving one), kinetic energy, potential energy, drive power, the D x D mass matrix row-major), then time and
-    det(D^c)."""
+    """positions x the columns of ``layout`` (Fortran order: each column contiguous)."""
     coords: _F64
     """positions x co-ordinates."""
     n_coords: int

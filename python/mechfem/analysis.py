@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import importlib
+import math
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -66,48 +67,48 @@ class Analysis:
         self.parameters: dict[str, Any] = parameters or {}
         self.motion: Motion | None = None
         """The motion the run followed (None: position 1 only, or not known)."""
-        table = np.asarray(d["table"], dtype=np.float64)
-        nb = d["n_buffers"]
-        self.buffers: dict[int, FloatArray] = {
-            n: np.ascontiguousarray(table[:, k]) for k, n in enumerate(d["buffer_numbers"])
-        }
         self.coords: FloatArray = np.asarray(d["coords"], dtype=np.float64)
-        self.time: FloatArray = np.ascontiguousarray(table[:, -2])
-        self.det: FloatArray = np.ascontiguousarray(table[:, -1])
-        """det(D^c) at every position."""
         self._raw = d
-
-        full = table[:, nb:-2]
-        p, n, nd = full.shape[0], d["n_coords"], d["n_dof"]
-        nr = d["n_prescribed"] + d["n_dependent"]
-        sq = nd * nd
-        cw, rw = nd + sq + 2, 1 + nd + sq + 2
-        self.inputs: FloatArray = full[:, :nd]
-        """Input values, positions x inputs (DOF order)."""
-        cb = full[:, nd : nd + n * cw].reshape(p, n, cw)
-        rb = full[:, nd + n * cw : nd + n * cw + nr * rw].reshape(p, nr, rw)
-        self._kx1 = cb[:, :, :nd]
-        self._kx2 = cb[:, :, nd : nd + sq].reshape(p, n, nd, nd)
-        self._vx = cb[:, :, nd + sq]
-        self._ax = cb[:, :, nd + sq + 1]
-        self._e0 = rb[:, :, 0]
-        self._ke1 = rb[:, :, 1 : 1 + nd]
-        self._ke2 = rb[:, :, 1 + nd : 1 + nd + sq].reshape(p, nr, nd, nd)
-        self._ve = rb[:, :, 1 + nd + sq]
-        self._ae = rb[:, :, 2 + nd + sq]
-        self._row_index = {r: k for k, r in enumerate(numbering.rows)}
+        # The full table, one column per quantity in the core's layout, sliced by block name (``_block``) when a
+        # quantity is first asked for: a design study reads most variants through one or two of them.
+        self._table: FloatArray = np.asarray(d["table"], dtype=np.float64)
         self.dynamic = bool(d["dynamic"])
         """True when the mechanism has masses or loads: the run computed its inverse dynamics."""
         sim = d.get("simulation")
         self.simulation: Simulation | None = None if sim is None else Simulation.from_core(sim)  # type: ignore[arg-type]
         """What the integrator of a simulation did (method, tolerances, steps, rejected steps, evaluations of the
         equations of motion, the time reached); None for a run of a prescribed motion."""
-        # After the rows: stresses of the prescribed rows, drives, reactions, T, V, power, mass matrix.
-        dyn = full[:, nd + n * cw + nr * rw :] if self.dynamic else np.zeros((p, 0))
-        npr, nn = d["n_prescribed"], nd + n + d["n_prescribed"]
-        self._sigma, self._drive, self._reaction = dyn[:, :npr], dyn[:, npr : npr + nd], dyn[:, npr + nd : nn]
-        self._energies = dyn[:, nn : nn + 3]
-        self._mass = dyn[:, nn + 3 : nn + 3 + sq].reshape(p, nd, nd) if self.dynamic else np.zeros((p, nd, nd))
+
+    def _block(self, name: str) -> FloatArray:
+        """The layout's block ``name`` at every position: positions x its shape (a view of the table)."""
+        start, shape = self._raw["layout"][name]
+        width = math.prod(shape)
+        return self._table[:, start : start + width].reshape(self._table.shape[0], *shape)
+
+    @functools.cached_property
+    def buffers(self) -> dict[int, FloatArray]:
+        """The deck's own buffers by number (from the storage of the run)."""
+        values = np.asarray(self._raw["buffer_values"], dtype=np.float64)
+        return {n: values[:, k] for k, n in enumerate(self._raw["buffer_numbers"])}
+
+    @functools.cached_property
+    def time(self) -> FloatArray:
+        """The time at every position."""
+        return self._block("time")
+
+    @functools.cached_property
+    def det(self) -> FloatArray:
+        """det(D^c) at every position."""
+        return self._block("det")
+
+    @functools.cached_property
+    def inputs(self) -> FloatArray:
+        """Input values, positions x inputs (DOF order)."""
+        return self._block("inputs")
+
+    @functools.cached_property
+    def _row_index(self) -> dict[Row, int]:
+        return {r: k for k, r in enumerate(self.numbering.rows)}
 
     # The run as a deck run reports it is built when first asked for: a design study reads most variants
     # through their outputs only, and building it (the model echo, the report) costs more than the rest.
@@ -217,6 +218,17 @@ class Analysis:
             return row(self._row_index[obj])
         raise TypeError(f"{ref!r} is not a point, co-ordinate, row or output")
 
+    def _blocks(self, ref: object, coords: str, rows: str, *inputs: int) -> FloatArray:
+        """``ref`` from the layout's block ``coords`` (a point or co-ordinate) or ``rows`` (a row), at the input
+        indices ``inputs`` of the block's shape."""
+
+        def at(where: Any) -> tuple[Any, ...]:
+            return (slice(None), where, *inputs)
+
+        return self._select(
+            ref, lambda cols: self._block(coords)[at(cols)].copy(), lambda k: self._block(rows)[at(k)].copy()
+        )
+
     # -- values
 
     def x(self, point: str | Point) -> FloatArray:
@@ -240,17 +252,15 @@ class Analysis:
         ``unit="deg"`` gives every angle in degrees: an angle's value, and a transfer function per degree of an
         angle input (d psi / d alpha of two angles is the same in either unit)."""
         if order == 0:
-            out = self._select(name, lambda cols: self.coords[:, cols].copy(), lambda k: self._e0[:, k].copy())
+            out = self._select(name, lambda cols: self.coords[:, cols].copy(), lambda k: self._block("e0")[:, k].copy())
             return self._in_unit(out, name, (), unit)
         j = self._dof(wrt)
         if order == 1:
-            out = self._select(name, lambda cols: self._kx1[:, cols, j].copy(), lambda k: self._ke1[:, k, j].copy())
+            out = self._blocks(name, "kx1", "ke1", j)
             return self._in_unit(out, name, (j,), unit)
         if order == 2:
             m = j if wrt2 is None else self._dof(wrt2)
-            out = self._select(
-                name, lambda cols: self._kx2[:, cols, j, m].copy(), lambda k: self._ke2[:, k, j, m].copy()
-            )
+            out = self._blocks(name, "kx2", "ke2", j, m)
             return self._in_unit(out, name, (j, m), unit)
         raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
 
@@ -308,7 +318,7 @@ class Analysis:
     def velocity(self, name: str | Point | Coordinate | Row | FormParameter, unit: Unit | None = None) -> FloatArray:
         """Velocity (time derivative) of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit``
         per time)."""
-        out = self._select(name, lambda cols: self._vx[:, cols].copy(), lambda k: self._ve[:, k].copy())
+        out = self._blocks(name, "vx", "ve")
         return self._in_unit(out, name, (), unit)
 
     def acceleration(
@@ -316,7 +326,7 @@ class Analysis:
     ) -> FloatArray:
         """Acceleration of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit`` per time
         squared)."""
-        out = self._select(name, lambda cols: self._ax[:, cols].copy(), lambda k: self._ae[:, k].copy())
+        out = self._blocks(name, "ax", "ae")
         return self._in_unit(out, name, (), unit)
 
     def input(self, name: InputKey = None, unit: Unit | None = None) -> FloatArray:
@@ -347,7 +357,7 @@ class Analysis:
         """The force or torque the drive of an input delivers at every position (the stress of its row), positive when
         it does positive work as the input increases; ``input`` as ``wrt`` (it may be left out with one input)."""
         self._dynamics("drive torques")
-        return self._drive[:, self._dof(input)].copy()
+        return self._block("drive")[:, self._dof(input)].copy()
 
     def stress(self, row: str | Row | FormParameter) -> FloatArray:
         """The generalised stress of a prescribed row (or input): the force or torque its constraint applies in the
@@ -362,7 +372,7 @@ class Analysis:
         dest = self.numbering.row_dest[obj]
         if dest < 0:
             raise KeyError(f"{obj.name!r} is an output, which carries no stress: only prescribed rows and inputs do")
-        return self._sigma[:, dest - 1].copy()
+        return self._block("sigma")[:, dest - 1].copy()
 
     def reaction(self, point_or_coordinate: str | Point | Coordinate) -> FloatArray:
         """The force the frame applies at a fixed point (positions x 2: x, y) or on one fixed co-ordinate."""
@@ -378,25 +388,25 @@ class Analysis:
             fixed = [c.name for c in coords if c.fixed]
             hint = f"; ask for the fixed one, reaction({fixed[0]!r})" if fixed else ""
             raise KeyError(f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}")
-        out = self._reaction[:, [self._column(c) for c in coords]].copy()
+        out = self._block("reaction")[:, [self._column(c) for c in coords]].copy()
         return out if isinstance(obj, Point) else out[:, 0]
 
     def energy(self) -> Energy:
         """Kinetic, potential (gravity and springs) and total energy at every position."""
         self._dynamics("energies")
-        t, v = self._energies[:, 0].copy(), self._energies[:, 1].copy()
+        t, v = self._block("ekin").copy(), self._block("epot").copy()
         return Energy(t, v, t + v)
 
     def power(self) -> FloatArray:
         """The power the drives deliver at every position (the sum of drive torque times input speed)."""
         self._dynamics("power")
-        return self._energies[:, 2].copy()
+        return self._block("power").copy()
 
     def mass_matrix(self) -> FloatArray:
         """The mass matrix M(q) in the inputs at every position (positions x D x D; kinetic energy
         ``T = 1/2 qdot^T M qdot``)."""
         self._dynamics("mass matrix")
-        return self._mass.copy()
+        return self._block("mass").copy()
 
     # -- tables
 
@@ -451,14 +461,13 @@ class Analysis:
 
         d: dict[str, Any] = dict(self._raw)
         nd = self.inputs.shape[1]
-        d["buffer_values"] = np.asarray(self._raw["table"])[:, : self._raw["n_buffers"]]
         d["time"], d["det"] = self.time, self.det
         d["kx1_coords"] = list(range(1, self.coords.shape[1] + 1)) if nd else []
-        d["kx1_values"] = self._kx1[:, :, 0] if nd else np.zeros((self.positions, 0))
+        d["kx1_values"] = self._block("kx1")[:, :, 0] if nd else np.zeros((self.positions, 0))
         d["dynamic"] = None
         if self.dynamic:
-            t, v, power = self._energies.T
-            d["dynamic"] = {"inputs": self.inputs, "drive": self._drive, "ekin": t, "epot": v, "power": power}
+            t, v, power = (self._block(name) for name in ("ekin", "epot", "power"))
+            d["dynamic"] = {"inputs": self.inputs, "drive": self._block("drive"), "ekin": t, "epot": v, "power": power}
         result = run_result(Path(self.path), d)  # type: ignore[arg-type]
         nb = self.numbering
         # The model's own names, so that the pictures and tables label every quantity as the model calls it.

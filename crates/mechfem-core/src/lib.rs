@@ -41,7 +41,7 @@ pub use error::{ElementError, ModelError, SolveError};
 pub use model::{FormRef, Mechanism, MechanismBuilder, State, Term};
 pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};
 pub use run::{design, run, simulate, InverseDynamics, Observer, PositionView, RunReport, SimReport, Stop};
-pub use run::{record, Quantity, Recorder};
+pub use run::{record, record_evaluated, Layout, Quantity, Recorder};
 pub use solver::Params;
 pub use solver::{
     adjust, diagnose, AdjustInfo, DesignError, DesignVar, Kinematics, Mobility, NewtonInfo, Sensitivity, TransferOrder,

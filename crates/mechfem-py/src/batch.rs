@@ -1,31 +1,37 @@
 //! Many runs at once, for design studies: variants of a few deck texts
 //! (each text with some co-ordinate or PARA values changed) are compiled
-//! and run on a pool of worker threads with the GIL released. Each text is
-//! read and compiled once, by the first worker that needs it; a variant
-//! runs a copy with its changes made, so a study of one mechanism writes
-//! and reads one deck, not one per variant. The calling thread waits for
-//! the results; only it touches Python, to report progress and to hand each
-//! result over as soon as it is there.
+//! and run by the core's workers ([`mechfem_core::batch::stream`]) with the
+//! GIL released. Each text is read and compiled once, by the first worker
+//! that needs it; a variant runs it with its own numbers, so a study of one
+//! mechanism writes and reads one deck, not one per variant. A worker does
+//! all of a variant that needs no Python, its tables laid out as Python
+//! gets them included. The calling thread is one of the workers: between
+//! the variants it runs itself, it wraps each finished result (with the
+//! objects every run of its text shares, converted once), reports progress
+//! and hands the result over.
 
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{mpsc, OnceLock};
+use std::path::PathBuf;
+use std::sync::atomic::AtomicBool;
+use std::sync::OnceLock;
 use std::time::Duration;
 
+use mechfem_core::batch;
 use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::text::{compile_text, outcome_dict, run_variant, Change, Outcome};
+use crate::observe::Progress;
+use crate::rundict::{outcome_dict, Shared};
+use crate::text::{compile_text, run_variant, Change, Outcome};
 
 /// A change as Python gives it: (kind, number, value); see [`Change::from_triple`].
 type ChangeTriple = (u8, usize, f64);
 
-/// How often the waiting thread looks for Ctrl-C while no run finishes.
+/// How often the calling thread looks for Ctrl-C while it waits for the others.
 const POLL: Duration = Duration::from_millis(100);
 
 /// Runs every variant in `variants` on `workers` threads (default: one per
-/// core). A variant is `(t, changes)`: deck text `texts[t]` (named `path`
+/// core), the calling thread one of them. A variant is `(t, changes)`: deck text `texts[t]` (named `path`
 /// in messages; MOV_FUNC files are read from `base_dir`) with `changes`
 /// made, each `(kind, number, value)`: kind 0 sets co-ordinate `number`
 /// (its XFIX or XMOV value), kind 1 prescribed row `number` (its PARA
@@ -37,9 +43,10 @@ const POLL: Duration = Duration::from_millis(100);
 /// `ResourceError` or `MechfemError`): one failing variant does not stop the others.
 ///
 /// Without `on_result` the results are returned, in the order of `variants`.
-/// With it, `on_result(k, result)` is called for variant k as soon as it has
-/// finished, on the calling thread while the workers go on, and the list
-/// returned is empty: a study can reduce each result and let it go.
+/// With it, `on_result(k, result)` is called for each variant k once it has
+/// finished, on the calling thread between the variants that thread runs
+/// (while the other workers go on), and the list returned is empty: a study
+/// can reduce each result and let it go.
 /// `order` is the transfer functions to compute and `memory_limit` the
 /// most bytes of one deck's results, as for `run_deck_text`.
 /// `progress(done, total)` is called each time a variant has finished. An
@@ -74,68 +81,75 @@ pub fn run_deck_variants(
         .collect::<PyResult<Vec<_>>>()?;
     let compiled: Vec<OnceLock<Result<Compiled, Diagnostics>>> = texts.iter().map(|_| OnceLock::new()).collect();
     let n = variants.len();
-    let cores = std::thread::available_parallelism().map_or(1, usize::from);
-    let workers = workers.unwrap_or(cores).clamp(1, n.max(1));
-    let next = AtomicUsize::new(0);
+    let workers = workers.unwrap_or_else(batch::available_workers);
     let cancel = AtomicBool::new(false);
-    // Each result is converted for Python as it arrives, while the workers go on.
+    // Converted for Python once per text, when its first result arrives.
+    let mut shared: Vec<Option<Shared>> = texts.iter().map(|_| None).collect();
     let mut results: Vec<Option<Py<PyAny>>> = (0..n).map(|_| None).collect();
     let mut raised: Option<PyErr> = None;
+    let mut done = 0;
 
-    py.detach(|| {
-        let (tx, rx) = mpsc::channel::<(usize, Outcome)>();
-        std::thread::scope(|s| {
-            for _ in 0..workers {
-                let tx = tx.clone();
-                let (texts, variants, compiled) = (&texts, &variants, &compiled);
-                let (next, cancel, path, base_dir) = (&next, &cancel, &path, &base_dir);
-                s.spawn(move || {
-                    while !cancel.load(Ordering::Relaxed) {
-                        let k = next.fetch_add(1, Ordering::Relaxed);
-                        let Some((t, changes)) = variants.get(k) else { break };
-                        let c = compiled[*t].get_or_init(|| compile_text(&texts[*t], path, base_dir));
-                        if tx.send((k, run_variant(c, changes, order, cancel, memory_limit))).is_err() {
-                            break;
-                        }
-                    }
-                });
+    // Python's signal handlers run on the calling thread, one of the workers
+    // (`batch::stream`): a variant it runs itself looks for Ctrl-C as it goes.
+    let caller = std::thread::current().id();
+    let job = |k: usize| {
+        let (t, changes) = &variants[k];
+        let c = compiled[*t].get_or_init(|| compile_text(&texts[*t], &path, &base_dir));
+        let watch = (std::thread::current().id() == caller).then(Progress::interrupts);
+        run_variant(c, changes, order, &cancel, watch, memory_limit)
+    };
+    // On the calling thread, as variants finish (or every POLL while it waits for some).
+    let mut take = |finished: Option<(usize, (Outcome, Option<PyErr>))>| {
+        done += usize::from(finished.is_some());
+        if raised.is_some() {
+            return false;
+        }
+        let finished = match finished {
+            Some((_, (_, Some(interrupted)))) => {
+                raised = Some(interrupted);
+                return false;
             }
-            drop(tx);
-            let mut done = 0;
-            loop {
-                let finished = match rx.recv_timeout(POLL) {
-                    Ok(item) => Some(item),
-                    Err(mpsc::RecvTimeoutError::Timeout) => None,
-                    Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            Some((k, (outcome, None))) => Some((k, outcome)),
+            None => None,
+        };
+        let result = Python::attach(|py| -> PyResult<()> {
+            py.check_signals()?;
+            let arrived = finished.is_some();
+            if let Some((k, outcome)) = finished {
+                let t = variants[k].0;
+                let text = match compiled[t].get() {
+                    Some(Ok(c)) => Some((
+                        c,
+                        &*match &mut shared[t] {
+                            Some(s) => s,
+                            slot => slot.insert(Shared::new(py, c)?),
+                        },
+                    )),
+                    _ => None,
                 };
-                let arrived = finished.is_some();
-                if arrived {
-                    done += 1;
+                let object = match outcome_dict(py, outcome, text, &path) {
+                    Ok(d) => d.into_any().unbind(),
+                    Err(e) => e.into_value(py).into_any(),
+                };
+                match &on_result {
+                    Some(callback) => drop(callback.call1(py, (k, object))?),
+                    None => results[k] = Some(object),
                 }
-                if raised.is_some() {
-                    continue;
-                }
-                let result = Python::attach(|py| -> PyResult<()> {
-                    py.check_signals()?;
-                    if let Some((k, outcome)) = finished {
-                        let object = result_object(py, outcome, &path);
-                        match &on_result {
-                            Some(callback) => drop(callback.call1(py, (k, object))?),
-                            None => results[k] = Some(object),
-                        }
-                    }
-                    match &progress {
-                        Some(callback) if arrived => callback.call1(py, (done, n)).map(drop),
-                        _ => Ok(()),
-                    }
-                });
-                if let Err(e) = result {
-                    raised = Some(e);
-                    cancel.store(true, Ordering::Relaxed);
-                }
+            }
+            match &progress {
+                Some(callback) if arrived => callback.call1(py, (done, n)).map(drop),
+                _ => Ok(()),
             }
         });
-    });
+        match result {
+            Ok(()) => true,
+            Err(e) => {
+                raised = Some(e);
+                false
+            }
+        }
+    };
+    py.detach(|| batch::stream(n, workers, &cancel, POLL, job, &mut take));
     if let Some(err) = raised {
         return Err(err);
     }
@@ -146,12 +160,4 @@ pub fn run_deck_variants(
         .into_iter()
         .map(|object| object.ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err("a batch run was lost")))
         .collect()
-}
-
-/// The run dict, or the exception instance for a deck that failed.
-fn result_object(py: Python<'_>, outcome: Outcome, path: &Path) -> Py<PyAny> {
-    match outcome_dict(py, outcome, path) {
-        Ok(d) => d.into_any().unbind(),
-        Err(e) => e.into_value(py).into_any(),
-    }
 }

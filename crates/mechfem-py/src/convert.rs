@@ -8,7 +8,7 @@ use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mec
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 
 use crate::errors;
 
@@ -134,26 +134,110 @@ pub fn model<'py>(
     prescribed: &[f64],
     dependent: &[f64],
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mech = &c.mechanism;
-    let d = PyDict::new(py);
-    d.set_item("elements", elements(py, c)?)?;
-    d.set_item("prescribed", rows(py, &c.prescribed, prescribed)?)?;
-    d.set_item("dependent", rows(py, &c.dependent, dependent)?)?;
-    d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
-    let coords = (0..mech.n_coords())
-        .map(|i| {
-            let cd = PyDict::new(py);
-            cd.set_item("number", i + 1)?;
-            cd.set_item("moving", mech.is_moving(i))?;
+    Echo::new(py, c)?.model(py, given, at_1, prescribed, dependent, None)
+}
+
+/// The echo of a compiled deck's model ([`model`]) with what every run of
+/// the deck shares converted once: a study of many variants of one deck
+/// fills in only each run's numbers, and the echoes of its runs hold the
+/// same element list, FORM terms and DOFs (not to be changed).
+pub struct Echo {
+    elements: Py<PyList>,
+    dofs: Py<PyList>,
+    dynamics: Py<PyAny>,
+    mode: &'static str,
+    /// The rows and co-ordinates with the numbers of a run still to be set in a copy.
+    prescribed: Vec<Py<PyDict>>,
+    dependent: Vec<Py<PyDict>>,
+    coordinates: Vec<Py<PyDict>>,
+    /// PARA of each prescribed row, as the deck gives it.
+    para: Vec<Option<f64>>,
+}
+
+impl Echo {
+    /// The shared part of the echo of `c`.
+    pub fn new(py: Python<'_>, c: &Compiled) -> PyResult<Echo> {
+        let mech = &c.mechanism;
+        let coordinates = (0..mech.n_coords())
+            .map(|i| {
+                let cd = PyDict::new(py);
+                cd.set_item("number", i + 1)?;
+                cd.set_item("moving", mech.is_moving(i))?;
+                cd.set_item("given", f64::NAN)?;
+                cd.set_item("adjusted", f64::NAN)?;
+                Ok(cd.unbind())
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let unbind = |rows: Vec<Bound<'_, PyDict>>| rows.into_iter().map(Bound::unbind).collect();
+        let dynamics = match &c.dynamics {
+            Some(m) => dynamics(py, m, &[])?.into_any(),
+            None => py.None().into_bound(py),
+        };
+        Ok(Echo {
+            elements: PyList::new(py, elements(py, c)?)?.unbind(),
+            dofs: PyList::new(py, (0..mech.n_dof()).map(|j| mech.input_row(j) + 1))?.unbind(),
+            dynamics: dynamics.unbind(),
+            mode: c.mode.name(),
+            prescribed: unbind(rows(py, &c.prescribed, &[])?),
+            dependent: unbind(rows(py, &c.dependent, &[])?),
+            coordinates,
+            para: c.prescribed.iter().map(|r| r.para).collect(),
+        })
+    }
+
+    /// The echo of one run: the co-ordinates as given and at position 1,
+    /// the values of the prescribed and dependent rows at position 1 (NaN
+    /// where they are shorter) and the PARA values the run had (None: the
+    /// deck's own).
+    pub fn model<'py>(
+        &self,
+        py: Python<'py>,
+        given: &[f64],
+        at_1: &[f64],
+        prescribed: &[f64],
+        dependent: &[f64],
+        para: Option<&[Option<f64>]>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let value = |values: &[f64], k: usize| values.get(k).copied().unwrap_or(f64::NAN);
+        let d = PyDict::new(py);
+        d.set_item("elements", self.elements.bind(py))?;
+        let rows = copies(py, &self.prescribed, |k, r| {
+            r.set_item("value", value(prescribed, k))?;
+            match para.and_then(|p| p.get(k)) {
+                Some(p) if *p != self.para[k] => r.set_item("para", *p),
+                _ => Ok(()),
+            }
+        })?;
+        d.set_item("prescribed", rows)?;
+        d.set_item("dependent", copies(py, &self.dependent, |k, r| r.set_item("value", value(dependent, k)))?)?;
+        d.set_item("dofs", self.dofs.bind(py))?;
+        let coordinates = copies(py, &self.coordinates, |i, cd| {
             cd.set_item("given", given[i])?;
-            cd.set_item("adjusted", at_1[i])?;
-            Ok(cd)
+            cd.set_item("adjusted", at_1[i])
+        })?;
+        d.set_item("coordinates", coordinates)?;
+        d.set_item("mode", self.mode)?;
+        d.set_item("dynamics", self.dynamics.bind(py))?;
+        Ok(d)
+    }
+}
+
+/// Copies of the dicts `templates` with `set` made in each (k, copy).
+fn copies<'py>(
+    py: Python<'py>,
+    templates: &[Py<PyDict>],
+    mut set: impl FnMut(usize, &Bound<'py, PyDict>) -> PyResult<()>,
+) -> PyResult<Bound<'py, PyList>> {
+    let items = templates
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let d = t.bind(py).copy()?;
+            set(k, &d)?;
+            Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("coordinates", coords)?;
-    d.set_item("mode", c.mode.name())?;
-    d.set_item("dynamics", c.dynamics.as_ref().map(|m| dynamics(py, m, &[])).transpose()?)?;
-    Ok(d)
+    PyList::new(py, items)
 }
 
 /// The mass and load model as a dict, in the deck's numbering; `files`

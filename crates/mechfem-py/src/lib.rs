@@ -32,6 +32,7 @@ mod design;
 mod errors;
 mod model;
 mod observe;
+mod rundict;
 mod text;
 
 use std::path::{Path, PathBuf};

@@ -9,7 +9,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::text::{compile_text, run_compiled, Change};
+use crate::text::{compile_text, run_compiled, Change, Numbers};
 use crate::{cache, errors};
 
 /// A deck compiled once, to be run many times: `Model(text, path, base_dir)`
@@ -65,10 +65,8 @@ impl Model {
         order: Option<u8>,
         memory_limit: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let mut c = self.compiled.clone();
-        for ch in changes {
-            Change::from_triple(ch)?.apply(&mut c).map_err(PyValueError::new_err)?;
-        }
-        run_compiled(py, c, &self.path, motion, progress, order, memory_limit)
+        let changes = changes.into_iter().map(Change::from_triple).collect::<PyResult<Vec<_>>>()?;
+        let numbers = Numbers::with(&self.compiled, &changes).map_err(PyValueError::new_err)?;
+        run_compiled(py, &self.compiled, numbers, &self.path, motion, progress, order, memory_limit)
     }
 }

@@ -4,6 +4,8 @@
 //! Python about every 1% of positions ([`Progress`], which the observer of
 //! deck-text runs shares).
 
+use std::time::{Duration, Instant};
+
 use mechfem_core::dynamics::Dynamics;
 use mechfem_core::run::InverseDynamics;
 use mechfem_core::{Mechanism, Observer, PositionView, Quantity, Recorder, TransferOrder};
@@ -40,12 +42,25 @@ pub struct Progress {
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
     /// so far are kept.
     pub error: Option<PyErr>,
+    /// When Python was last asked, for [`Progress::interrupts`].
+    asked: Option<Instant>,
 }
+
+/// How often [`Progress::interrupts`] asks Python for Ctrl-C.
+const INTERRUPT_CHECK: Duration = Duration::from_millis(100);
 
 impl Progress {
     /// Progress over `total` positions.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        Progress { callback, total, stride: (total / 100).max(1), reported: 0, error: None }
+        Progress { callback, total, stride: (total / 100).max(1), reported: 0, error: None, asked: None }
+    }
+
+    /// No progress to report, only Ctrl-C to notice, for a run on the thread
+    /// Python's signal handlers run on: Python is asked about every tenth of
+    /// a second of the run (the clock read every 64 positions), so that a
+    /// run of many short variants pays next to nothing for it.
+    pub fn interrupts() -> Progress {
+        Progress { asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) }
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -66,8 +81,15 @@ impl Progress {
             return;
         }
         self.reported = done;
-        if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
+        let stride = if self.asked.is_some() { 64 } else { self.stride };
+        if self.error.is_some() || !(done.is_multiple_of(stride) || done == self.total) {
             return;
+        }
+        if let Some(asked) = self.asked.as_mut() {
+            if asked.elapsed() < INTERRUPT_CHECK {
+                return;
+            }
+            *asked = Instant::now();
         }
         let result = Python::attach(|py| -> PyResult<()> {
             py.check_signals()?;

@@ -6,19 +6,20 @@
 //!   declares (co-ordinates, elements, rows, motion, storage) without solving.
 //! * [`run_deck_text`] runs a deck and returns its own buffers plus every
 //!   quantity of the deck's buffer table for every co-ordinate, row and input,
-//!   in the fixed layout of [`full_quantities`].
+//!   in the core's full layout ([`Layout`]), column by column.
 //!
-//! The helpers [`run_variant`] (no GIL) and [`outcome_dict`] (GIL) are shared
-//! with the batch runner ([`crate::batch`]).
+//! [`execute`] (no GIL) does all of a run but wrapping its results for
+//! Python, which [`crate::rundict`] does; the batch runner
+//! ([`crate::batch`]) runs it on worker threads.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use mechfem_core::dynamics::{Dynamics, Integration};
-use mechfem_core::run::{simulate, InverseDynamics, SimReport};
+use mechfem_core::run::{simulate, Columns, InverseDynamics, Layout, SimReport};
 use mechfem_core::SolveError;
 use mechfem_core::{
-    record, run, FormRef, InputMotion, Mechanism, Motion, Observer, Params, PositionView, Quantity, RunReport, State,
+    record_evaluated, run, InputMotion, Mechanism, Motion, Observer, Params, PositionView, Quantity, RunReport, State,
     TransferOrder,
 };
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
@@ -28,6 +29,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::observe::Progress;
+use crate::rundict::{outcome_dict, Shared};
 use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
@@ -37,60 +39,20 @@ pub fn compile_text(text: &str, path: &Path, base_dir: &Path) -> Result<Compiled
     mechfem_deck::compile(&deck, base_dir)
 }
 
-/// Every recordable quantity of a model, in the layout the Python side
-/// reshapes (N co-ordinates, D inputs, rows = prescribed then dependent):
-///
-/// * D input values;
-/// * per co-ordinate: D first-order, D x D second-order transfer functions
-///   (row-major in j, m), velocity, acceleration;
-/// * per row: value, D first-order, D x D second-order, velocity, acceleration.
-///
-/// With a mass and load model (`dynamic`), then:
-///
-/// * per prescribed row: its stress; per input: the drive force;
-/// * per co-ordinate: the reaction (NaN for a moving one);
-/// * kinetic and potential energy, drive power;
-/// * the D x D mass matrix, row-major.
-///
-/// Co-ordinate values are not in it: they are recorded separately.
-pub fn full_quantities(mech: &Mechanism, dynamic: bool) -> Vec<Quantity> {
-    let nd = mech.n_dof();
-    let pairs = || (0..nd).flat_map(move |j| (0..nd).map(move |m| (j, m)));
-    let mut q: Vec<Quantity> = (0..nd).map(Quantity::Input).collect();
-    for coord in 0..mech.n_coords() {
-        q.extend((0..nd).map(|j| Quantity::Kx1 { coord, j }));
-        q.extend(pairs().map(|(j, m)| Quantity::Kx2 { coord, j, m }));
-        q.extend([Quantity::Vx(coord), Quantity::Ax(coord)]);
-    }
-    let forms =
-        (0..mech.n_prescribed()).map(FormRef::Prescribed).chain((0..mech.n_dependent()).map(FormRef::Dependent));
-    for f in forms {
-        q.push(Quantity::E0(f));
-        q.extend((0..nd).map(|j| Quantity::Ke1(f, j)));
-        q.extend(pairs().map(|(j, m)| Quantity::Ke2(f, j, m)));
-        q.extend([Quantity::Ve(f), Quantity::Ae(f)]);
-    }
-    if dynamic {
-        q.extend((0..mech.n_prescribed()).map(Quantity::Sigma));
-        q.extend((0..nd).map(Quantity::Drive));
-        q.extend((0..mech.n_coords()).map(Quantity::Reaction));
-        q.extend([Quantity::Ekin, Quantity::Epot, Quantity::Power]);
-        q.extend(pairs().map(|(j, m)| Quantity::Mred(j, m)));
-    }
-    q
-}
-
-/// The observer of [`execute`]: records `quantities` (the deck's buffers,
-/// the full layout, time and det(D^c)) and every co-ordinate into tables
-/// sized for the whole motion up front; stops when `cancel` is set or
-/// progress reporting failed.
+/// The observer of [`execute`]: records the deck's buffers and the full
+/// layout column by column, and every co-ordinate, into tables sized for the
+/// whole motion up front; stops when `cancel` is set or progress reporting
+/// failed.
 struct Watch<'a> {
-    quantities: Vec<Quantity>,
-    /// Row-major, positions x quantities.
-    table: Vec<f64>,
+    /// Where each of the deck's buffers is found, in the order of their definitions.
+    buffers: Vec<Source>,
+    layout: Layout,
+    /// One position, before it is put into its columns.
+    row: Vec<f64>,
+    buffer_table: Columns,
+    table: Columns,
     /// Row-major, positions x co-ordinates.
     coords: Vec<f64>,
-    positions: usize,
     /// Inverse dynamics of a DYN deck.
     dynamics: Option<InverseDynamics>,
     /// The transfer functions to compute at every position.
@@ -99,11 +61,51 @@ struct Watch<'a> {
     progress: Option<Progress>,
 }
 
+/// Where a buffer's value is found at each position.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    /// In this column of the layout (the same value, to the last bit).
+    Column(usize),
+    /// Co-ordinate i.
+    Coord(usize),
+    /// A quantity the layout does not have, evaluated on its own.
+    Own(Quantity),
+}
+
+impl Source {
+    fn of(q: Quantity, layout: &Layout) -> Source {
+        match (q, layout.column(q)) {
+            (_, Some(c)) => Source::Column(c),
+            (Quantity::X0(i), None) => Source::Coord(i),
+            (q, None) => Source::Own(q),
+        }
+    }
+}
+
 impl Observer for Watch<'_> {
     fn position(&mut self, view: &PositionView<'_>) {
-        record(&self.quantities, view, self.dynamics.as_mut(), &mut self.table);
+        // Inverse dynamics once per position, for the layout and the buffers alike.
+        if let Some(d) = self.dynamics.as_mut() {
+            d.evaluate(view);
+        }
+        let dynamics = self.dynamics.as_ref();
+        self.row.clear();
+        self.layout.record(view, dynamics, &mut self.row);
+        self.table.push(&self.row);
+        let width = self.row.len();
+        for b in &self.buffers {
+            let value = match *b {
+                Source::Column(c) => self.row[c],
+                Source::Coord(i) => view.state.x[i],
+                Source::Own(q) => {
+                    record_evaluated(&[q], view, dynamics, &mut self.row);
+                    self.row.pop().unwrap_or(f64::NAN)
+                }
+            };
+            self.row.push(value);
+        }
+        self.buffer_table.push(&self.row[width..]);
         self.coords.extend_from_slice(&view.state.x);
-        self.positions += 1;
         if let Some(p) = self.progress.as_mut() {
             p.report(view.index + 1);
         }
@@ -176,20 +178,39 @@ pub fn move_through(
     }
 }
 
-/// A finished run with everything recorded.
+/// The numbers of one run of a compiled deck: its state (co-ordinates and
+/// prescribed values) and the PARA value of each prescribed row, as the
+/// deck gives them with a variant's changes made. Everything else of the
+/// compiled deck is the same for every run of it, and shared.
+pub struct Numbers {
+    /// Co-ordinates and prescribed values to start from.
+    pub state: State,
+    /// PARA value of each prescribed row (None for an input without one).
+    pub para: Vec<Option<f64>>,
+}
+
+impl Numbers {
+    /// The deck's own numbers with `changes` made; an error names a
+    /// co-ordinate or row the deck does not have.
+    pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, String> {
+        let mut n = Numbers { state: c.state.clone(), para: c.prescribed.iter().map(|r| r.para).collect() };
+        changes.iter().try_for_each(|ch| ch.apply(&mut n))?;
+        Ok(n)
+    }
+}
+
+/// A finished run with everything recorded, ready to be wrapped for Python.
 pub struct FullRun {
-    /// The compiled deck, state at the last position.
-    pub compiled: Compiled,
-    /// Row-major, positions x `width`: the deck's buffers, [`full_quantities`], time, det(D^c).
+    /// The full layout ([`Layout`]), column by column: positions x its width.
     pub table: Vec<f64>,
+    /// The deck's buffers in the order of their definitions, column by column.
+    pub buffers: Vec<f64>,
     /// Row-major, positions x co-ordinates.
     pub coords: Vec<f64>,
     /// Positions computed.
     pub positions: usize,
     /// Columns of `table`.
     pub width: usize,
-    /// Number of the deck's buffers at the front of `table`.
-    pub n_buffers: usize,
     /// What the run did.
     pub report: RunReport,
     /// What the integrator of a simulation did.
@@ -198,14 +219,18 @@ pub struct FullRun {
     pub steps: usize,
     /// The co-ordinates as the deck gives them (before the adjustment of position 1).
     pub given: Vec<f64>,
+    /// PARA value of each prescribed row.
+    pub para: Vec<Option<f64>>,
+    /// Value of every row, prescribed then dependent, at position 1.
+    pub rows_at_1: Vec<f64>,
 }
 
 /// What running one deck text gave.
 pub enum Outcome {
     /// The deck has a mistake.
     Deck(Diagnostics),
-    /// Position 1 could not be computed.
-    Failed(Box<Compiled>, SolveError),
+    /// Position 1 could not be computed (the state where it failed).
+    Failed(Box<State>, SolveError),
     /// The run (possibly stopped early; see the report).
     Ran(Box<FullRun>),
     /// The results would not fit in the memory limit: nothing was run.
@@ -214,130 +239,96 @@ pub enum Outcome {
     BadChange(String),
 }
 
-/// Runs a compiled deck (its motion only when `with_motion`), recording
-/// everything, unless the results would take more than `memory_limit`
-/// bytes. Needs no GIL unless `progress` is given. Returns the error the
-/// progress callback raised, if any, beside the outcome.
+/// Runs a compiled deck with `numbers` (its motion only when
+/// `with_motion`), recording everything, unless the results would take
+/// more than `memory_limit` bytes. Needs no GIL unless `progress` is given.
+/// Returns the error the progress callback raised, if any, beside the
+/// outcome.
 pub fn execute(
-    mut c: Compiled,
+    c: &Compiled,
+    numbers: Numbers,
     with_motion: bool,
     order: TransferOrder,
     cancel: &AtomicBool,
     progress: Option<Progress>,
     memory_limit: u64,
 ) -> (Outcome, Option<PyErr>) {
+    let Numbers { mut state, para } = numbers;
     if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
         // Position 1 alone, as a run would compute it.
-        m.apply_initial_inputs(&c.mechanism, &mut c.state);
+        m.apply_initial_inputs(&c.mechanism, &mut state);
     }
-    let mut quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
-    let n_buffers = quantities.len();
-    quantities.extend(full_quantities(&c.mechanism, c.dynamics.is_some()));
-    quantities.extend([Quantity::Time, Quantity::Det]);
-    let given = c.state.x.clone();
+    let layout = Layout::full(&c.mechanism, c.dynamics.is_some());
+    let buffers: Vec<Source> = c.buffers.iter().map(|b| Source::of(b.quantity, &layout)).collect();
+    let given = state.x.clone();
     let motion = if with_motion { c.motion.as_ref() } else { None };
     let steps = motion.map_or(0, |m| m.steps);
-    let (width, n) = (quantities.len(), c.mechanism.n_coords());
+    let (width, n) = (buffers.len() + layout.width(), c.mechanism.n_coords());
     if let Some(message) = errors::memory_refusal(steps + 1, width + n, memory_limit) {
         return (Outcome::Refused(message), None);
     }
     let mut watch = Watch {
-        table: Vec::with_capacity((steps + 1) * width),
+        row: Vec::with_capacity(width),
+        buffer_table: Columns::new(buffers.len(), steps + 1),
+        table: Columns::new(layout.width(), steps + 1),
         coords: Vec::with_capacity((steps + 1) * n),
-        quantities,
-        positions: 0,
+        buffers,
+        layout,
         dynamics: c.dynamics.as_ref().map(|d| InverseDynamics::new(&c.mechanism, d.clone())),
         order: Some(order),
         cancel,
         progress,
     };
     let sim = simulation(c.mode, c.dynamics.as_ref(), &c.integration);
-    let result = move_through(&c.mechanism, &mut c.state, motion, &c.params, sim, &mut watch);
+    let result = move_through(&c.mechanism, &mut state, motion, &c.params, sim, &mut watch);
     let raised = watch.progress.and_then(|p| p.error);
     let outcome = match result {
-        Ok((report, sim)) => Outcome::Ran(Box::new(FullRun {
-            compiled: c,
-            table: watch.table,
-            coords: watch.coords,
-            positions: watch.positions,
-            width,
-            n_buffers,
-            report,
-            sim,
-            steps,
-            given,
-        })),
-        Err(e) => Outcome::Failed(Box::new(c), e),
+        Ok((report, sim)) => {
+            let (table, positions) = (watch.table, watch.buffer_table.positions());
+            let e0 = watch.layout.block("e0").map_or(0, |b| b.start);
+            let n_rows = c.mechanism.n_prescribed() + c.mechanism.n_dependent();
+            let rows_at_1 = (0..n_rows).map(|r| if positions > 0 { table.get(0, e0 + r) } else { f64::NAN }).collect();
+            Outcome::Ran(Box::new(FullRun {
+                width: watch.layout.width(),
+                table: table.into_vec(),
+                buffers: watch.buffer_table.into_vec(),
+                coords: watch.coords,
+                positions,
+                report,
+                sim,
+                steps,
+                given,
+                para,
+                rows_at_1,
+            }))
+        }
+        Err(e) => Outcome::Failed(Box::new(state), e),
     };
     (outcome, raised)
 }
 
-/// Runs a variant of a compiled deck (a copy of `compiled` with `changes`
-/// made) without the GIL, for worker threads.
+/// Runs a variant of a compiled deck (its numbers with `changes` made)
+/// without the GIL, for worker threads; `progress` is the run's (see
+/// [`execute`]), whose error comes back beside the outcome.
 pub fn run_variant(
     compiled: &Result<Compiled, Diagnostics>,
     changes: &[Change],
     order: Option<u8>,
     cancel: &AtomicBool,
+    progress: Option<Progress>,
     memory_limit: u64,
-) -> Outcome {
+) -> (Outcome, Option<PyErr>) {
     let c = match compiled {
         Ok(c) => c,
-        Err(d) => return Outcome::Deck(d.clone()),
+        Err(d) => return (Outcome::Deck(d.clone()), None),
     };
-    let mut c = c.clone();
-    if let Err(message) = changes.iter().try_for_each(|ch| ch.apply(&mut c)) {
-        return Outcome::BadChange(message);
-    }
+    let numbers = match Numbers::with(c, changes) {
+        Ok(n) => n,
+        Err(message) => return (Outcome::BadChange(message), None),
+    };
     // `order` has been checked by the caller.
-    let order = transfer_order(&c, order).unwrap_or(TransferOrder::Second);
-    execute(c, true, order, cancel, None, memory_limit).0
-}
-
-/// The run as a dict: `table` (positions x columns: the deck's buffers, in
-/// the order of `buffer_numbers`, then [`full_quantities`], time and
-/// det(D^c)), `coords`, the model's sizes, `report`, and the `model` echo
-/// and `storage` requests as `run_deck` gives them.
-fn run_dict(py: Python<'_>, r: FullRun) -> PyResult<Bound<'_, PyDict>> {
-    let mech = &r.compiled.mechanism;
-    let (nb, positions, n, nd) = (r.n_buffers, r.positions, mech.n_coords(), mech.n_dof());
-    // The values of the rows at position 1, for the model echo.
-    let rows_at = nb + nd + n * (nd + nd * nd + 2);
-    let rw = 1 + nd + nd * nd + 2;
-    let row_value = |k: usize| r.table.get(rows_at + k * rw).copied().unwrap_or(f64::NAN);
-    let prescribed: Vec<f64> = (0..mech.n_prescribed()).map(row_value).collect();
-    let dependent: Vec<f64> = (0..mech.n_dependent()).map(|k| row_value(mech.n_prescribed() + k)).collect();
-    let at_1 = r.coords.get(..n).unwrap_or(&r.given);
-
-    let d = PyDict::new(py);
-    d.set_item("model", convert::model(py, &r.compiled, &r.given, at_1, &prescribed, &dependent)?)?;
-    d.set_item("storage", convert::storage(py, &r.compiled)?)?;
-    d.set_item("report", convert::report(py, mech, &r.report, r.steps)?)?;
-    d.set_item("buffer_numbers", r.compiled.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
-    d.set_item("n_buffers", nb)?;
-    d.set_item("n_coords", n)?;
-    d.set_item("n_dof", nd)?;
-    d.set_item("n_prescribed", mech.n_prescribed())?;
-    d.set_item("n_dependent", mech.n_dependent())?;
-    d.set_item("dynamic", r.compiled.dynamics.is_some())?;
-    d.set_item("simulation", r.sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
-    d.set_item("table", convert::array2(py, r.table, positions, r.width)?)?;
-    d.set_item("coords", convert::array2(py, r.coords, positions, n)?)?;
-    Ok(d)
-}
-
-/// The outcome as a run dict, or as the exception it amounts to.
-pub fn outcome_dict<'py>(py: Python<'py>, outcome: Outcome, path: &Path) -> PyResult<Bound<'py, PyDict>> {
-    match outcome {
-        Outcome::Ran(r) => run_dict(py, *r),
-        Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
-        Outcome::Refused(message) => Err(errors::ResourceError::new_err(message)),
-        Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
-        Outcome::Failed(mut c, e) => {
-            let c = &mut *c;
-            Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e))
-        }
-    }
+    let order = transfer_order(c, order).unwrap_or(TransferOrder::Second);
+    execute(c, numbers, true, order, cancel, progress, memory_limit)
 }
 
 /// A change of one number of a compiled deck, as a variant of a design
@@ -361,19 +352,19 @@ impl Change {
         }
     }
 
-    /// Makes the change in `c`, as if the deck had said so (the model echo
+    /// Makes the change in `n`, as if the deck had said so (the model echo
     /// included); an error when the deck has no such co-ordinate or row.
-    pub fn apply(self, c: &mut Compiled) -> Result<(), String> {
+    pub fn apply(self, n: &mut Numbers) -> Result<(), String> {
         match self {
             Change::Coord(number, value) => {
-                let x = number.checked_sub(1).and_then(|i| c.state.x.get_mut(i));
+                let x = number.checked_sub(1).and_then(|i| n.state.x.get_mut(i));
                 *x.ok_or_else(|| format!("the deck has no co-ordinate {number}"))? = value;
             }
             Change::Row(number, value) => {
-                let k = number.checked_sub(1).filter(|&k| k < c.prescribed.len() && k < c.state.target.len());
+                let k = number.checked_sub(1).filter(|&k| k < n.para.len() && k < n.state.target.len());
                 let k = k.ok_or_else(|| format!("the deck has no prescribed row {number}"))?;
-                c.state.target[k] = value;
-                c.prescribed[k].para = Some(value);
+                n.state.target[k] = value;
+                n.para[k] = Some(value);
             }
         }
         Ok(())
@@ -407,28 +398,31 @@ pub fn run_deck_text<'py>(
     memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
-    run_compiled(py, c, &path, motion, progress, order, memory_limit)
+    let numbers = Numbers::with(&c, &[]).map_err(PyValueError::new_err)?;
+    run_compiled(py, &c, numbers, &path, motion, progress, order, memory_limit)
 }
 
-/// Runs a compiled deck (its motion when `motion`) and returns the run's
-/// dict with `interrupted` set: what `run_deck_text` and a kept
-/// `Model` return alike.
+/// Runs a compiled deck with `numbers` (its motion when `motion`) and
+/// returns the run's dict with `interrupted` set: what `run_deck_text` and
+/// a kept `Model` return alike.
+#[allow(clippy::too_many_arguments)]
 pub fn run_compiled<'py>(
     py: Python<'py>,
-    c: Compiled,
+    c: &Compiled,
+    numbers: Numbers,
     path: &Path,
     motion: bool,
     progress: Option<Py<PyAny>>,
     order: Option<u8>,
     memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let order = transfer_order(&c, order)?;
+    let order = transfer_order(c, order)?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
     let cancel = AtomicBool::new(false);
     let (outcome, raised) =
-        py.detach(|| execute(c, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
+        py.detach(|| execute(c, numbers, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
     let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
-    let d = outcome_dict(py, outcome, path)?;
+    let d = outcome_dict(py, outcome, Some((c, &Shared::new(py, c)?)), path)?;
     d.set_item("interrupted", interrupted)?;
     Ok(d)
 }

@@ -11,17 +11,20 @@
 //!
 //! Every mode hands its positions to an [`Observer`] and ends with a
 //! [`RunReport`] (`observe.rs`); a [`Recorder`] (`record.rs`) keeps the
-//! [`Quantity`]s of the deck's buffer table.
+//! [`Quantity`]s of the deck's buffer table, and a [`Layout`] (`layout.rs`)
+//! names the columns of a recording of all of them.
 
 pub mod design;
 mod inverse;
 mod kinematic;
+mod layout;
 mod observe;
 mod record;
 mod simulate;
 
 pub use inverse::InverseDynamics;
 pub use kinematic::run;
+pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
-pub use record::{record, Quantity, Recorder};
+pub use record::{record, record_evaluated, Quantity, Recorder};
 pub use simulate::{simulate, simulate_within, SimReport};

@@ -268,6 +268,19 @@ pub fn record(
         }
         _ => None,
     };
+    record_evaluated(quantities, view, dynamics, out);
+}
+
+/// Appends the values of `quantities` at the position `view` to `out`, as
+/// [`record`] does, with inverse dynamics already evaluated at this
+/// position ([`InverseDynamics::evaluate`]; the dynamic quantities are NaN
+/// without it).
+pub fn record_evaluated(
+    quantities: &[Quantity],
+    view: &PositionView<'_>,
+    dynamics: Option<&InverseDynamics>,
+    out: &mut Vec<f64>,
+) {
     out.extend(quantities.iter().map(|q| match dynamics {
         Some(d) if q.is_dynamic() => q.dynamic_value(view.mech, d),
         _ => q.value(view),

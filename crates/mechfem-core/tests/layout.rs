@@ -1,0 +1,159 @@
+//! The full recording layout ([`Layout`]): its blocks tile the table, and a
+//! position recorded block by block holds, bit for bit, what the quantity of
+//! each column gives on its own ([`record`]), over example decks of every
+//! kind: one and several inputs, dependent rows, limit positions, free
+//! motion, masses and loads, a simulation, and first-order runs.
+
+use mechfem_core::run::{Columns, Layout};
+use mechfem_core::{record, run, simulate, InverseDynamics, Observer, PositionView, Quantity, TransferOrder};
+use std::path::Path;
+
+/// Records every position twice: through the layout and quantity by quantity.
+struct Both {
+    layout: Layout,
+    quantities: Vec<Quantity>,
+    dynamics: Option<InverseDynamics>,
+    order: TransferOrder,
+    by_layout: Vec<f64>,
+    by_quantity: Vec<f64>,
+    positions: usize,
+    limits: usize,
+}
+
+impl Observer for Both {
+    fn position(&mut self, view: &PositionView<'_>) {
+        record(&self.quantities, view, self.dynamics.as_mut(), &mut self.by_quantity);
+        if let Some(d) = self.dynamics.as_mut() {
+            d.evaluate(view);
+        }
+        self.layout.record(view, self.dynamics.as_ref(), &mut self.by_layout);
+        self.positions += 1;
+        self.limits += usize::from(view.kin.order().is_none());
+    }
+
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        Some(self.order)
+    }
+}
+
+/// The example deck `deck`, or, for `DEAD_CENTRE`, the free slider-crank
+/// started exactly at its stretched dead centre, where D^c is singular.
+fn load(deck: &str) -> mechfem_deck::Compiled {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples").join(deck);
+    if deck != DEAD_CENTRE {
+        return mechfem_deck::load(&path).unwrap_or_else(|e| panic!("{deck}: {e:?}"));
+    }
+    let path = path.with_file_name("slider_dead_centre_free.mec");
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    for (old, new) in [
+        ("XMOV 3 0.5", "XMOV 3 1.0"),
+        ("     4 0.866", "     4 0.0"),
+        ("     5 3.372", "     5 4.0"),
+        ("     3 3.3722813232690143", "     3 4.0"),
+    ] {
+        assert!(text.contains(old));
+        text = text.replace(old, new);
+    }
+    let parsed = mechfem_deck::parse_str(&text, &path).unwrap();
+    mechfem_deck::compile(&parsed, path.parent().unwrap()).unwrap()
+}
+
+fn both(deck: &str, order: TransferOrder) -> Both {
+    let mut c = load(deck);
+    let layout = Layout::full(&c.mechanism, c.dynamics.is_some());
+    let mut out = Both {
+        quantities: layout.quantities(),
+        layout,
+        dynamics: c.dynamics.clone().map(|d| InverseDynamics::new(&c.mechanism, d)),
+        order,
+        by_layout: Vec::new(),
+        by_quantity: Vec::new(),
+        positions: 0,
+        limits: 0,
+    };
+    let motion = c.motion.as_ref().expect("the deck has a motion");
+    match (&c.dynamics, c.mode.name()) {
+        (Some(d), "DYN SIM") => {
+            simulate(&c.mechanism, &mut c.state, motion, &c.params, &c.integration, d, &mut out).map(drop)
+        }
+        _ => run(&c.mechanism, &mut c.state, Some(motion), &c.params, &mut out).map(drop),
+    }
+    .unwrap_or_else(|e| panic!("{deck}: {e}"));
+    out
+}
+
+const DEAD_CENTRE: &str = "limits/dead_centre.mec";
+
+const DECKS: [&str; 8] = [
+    "fourbar/fourbar.mec",
+    "supply/supply.mec",
+    "supply/supply_dyn.mec",
+    "supply/supply_sim.mec",
+    "manipulator/manipulator.mec",
+    "limits/slider_dead_centre_free.mec",
+    "limits/stephenson_limits.mec",
+    DEAD_CENTRE,
+];
+
+#[test]
+fn blocks_tile_the_table_once() {
+    for deck in DECKS {
+        let c = load(deck);
+        for dynamic in [false, true] {
+            let layout = Layout::full(&c.mechanism, dynamic);
+            let mut next = 0;
+            for b in layout.blocks() {
+                assert_eq!(b.start, next, "{deck}: block {} starts where the one before it ends", b.name);
+                next = b.columns().end;
+            }
+            assert_eq!(next, layout.width(), "{deck}");
+            assert_eq!(layout.quantities().len(), layout.width(), "{deck}");
+            assert_eq!(layout.is_dynamic(), dynamic);
+            assert_eq!(layout.block("sigma").is_some(), dynamic);
+            let (n, nd) = (c.mechanism.n_coords(), c.mechanism.n_dof());
+            assert_eq!(layout.block("kx2").unwrap().shape, vec![n, nd, nd]);
+            assert_eq!(layout.block("det").unwrap().columns(), layout.width() - 1..layout.width());
+            for (k, q) in layout.quantities().into_iter().enumerate() {
+                assert_eq!(layout.column(q), Some(k), "{deck}: {q:?}");
+            }
+            assert_eq!(layout.column(Quantity::X0(0)), None);
+            assert_eq!(layout.column(Quantity::Vx(n)), None);
+            assert_eq!(layout.column(Quantity::Ekin).is_some(), dynamic);
+        }
+    }
+}
+
+#[test]
+fn every_column_is_its_quantity_to_the_last_bit() {
+    let mut limits = 0;
+    for deck in DECKS {
+        for order in [TransferOrder::First, TransferOrder::Second] {
+            let b = both(deck, order);
+            assert!(b.positions > 1, "{deck}");
+            assert_eq!(b.by_layout.len(), b.positions * b.layout.width(), "{deck}");
+            for (k, (x, y)) in b.by_layout.iter().zip(&b.by_quantity).enumerate() {
+                let q = b.quantities[k % b.layout.width()];
+                assert_eq!(x.to_bits(), y.to_bits(), "{deck}, {order:?}: position {}, {q:?}", k / b.layout.width());
+            }
+            limits += b.limits;
+        }
+    }
+    // The decks include positions without transfer functions, where the layout writes NaN.
+    assert!(limits > 0);
+}
+
+#[test]
+fn columns_hold_each_quantity_contiguously_however_many_positions_come() {
+    for room in [0, 1, 3, 4, 10] {
+        let mut t = Columns::new(3, room);
+        for k in 0..4 {
+            let k = f64::from(k);
+            t.push(&[k, 10.0 + k, 20.0 + k]);
+        }
+        assert_eq!(t.positions(), 4);
+        assert_eq!(t.get(2, 1), 12.0);
+        let expected = [0.0, 1.0, 2.0, 3.0, 10.0, 11.0, 12.0, 13.0, 20.0, 21.0, 22.0, 23.0];
+        assert_eq!(t.into_vec(), expected, "room for {room}");
+    }
+    assert!(Columns::new(5, 10).into_vec().is_empty());
+}

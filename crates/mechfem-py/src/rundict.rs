@@ -1,0 +1,112 @@
+//! A run of deck text as the dict Python gets from `run_deck_text`,
+//! `Model.run` and `run_deck_variants`.
+//!
+//! Everything a run computed arrives finished from [`crate::text::execute`]
+//! (tables column by column, the row values of position 1, the PARA
+//! values); here it is only wrapped: the tables become numpy arrays that
+//! own the run's buffers (no copies), and what is the same for every run of
+//! one compiled deck (the layout, the storage, the elements, the rows' FORM
+//! terms, the buffer numbers) is converted once into [`Shared`], whose
+//! Python objects every run's dict holds. A study of many variants of one
+//! deck so builds little more than its arrays and small dicts per variant.
+
+use std::path::Path;
+
+use mechfem_core::run::Layout;
+use mechfem_deck::Compiled;
+use numpy::npyffi::NPY_ORDER;
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+
+use crate::text::{FullRun, Outcome};
+use crate::{convert, errors};
+
+/// What every run of one compiled deck has in common, converted for Python
+/// once. Each run's dict holds these very objects: they are not to be
+/// changed.
+pub struct Shared {
+    /// Block name -> (first column, shape at one position), the core's full layout.
+    layout: Py<PyDict>,
+    storage: Py<PyDict>,
+    buffer_numbers: Py<PyList>,
+    echo: convert::Echo,
+}
+
+impl Shared {
+    /// The Python objects of compiled deck `c` that every run of it shares.
+    pub fn new(py: Python<'_>, c: &Compiled) -> PyResult<Shared> {
+        let layout = PyDict::new(py);
+        for b in Layout::full(&c.mechanism, c.dynamics.is_some()).blocks() {
+            layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
+        }
+        Ok(Shared {
+            layout: layout.unbind(),
+            storage: convert::storage(py, c)?.unbind(),
+            buffer_numbers: PyList::new(py, c.buffers.iter().map(|b| b.number))?.unbind(),
+            echo: convert::Echo::new(py, c)?,
+        })
+    }
+}
+
+/// A positions x columns array from values given column by column: numpy
+/// in Fortran order, owning `data`.
+fn columns<'py>(py: Python<'py>, data: Vec<f64>, positions: usize, width: usize) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_vec(py, data).reshape_with_order([positions, width], NPY_ORDER::NPY_FORTRANORDER)?.into_any())
+}
+
+/// The run as a dict: `table` (positions x the columns of `layout`, the
+/// core's full layout, in Fortran order), `layout` (block name -> first
+/// column and shape), `buffer_values` (positions x the deck's buffers, in
+/// the order of `buffer_numbers`), `coords`, the model's sizes, `report`,
+/// and the `model` echo and `storage` requests as `run_deck` gives them.
+fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, r: FullRun) -> PyResult<Bound<'py, PyDict>> {
+    let mech = &c.mechanism;
+    let (positions, n, nd, np) = (r.positions, mech.n_coords(), mech.n_dof(), mech.n_prescribed());
+    let at_1 = r.coords.get(..n).unwrap_or(&r.given);
+    let (prescribed, dependent) = r.rows_at_1.split_at(np.min(r.rows_at_1.len()));
+    let model = s.echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para))?;
+
+    let d = PyDict::new(py);
+    d.set_item("model", model)?;
+    d.set_item("storage", s.storage.bind(py))?;
+    d.set_item("report", convert::report(py, mech, &r.report, r.steps)?)?;
+    d.set_item("buffer_numbers", s.buffer_numbers.bind(py))?;
+    d.set_item("n_coords", n)?;
+    d.set_item("n_dof", nd)?;
+    d.set_item("n_prescribed", np)?;
+    d.set_item("n_dependent", mech.n_dependent())?;
+    d.set_item("dynamic", c.dynamics.is_some())?;
+    d.set_item("simulation", r.sim.as_ref().map(|sim| convert::simulation(py, sim)).transpose()?)?;
+    d.set_item("layout", s.layout.bind(py))?;
+    d.set_item("table", columns(py, r.table, positions, r.width)?)?;
+    d.set_item("buffer_values", columns(py, r.buffers, positions, c.buffers.len())?)?;
+    d.set_item("coords", convert::array2(py, r.coords, positions, n)?)?;
+    Ok(d)
+}
+
+/// The outcome as a run dict, or as the exception it amounts to; `text` is
+/// the compiled deck that ran, with its shared objects (None for a deck
+/// that did not compile).
+pub fn outcome_dict<'py>(
+    py: Python<'py>,
+    outcome: Outcome,
+    text: Option<(&Compiled, &Shared)>,
+    path: &Path,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lost = || PyRuntimeError::new_err("a run came back without its compiled deck");
+    match outcome {
+        Outcome::Ran(r) => {
+            let (c, s) = text.ok_or_else(lost)?;
+            run_dict(py, c, s, *r)
+        }
+        Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
+        Outcome::Refused(message) => Err(errors::ResourceError::new_err(message)),
+        Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
+        Outcome::Failed(mut state, e) => {
+            let (c, _) = text.ok_or_else(lost)?;
+            Err(errors::position_one_error(py, &c.mechanism, &mut state, &e))
+        }
+    }
+}
