@@ -1,8 +1,8 @@
 """Ctrl-C during a run: the positions computed before it are kept and written completely.
 
 The interrupts here are real SIGINTs (the process signals itself from the progress callback at a chosen
-position), so they take the path a user's Ctrl-C takes: Python's signal handler, noticed by the run's
-next progress report.
+position, or from a timer while a study runs), so they take the path a user's Ctrl-C takes: Python's signal
+handler, noticed by the run's next progress report or check.
 """
 
 from __future__ import annotations
@@ -13,6 +13,8 @@ import signal
 import subprocess
 import sys
 import textwrap
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -71,6 +73,24 @@ def test_model_api_run_raises_with_the_analysis_so_far() -> None:
     assert isinstance(analysis, mechfem.Analysis)
     assert 30 <= analysis.report.positions < STEPS + 1
     assert analysis.report.stop is not None and analysis.report.stop.kind == "interrupted"
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_ctrl_c_stops_the_variants_of_a_study_while_they_run(workers: int) -> None:
+    # Simulations of 200 s, about 2 s each: the calling thread runs one of them itself (every one with one
+    # worker) and notices Ctrl-C as it goes; the pool's thread stops when told to.
+    supply = ROOT / "examples" / "supply"
+    text = (supply / "supply_sim.mec").read_text()
+    assert "TSTEPE 800 2.5E-3" in text
+    text = text.replace("TSTEPE 800 2.5E-3", "TSTEPE 800 0.25")
+    timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        mechfem._core.run_deck_variants([text] * 2, [(0, []), (1, [])], "sim.mec", str(supply), workers)
+    timer.join()
+    # Far sooner than the first simulation alone would take.
+    assert time.perf_counter() - start < 1.0
 
 
 # The command line, in a child process whose progress bar signals it half-way.

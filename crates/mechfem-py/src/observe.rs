@@ -60,7 +60,7 @@ impl Progress {
     /// a second of the run (the clock read every 64 positions), so that a
     /// run of many short variants pays next to nothing for it.
     pub fn interrupts() -> Progress {
-        Progress { asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) }
+        Progress { stride: 64, asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) }
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -81,8 +81,7 @@ impl Progress {
             return;
         }
         self.reported = done;
-        let stride = if self.asked.is_some() { 64 } else { self.stride };
-        if self.error.is_some() || !(done.is_multiple_of(stride) || done == self.total) {
+        if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
             return;
         }
         if let Some(asked) = self.asked.as_mut() {

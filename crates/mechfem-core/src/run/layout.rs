@@ -5,10 +5,13 @@
 //! A block holds one kind of quantity for every co-ordinate, row or input
 //! at once (`kx1`: d x_i / d input_j for every i and j), so that a reader
 //! slices the table by block name and reshapes it, and a position is
-//! recorded by copying the transfer functions out of [`Kinematics`] block
-//! by block instead of evaluating one [`Quantity`] per value. Every value is
-//! the one [`Quantity::value`] (or [`Quantity::dynamic_value`]) gives, to
-//! the last bit: [`Layout::quantities`] names the quantity of each column.
+//! recorded by copying the transfer functions out of
+//! [`Kinematics`](crate::Kinematics) block by block instead of evaluating one
+//! [`Quantity`] per value. Every value is the one [`Quantity::value`] (or
+//! [`Quantity::dynamic_value`]) gives, to the last bit:
+//! [`Layout::quantities`] names the quantity of each column. [`Columns`]
+//! keeps such a recording column by column, as a reader of one quantity over
+//! the positions (numpy, in Fortran order) wants it.
 //!
 //! ```
 //! use mechfem_core::run::Layout;
