@@ -77,12 +77,12 @@ def test_model_api_run_raises_with_the_analysis_so_far() -> None:
 
 @pytest.mark.parametrize("workers", [1, 2])
 def test_ctrl_c_stops_the_variants_of_a_study_while_they_run(workers: int) -> None:
-    # Simulations of 200 s, about 2 s each: the calling thread runs one of them itself (every one with one
+    # Simulations of 400 s, about 4 s each: the calling thread runs one of them itself (every one with one
     # worker) and notices Ctrl-C as it goes; the pool's thread stops when told to.
     supply = ROOT / "examples" / "supply"
     text = (supply / "supply_sim.mec").read_text()
     assert "TSTEPE 800 2.5E-3" in text
-    text = text.replace("TSTEPE 800 2.5E-3", "TSTEPE 800 0.25")
+    text = text.replace("TSTEPE 800 2.5E-3", "TSTEPE 800 0.5")
     timer = threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT))
     start = time.perf_counter()
     timer.start()
@@ -90,7 +90,7 @@ def test_ctrl_c_stops_the_variants_of_a_study_while_they_run(workers: int) -> No
         mechfem._core.run_deck_variants([text] * 2, [(0, []), (1, [])], "sim.mec", str(supply), workers)
     timer.join()
     # Far sooner than the first simulation alone would take.
-    assert time.perf_counter() - start < 1.0
+    assert time.perf_counter() - start < 2.0
 
 
 # The command line, in a child process whose progress bar signals it half-way.
