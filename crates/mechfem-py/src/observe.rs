@@ -36,6 +36,10 @@ pub struct Progress {
     stride: usize,
     /// The most positions reported so far.
     reported: usize,
+    /// Positions between two looks for Ctrl-C without a callback: about 10%
+    /// of the run (attaching to Python every 1% costs a short run of a
+    /// small mechanism more than its positions do).
+    signal_stride: usize,
     /// The first error raised by the callback or a signal handler; it stops
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
     /// so far are kept.
@@ -45,7 +49,8 @@ pub struct Progress {
 impl Progress {
     /// Progress over `total` positions.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        Progress { callback, total, stride: (total / 100).max(1), reported: 0, error: None }
+        let stride = (total / 100).max(1);
+        Progress { callback, total, stride, signal_stride: 10 * stride, reported: 0, error: None }
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -59,6 +64,7 @@ impl Progress {
 
     /// Reports that `done` positions are computed, when that is a multiple
     /// of the stride or the last one, unless an error has stopped the run.
+    #[inline]
     pub fn report(&mut self, done: usize) {
         // Never backwards: a simulation reports its integration first, then
         // replays the positions it reached.
@@ -67,6 +73,9 @@ impl Progress {
         }
         self.reported = done;
         if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
+            return;
+        }
+        if self.callback.is_none() && !(done.is_multiple_of(self.signal_stride) || done == self.total) {
             return;
         }
         let result = Python::attach(|py| -> PyResult<()> {
