@@ -30,7 +30,7 @@ from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.errors import DeckError
-from mechfem.explain import names_in, translate, with_attributes
+from mechfem.explain import translate, with_attributes
 from mechfem.model import (
     BUFFER_ARGS,
     FORMS,
@@ -505,4 +505,4 @@ _model.READ_DECK.register(read)
 _model.READ_DECK_TEXT.register(read_text)
 
 
-__all__ = ["DeckText", "Numbering", "names_in", "read", "read_text", "save", "translate", "write", "FORMS"]
+__all__ = ["DeckText", "Numbering", "read", "read_text", "save", "translate", "write", "FORMS"]

@@ -17,7 +17,7 @@ import numpy.typing as npt
 import mechfem._core as _core
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
-from mechfem.words import Words, words_of
+from mechfem.words import Part, Words, words_of
 from mechfem.words import free_motion_line as free_motion_line  # named here as before
 from mechfem.words import input_name as input_name
 
@@ -112,14 +112,19 @@ class Stop:
     """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
     ``interrupted``, ``simulation`` (a simulation's integrator could not go on)."""
     message: str
-    """The solver's own words."""
+    """The solver's own words, as the deck says them."""
     limit: Limit | None
     """The limit position the input ran into, when one was located."""
+    parts: list[Part] = field(default_factory=list)
+    """The solver's message in parts, the things it names as structure (:data:`mechfem.words.Part`): what
+    :meth:`describe` words it from (from ``message`` alone when empty)."""
 
     @classmethod
     def from_core(cls, d: _core.StopDict) -> Stop:
         limit = None if d["limit"] is None else Limit.from_core(d["limit"])
-        return cls(d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit)
+        return cls(
+            d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit, list(d["parts"])
+        )
 
     def describe(
         self,
@@ -135,7 +140,7 @@ class Stop:
         have been written to output files.
         """
         words = words_of(names)
-        message = words.message(self.message)
+        message = words.render(self.parts or [self.message])
         k = self.last_good
         kept = "written to the output files" if written else "kept in the result"
         kept = (

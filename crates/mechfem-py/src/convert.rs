@@ -59,7 +59,9 @@ fn stop<'py>(py: Python<'py>, mech: &Mechanism, s: &Stop) -> PyResult<Bound<'py,
     d.set_item("inputs", s.inputs.clone())?;
     d.set_item("last_inputs", s.last_inputs.clone())?;
     d.set_item("kind", errors::kind(&s.error))?;
-    d.set_item("message", errors::describe(mech, &s.error))?;
+    let parts = errors::parts(mech, &s.error);
+    d.set_item("message", errors::message(&parts))?;
+    d.set_item("parts", errors::parts_object(py, &parts)?)?;
     d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
     Ok(d)
 }
