@@ -9,6 +9,7 @@ import warnings
 import pytest
 
 import mechfem
+import mechfem._core as _core
 from conftest import ROOT
 from mechfem import Driven, Keep, Mechanism, deckio
 from mechfem.explain import PythonWords, parts_of
@@ -21,7 +22,8 @@ def position_one(m: Mechanism, **moved: tuple[float, float]) -> mechfem.MechfemE
     """The error of the core at position 1 of ``m``'s compiled model with the points ``moved`` to other (x, y),
     untranslated: a compiled model meets the given numbers in the core, not in the deck reader."""
     deck = deckio.write(m)
-    model, changes = deckio.compiled(deck, str(DECKS))
+    model = _core.Model(deck.text, deck.path, str(DECKS))
+    changes: list[tuple[int, int, float]] = []
     number = {c.name: i for i, c in enumerate(deck.numbering.coords, 1)}
     for point, (x, y) in moved.items():
         changes += [(0, number[f"{point}.x"], x), (0, number[f"{point}.y"], y)]
