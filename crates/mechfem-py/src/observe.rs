@@ -36,10 +36,13 @@ pub struct Progress {
     stride: usize,
     /// The most positions reported so far.
     reported: usize,
-    /// Positions between two looks for Ctrl-C without a callback: about 10%
-    /// of the run (attaching to Python every 1% costs a short run of a
-    /// small mechanism more than its positions do).
-    signal_stride: usize,
+    /// The count of positions at which Python is next attached to: the
+    /// next multiple of the stride with a callback; without one, only
+    /// Ctrl-C is looked for, about every 10% of the run (attaching every
+    /// 1% costs a short run of a small mechanism more than its positions
+    /// do), and at the end. Kept as a count to compare with, not found by a
+    /// division at every position.
+    next: usize,
     /// The first error raised by the callback or a signal handler; it stops
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
     /// so far are kept.
@@ -50,7 +53,9 @@ impl Progress {
     /// Progress over `total` positions.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
         let stride = (total / 100).max(1);
-        Progress { callback, total, stride, signal_stride: 10 * stride, reported: 0, error: None }
+        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None };
+        p.next = p.after(0);
+        p
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -60,6 +65,12 @@ impl Progress {
         // On the stride, where `report` reports.
         let done = if done == self.total { done } else { done / self.stride * self.stride };
         self.report(done);
+    }
+
+    /// The count after `done` at which Python is attached to next.
+    fn after(&self, done: usize) -> usize {
+        let step = if self.callback.is_some() { self.stride } else { 10 * self.stride };
+        ((done / step + 1) * step).min(self.total)
     }
 
     /// Reports that `done` positions are computed, when that is a multiple
@@ -72,12 +83,10 @@ impl Progress {
             return;
         }
         self.reported = done;
-        if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
+        if done < self.next || self.error.is_some() {
             return;
         }
-        if self.callback.is_none() && !(done.is_multiple_of(self.signal_stride) || done == self.total) {
-            return;
-        }
+        self.next = self.after(done);
         let result = Python::attach(|py| -> PyResult<()> {
             py.check_signals()?;
             if let Some(callback) = &self.callback {
