@@ -167,20 +167,20 @@ def test_a_compiled_model_run_with_changes_is_the_deck_that_says_so(tmp_path: Pa
 
 
 def test_a_named_model_compiles_once_per_topology(tmp_path: Path) -> None:
-    from mechfem import deckio
+    from mechfem import compiled, deckio
 
     mech = mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR)))
-    deckio._COMPILED.clear()
+    compiled._COMPILED.clear()
     first = mech.run(progress=False)
-    assert len(deckio._COMPILED) == 1
-    (kept,) = deckio._COMPILED.values()
+    assert len(compiled._COMPILED) == 1
+    (kept,) = compiled._COMPILED.values()
     # Other numbers: the same compiled model, and to the last bit the results of the deck text path.
     other = mech.variant({"E1.length": 1.1})
     second = other.run(progress=False)
-    assert list(deckio._COMPILED.values()) == [kept]
+    assert list(compiled._COMPILED.values()) == [kept]
     text = deckio.write(other, other.motion, other.storage)
     want = mechfem._core.run_deck_text(text.text, text.path, ".")
     assert np.array_equal(second.coords, want["coords"]) and not np.array_equal(second.coords, first.coords)
     # Another deck (one more buffer): compiled anew.
     mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR + "BUFDET 5\n", "det.mec"))).run(progress=False)
-    assert len(deckio._COMPILED) == 2
+    assert len(compiled._COMPILED) == 2

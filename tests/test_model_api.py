@@ -408,7 +408,9 @@ def test_assembly_errors_get_the_element_name() -> None:
     deck = deckio.write(supply())
     err = mechfem.AssemblyError("element 6 (TR2): the points P and Q coincide")
     err.element = 6  # type: ignore[attr-defined]
-    err.detail = "the points P and Q coincide"  # type: ignore[attr-defined]  # the field the binding sets
+    # The fields the binding sets: the core's reason in its words and as structure.
+    err.detail = "the points P and Q coincide"  # type: ignore[attr-defined]
+    err.detail_fields = {"element": 6, "kind": "coincident_points"}  # type: ignore[attr-defined]
     new = deckio.translate(err, deck, "supply")
     assert isinstance(new, mechfem.AssemblyError) and new.element_name == "lever"  # type: ignore[attr-defined]
     assert "the ternary-2 'lever' (G0, H, G) cannot be evaluated there: its points G0 and H coincide" in str(new)

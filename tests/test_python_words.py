@@ -274,7 +274,9 @@ def test_assembly_errors_name_the_element_and_its_points() -> None:
     deck = deckio.write(fourbar())
     err = mechfem.AssemblyError("element 2 (BIN): the points P and Q coincide, so the direction P->Q is undefined")
     err.element = 2
-    err.detail = "the points P and Q coincide, so the direction P->Q is undefined"  # the field the binding sets
+    # The fields the binding sets: the core's reason in its words and as structure.
+    err.detail = "the points P and Q coincide, so the direction P->Q is undefined"
+    err.detail_fields = {"element": 2, "kind": "coincident_points"}
     new = deckio.translate(err, deck, "fourbar")
     assert isinstance(new, mechfem.AssemblyError)
     assert new.element == 2 and new.element_name == "coupler"  # type: ignore[attr-defined]

@@ -112,8 +112,8 @@ def run_deck(
     driven input that reaches its limit position still stops the run there, located as always. A deck file run
     again unchanged is not read into a model again.
     """
-    deck = _Path(path)
-    d = _core.run_deck(_os.fspath(deck), progress, limits.memory_limit(memory_limit), det)
+    deck = path if isinstance(path, _Path) else _Path(path)
+    d = _core.run_deck(deck, progress, limits.memory_limit(memory_limit), det)
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)

@@ -1,5 +1,4 @@
 """Types of the compiled module ``mechfem._core`` (crates/mechfem-py). Private: use :mod:`mechfem`.
-
 Numbers that name things are the deck's, 1-based (destinations signed); positions are 1-based.
 """
 
@@ -31,6 +30,7 @@ __all__ = [
 ]
 
 _F64 = npt.NDArray[np.float64]
+_Part = str | tuple[str, Any, str]  # words, or a thing named as (kind, value, deck words): mechfem.words.Part
 
 class MechfemError(Exception):
     """Base class of every error mechfem raises."""
@@ -51,6 +51,7 @@ class DeckError(MechfemError):
     element: int | None
     coordinate: int | None
     detail: str | None
+    detail_fields: dict[str, Any] | None
     diagnostics: list[DiagnosticDict]
     """Every mistake's fields; the attributes above are the first one's."""
 
@@ -66,6 +67,7 @@ class DiagnosticDict(TypedDict):
     element: int | None
     coordinate: int | None
     detail: str | None
+    detail_fields: dict[str, Any] | None
 
 class AssemblyError(MechfemError):
     """The model cannot be evaluated at position 1."""
@@ -75,6 +77,8 @@ class AssemblyError(MechfemError):
     element: int
     element_type: str | None
     detail: str
+    detail_fields: dict[str, Any]
+    parts: list[_Part]
 
 class ConvergenceError(MechfemError):
     """Newton iteration cannot reach position 1."""
@@ -85,6 +89,7 @@ class ConvergenceError(MechfemError):
     iterations: int
     """Only with reason ``no_convergence``, as ``residual``."""
     residual: float
+    parts: list[_Part]
 
 class ResourceError(MechfemError):
     """The results would take more memory than the limit; the run was refused before it started."""
@@ -103,6 +108,7 @@ class LimitPositionError(MechfemError):
     """The co-ordinate at whose column the pivot vanished."""
     position: int
     reason: str
+    parts: list[_Part]
 
 @type_check_only
 class AdjustDict(TypedDict):
@@ -131,6 +137,7 @@ class StopDict(TypedDict):
     """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
     ``not_computed``, ``interrupted`` or ``simulation`` (the integrator of a simulation gave up)."""
     message: str
+    parts: list[_Part]
     limit: LimitDict | None
 
 @type_check_only
@@ -563,13 +570,11 @@ def run_deck_variants(
     order: int | None = ...,
     memory_limit: int = ...,
 ) -> list[TextRunDict | MechfemError]:
-    """Each variant is (index into ``texts``, changes); a change is (0, co-ordinate, value) or
-    (1, prescribed row, value), numbered as in the deck."""
+    """A variant is (index into ``texts``, changes); a change is (0, co-ordinate, value) or (1, row, value)."""
 
 @final
 class DesignModel:
-    """A compiled deck kept for an optimiser: designs evaluated one after another, each from position 1 of the
-    last design assembled."""
+    """A compiled deck kept for an optimiser: designs evaluated in turn, each from the last one's position 1."""
 
     def __new__(
         cls,
@@ -592,6 +597,5 @@ def optimised_deck_text(
     coords: list[tuple[int, float]],
     file_dir: str | os.PathLike[str] | None = None,
 ) -> str:
-    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` replaced ((number, value),
-    deck numbering), in mode KIN ANA without its OPTIMISE block; MOV_FUNC files named from ``file_dir`` (the old
-    deck's folder as seen from the new deck's) when given."""
+    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value) replaced, in
+    mode KIN ANA without OPTIMISE; MOV_FUNC files named from ``file_dir`` (the old deck's folder) when given."""

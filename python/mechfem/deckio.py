@@ -1,12 +1,14 @@
 """Decks to and from the Python model: :class:`~mechfem.Mechanism` as deck text, a deck as a mechanism.
 
-The model API writes a deck and runs it through the deck reader and solver (``_core.run_deck_text``),
-so every result of a model is, by construction, the result of a deck. This module
+A mechanism is compiled from the deck written for it, by the same deck reader and solver as ``mechfem run``, so
+every result of a model is, by construction, the result of a deck (:mod:`mechfem.compiled` keeps the compiled
+model per topology). This module
 
 * writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line
   with the model's names in comments, keeping a note of what each line declares;
-* reads a deck into a mechanism with generated names (:func:`read`);
-* runs a mechanism (:func:`run`) and gives its errors the model's words (:func:`mechfem.explain.translate`).
+* numbers a mechanism as its deck does (:func:`number_model`), and the arguments of its buffers and plots
+  (:func:`buffer_numbers`, :func:`plot_numbers`);
+* reads a deck into a mechanism with generated names (:func:`read`).
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.errors import DeckError
-from mechfem.explain import names_in, translate, with_attributes
+from mechfem.explain import translate, with_attributes
 from mechfem.model import (
     BUFFER_ARGS,
     FORMS,
@@ -115,6 +117,29 @@ def _resolve(mech: Mechanism, numbering: Numbering, ref: Ref, kind: str, where: 
         return [numbering.dof(obj)]
     what = {"i": "a co-ordinate", "r": "a row or output", "j": "an input", "m": "an input"}[kind]
     raise ValueError(f"{where}: {ref!r} is not {what} of the mechanism {mech.name!r}")
+
+
+def buffer_numbers(mech: Mechanism, numbering: Numbering, b: int, kw: str, args: tuple[Ref, ...]) -> list[int]:
+    """The deck numbers of the arguments of buffer ``b`` (``kw args``)."""
+    resolved: list[int] = []
+    for kind, a in zip(BUFFER_ARGS[kw], args, strict=False):
+        resolved += _resolve(mech, numbering, a, kind, f"buffer {b}")
+    return resolved
+
+
+def plot_numbers(mech: Mechanism, numbering: Numbering, kw: str, first: Ref, second: Ref) -> tuple[int, int]:
+    """The two deck numbers of a plot: buffers, or for PLOTHODO a point's co-ordinates."""
+    if kw == "PLOTHODO" and first == second:
+        ab = _resolve(mech, numbering, first, "P", "PLOTHODO")
+    elif kw == "PLOTHODO":
+        ab = _resolve(mech, numbering, first, "i", kw) + _resolve(mech, numbering, second, "i", kw)
+    elif isinstance(first, int) and isinstance(second, int):
+        ab = [first, second]
+    else:
+        raise ValueError(f"{kw} takes two buffer numbers, got {first!r} and {second!r}")
+    if len(ab) != 2:
+        raise ValueError(f"{kw} needs a point or two co-ordinates, got {first!r}")
+    return ab[0], ab[1]
 
 
 def _ref_name(ref: Ref) -> str:
@@ -228,9 +253,7 @@ def write(
     if storage is not None:
         out.add("STORAGE")
         for b, kw, args in storage.buffers:
-            resolved: list[int] = []
-            for kind, a in zip(BUFFER_ARGS[kw], args, strict=False):
-                resolved += _resolve(mech, nb, a, kind, f"buffer {b}")
+            resolved = buffer_numbers(mech, nb, b, kw, args)
             names = ", ".join(_ref_name(a) for a in args)
             out.add(" ".join([kw, *map(str, resolved), str(b)]), ("buffer", str(b)), names or None)
         if storage.printbuf is not None:
@@ -246,17 +269,8 @@ def write(
                 )
             out.add(f"BEGINPIC {pic.title.replace(';', ',')}".rstrip(), ("picture", pic.title))
             for kw, first, second in pic.plots:
-                if kw == "PLOTHODO" and first == second:
-                    ab = _resolve(mech, nb, first, "P", "PLOTHODO")
-                elif kw == "PLOTHODO":
-                    ab = _resolve(mech, nb, first, "i", kw) + _resolve(mech, nb, second, "i", kw)
-                elif isinstance(first, int) and isinstance(second, int):
-                    ab = [first, second]
-                else:
-                    raise ValueError(f"{kw} takes two buffer numbers, got {first!r} and {second!r}")
-                if len(ab) != 2:
-                    raise ValueError(f"{kw} needs a point or two co-ordinates, got {first!r}")
-                out.add(f"{kw} {ab[0]} {ab[1]}", ("picture", pic.title))
+                a, b = plot_numbers(mech, nb, kw, first, second)
+                out.add(f"{kw} {a} {b}", ("picture", pic.title))
             out.add("ENDPIC")
     out.add("END")
     check_file_names(mech.name, storage, tables)
@@ -303,32 +317,6 @@ def progress_callback(progress: Progress, what: str) -> Callable[[int, int], obj
         bar.phase("running", unit=what)
         return bar
     return progress
-
-
-# A named model is compiled once per topology: its deck text with the numbers of XFIX, XMOV and PARA blanked keys
-# the compiled model, and the numbers are passed to each run as changes (the least recently used model goes first).
-_GEOMETRY_NUMBER = re.compile(r"^(XFIX|XMOV|PARA) (\d+) (\S+)", re.MULTILINE)
-_COMPILED: dict[tuple[str, str], _core.Model] = {}
-_KEEP = 16
-
-
-def compiled(deck: DeckText, base: str) -> tuple[_core.Model, list[tuple[int, int, float]]]:
-    """The compiled model of ``deck`` (compiled again only when its topology changed) and its numbers as changes:
-    (0, co-ordinate, value) for XFIX and XMOV, (1, row, value) for PARA."""
-    changes: list[tuple[int, int, float]] = []
-
-    def blank(m: re.Match[str]) -> str:
-        changes.append((1 if m[1] == "PARA" else 0, int(m[2]), float(m[3])))
-        return f"{m[1]} {m[2]} _"
-
-    key = (_GEOMETRY_NUMBER.sub(blank, deck.text), deck.path)
-    model = _COMPILED.pop(key, None)
-    if model is None:
-        model = _core.Model(deck.text, deck.path, base)
-        if len(_COMPILED) >= _KEEP:
-            del _COMPILED[next(iter(_COMPILED))]
-    _COMPILED[key] = model
-    return model, changes
 
 
 # --- reading decks -------------------------------------------------------------------------------------------------
@@ -517,4 +505,4 @@ _model.READ_DECK.register(read)
 _model.READ_DECK_TEXT.register(read_text)
 
 
-__all__ = ["DeckText", "Numbering", "names_in", "read", "read_text", "save", "translate", "write", "FORMS"]
+__all__ = ["DeckText", "Numbering", "read", "read_text", "save", "translate", "write", "FORMS"]

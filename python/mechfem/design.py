@@ -378,15 +378,22 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         )
         x, success, message, method = out.x, bool(out.success), str(out.message), "least_squares (trf)"
     else:
-        last_good = {"g": np.zeros(len(x0))}
+        scale = np.maximum(problem.hi - problem.lo, 1e-12)
 
         def fg(x: FloatArray) -> tuple[float, FloatArray]:
             try:
                 e = ev(x)
             except Infeasible:
-                return 1e3 * (1.0 + abs(best.f)), last_good["g"]
+                # A bowl around the last good design, steep against the objective's size: the value and its
+                # gradient agree, so the line search steps back along the way it came, and by interpolation
+                # rather than by a fixed fraction, towards where the designs stop being feasible.
+                d = (np.asarray(x, dtype=np.float64) - best.x) / scale
+                w = 1e3 * (1.0 + abs(best.f))
+                return best.f + w * (1e-6 + float(d @ d)), 2.0 * w * d / scale
             f, g = objective(problem, e)
-            last_good["g"] = g
+            # The best feasible design met, not only the optimiser's iterates: the last of them may be infeasible.
+            if f < best.f and violation(problem, e) == 0.0:
+                note(np.asarray(x, dtype=np.float64), e)
             return f, g
 
         def cons(x: FloatArray) -> FloatArray:
@@ -396,6 +403,8 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
                 return -np.ones_like(constraints(problem, best.e)[0])
 
         def callback(xk: FloatArray) -> None:
+            if np.array_equal(xk, best.x):
+                return  # noted when it was evaluated
             try:
                 note(np.asarray(xk), ev(xk))
             except Infeasible:

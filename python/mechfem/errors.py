@@ -13,6 +13,10 @@ All of them derive from :class:`MechfemError`:
   co-ordinates (for example two points of a binary coincide).
 * :class:`ConvergenceError` — position 1 cannot be reached by Newton iteration.
 * :class:`LimitPositionError` — D^c is singular at position 1.
+* the errors of position 1 carry ``parts``: the core's message in pieces, the
+  things it names (elements, co-ordinates, rows, deck terms) as structure
+  (:data:`mechfem.words.Part`), which the Python API words with the model's
+  names;
 * :class:`ResourceError` — the results would take more memory than the limit
   (:mod:`mechfem.limits`); the run was refused before it started.
 

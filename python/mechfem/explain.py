@@ -11,20 +11,22 @@ mistakes in the deck's terms. This module words them for the model:
 * :class:`PythonWords` says why a motion stopped (:meth:`mechfem.Analysis.stop_reason`) and what deserves a
   second look (:attr:`mechfem.Analysis.warnings`), with the inputs' names and ``Motion.free``.
 
-The deck path (``mechfem.run_deck``, the command line) keeps the deck's words.
+The core's messages arrive in parts (:data:`mechfem.words.Part`): the things they name (elements, co-ordinates,
+rows, deck terms) are structure, which :class:`PythonWords` names by the model's names; the words between them are
+never rewritten. The deck path (``mechfem.run_deck``, the command line) keeps the deck's words.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
 from mechfem.names import listing
 from mechfem.parts import ELEMENT_WORDS, Coordinate, Element, Point, Row
-from mechfem.words import Words
+from mechfem.words import Part, Words
 
 if TYPE_CHECKING:
     from mechfem.numbering import DeckText, Numbering
@@ -48,44 +50,36 @@ def with_attributes(err: MechfemError, **attributes: object) -> MechfemError:
 
 # --- solver messages ------------------------------------------------------------------------------------------------
 
-
-def names_in(text: str, nb: Numbering) -> str:
-    """A solver message with the model's names for the deck numbers it mentions (elements, co-ordinates, inputs)."""
-
-    def element(m: re.Match[str]) -> str:
-        k = int(m.group(1))
-        return element_words(nb.elements[k - 1]) if 1 <= k <= len(nb.elements) else m.group(0)
-
-    def coordinates(m: re.Match[str]) -> str:
-        numbers = [int(x) for x in m.group(2).split(", ")]
-        if not all(1 <= i <= len(nb.coords) for i in numbers):
-            return m.group(0)
-        return f"{m.group(1)} {', '.join(nb.coords[i - 1].name for i in numbers)}"
-
-    def inp(m: re.Match[str]) -> str:
-        j = int(m.group(1))
-        inputs = nb.inputs
-        return f"the input {inputs[j - 1].name!r}" if 1 <= j <= len(inputs) else m.group(0)
-
-    whole = re.fullmatch(r"element (\d+) \((\w+)\): (.*)", text, re.S)
-    if whole and 1 <= int(whole.group(1)) <= len(nb.elements):
-        e = nb.elements[int(whole.group(1)) - 1]
-        return f"{element_words(e)}: {element_detail(whole.group(3), e)}"
-    text = re.sub(r"element (\d+) \((\w+)\)", element, text)
-    text = re.sub(r"(co-ordinates?) (\d+(?:, \d+)*)\b", coordinates, text)
-    text = re.sub(r"(?:input|DOF) (\d+)\b", inp, text)
-    for deck, python in _SOLVER_TERMS:
-        text = text.replace(deck, python)
-    return text
+T = TypeVar("T")
 
 
-_SOLVER_TERMS = (
-    ("a degree of freedom", "an input"),
-    ("(MOV_DYN)", "(Dynamic)"),
-    ("(MOV_FREE)", "(Motion.free)"),
-    ("(DYN SIM)", "(Mechanism.simulate)"),
-)
-"""The deck's terms in the few fixed sentences of the solver that name them, and the Python API's."""
+def _numbered(items: Sequence[T], number: object) -> T | None:
+    """The item of deck number ``number`` (1-based), or None when there is none."""
+    return items[number - 1] if isinstance(number, int) and 1 <= number <= len(items) else None
+
+
+_TERMS = {
+    "a_degree_of_freedom": "an input",
+    "free_motion": "Motion.free",
+    "dynamic": "Dynamic",
+    "simulation": "Mechanism.simulate",
+}
+"""The Python API's words for the terms the deck spells its own way (a ``term`` part), by code."""
+
+_NOUNS = {"coordinate": "co-ordinate", "coords": "co-ordinates", "row": "row", "rows": "rows"}
+"""The noun before the names of the co-ordinates and rows a message names, by the part's kind."""
+
+
+def parts_of(err: BaseException) -> list[Part]:
+    """The ``parts`` of an error of the core (see :data:`mechfem.words.Part`); its message as one plain part for
+    an error without them."""
+    parts = getattr(err, "parts", None)
+    return list(parts) if isinstance(parts, list) else [str(err)]
+
+
+def names_term(parts: Sequence[Part], code: str) -> bool:
+    """Whether the message of ``parts`` uses the deck term ``code``."""
+    return any(not isinstance(p, str) and p[0] == "term" and p[1] == code for p in parts)
 
 
 # --- stop reasons ---------------------------------------------------------------------------------------------------
@@ -124,8 +118,26 @@ class PythonWords(Words):
             "keeps the input's direction, and Analysis.input() gives where the input goes."
         )
 
-    def message(self, text: str) -> str:
-        return names_in(text, self.numbering)
+    def thing(self, kind: str, value: object, deck: str) -> str:
+        """A thing a message of the core names, by the model's names (the deck's words for a number the model
+        does not have)."""
+        nb = self.numbering
+        if kind == "term" and isinstance(value, str):
+            return _TERMS.get(value, deck)
+        if kind == "detail" and isinstance(value, Mapping):
+            e = _numbered(nb.elements, value.get("element"))
+            return deck if e is None else element_detail(value, e, deck)
+        if kind == "element":
+            e = _numbered(nb.elements, value)
+            return deck if e is None else element_words(e)
+        if kind in _NOUNS:
+            coordinates = kind in ("coordinate", "coords")
+            items: Sequence[Coordinate | Row] = nb.coords if coordinates else nb.prescribed
+            found = [_numbered(items, k) for k in (value if isinstance(value, list) else [value])]
+            if found and None not in found:
+                names = [x.name if coordinates else repr(x.name) for x in found if x is not None]
+                return f"{_NOUNS[kind]} {', '.join(names)}"
+        return deck
 
 
 # --- errors ---------------------------------------------------------------------------------------------------------
@@ -135,18 +147,18 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
     """The error in the model's words, of the same type and with the attributes it had (deck numbers) and the
     model's names for them."""
     nb = deck.numbering
+    words = PythonWords(nb)
     if isinstance(err, DeckError):
         return deck_error(err, deck, model)
     if isinstance(err, AssemblyError):
-        k = int(getattr(err, "element", 0) or 0)
-        e = nb.elements[k - 1] if 1 <= k <= len(nb.elements) else None
-        detail = str(getattr(err, "detail", "") or "")
+        e = _numbered(nb.elements, getattr(err, "element", None))
         if e is None:
-            text = f"position 1 of the mechanism {model!r} cannot be computed: {names_in(str(err), nb)}"
+            text = f"position 1 of the mechanism {model!r} cannot be computed: {words.render(parts_of(err))}"
         else:
+            detail = element_detail(getattr(err, "detail_fields", None), e, str(getattr(err, "detail", "") or ""))
             text = (
                 f"position 1 of the mechanism {model!r} cannot be computed: {element_words(e)} cannot be evaluated "
-                f"there: {element_detail(detail, e)}; {_ESTIMATES.format(points=_moving_points(nb))}"
+                f"there: {detail}; {_ESTIMATES.format(points=_moving_points(nb))}"
             )
         return with_attributes(AssemblyError(text), **_solver_fields(err), element_name=None if e is None else e.name)
     if isinstance(err, LimitPositionError):
@@ -161,7 +173,7 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
         )
     if isinstance(err, ConvergenceError):
         text = (
-            f"position 1 of the mechanism {model!r} cannot be computed: {names_in(str(err), nb)}; "
+            f"position 1 of the mechanism {model!r} cannot be computed: {words.render(parts_of(err))}; "
             f"{_ESTIMATES.format(points=_moving_points(nb))}"
         )
         return with_attributes(ConvergenceError(text), **_solver_fields(err))
@@ -171,8 +183,9 @@ def translate(err: MechfemError, deck: DeckText, model: str) -> MechfemError:
             f"{facts}; ask for fewer steps (the Motion's steps) or a smaller model, or raise the limit with the "
             "environment variable MECHFEM_MEMORY_LIMIT (for example 8G)"
         )
-    text = names_in(str(err), nb)
-    if deck.simulated and "under the forces" in text:
+    parts = parts_of(err)
+    text = words.render(parts)
+    if deck.simulated and names_term(parts, "dynamic"):
         text += f" (the inputs that move under the forces: {', '.join(map(repr, deck.simulated))})"
     return type(err)(text)
 
@@ -190,6 +203,8 @@ _SOLVER_FIELDS = (
     "size",
     "iterations",
     "residual",
+    "parts",
+    "detail_fields",
 )
 """The fields a solver error carries (deck numbers), which the model's error keeps beside its names."""
 
@@ -210,23 +225,26 @@ def _moving_points(nb: Numbering) -> str:
     return listing(names)
 
 
-def element_detail(detail: str, e: Element) -> str:
-    """Why an element cannot be evaluated (the core's words), with the element's own point and co-ordinate names."""
+def element_detail(fields: object, e: Element, deck: str) -> str:
+    """Why the element ``e`` cannot be evaluated, from the ``fields`` of the core's reason (the value of a
+    ``detail`` part, or the ``detail_fields`` of an error), with the element's own point and co-ordinate names;
+    ``deck`` is the reason in the core's words, for a reason without fields or one these names do not fit."""
+    if not isinstance(fields, Mapping):
+        return deck
     slots = [s.name for s in e.slots]
     points = [p.name for p in e.points]
-    if "coincide" in detail and len(points) >= 2:
+    kind = fields.get("kind")
+    if kind == "coincident_points" and len(points) >= 2:
         p, q = points[0], points[1]
         return f"its points {p} and {q} coincide, so the direction {p}->{q} is undefined"
-    m = re.match(r"the belt has no free span: centre distance (\S+) <= \|R_P - R_Q\| = (\S+)", detail)
-    if m and len(slots) == 6:
+    if kind == "no_belt_span" and len(slots) == 6:
         return (
-            f"the belt has no free span: the distance {m.group(1)} between the wheel centres {slots[0]} and {slots[2]} "
-            f"is not larger than |{slots[4]} - {slots[5]}| = {m.group(2)}"
+            f"the belt has no free span: the distance {fields.get('distance')} between the wheel centres {slots[0]} "
+            f"and {slots[2]} is not larger than |{slots[4]} - {slots[5]}| = {fields.get('difference')}"
         )
-    m = re.match(r"the gear radius (R_a|R_c) is zero", detail)
-    if m and e.type == "GR2":
-        return f"the gear radius {slots[3] if m.group(1) == 'R_a' else slots[4]} is zero"
-    return detail
+    if kind == "zero_radius" and e.type == "GR2":
+        return f"the gear radius {slots[3] if fields.get('radius') == 'R_a' else slots[4]} is zero"
+    return deck
 
 
 def singular_at_start(rank: int | None, size: int | None, model: str, rows: list[str], coords: list[str]) -> str:
@@ -357,10 +375,10 @@ def _element(c: _Context) -> str | None:
     e = c.element()
     if e is None:
         return None
+    detail = element_detail(c.field("detail_fields"), e, str(c.field("detail") or ""))
     return (
-        f"{element_words(e)} cannot be evaluated at the given co-ordinates: "
-        f"{element_detail(str(c.field('detail') or ''), e)}; change the initial positions of its points "
-        "(Mechanism.point, or Mechanism.set) or its dimensions"
+        f"{element_words(e)} cannot be evaluated at the given co-ordinates: {detail}; change the initial positions "
+        "of its points (Mechanism.point, or Mechanism.set) or its dimensions"
     )
 
 
@@ -413,9 +431,10 @@ def deck_error(err: DeckError, deck: DeckText, model: str) -> DeckError:
     if message is None:
         headline = str(getattr(err, "message", "") or str(err))
         where = f"{what} {name!r}" if what else "the model"
+        # The diagnostic speaks of the written deck, and says so: its numbers are that deck's.
         message = (
-            f"in the mechanism {model!r}, {where}: the deck written for it was refused: "
-            f"{names_in(headline, deck.numbering)} (e.deck holds that deck, e.line the line)"
+            f"in the mechanism {model!r}, {where}: the deck written for it was refused: {headline} (e.deck holds "
+            "that deck, e.line the line)"
         )
     new = DeckError(message)
     fields = {k: getattr(err, k) for k in _DECK_FIELDS if hasattr(err, k)}
@@ -424,8 +443,19 @@ def deck_error(err: DeckError, deck: DeckText, model: str) -> DeckError:
     return new
 
 
-_DECK_FIELDS = ("kind", "column", "text", "message", "hint", "element", "coordinate", "detail", "diagnostics")
+_DECK_FIELDS = (
+    "kind",
+    "column",
+    "text",
+    "message",
+    "hint",
+    "element",
+    "coordinate",
+    "detail",
+    "detail_fields",
+    "diagnostics",
+)
 """The fields of the deck reader's diagnostic that a model's error keeps (deck numbers, the written deck's line)."""
 
 
-__all__ = ["PythonWords", "deck_error", "element_words", "names_in", "translate"]
+__all__ = ["PythonWords", "deck_error", "element_words", "parts_of", "translate"]

@@ -13,7 +13,7 @@ import dataclasses
 import io
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -66,7 +66,8 @@ def mechanism_figure(mech: Mechanism, names: bool = True) -> Figure:
     """The mechanism at position 1 (after the adjustment of its initial co-ordinates), points named."""
     from matplotlib.figure import Figure
 
-    a = mech.check()
+    # Mechanism.check is typed in the model layer (an Outcome); the run layer gives an Analysis.
+    a = cast("Analysis", mech.check())
     fig = Figure(figsize=(6.0, 5.0), layout="constrained")
     ax = fig.add_subplot()
     _draw_mechanism(ax, a, 0, names)

@@ -36,7 +36,6 @@ import numpy.typing as npt
 from mechfem.builders import ElementMethods
 from mechfem.catalogue import FORMS, MAX_ITER, SLOTS
 from mechfem.checks import check_name, finite
-from mechfem.errors import on_stop
 from mechfem.hooks import Hook
 from mechfem.motion import By, Dynamic, Free, InputKey, InputMotion, Motion, Table, To, input_dof, simulation
 from mechfem.names import article, plural, suggestion, unknown_name
@@ -60,7 +59,6 @@ from mechfem.storage import BUFFER_ARGS, Picture, Ref, Storage
 from mechfem.units import Unit, check_unit, to_radians
 
 if TYPE_CHECKING:
-    from mechfem.analysis import Analysis
     from mechfem.loads import (
         Body,
         Force,
@@ -75,6 +73,7 @@ if TYPE_CHECKING:
         RowRef,
         Spring,
     )
+    from mechfem.outcome import Outcome
 
 
 class Mechanism(ElementMethods):
@@ -381,7 +380,7 @@ class Mechanism(ElementMethods):
         order: int | None = 2,
         *,
         raise_on_stop: bool = False,
-    ) -> Analysis:
+    ) -> Outcome[Mechanism]:
         """Runs the motion (default :attr:`motion`; without one, position 1 only) and returns every result.
 
         ``progress`` True shows a progress bar, a callable is called as ``progress(done, total)``.
@@ -399,8 +398,14 @@ class Mechanism(ElementMethods):
         (:meth:`Analysis.stop_reason` says why) and warns with :class:`~mechfem.IncompleteRunWarning`; with
         ``raise_on_stop`` it raises :class:`~mechfem.RunStoppedError` carrying that :class:`Analysis` instead.
         """
-        analysis = RUN.call(self, motion or self.motion, storage or self.storage, progress=progress, order=order)
-        return on_stop(analysis, analysis.stop_reason(), raise_on_stop)
+        return RUN.call(
+            self,
+            motion or self.motion,
+            storage or self.storage,
+            progress=progress,
+            order=order,
+            raise_on_stop=raise_on_stop,
+        )
 
     def simulate(
         self,
@@ -418,7 +423,7 @@ class Mechanism(ElementMethods):
         order: int | None = 2,
         raise_on_stop: bool = False,
         unit: Unit | None = None,
-    ) -> Analysis:
+    ) -> Outcome[Mechanism]:
         """Simulates the motion under the masses and loads from time 0 to ``t_end`` (mode ``DYN SIM``), with results
         at ``steps + 1`` positions ``t_end / steps`` apart: the inputs of ``drive`` (input -> :class:`By`,
         :class:`To` or :class:`Table`) follow that motion, every other input moves under the forces from the speed
@@ -433,7 +438,7 @@ class Mechanism(ElementMethods):
         )
         return self.run(motion, storage, progress, order, raise_on_stop=raise_on_stop)
 
-    def check(self, motion: Motion | None = None) -> Analysis:
+    def check(self, motion: Motion | None = None) -> Outcome[Mechanism]:
         """Computes position 1 only (with the first values of a table motion, as a run would)."""
         return RUN.call(self, motion or self.motion, self.storage, with_motion=False)
 
@@ -460,7 +465,7 @@ SAVE_DECK: Hook[Callable[[Mechanism, Path, Motion | None, Storage | None], Path]
 )
 READ_DECK: Hook[Callable[[Path], Mechanism]] = Hook("Mechanism.from_deck", "mechfem.deckio")
 READ_DECK_TEXT: Hook[Callable[[str, str, Path], Mechanism]] = Hook("Mechanism.from_deck_text", "mechfem.deckio")
-RUN: Hook[Callable[..., Analysis]] = Hook("Mechanism.run", "mechfem.running")
+RUN: Hook[Callable[..., Outcome[Mechanism]]] = Hook("Mechanism.run", "mechfem.running")
 FIGURE: Hook[Callable[[Mechanism, bool], Any]] = Hook("Mechanism.figure", "mechfem.figures")
 PNG: Hook[Callable[[Mechanism], bytes | None]] = Hook("Mechanism._repr_png_", "mechfem.figures")
 

@@ -15,7 +15,7 @@ import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias, cast
 
 import numpy as np
 
@@ -110,7 +110,8 @@ class Optimum:
 
     def run(self) -> Analysis:
         """The optimised mechanism run through the motion the optimisation used."""
-        return self.mechanism.run(self.motion)
+        # Mechanism.run is typed in the model layer (an Outcome); the run layer gives an Analysis.
+        return cast("Analysis", self.mechanism.run(self.motion))
 
 
 @dataclass

@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -16,7 +17,7 @@ import numpy.typing as npt
 import mechfem._core as _core
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
-from mechfem.words import Words, words_of
+from mechfem.words import Part, Words, words_of
 from mechfem.words import free_motion_line as free_motion_line  # named here as before
 from mechfem.words import input_name as input_name
 
@@ -111,14 +112,19 @@ class Stop:
     """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
     ``interrupted``, ``simulation`` (a simulation's integrator could not go on)."""
     message: str
-    """The solver's own words."""
+    """The solver's own words, as the deck says them."""
     limit: Limit | None
     """The limit position the input ran into, when one was located."""
+    parts: list[Part] = field(default_factory=list)
+    """The solver's message in parts, the things it names as structure (:data:`mechfem.words.Part`): what
+    :meth:`describe` words it from (from ``message`` alone when empty)."""
 
     @classmethod
     def from_core(cls, d: _core.StopDict) -> Stop:
         limit = None if d["limit"] is None else Limit.from_core(d["limit"])
-        return cls(d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit)
+        return cls(
+            d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit, list(d["parts"])
+        )
 
     def describe(
         self,
@@ -134,7 +140,7 @@ class Stop:
         have been written to output files.
         """
         words = words_of(names)
-        message = words.message(self.message)
+        message = words.render(self.parts or [self.message])
         k = self.last_good
         kept = "written to the output files" if written else "kept in the result"
         kept = (
@@ -526,14 +532,46 @@ def mean_step(coords: FloatArray, model: Model) -> float | None:
     return mean if np.isfinite(mean) and mean > 0.0 else None
 
 
+T = TypeVar("T")
+
+
+class _Converted:
+    """What was made of dictionaries the compiled module hands out again: a deck file run again unchanged, to
+    the same position 1, gets the very same model echo and storage dictionaries (``_core`` keeps them with the
+    compiled deck), so they are converted once. Keyed by the dictionary itself, which is held here so that its
+    id is not reused; the oldest of ``size`` goes first."""
+
+    def __init__(self, size: int = 32) -> None:
+        self._size = size
+        self._kept: dict[int, tuple[object, object]] = {}
+
+    def get(self, d: object, make: Callable[[Any], T]) -> T:
+        hit = self._kept.get(id(d))
+        if hit is not None and hit[0] is d:
+            return hit[1]  # type: ignore[return-value]
+        value = make(d)
+        if len(self._kept) >= self._size:
+            self._kept.pop(next(iter(self._kept)))
+        self._kept[id(d)] = (d, value)
+        return value
+
+
+_CONVERTED = _Converted()
+
+
+def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
+    model = Model.from_core(d)
+    return model, [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
+
+
 def run_result(deck: Path, d: _core.RunDict) -> RunResult:
-    """Builds a :class:`RunResult` from the compiled module's dictionary."""
+    """Builds a :class:`RunResult` from the compiled module's dictionary. Runs of one deck file share its
+    :class:`Model` and :class:`Storage` (read them, do not change them)."""
     values = np.asarray(d["buffer_values"], dtype=np.float64)
     kx1 = np.asarray(d["kx1_values"], dtype=np.float64)
-    buffers = {n: np.ascontiguousarray(values[:, k]) for k, n in enumerate(d["buffer_numbers"])}
+    buffers = {n: values[:, k] for k, n in enumerate(d["buffer_numbers"])}
     coords = np.asarray(d["coords"], dtype=np.float64)
-    model = Model.from_core(d["model"])
-    names = [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
+    model, names = _CONVERTED.get(d["model"], _model_and_names)
     return RunResult(
         deck=deck,
         buffers=buffers,
@@ -545,8 +583,8 @@ def run_result(deck: Path, d: _core.RunDict) -> RunResult:
             d["report"], names, None if d["report"]["stop"] is None else mean_step(coords, model)
         ),
         model=model,
-        storage=Storage.from_core(d["storage"]),
-        kx1={n: np.ascontiguousarray(kx1[:, k]) for k, n in enumerate(d["kx1_coords"])},
+        storage=_CONVERTED.get(d["storage"], Storage.from_core),
+        kx1={n: kx1[:, k] for k, n in enumerate(d["kx1_coords"])},
         dynamic=None if d.get("dynamic") is None else DynamicSeries.from_core(d["dynamic"]),  # type: ignore[arg-type]
         simulation=None if d.get("simulation") is None else Simulation.from_core(d["simulation"]),  # type: ignore[arg-type]
     )
@@ -564,7 +602,7 @@ def check_result(deck: Path, d: _core.CheckDict) -> CheckResult:
         det=d["det"],
         coords=np.asarray(d["coords"], dtype=np.float64),
         adjust=AdjustInfo.from_core(d["adjust"]),
-        model=Model.from_core(d["model"]),
+        model=_CONVERTED.get(d["model"], _model_and_names)[0],
     )
 
 

@@ -1,5 +1,10 @@
-"""Runs a :class:`~mechfem.Mechanism`: writes its deck, runs it (a kept compiled model when it can) and gives the
-result as an :class:`~mechfem.Analysis`, its errors in the model's words.
+"""Runs a :class:`~mechfem.Mechanism` and gives the result as an :class:`~mechfem.Analysis`, its errors in the
+model's words.
+
+A mechanism runs on its kept compiled model (:mod:`mechfem.compiled`): no deck text is written or read unless its
+topology is new. A deck that needs files beside it (table motions, load tables) runs from its text, and so does a
+mechanism whose kept model fails: the deck reader then names the mistake as it does for the deck text (coincident
+points, a zero length), whatever was compiled before.
 
 :meth:`Mechanism.run <mechfem.Mechanism.run>` and :meth:`Mechanism.check <mechfem.Mechanism.check>` sit in the model
 layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when it is imported.
@@ -7,12 +12,14 @@ layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when i
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import mechfem._core as _core
-from mechfem import deckio
+from mechfem import compiled, deckio
 from mechfem import model as _model
 from mechfem.analysis import Analysis
 from mechfem.deckio import Progress
-from mechfem.errors import AssemblyError, MechfemError, RunInterrupted
+from mechfem.errors import MechfemError, RunInterrupted, on_stop
 from mechfem.explain import translate
 from mechfem.limits import memory_limit
 from mechfem.model import Mechanism
@@ -28,37 +35,59 @@ def run(
     progress: Progress = None,
     with_motion: bool = True,
     order: int | None = 2,
+    raise_on_stop: bool | None = None,
 ) -> Analysis:
     """Runs the mechanism through ``motion`` (position 1 only without one, or with ``with_motion=False``),
-    computing the transfer functions of ``order`` (see :meth:`Mechanism.run`)."""
-    deck = deckio.write(mech, motion, storage)
+    computing the transfer functions of ``order`` (see :meth:`Mechanism.run`). A run that stopped early warns, or
+    with ``raise_on_stop`` raises :class:`~mechfem.RunStoppedError`; ``raise_on_stop`` None leaves that to the
+    caller."""
+    moving = with_motion and motion is not None
     callback = deckio.progress_callback(progress, "positions")
-    with deckio.tables_dir(deck.tables) as base:
+    try:
+        d: _core.TextRunDict | None = None
         try:
-            moving = with_motion and motion is not None
-            if deck.tables:
-                # Tables are read from a directory that lives for this call only: no model is kept.
-                d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
-            else:
-                model, changes = deckio.compiled(deck, base)
-                try:
-                    d = model.run(changes, moving, callback, order, memory_limit())
-                except AssemblyError:
-                    # The deck reader checks the given numbers (coincident points, a zero length) when it
-                    # compiles; a kept model that only takes new numbers meets them in the core instead. The
-                    # text path names the same mistake as the deck reader does, whatever was compiled before.
-                    d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
-        except MechfemError as e:
-            raise translate(e, deck, mech.name) from None
-        finally:
-            close = getattr(callback, "close", None)
-            if close is not None:
-                close()
-    analysis = Analysis(mech, deck.numbering, d, path=deck.path)
+            kept = compiled.kept_model(mech, motion, storage)
+            if kept is not None:
+                model, numbering, changes = kept
+                d = model.run(changes, moving, callback, order, memory_limit())
+        except MechfemError:
+            # The deck reader checks the given numbers (coincident points, a zero length) when it compiles; a kept
+            # model that only takes new numbers meets them in the core instead. The text path names the mistake.
+            d = None
+        if d is None:
+            d, numbering = _run_text(mech, motion, storage, moving, callback, order)
+    finally:
+        close = getattr(callback, "close", None)
+        if close is not None:
+            close()
+    analysis = Analysis(mech, numbering, d, path=f"{mech.name}.mec")
     analysis.motion = motion if with_motion else None
     if d["interrupted"]:
         raise RunInterrupted(analysis)
-    return analysis
+    if raise_on_stop is None:
+        return analysis
+    # The stop reason is told in the model's words, which costs more than the run of a small mechanism: only when
+    # there is one.
+    reason = None if d["report"]["stop"] is None else analysis.stop_reason()
+    return on_stop(analysis, reason, raise_on_stop)
+
+
+def _run_text(
+    mech: Mechanism,
+    motion: Motion | None,
+    storage: Storage | None,
+    moving: bool,
+    callback: Callable[[int, int], object] | None,
+    order: int | None,
+) -> tuple[_core.TextRunDict, deckio.Numbering]:
+    """Runs the deck text written for the mechanism; its errors in the model's words."""
+    deck = deckio.write(mech, motion, storage)
+    with deckio.tables_dir(deck.tables) as base:
+        try:
+            d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
+        except MechfemError as e:
+            raise translate(e, deck, mech.name) from None
+    return d, deck.numbering
 
 
 __all__ = ["run"]

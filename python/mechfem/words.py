@@ -9,6 +9,20 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+Part = str | tuple[str, object, str]
+"""A piece of a message of the core (the ``parts`` of a solver error or of a stop): plain words, or a thing the
+message names, as ``(kind, value, deck words)``:
+
+* ``element``, ``coordinate``, ``row``: the deck number; ``coords``, ``rows``: the deck numbers, said in the
+  plural;
+* ``term``: a term the deck spells its own way, by its code: ``a_degree_of_freedom``, ``free_motion``
+  (MOV_FREE), ``dynamic`` (MOV_DYN), ``simulation`` (DYN SIM);
+* ``detail``: why an element cannot be evaluated, a dict of ``element`` (its number) and ``kind``:
+  ``coincident_points``, ``no_belt_span`` (with ``distance`` and ``difference``, as the message writes them) or
+  ``zero_radius`` (with ``radius``, ``R_a`` or ``R_c``).
+
+The deck words are the message's own: joined with the plain words, they give the message as the deck says it."""
+
 
 def input_name(j: int, names: Sequence[str] = ()) -> str:
     """``the input of DOF j``, with its row and form parameters when ``names`` has them."""
@@ -55,9 +69,15 @@ class Words:
             f"sign of ds keeps the input's direction, and BUFINP 1 records where the input goes."
         )
 
-    def message(self, text: str) -> str:
-        """The solver's own words, with the names the reader knows."""
-        return text
+    def render(self, parts: Sequence[Part]) -> str:
+        """A message of the core from its parts: the plain words as they are, every thing it names by
+        :meth:`thing`."""
+        return "".join(p if isinstance(p, str) else self.thing(*p) for p in parts)
+
+    def thing(self, kind: str, value: object, deck: str) -> str:
+        """A thing a message names (see :data:`Part`), in the deck's words: ``element 3 (TR2)``,
+        ``co-ordinates 5, 6``."""
+        return deck
 
 
 def words_of(names: Sequence[str] | Words) -> Words:
@@ -65,4 +85,4 @@ def words_of(names: Sequence[str] | Words) -> Words:
     return names if isinstance(names, Words) else Words(names)
 
 
-__all__ = ["Words", "free_motion_line", "input_name", "words_of"]
+__all__ = ["Part", "Words", "free_motion_line", "input_name", "words_of"]

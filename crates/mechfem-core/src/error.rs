@@ -147,9 +147,9 @@ pub enum SolveError {
     /// A result was asked for before the transfer functions it needs were computed.
     #[error("the transfer functions were not computed at this position")]
     NotComputed,
-    /// A motion mode this version cannot run.
+    /// A motion or a request the model cannot run.
     #[error("{0}")]
-    Unsupported(&'static str),
+    Unsupported(Unsupported),
     /// The observer asked the run to stop (for example on Ctrl-C).
     #[error("the run was interrupted")]
     Interrupted,
@@ -164,4 +164,129 @@ pub enum SolveError {
         /// Why it could not go on.
         reason: &'static str,
     },
+}
+
+/// Why a motion or a request cannot be run on a model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unsupported {
+    /// A MOV_FUNC table has fewer rows than the motion has positions.
+    TableTooShort,
+    /// Free motion given for one input while another is driven.
+    FreeWithDriven,
+    /// An input that moves under the forces, in a kinematic run.
+    DynamicNeedsSimulation,
+    /// Free motion of a mechanism with more than one degree of freedom.
+    FreeNeedsOneDof,
+    /// Free motion found no tangent it can follow.
+    FreeFoundNoDirection,
+    /// An input that moves under the forces has no mass or inertia.
+    DynamicWithoutMass,
+    /// Free motion in a simulation.
+    FreeNotTimed,
+    /// A design variable that the model does not have.
+    UnknownDesignVariable,
+    /// An extremum asked of something other than a position quantity of a one-DOF mechanism.
+    ExtremumNeedsOneDof,
+}
+
+/// A piece of a fixed message: plain words, or a term the deck spells its
+/// own way, which a front end that does not speak the deck words in its
+/// own terms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Piece {
+    /// Words that every front end says the same way.
+    Text(&'static str),
+    /// A term of the deck.
+    Term(DeckTerm),
+}
+
+impl Piece {
+    /// The piece as the deck says it.
+    pub fn deck(self) -> &'static str {
+        match self {
+            Piece::Text(t) => t,
+            Piece::Term(t) => t.deck(),
+        }
+    }
+}
+
+/// A term of the deck that a message may use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DeckTerm {
+    /// "a degree of freedom": an input.
+    ADegreeOfFreedom,
+    /// `MOV_FREE`: free motion.
+    FreeMotion,
+    /// `MOV_DYN`: an input that moves under the forces.
+    Dynamic,
+    /// `DYN SIM`: a simulation.
+    Simulation,
+}
+
+impl DeckTerm {
+    /// A stable code of the term, snake case.
+    pub fn code(self) -> &'static str {
+        match self {
+            DeckTerm::ADegreeOfFreedom => "a_degree_of_freedom",
+            DeckTerm::FreeMotion => "free_motion",
+            DeckTerm::Dynamic => "dynamic",
+            DeckTerm::Simulation => "simulation",
+        }
+    }
+
+    /// The term as the deck says it.
+    pub fn deck(self) -> &'static str {
+        match self {
+            DeckTerm::ADegreeOfFreedom => "a degree of freedom",
+            DeckTerm::FreeMotion => "MOV_FREE",
+            DeckTerm::Dynamic => "MOV_DYN",
+            DeckTerm::Simulation => "DYN SIM",
+        }
+    }
+}
+
+impl std::fmt::Display for Unsupported {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.pieces().iter().try_for_each(|p| f.write_str(p.deck()))
+    }
+}
+
+impl std::error::Error for Unsupported {}
+
+impl Unsupported {
+    /// The message in pieces; [`Display`](std::fmt::Display) joins them as the deck says them.
+    pub fn pieces(self) -> &'static [Piece] {
+        use DeckTerm::*;
+        use Piece::{Term, Text};
+        match self {
+            Unsupported::TableTooShort => &[Text("a motion table has fewer rows than positions")],
+            Unsupported::FreeWithDriven => &[Text("free motion cannot be mixed with driven inputs")],
+            Unsupported::DynamicNeedsSimulation => &[
+                Text("an input that moves under the forces ("),
+                Term(Dynamic),
+                Text(") needs a simulation ("),
+                Term(Simulation),
+                Text(")"),
+            ],
+            Unsupported::FreeNeedsOneDof => &[
+                Text("free motion ("),
+                Term(FreeMotion),
+                Text(") needs a mechanism with exactly one degree of freedom"),
+            ],
+            Unsupported::FreeFoundNoDirection => &[Text(
+                "free motion found no direction to move in: the mechanism has more than one degree of freedom here",
+            )],
+            Unsupported::DynamicWithoutMass => &[
+                Term(ADegreeOfFreedom),
+                Text(" that moves under the forces ("),
+                Term(Dynamic),
+                Text(") has no mass or inertia to move"),
+            ],
+            Unsupported::FreeNotTimed => {
+                &[Text("free motion ("), Term(FreeMotion), Text(") has no timing: it cannot be simulated")]
+            }
+            Unsupported::UnknownDesignVariable => &[Text("a design variable is not in the model")],
+            Unsupported::ExtremumNeedsOneDof => &[Text("an extremum needs a position quantity of a one-DOF mechanism")],
+        }
+    }
 }

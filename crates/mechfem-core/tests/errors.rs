@@ -3,7 +3,7 @@
 
 use mechfem_core::{
     run, ElementError, ElementType, InputMotion, LimitKind, Mechanism, MechanismBuilder, ModelError, Motion, Observer,
-    Params, PositionView, Quantity, Recorder, SolveError, State, Term,
+    Params, Piece, PositionView, Quantity, Recorder, SolveError, State, Term, Unsupported,
 };
 
 /// Crank-rocker four-bar (Grashof, crank shortest): crank A0A, coupler AB,
@@ -291,4 +291,25 @@ fn adjusting_between_opposite_extremes_does_not_overflow() {
     let report = run(&mech, &mut state, None, &Params::default(), &mut Ignore).unwrap();
     assert!(report.adjust.stages > 1);
     assert_eq!((state.x[0], state.target[0]), (1e308, 1e308));
+}
+
+/// A refusal's message is its pieces joined in the deck's words, and the
+/// deck terms in it are pieces of their own, for a front end to word.
+#[test]
+fn refusals_say_the_deck_terms_as_pieces_of_their_own() {
+    let err = SolveError::Unsupported(Unsupported::DynamicWithoutMass);
+    assert_eq!(
+        err.to_string(),
+        "a degree of freedom that moves under the forces (MOV_DYN) has no mass or inertia to move"
+    );
+    assert_eq!(
+        Unsupported::DynamicNeedsSimulation.to_string(),
+        "an input that moves under the forces (MOV_DYN) needs a simulation (DYN SIM)"
+    );
+    let terms: Vec<&str> = Unsupported::FreeNeedsOneDof
+        .pieces()
+        .iter()
+        .filter_map(|p| if let Piece::Term(t) = p { Some(t.code()) } else { None })
+        .collect();
+    assert_eq!(terms, ["free_motion"]);
 }

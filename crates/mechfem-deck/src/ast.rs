@@ -74,6 +74,7 @@ pub(crate) fn diagnostic_at(
         element: None,
         coordinate: None,
         detail: None,
+        element_error: None,
     })
 }
 

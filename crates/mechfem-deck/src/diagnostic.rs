@@ -8,6 +8,7 @@ use std::fmt;
 use std::ops::Range;
 use std::path::PathBuf;
 
+use mechfem_core::ElementError;
 use thiserror::Error;
 
 /// A position in a deck: a line and a range of characters on it.
@@ -270,7 +271,7 @@ pub fn output_name_problem(name: &str) -> Option<String> {
 }
 
 /// One mistake in a deck, with the place it was found and a hint.
-#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[derive(Debug, Clone, PartialEq, Error)]
 pub struct Diagnostic {
     /// What kind of mistake.
     pub kind: DiagnosticKind,
@@ -293,6 +294,9 @@ pub struct Diagnostic {
     /// Why the core refused an element, in its own words (`its points P and Q
     /// coincide`), without the deck's numbering around it.
     pub detail: Option<String>,
+    /// The core's reason itself, for a front end that words it with its own
+    /// names for the element's points.
+    pub element_error: Option<ElementError>,
 }
 
 impl Diagnostic {
@@ -309,6 +313,7 @@ impl Diagnostic {
             element: None,
             coordinate: None,
             detail: None,
+            element_error: None,
         }
     }
 
@@ -340,8 +345,8 @@ pub(crate) trait Subject {
     fn about_element(self, index: usize) -> Self;
     /// The co-ordinate (1-based, as the deck numbers it) the mistake is about.
     fn about_coordinate(self, number: usize) -> Self;
-    /// The core's own reason.
-    fn with_detail(self, detail: impl Into<String>) -> Self;
+    /// The core's own reason why the element cannot be evaluated.
+    fn with_detail(self, error: ElementError) -> Self;
 }
 
 impl Subject for Box<Diagnostic> {
@@ -353,8 +358,9 @@ impl Subject for Box<Diagnostic> {
         self.coordinate = Some(number);
         self
     }
-    fn with_detail(mut self, detail: impl Into<String>) -> Self {
-        self.detail = Some(detail.into());
+    fn with_detail(mut self, error: ElementError) -> Self {
+        self.detail = Some(error.to_string());
+        self.element_error = Some(error);
         self
     }
 }
@@ -406,7 +412,7 @@ impl fmt::Display for Diagnostic {
 
 /// One or more diagnostics; what the public functions of this crate return
 /// on failure. Displays them one after another, separated by blank lines.
-#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[derive(Debug, Clone, PartialEq, Error)]
 pub struct Diagnostics(pub Vec<Diagnostic>);
 
 impl Diagnostics {

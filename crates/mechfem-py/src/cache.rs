@@ -6,9 +6,18 @@
 //! stamp says, and no two texts can be taken for one another. A deck that
 //! reads MOV_FUNC or LOADFUNC tables from other files is not kept: those
 //! files could change without the deck.
+//!
+//! Beside each kept deck sits its [`Echo`]: the model echo and storage
+//! requests as Python was given them after a run. They depend only on the
+//! deck and on its position 1, so a run of the same text that reaches the
+//! same position 1 hands Python the very same objects again, and Python
+//! converts them once (`mechfem.result` keeps what it made of them).
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use mechfem_deck::ast::{Deck, LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostic, DiagnosticKind, Diagnostics};
@@ -23,8 +32,45 @@ struct Key {
     text: Vec<u8>,
 }
 
+/// What Python was given for a deck's model and storage, and the numbers
+/// of position 1 they were made from (bit patterns: equal means identical).
+pub struct Echo {
+    position_1: Vec<u64>,
+    model: Py<PyDict>,
+    storage: Py<PyDict>,
+}
+
+/// The echo of one kept deck, filled after its first run.
+#[derive(Default)]
+pub struct EchoSlot(Mutex<Option<Echo>>);
+
+impl EchoSlot {
+    /// The model echo and storage dicts for a run whose position 1 is
+    /// `position_1`: the kept ones when they were made from the same
+    /// numbers, else those `make` builds (then kept).
+    pub fn get_or_make<'py>(
+        &self,
+        py: Python<'py>,
+        position_1: &[&[f64]],
+        make: impl FnOnce() -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)>,
+    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+        let bits: Vec<u64> = position_1.iter().flat_map(|s| s.iter().map(|v| v.to_bits())).collect();
+        let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(e) = lock().as_ref().filter(|e| e.position_1 == bits) {
+            return Ok((e.model.bind(py).clone(), e.storage.bind(py).clone()));
+        }
+        // Made without the lock held: making them runs Python code.
+        let (model, storage) = make()?;
+        *lock() = Some(Echo { position_1: bits, model: model.clone().unbind(), storage: storage.clone().unbind() });
+        Ok((model, storage))
+    }
+}
+
+/// A kept deck: its key, the compiled deck and the echo of its runs.
+type Entry = (Key, Compiled, Arc<EchoSlot>);
+
 /// The kept decks, most recently used last.
-static KEPT: Mutex<Vec<(Key, Compiled)>> = Mutex::new(Vec::new());
+static KEPT: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
 
 /// Whether the deck reads tables from other files.
 fn reads_files(deck: &Deck) -> bool {
@@ -37,31 +83,33 @@ fn reads_files(deck: &Deck) -> bool {
 
 /// Reads and compiles the deck at `path`, or returns a copy of the deck
 /// compiled from the same text before (as [`mechfem_deck::load`] would
-/// compile it).
-pub fn load(path: &Path) -> Result<Compiled, Diagnostics> {
+/// compile it), with the echo slot of that text (a slot of its own for a
+/// deck that is not kept).
+pub fn load(path: &Path) -> Result<(Compiled, Arc<EchoSlot>), Diagnostics> {
     let io = |e: std::io::Error| -> Diagnostics {
         Diagnostic::file(DiagnosticKind::Io, path, format!("cannot read the deck: {e}")).into()
     };
     let key = Key { path: path.to_path_buf(), text: std::fs::read(path).map_err(io)? };
     {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
-        if let Some(k) = kept.iter().position(|(k, _)| *k == key) {
+        if let Some(k) = kept.iter().position(|(k, ..)| *k == key) {
             let entry = kept.remove(k);
-            let compiled = entry.1.clone();
+            let found = (entry.1.clone(), entry.2.clone());
             kept.push(entry);
-            return Ok(compiled);
+            return Ok(found);
         }
     }
     let deck = mechfem_deck::parse_str(&String::from_utf8_lossy(&key.text), path)?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let compiled = mechfem_deck::compile(&deck, dir)?;
+    let slot = Arc::new(EchoSlot::default());
     if !reads_files(&deck) {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
-        kept.retain(|(k, _)| k.path != key.path);
+        kept.retain(|(k, ..)| k.path != key.path);
         if kept.len() >= CAPACITY {
             kept.remove(0);
         }
-        kept.push((key, compiled.clone()));
+        kept.push((key, compiled.clone(), slot.clone()));
     }
-    Ok(compiled)
+    Ok((compiled, slot))
 }

@@ -6,6 +6,7 @@ use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::SimReport;
 use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
+use numpy::npyffi::NPY_ORDER;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -20,7 +21,7 @@ pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) ->
 /// A rows x cols array from `data` given column by column (Fortran order):
 /// a view of one numpy array, whose columns are contiguous.
 pub fn columns<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
-    array2(py, data, cols, rows)?.getattr("T")
+    Ok(PyArray1::from_vec(py, data).reshape_with_order([rows, cols], NPY_ORDER::NPY_FORTRANORDER)?.into_any())
 }
 
 /// `AdjustInfo` as a dict.
@@ -58,7 +59,9 @@ fn stop<'py>(py: Python<'py>, mech: &Mechanism, s: &Stop) -> PyResult<Bound<'py,
     d.set_item("inputs", s.inputs.clone())?;
     d.set_item("last_inputs", s.last_inputs.clone())?;
     d.set_item("kind", errors::kind(&s.error))?;
-    d.set_item("message", errors::describe(mech, &s.error))?;
+    let parts = errors::parts(mech, &s.error);
+    d.set_item("message", errors::message(&parts))?;
+    d.set_item("parts", errors::parts_object(py, &parts)?)?;
     d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
     Ok(d)
 }

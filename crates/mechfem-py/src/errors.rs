@@ -1,15 +1,16 @@
 //! The Python exceptions and the mapping of deck and solver errors onto them.
 //!
 //! Messages name things as the deck does: elements, rows and co-ordinates
-//! 1-based, never the core's 0-based indices.
+//! 1-based, never the core's 0-based indices. Beside its message, a solver
+//! error carries its [`Part`]s, which a front end words in its own terms.
 
 use std::path::Path;
 
-use mechfem_core::{diagnose, Mechanism, SolveError, State};
+use mechfem_core::{diagnose, DeckTerm, ElementError, Mechanism, Piece, SolveError, State};
 use mechfem_deck::{Diagnostic, Diagnostics};
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use pyo3::{create_exception, PyErr};
 
 create_exception!(mechfem.errors, MechfemError, PyException, "Base class of every error mechfem raises.");
@@ -24,20 +25,22 @@ create_exception!(
     mechfem.errors,
     AssemblyError,
     MechfemError,
-    "The model cannot be evaluated at position 1: `element` (deck number), `element_type` and the core's `detail`."
+    "The model cannot be evaluated at position 1: `element` (deck number), `element_type`, the core's `detail` and \
+     its `detail_fields`, and the message's `parts`."
 );
 create_exception!(
     mechfem.errors,
     ConvergenceError,
     MechfemError,
-    "Newton iteration cannot reach position 1: `reason` (a stable code), `iterations` and `residual` when it ran out."
+    "Newton iteration cannot reach position 1: `reason` (a stable code), `iterations` and `residual` when it ran out, \
+     and the message's `parts`."
 );
 create_exception!(
     mechfem.errors,
     LimitPositionError,
     MechfemError,
     "D^c is singular at position 1: `rows` that depend on each other, `coords` that can still move (deck numbers), \
-     `rank` and `size` of D^c, `coordinate` at whose column the pivot vanished."
+     `rank` and `size` of D^c, `coordinate` at whose column the pivot vanished, and the message's `parts`."
 );
 
 create_exception!(
@@ -90,8 +93,8 @@ fn bytes_text(bytes: u128) -> String {
 /// [`DiagnosticKind::code`](mechfem_deck::DiagnosticKind::code)), `path`,
 /// `line` and `column` (1-based; 0: the file as a whole), `text` (the
 /// line), `message`, `hint`, and what it is about: `element`, `coordinate`
-/// (deck numbers) and `detail` (the core's reason), None when it is about
-/// none.
+/// (deck numbers), `detail` (the core's reason) and `detail_fields` (see
+/// [`detail_fields`]), None when it is about none.
 fn diagnostic_fields<'py>(py: Python<'py>, d: &Diagnostic) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     out.set_item("kind", d.kind.code())?;
@@ -104,6 +107,11 @@ fn diagnostic_fields<'py>(py: Python<'py>, d: &Diagnostic) -> PyResult<Bound<'py
     out.set_item("element", d.element)?;
     out.set_item("coordinate", d.coordinate)?;
     out.set_item("detail", d.detail.as_deref())?;
+    let fields = match (d.element, &d.element_error) {
+        (Some(element), Some(error)) => Some(detail_fields(py, element, error)?),
+        _ => None,
+    };
+    out.set_item("detail_fields", fields)?;
     Ok(out)
 }
 
@@ -156,43 +164,182 @@ pub fn kind(err: &SolveError) -> &'static str {
     }
 }
 
-/// The error in words, with the deck's numbering.
-pub fn describe(mech: &Mechanism, err: &SolveError) -> String {
+/// A piece of a message. The things of the model it names (elements,
+/// co-ordinates, rows, deck terms, why an element failed) cross to Python
+/// as structure, so that a front end names them in its own words (the
+/// Python API with the model's names) without reading the message.
+#[derive(Debug, Clone)]
+pub enum Part {
+    /// Words every front end says the same way.
+    Text(String),
+    /// Element `number` (deck numbering) of type `ty`.
+    Element {
+        /// Deck number.
+        number: usize,
+        /// Type name.
+        ty: &'static str,
+    },
+    /// One co-ordinate.
+    Coordinate(usize),
+    /// Co-ordinates, always said in the plural.
+    Coords(Vec<usize>),
+    /// One prescribed row.
+    Row(usize),
+    /// Prescribed rows, always said in the plural.
+    Rows(Vec<usize>),
+    /// A term the deck spells its own way.
+    Term(DeckTerm),
+    /// Why element `element` cannot be evaluated.
+    Detail {
+        /// Deck number.
+        element: usize,
+        /// The core's reason.
+        error: ElementError,
+    },
+}
+
+impl Part {
+    fn kind(&self) -> &'static str {
+        match self {
+            Part::Text(_) => "text",
+            Part::Element { .. } => "element",
+            Part::Coordinate(_) => "coordinate",
+            Part::Coords(_) => "coords",
+            Part::Row(_) => "row",
+            Part::Rows(_) => "rows",
+            Part::Term(_) => "term",
+            Part::Detail { .. } => "detail",
+        }
+    }
+
+    /// The part in the deck's words.
+    pub fn deck(&self) -> String {
+        match self {
+            Part::Text(t) => t.clone(),
+            Part::Element { number, ty } => format!("element {number} ({ty})"),
+            Part::Coordinate(i) => format!("co-ordinate {i}"),
+            Part::Coords(c) => format!("co-ordinates {}", list(c)),
+            Part::Row(r) => format!("row {r}"),
+            Part::Rows(r) => format!("rows {}", list(r)),
+            Part::Term(t) => t.deck().to_string(),
+            Part::Detail { error, .. } => error.to_string(),
+        }
+    }
+
+    /// A plain string for [`Part::Text`]; otherwise the tuple `(kind, value,
+    /// deck words)`, the value being a number, a list of numbers, a term's
+    /// code or the fields of [`detail_fields`].
+    fn object<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let value = match self {
+            Part::Text(t) => return Ok(PyString::new(py, t).into_any()),
+            Part::Element { number: n, .. } | Part::Coordinate(n) | Part::Row(n) => n.into_pyobject(py)?.into_any(),
+            Part::Coords(n) | Part::Rows(n) => PyList::new(py, n)?.into_any(),
+            Part::Term(t) => PyString::new(py, t.code()).into_any(),
+            Part::Detail { element, error } => detail_fields(py, *element, error)?.into_any(),
+        };
+        let items = [PyString::new(py, self.kind()).into_any(), value, PyString::new(py, &self.deck()).into_any()];
+        Ok(PyTuple::new(py, items)?.into_any())
+    }
+}
+
+fn text(t: impl Into<String>) -> Part {
+    Part::Text(t.into())
+}
+
+/// The message the parts make, in the deck's words.
+pub fn message(parts: &[Part]) -> String {
+    parts.iter().map(Part::deck).collect()
+}
+
+/// The parts as the Python list of `parts` (see [`Part`]).
+pub fn parts_object<'py>(py: Python<'py>, parts: &[Part]) -> PyResult<Bound<'py, PyList>> {
+    let items = parts.iter().map(|p| p.object(py)).collect::<PyResult<Vec<_>>>()?;
+    PyList::new(py, items)
+}
+
+/// Why element `element` (deck number) cannot be evaluated, as a dict:
+/// `element`, `kind` (`coincident_points`, `no_belt_span`, `zero_radius`)
+/// and the numbers and names of the reason, as the core's message writes
+/// them: `distance` and `difference` of a belt, `radius` (`R_a` or `R_c`).
+pub fn detail_fields<'py>(py: Python<'py>, element: usize, error: &ElementError) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("element", element)?;
+    match error {
+        ElementError::CoincidentPoints => d.set_item("kind", "coincident_points")?,
+        ElementError::NoBeltSpan { l, d: diff } => {
+            d.set_item("kind", "no_belt_span")?;
+            d.set_item("distance", l.to_string())?;
+            d.set_item("difference", diff.to_string())?;
+        }
+        ElementError::ZeroRadius { name } => {
+            d.set_item("kind", "zero_radius")?;
+            d.set_item("radius", *name)?;
+        }
+    }
+    Ok(d)
+}
+
+/// The error in parts, with the deck's numbering.
+pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
     match err {
         SolveError::Element { element, source } => {
             let ty = mech.elements().get(*element).map_or("?", |e| e.ty.name());
-            format!("element {} ({ty}): {source}", element + 1)
+            let number = element + 1;
+            vec![Part::Element { number, ty }, text(": "), Part::Detail { element: number, error: *source }]
         }
         SolveError::Singular { column, pivot } => {
             let coord = mech.moving_coords().get(*column).map_or(0, |i| i + 1);
-            format!("D^c is singular (pivot {pivot:.2e} at the column of co-ordinate {coord})")
+            vec![
+                text(format!("D^c is singular (pivot {pivot:.2e} at the column of ")),
+                Part::Coordinate(coord),
+                text(")"),
+            ]
         }
-        SolveError::NoConvergence { iterations, residual } => {
-            format!("Newton iteration did not converge in {iterations} iterations (largest deformation {residual:.3e})")
-        }
-        SolveError::BranchJump { predicted, corrected } => format!(
+        SolveError::NoConvergence { iterations, residual } => vec![text(format!(
+            "Newton iteration did not converge in {iterations} iterations (largest deformation {residual:.3e})"
+        ))],
+        SolveError::BranchJump { predicted, corrected } => vec![text(format!(
             "the correction ({corrected:.3e}) went farther than the prediction ({predicted:.3e}): the step may jump to \
              another assembly branch"
-        ),
-        other => other.to_string(),
+        ))],
+        SolveError::Unsupported(u) => u
+            .pieces()
+            .iter()
+            .map(|p| match p {
+                Piece::Text(t) => text(*t),
+                Piece::Term(t) => Part::Term(*t),
+            })
+            .collect(),
+        other => vec![text(other.to_string())],
     }
+}
+
+/// The error in words, with the deck's numbering.
+pub fn describe(mech: &Mechanism, err: &SolveError) -> String {
+    message(&parts(mech, err))
 }
 
 /// The exception for a failure at position 1. A singular D^c is analysed
 /// at the co-ordinates where it was met, to name the rows and co-ordinates
 /// at fault.
 pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> PyErr {
-    let e = position_one_exception(py, mech, state, err);
+    let (e, parts) = position_one_exception(py, mech, state, err);
     let value = e.value(py);
     // Every failure here is at position 1; a front end words it from this
     // and the fields below instead of from the message.
     let _ = value.setattr("position", 1);
     let _ = value.setattr("reason", kind(err));
+    if let Ok(parts) = parts_object(py, &parts) {
+        let _ = value.setattr("parts", parts);
+    }
     match err {
         SolveError::Element { element, source } => {
             let _ = value.setattr("element", element + 1);
             let _ = value.setattr("element_type", mech.elements().get(*element).map(|e| e.ty.name()));
             let _ = value.setattr("detail", source.to_string());
+            if let Ok(fields) = detail_fields(py, element + 1, source) {
+                let _ = value.setattr("detail_fields", fields);
+            }
         }
         SolveError::Singular { column, .. } => {
             let _ = value.setattr("coordinate", mech.moving_coords().get(*column).map(|i| i + 1));
@@ -206,33 +353,33 @@ pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, e
     e
 }
 
-/// The exception of [`position_one_error`], with its message and the fields
-/// only its analysis finds (the rows and co-ordinates of a singular D^c).
-fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> PyErr {
-    let message = describe(mech, err);
-    match err {
-        SolveError::Element { .. } => AssemblyError::new_err(message),
+/// The exception of [`position_one_error`] and the parts of its message,
+/// with the fields only its analysis finds (the rows and co-ordinates of a
+/// singular D^c).
+fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> (PyErr, Vec<Part>) {
+    let mut parts = parts(mech, err);
+    let e = match err {
+        SolveError::Element { .. } => AssemblyError::new_err(message(&parts)),
         SolveError::Singular { .. } => {
-            let (rows, coords, text, rank) = match diagnose(mech, state) {
+            let (rows, coords, rank) = match diagnose(mech, state) {
                 Ok(m) if m.rank < m.n => {
                     let rows: Vec<usize> = m.dependent_rows.iter().map(|r| r + 1).collect();
                     let coords: Vec<usize> = m.free_coords.iter().map(|i| i + 1).collect();
-                    let which = match rows.as_slice() {
-                        [r] => format!("prescribed row {r} is superfluous"),
-                        _ => format!("prescribed rows {} are linearly dependent", list(&rows)),
-                    };
-                    let text = format!(
-                        "{message}; D^c has rank {} of {}: {which}, and co-ordinates {} can move with every \
-                         prescribed value held",
-                        m.rank,
-                        m.n,
-                        list(&coords)
-                    );
-                    (rows, coords, text, Some((m.rank, m.n)))
+                    parts.push(text(format!("; D^c has rank {} of {}: prescribed ", m.rank, m.n)));
+                    match rows.as_slice() {
+                        [r] => parts.extend([Part::Row(*r), text(" is superfluous")]),
+                        _ => parts.extend([Part::Rows(rows.clone()), text(" are linearly dependent")]),
+                    }
+                    parts.extend([
+                        text(", and "),
+                        Part::Coords(coords.clone()),
+                        text(" can move with every prescribed value held"),
+                    ]);
+                    (rows, coords, Some((m.rank, m.n)))
                 }
-                _ => (Vec::new(), Vec::new(), message, None),
+                _ => (Vec::new(), Vec::new(), None),
             };
-            let e = LimitPositionError::new_err(text);
+            let e = LimitPositionError::new_err(message(&parts));
             let value = e.value(py);
             let _ = value.setattr("rows", rows);
             let _ = value.setattr("coords", coords);
@@ -243,11 +390,12 @@ fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, e
         SolveError::NoConvergence { .. }
         | SolveError::BranchJump { .. }
         | SolveError::NonFinite
-        | SolveError::Simulation { .. } => ConvergenceError::new_err(message),
+        | SolveError::Simulation { .. } => ConvergenceError::new_err(message(&parts)),
         SolveError::NotComputed | SolveError::Unsupported(_) | SolveError::Interrupted => {
-            MechfemError::new_err(message)
+            MechfemError::new_err(message(&parts))
         }
-    }
+    };
+    (e, parts)
 }
 
 fn list(numbers: &[usize]) -> String {

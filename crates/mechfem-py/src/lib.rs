@@ -24,6 +24,13 @@
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.
 
+/// The run's tables are large (a position's numbers times every position)
+/// and go to Python as they are; mimalloc keeps the memory of freed tables
+/// for the next run instead of handing it back to the system and faulting
+/// it in again page by page.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 mod batch;
 mod cache;
 mod catalogue;
@@ -36,6 +43,7 @@ mod rundict;
 mod text;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use mechfem_core::run::SimReport;
 use mechfem_core::{InputMotion, Mechanism, Motion, Quantity, RunReport};
@@ -44,12 +52,28 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
 use crate::observe::Recording;
 
 /// Reads and compiles a deck (or takes it from [`cache`]), without the GIL.
-fn load(py: Python<'_>, path: &Path) -> PyResult<Compiled> {
+fn load(py: Python<'_>, path: &Path) -> PyResult<(Compiled, Arc<EchoSlot>)> {
     py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))
+}
+
+/// The model echo and storage requests of a run of `c` (see [`EchoSlot`]).
+fn echo<'py>(
+    py: Python<'py>,
+    slot: &EchoSlot,
+    c: &Compiled,
+    given: &[f64],
+    at_1: &[f64],
+    rec: &Recording,
+) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    let (prescribed, dependent) = (&rec.prescribed_at_1, &rec.dependent_at_1);
+    slot.get_or_make(py, &[given, at_1, prescribed, dependent], || {
+        Ok((convert::model(py, c, given, at_1, prescribed, dependent)?, convert::storage(py, c)?))
+    })
 }
 
 /// The co-ordinates (0-based, in order of first appearance) of the
@@ -149,10 +173,12 @@ fn execute(
 /// position 1, the adjustment that led there, and the model echo.
 #[pyfunction]
 fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
-    let Ran { compiled: c, given, rec, report, .. } = execute(py, load(py, &path)?, false, None, u64::MAX, true)?;
+    let (compiled, slot) = load(py, &path)?;
+    let Ran { compiled: c, given, rec, report, .. } = execute(py, compiled, false, None, u64::MAX, true)?;
     let mech = &c.mechanism;
     let n = mech.n_coords();
     let at_1 = rec.recorder.coords()[..n].to_vec();
+    let (model, _) = echo(py, &slot, &c, &given, &at_1, &rec)?;
     let d = PyDict::new(py);
     d.set_item("n_coords", n)?;
     d.set_item("n_moving", mech.n_moving())?;
@@ -162,7 +188,7 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("det", rec.recorder.data()[rec.n_buffers + 1])?;
     d.set_item("coords", PyArray1::from_vec(py, at_1.clone()))?;
     d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
-    d.set_item("model", convert::model(py, &c, &given, &at_1, &rec.prescribed_at_1, &rec.dependent_at_1)?)?;
+    d.set_item("model", model)?;
     Ok(d)
 }
 
@@ -195,25 +221,25 @@ fn run_deck(
     memory_limit: u64,
     det: bool,
 ) -> PyResult<Bound<'_, PyDict>> {
+    let (compiled, slot) = load(py, &path)?;
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
-        execute(py, load(py, &path)?, true, progress, memory_limit, det)?;
+        execute(py, compiled, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
     let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
-    let width = nb + 2 + rec.n_extra;
-    let data = rec.recorder.data();
-    let column = |q: usize| -> Vec<f64> { (0..positions).map(|k| data[k * width + q]).collect() };
-    // Column by column, so that each column of the array Python gets is contiguous.
-    let block = |from: usize, to: usize| -> Vec<f64> { (from..to).flat_map(column).collect() };
-    let values = block(0, nb);
+    let (model, storage) = echo(py, &slot, &c, &given, &rec.recorder.coords()[..n], &rec)?;
     let n_dynamic = if c.dynamics.is_some() { dynamic_quantities(mech).len() } else { 0 };
     let n_kx1 = rec.n_extra - n_dynamic;
     let kx1_coords: Vec<usize> = if n_kx1 > 0 { hodograph_coords(&c) } else { Vec::new() };
-    let coords = rec.recorder.coords();
+    let width = nb + 2 + rec.n_extra;
+    let (data, coords) = rec.recorder.into_parts();
+    // Column by column, so that each column of the array Python gets is contiguous.
+    let block = |from: usize, to: usize| columns_of(&data, width, from..to);
+    let column = |q: usize| block(q, q + 1);
 
     let d = PyDict::new(py);
     d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
-    d.set_item("buffer_values", convert::columns(py, values, positions, nb)?)?;
-    d.set_item("coords", convert::array2(py, coords.to_vec(), positions, n)?)?;
+    d.set_item("buffer_values", convert::columns(py, block(0, nb), positions, nb)?)?;
+    d.set_item("coords", convert::array2(py, coords, positions, n)?)?;
     d.set_item("time", PyArray1::from_vec(py, column(nb)))?;
     d.set_item("det", PyArray1::from_vec(py, column(nb + 1)))?;
     d.set_item("kx1_coords", kx1_coords.iter().map(|i| i + 1).collect::<Vec<_>>())?;
@@ -234,10 +260,23 @@ fn run_deck(
     d.set_item("simulation", sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     d.set_item("report", convert::report(py, mech, &report, steps)?)?;
-    d.set_item("model", convert::model(py, &c, &given, &coords[..n], &rec.prescribed_at_1, &rec.dependent_at_1)?)?;
-    d.set_item("storage", convert::storage(py, &c)?)?;
+    d.set_item("model", model)?;
+    d.set_item("storage", storage)?;
     d.set_item("interrupted", interrupted)?;
     Ok(d)
+}
+
+/// Columns `range` of a row-major table `width` wide, one after the other
+/// (column-major).
+fn columns_of(data: &[f64], width: usize, range: std::ops::Range<usize>) -> Vec<f64> {
+    let rows = data.len().checked_div(width).unwrap_or(0);
+    let mut out = vec![0.0; rows * range.len()];
+    for (k, row) in data.chunks_exact(width.max(1)).enumerate() {
+        for (q, &v) in row[range.clone()].iter().enumerate() {
+            out[q * rows + k] = v;
+        }
+    }
+    out
 }
 
 /// The module `mechfem._core`.

@@ -33,7 +33,7 @@ impl Model {
     /// The deck file at `path`, compiled (or taken from the decks kept by `run_deck`).
     #[staticmethod]
     fn from_path(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
-        let compiled = py.detach(|| cache::load(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
+        let (compiled, _) = py.detach(|| cache::load(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
         Ok(Model { compiled, path })
     }
 

@@ -38,6 +38,13 @@ pub struct Progress {
     stride: usize,
     /// The most positions reported so far.
     reported: usize,
+    /// The count of positions at which Python is next attached to: the
+    /// next multiple of the stride with a callback; without one, only
+    /// Ctrl-C is looked for, about every 10% of the run (attaching every
+    /// 1% costs a short run of a small mechanism more than its positions
+    /// do), and at the end. Kept as a count to compare with, not found by a
+    /// division at every position.
+    next: usize,
     /// The first error raised by the callback or a signal handler; it stops
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
     /// so far are kept.
@@ -52,7 +59,10 @@ const INTERRUPT_CHECK: Duration = Duration::from_millis(100);
 impl Progress {
     /// Progress over `total` positions.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        Progress { callback, total, stride: (total / 100).max(1), reported: 0, error: None, asked: None }
+        let stride = (total / 100).max(1);
+        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None, asked: None };
+        p.next = p.after(0);
+        p
     }
 
     /// No progress to report, only Ctrl-C to notice, for a run on the thread
@@ -60,7 +70,9 @@ impl Progress {
     /// a second of the run (the clock read every 64 positions), so that a
     /// run of many short variants pays next to nothing for it.
     pub fn interrupts() -> Progress {
-        Progress { stride: 64, asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) }
+        let mut p = Progress { stride: 64, asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) };
+        p.next = p.after(0);
+        p
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -72,8 +84,17 @@ impl Progress {
         self.report(done);
     }
 
+    /// The count after `done` at which Python is attached to next (with
+    /// [`Progress::interrupts`], at which the clock is looked at).
+    fn after(&self, done: usize) -> usize {
+        let every = self.callback.is_some() || self.asked.is_some();
+        let step = if every { self.stride } else { 10 * self.stride };
+        (done / step).saturating_add(1).saturating_mul(step).min(self.total)
+    }
+
     /// Reports that `done` positions are computed, when that is a multiple
     /// of the stride or the last one, unless an error has stopped the run.
+    #[inline]
     pub fn report(&mut self, done: usize) {
         // Never backwards: a simulation reports its integration first, then
         // replays the positions it reached.
@@ -81,9 +102,10 @@ impl Progress {
             return;
         }
         self.reported = done;
-        if self.error.is_some() || !(done.is_multiple_of(self.stride) || done == self.total) {
+        if done < self.next || self.error.is_some() {
             return;
         }
+        self.next = self.after(done);
         if let Some(asked) = self.asked.as_mut() {
             if asked.elapsed() < INTERRUPT_CHECK {
                 return;

@@ -6,7 +6,7 @@
 //! direction of the previous step, so limit positions of the original input
 //! are passed.
 
-use crate::error::SolveError;
+use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
 use crate::solver::{correct_with, Kinematics, Params, TempInput};
 
@@ -92,9 +92,7 @@ impl FreeStepper {
                 }
             }
             if !found {
-                return Err(SolveError::Unsupported(
-                    "free motion found no direction to move in: the mechanism has more than one degree of freedom here",
-                ));
+                return Err(SolveError::Unsupported(Unsupported::FreeFoundNoDirection));
             }
         }
         let norm = self.tangent.iter().map(|v| v * v).sum::<f64>().sqrt();

@@ -7,7 +7,7 @@
 //! that a computation at every step would lengthen.
 
 use super::{InputMotion, Motion};
-use crate::error::SolveError;
+use crate::error::{SolveError, Unsupported};
 
 /// Positions held at a time.
 const WINDOW: usize = 256;
@@ -55,20 +55,14 @@ impl<'a> Schedule<'a> {
                 InputMotion::Relative { delta } => *delta,
                 InputMotion::Absolute { end } => end - start[j],
                 InputMotion::Table { rows } => {
-                    let rows = rows
-                        .get(..=n)
-                        .ok_or(SolveError::Unsupported("a motion table has fewer rows than positions"))?;
+                    let rows = rows.get(..=n).ok_or(SolveError::Unsupported(Unsupported::TableTooShort))?;
                     clock = clock.or(Some(j));
                     inputs.push(Input::Table(rows));
                     continue;
                 }
-                InputMotion::Free { .. } => {
-                    return Err(SolveError::Unsupported("free motion cannot be mixed with driven inputs"))
-                }
+                InputMotion::Free { .. } => return Err(SolveError::Unsupported(Unsupported::FreeWithDriven)),
                 InputMotion::Dynamic { .. } => {
-                    return Err(SolveError::Unsupported(
-                        "an input that moves under the forces (MOV_DYN) needs a simulation (DYN SIM)",
-                    ))
+                    return Err(SolveError::Unsupported(Unsupported::DynamicNeedsSimulation))
                 }
             };
             inputs.push(Input::Linear { start: start[j], delta, vel: delta / (n as f64 * motion.dt) });

@@ -15,7 +15,7 @@
 use super::kinematic::run;
 use super::observe::{Observer, PositionView, RunReport};
 use super::record::Quantity;
-use crate::error::SolveError;
+use crate::error::{SolveError, Unsupported};
 use crate::model::{FormRef, Mechanism, State};
 use crate::motion::Motion;
 use crate::solver::{correct, DesignVar, Kinematics, Params, Sensitivity, TransferOrder};
@@ -153,13 +153,12 @@ pub fn evaluate(
     quantities: &[Quantity],
     extrema: &[ExtremumSpec],
 ) -> Result<DesignRun, SolveError> {
-    let sens =
-        Sensitivity::new(mech, vars).map_err(|_| SolveError::Unsupported("a design variable is not in the model"))?;
+    let sens = Sensitivity::new(mech, vars).map_err(|_| SolveError::Unsupported(Unsupported::UnknownDesignVariable))?;
     let mut slope_of = Vec::with_capacity(extrema.len());
     for e in extrema {
         match slopes(e.reference) {
             Some((s, _)) if mech.n_dof() == 1 => slope_of.push(s),
-            _ => return Err(SolveError::Unsupported("an extremum needs a position quantity of a one-DOF mechanism")),
+            _ => return Err(SolveError::Unsupported(Unsupported::ExtremumNeedsOneDof)),
         }
     }
     let n = motion.steps + 1;

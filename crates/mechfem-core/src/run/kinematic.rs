@@ -6,7 +6,7 @@
 //! dynamics is evaluated at its positions.
 
 use super::observe::{Observer, PositionView, RunReport, Stop};
-use crate::error::SolveError;
+use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
 use crate::motion::free::FreeStepper;
 use crate::motion::limits::{self, LimitKind, LimitPosition};
@@ -48,9 +48,7 @@ pub fn run(
     });
     let mut kin = if free.is_some() { Kinematics::dense(mech) } else { Kinematics::new(mech) };
     if free.is_some() && nd != 1 {
-        return Err(SolveError::Unsupported(
-            "free motion (MOV_FREE) needs a mechanism with exactly one degree of freedom",
-        ));
+        return Err(SolveError::Unsupported(Unsupported::FreeNeedsOneDof));
     }
     let schedule = match motion {
         Some(m) if free.is_none() => {

@@ -348,6 +348,11 @@ impl Recorder {
     pub fn coords(&self) -> &[f64] {
         &self.coords
     }
+    /// The values and the co-ordinates ([`Self::data`], [`Self::coords`]),
+    /// handed over without a copy.
+    pub fn into_parts(self) -> (Vec<f64>, Vec<f64>) {
+        (self.data, self.coords)
+    }
 }
 
 impl Observer for Recorder {

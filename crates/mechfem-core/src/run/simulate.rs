@@ -34,7 +34,7 @@ use super::inverse::InverseDynamics;
 use super::kinematic::run;
 use super::observe::{Observer, PositionView, RunReport, Stop};
 use crate::dynamics::{Dynamics, Integration};
-use crate::error::SolveError;
+use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, correct, Kinematics, Params, TransferOrder};
@@ -195,9 +195,8 @@ impl Eom<'_> {
             }
             self.rhs[r] = -self.drives[j];
         }
-        solve_dense(nf, &mut self.m_ff, &mut self.rhs).ok_or(SolveError::Unsupported(
-            "a degree of freedom that moves under the forces (MOV_DYN) has no mass or inertia to move",
-        ))?;
+        solve_dense(nf, &mut self.m_ff, &mut self.rhs)
+            .ok_or(SolveError::Unsupported(Unsupported::DynamicWithoutMass))?;
         if self.rhs.iter().any(|a| !a.is_finite()) {
             return Err(SolveError::NonFinite);
         }
@@ -464,9 +463,7 @@ pub fn simulate_within(
                 driven.push((j, Driver::Linear { start: start[j], rate: (end - start[j]) / span }))
             }
             InputMotion::Table { rows } => driven.push((j, Driver::Table(rows.clone()))),
-            InputMotion::Free { .. } => {
-                return Err(SolveError::Unsupported("free motion (MOV_FREE) has no timing: it cannot be simulated"))
-            }
+            InputMotion::Free { .. } => return Err(SolveError::Unsupported(Unsupported::FreeNotTimed)),
         }
     }
     let mut kin = Kinematics::new(mech);

@@ -153,7 +153,7 @@ fn model_error(deck: &Deck, e: ModelError) -> Box<Diagnostic> {
                     ),
                 )
                 .about_element(*element)
-                .with_detail(source.to_string())
+                .with_detail(*source)
                 .with_hint(hint);
         }
     }

@@ -1,0 +1,222 @@
+"""The compiled model of a named :class:`~mechfem.Mechanism`, kept per topology.
+
+A mechanism's deck is written (:func:`mechfem.deckio.write`) and compiled (``_core.Model``) once per *topology*:
+everything its deck says apart from the numbers a compiled model takes anew at every run, the values of the
+co-ordinates (XFIX, XMOV) and the prescribed values and input starts (PARA). A run of a mechanism whose topology is
+unchanged writes and reads no text: :func:`kept_model` gives the compiled model, the numbering of the mechanism and
+its numbers as changes, taken from its parts.
+
+The topology (:func:`topology`) is what the deck writer puts on the deck's lines besides those numbers, in deck
+numbers: the mechanism's name, its elements (types and co-ordinates), which co-ordinates are fixed, its rows (kind,
+terms, whether a value is given), its masses and loads, motion and storage. Two values a deck reader derives from
+the numbers when it compiles are guarded as well, so that a kept model gives to the last bit what the deck text
+gives:
+
+* a prescribed row or input without a value holds its value at the given co-ordinates: the co-ordinates of its
+  elements are part of the topology;
+* every element remembers the direction of its first two points at the given co-ordinates and tracks its angles
+  from there (within a half turn): a kept model serves while none of these directions has turned by a quarter turn
+  or more since it was compiled, and is compiled again otherwise.
+
+A deck that needs files beside it (a table motion, a load table) has no kept model: it runs from its text.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from collections.abc import Hashable
+from dataclasses import dataclass, fields
+
+import mechfem._core as _core
+from mechfem import deckio
+from mechfem.loads import Loads, LoadTable
+from mechfem.model import Mechanism
+from mechfem.motion import Free, Motion, Table, To, check_units, input_dof
+from mechfem.numbering import Numbering, number
+from mechfem.parts import Coordinate, Element, Row
+from mechfem.storage import Storage
+
+Change = tuple[int, int, float]
+"""A number of a compiled deck, as ``_core.Model.run`` takes it: (0, co-ordinate, value) for XFIX and XMOV, (1, row,
+value) for PARA."""
+
+
+@dataclass(eq=False)
+class Kept:
+    """A compiled model and the directions its elements track their angles from (see the module's doc)."""
+
+    model: _core.Model
+    directions: tuple[float, ...]
+
+
+_COMPILED: dict[Hashable, Kept] = {}
+"""The kept models by topology, the least recently used first."""
+_KEEP = 16
+# Runs on several threads share the kept models.
+_LOCK = threading.Lock()
+
+
+def kept_model(
+    mech: Mechanism, motion: Motion | None, storage: Storage | None
+) -> tuple[_core.Model, Numbering, list[Change]] | None:
+    """The compiled model of ``mech`` with ``motion`` and ``storage`` (compiled only when its topology is new), its
+    numbering and its numbers as changes; None for a mechanism that runs from its deck text: one whose deck needs
+    files, and one that the deck writer or reader would refuse, so that they name the mistake.
+
+    Compiling raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.Model`` gives it)."""
+    numbering = deckio.number_model(mech)
+    key = topology(mech, motion, storage, numbering)
+    if key is None:
+        return None
+    changes = _changes(numbering)
+    if changes is None:
+        return None
+    directions = _directions(numbering)
+    with _LOCK:
+        kept = _COMPILED.get(key)
+        # The most recently used last; a key is compared once more only when it moves.
+        if kept is not None and next(reversed(_COMPILED.values())) is not kept:
+            _COMPILED.pop(key, None)
+            _COMPILED[key] = kept
+    # Its angles are tracked from the directions it was compiled at (see the module's doc).
+    if kept is not None and all(abs(a - b) < math.pi / 2 for a, b in zip(kept.directions, directions, strict=True)):
+        # The deck writer checks the motion's units at every run: so does a kept model.
+        if motion is not None:
+            check_units(motion, numbering.inputs)
+        return kept.model, numbering, changes
+    deck = deckio.write(mech, motion, storage)
+    if deck.tables:
+        return None
+    kept = Kept(_core.Model(deck.text, deck.path, "."), directions)
+    with _LOCK:
+        _COMPILED.pop(key, None)
+        while len(_COMPILED) >= _KEEP:
+            _COMPILED.pop(next(iter(_COMPILED)))
+        _COMPILED[key] = kept
+    return kept.model, numbering, changes
+
+
+def topology(
+    mech: Mechanism, motion: Motion | None, storage: Storage | None, numbering: Numbering
+) -> tuple[object, ...] | None:
+    """What the deck of ``mech`` (numbered ``numbering``) with ``motion`` and ``storage`` says besides the numbers
+    of XFIX, XMOV and PARA, and the co-ordinates the value of a row without one is taken from; None when the deck
+    needs files beside it, or when the deck writer would refuse the model (it then says why)."""
+    try:
+        return _topology(mech, motion, storage, numbering)
+    except (KeyError, ValueError, TypeError):
+        return None
+
+
+def _topology(
+    mech: Mechanism, motion: Motion | None, storage: Storage | None, nb: Numbering
+) -> tuple[object, ...] | None:
+    element = {e: k for k, e in enumerate(nb.elements, 1)}
+    coord = nb.coord_number
+    elements = tuple([(e.type, *[coord[c] for c in e.coordinates]) for e in nb.elements])
+    rows = tuple(
+        [(r.kind, r.value is None, *[(number(f), p.form, element[p.element]) for f, p in r.terms]) for r in nb.rows]
+    )
+    fixed = tuple([bool(c.fixed) for c in nb.coords])
+    # A row without a value is prescribed (or starts) at its value at the given co-ordinates, computed when compiled.
+    given = tuple(
+        [number(c.value) for r in nb.prescribed if r.value is None for _, p in r.terms for c in p.element.coordinates]
+    )
+    loads = None if mech.loads is None else _loads(mech.loads, nb, element)
+    moves = None if motion is None else _motion(motion, nb)
+    stored = None if storage is None else _storage(mech, storage, nb)
+    if (mech.loads is not None and loads is None) or (motion is not None and moves is None):
+        return None
+    return (mech.name, elements, rows, fixed, given, loads, moves, stored)
+
+
+def _loads(loads: Loads, nb: Numbering, element: dict[Element, int]) -> tuple[object, ...] | None:
+    """The DYNAMICS block in deck numbers; None with a load table, whose file the deck needs beside it."""
+    if any(isinstance(it, LoadTable) for it in loads):
+        return None
+
+    def ref(v: object) -> object:
+        if isinstance(v, Element):
+            return element[v]
+        if isinstance(v, Coordinate):
+            return nb.coord_number[v]
+        if isinstance(v, Row):
+            return nb.row_dest[v]
+        return number(v) if isinstance(v, float | int) else v
+
+    return tuple([(type(it).__name__, *[ref(getattr(it, f.name)) for f in fields(it)]) for it in loads.in_deck_order()])
+
+
+def _motion(motion: Motion, nb: Numbering) -> tuple[object, ...] | None:
+    """The MOVEMENT block per DOF; None for one the deck writer or reader refuses, and with a table motion, whose
+    file the deck needs beside it."""
+    inputs = nb.inputs
+    time = motion.steps * motion.dt
+    per_dof: dict[int, tuple[str, str]] = {}
+    for key, im in motion.inputs.items():
+        j = input_dof(key, inputs)
+        if isinstance(im, Table) or j in per_dof or (isinstance(im, Free) and len(inputs) != 1):
+            return None
+        value = im.ds if isinstance(im, Free) else im.value
+        # The deck reader refuses an end the input cannot reach at a rate a number can hold.
+        start = inputs[j - 1].value
+        if isinstance(im, To) and start is not None and not math.isfinite((value - start) / time):
+            return None
+        per_dof[j] = (type(im).__name__, number(value))
+    if len(per_dof) != len(inputs):
+        return None
+    tolerances = (motion.accuracy, motion.max_iter, motion.rtol, motion.atol)
+    return (
+        motion.steps,
+        number(motion.dt),
+        *[per_dof[j] for j in range(1, len(inputs) + 1)],
+        tuple([None if v is None else number(v) for v in tolerances]),
+    )
+
+
+def _storage(mech: Mechanism, storage: Storage, nb: Numbering) -> tuple[object, ...]:
+    """The STORAGE block in deck numbers."""
+    buffers = tuple([(b, kw, *deckio.buffer_numbers(mech, nb, b, kw, args)) for b, kw, args in storage.buffers])
+    pictures = tuple(
+        [
+            (
+                pic.title.replace(";", ",").rstrip(),
+                *[(kw, *deckio.plot_numbers(mech, nb, kw, a, b)) for kw, a, b in pic.plots],
+            )
+            for pic in storage.pictures
+        ]
+    )
+    printbuf = None if storage.printbuf is None else tuple(map(str, storage.printbuf))
+    return (buffers, printbuf, tuple(map(str, storage.savedata)), storage.animate, pictures)
+
+
+def _changes(nb: Numbering) -> list[Change] | None:
+    """The numbers of XFIX, XMOV and PARA; None when one is not finite or when a constant length is not above
+    zero, which the deck reader refuses (with a message the kept model could not give)."""
+    changes: list[Change] = [(0, i, float(c.value)) for i, c in enumerate(nb.coords, 1)]
+    for k, r in enumerate(nb.prescribed, 1):
+        if r.value is not None:
+            changes.append((1, k, float(r.value)))
+            if r.kind == "prescribed" and len(r.terms) == 1 and r.terms[0][1].form == "LENL":
+                if not r.value / r.terms[0][0] > 0:
+                    return None
+    # A NaN or an infinity makes the sum not finite (and so do values large enough to overflow it: the deck text
+    # runs those too).
+    return changes if math.isfinite(sum([v for _, _, v in changes])) else None
+
+
+def _directions(nb: Numbering) -> tuple[float, ...]:
+    """The direction of the first two points of every element (0 for one with fewer), at the given co-ordinates."""
+    out: list[float] = []
+    for e in nb.elements:
+        points = e.points
+        if len(points) < 2:
+            out.append(0.0)
+            continue
+        p, q = points[0], points[1]
+        out.append(math.atan2(q.y.value - p.y.value, q.x.value - p.x.value))
+    return tuple(out)
+
+
+__all__ = ["Change", "kept_model", "topology"]
