@@ -52,14 +52,19 @@ class Outcome(Protocol[M_co]):
     path: str
     parameters: dict[str, Any]
     motion: Motion | None
-    buffers: dict[int, FloatArray]
     coords: FloatArray
-    time: FloatArray
-    det: FloatArray
-    inputs: FloatArray
     dynamic: bool
     simulation: Simulation | None
 
+    # Read when first asked for (an Analysis slices them out of the run's table then).
+    @property
+    def buffers(self) -> dict[int, FloatArray]: ...
+    @property
+    def time(self) -> FloatArray: ...
+    @property
+    def det(self) -> FloatArray: ...
+    @property
+    def inputs(self) -> FloatArray: ...
     @property
     def report(self) -> RunReport: ...
     @property
