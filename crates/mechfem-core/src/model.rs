@@ -190,6 +190,34 @@ pub struct Mechanism {
 pub const FIXED: usize = usize::MAX;
 
 impl Mechanism {
+    /// The state a mechanism starts from at the co-ordinates `x`, as
+    /// [`MechanismBuilder::build`] makes it: every element evaluated there
+    /// (an error when one cannot be, e.g. two of its points coincide), the
+    /// angles it tracks taken from its directions there, and every
+    /// prescribed row's value the one it has there. A model compiled once
+    /// and run with other co-ordinates starts from this state, so that it
+    /// runs as the model built with them would.
+    pub fn start_state(&self, x: Vec<f64>) -> Result<State, ModelError> {
+        let mut state =
+            State { x, target: vec![0.0; self.n_prescribed()], branch: vec![f64::NAN; self.elements.len()] };
+        // Every element must be evaluable at the start (no coinciding points).
+        let mut out = FormEval::default();
+        for (element, e) in self.elements.iter().enumerate() {
+            let mut xe = [0.0; MAX_COORDS];
+            for (k, &c) in e.coords().iter().enumerate() {
+                xe[k] = state.x[c];
+            }
+            for form in 0..e.ty.form_names().len() {
+                e.ty.eval(form, &xe[..e.ty.n_coords()], &mut state.branch[element], Order::Value, &mut out)
+                    .map_err(|source| ModelError::Element { element, source })?;
+            }
+        }
+        for r in 0..self.n_prescribed() {
+            state.target[r] = state.prescribed_value(self, r).expect("every element was evaluated above");
+        }
+        Ok(state)
+    }
+
     /// Number of co-ordinates N.
     pub fn n_coords(&self) -> usize {
         self.moving.len()
@@ -437,23 +465,7 @@ impl MechanismBuilder {
         prescribed.compile(&elements, &column);
         dependent.compile(&elements, &column);
         let mech = Mechanism { moving: self.moving, column, moving_coords, elements, prescribed, dependent, n_dof };
-        let mut state =
-            State { x: self.x, target: vec![0.0; mech.n_prescribed()], branch: vec![f64::NAN; mech.elements.len()] };
-        // Every element must be evaluable at the start (no coinciding points).
-        let mut out = FormEval::default();
-        for (element, e) in mech.elements.iter().enumerate() {
-            let mut xe = [0.0; MAX_COORDS];
-            for (k, &c) in e.coords().iter().enumerate() {
-                xe[k] = state.x[c];
-            }
-            for form in 0..e.ty.form_names().len() {
-                e.ty.eval(form, &xe[..e.ty.n_coords()], &mut state.branch[element], Order::Value, &mut out)
-                    .map_err(|source| ModelError::Element { element, source })?;
-            }
-        }
-        for r in 0..mech.n_prescribed() {
-            state.target[r] = state.prescribed_value(&mech, r).expect("every element was evaluated above");
-        }
+        let state = mech.start_state(self.x)?;
         Ok((mech, state))
     }
 }

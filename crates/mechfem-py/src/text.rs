@@ -195,6 +195,21 @@ impl Numbers {
     pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, String> {
         let mut n = Numbers { state: c.state.clone(), para: c.prescribed.iter().map(|r| r.para).collect() };
         changes.iter().try_for_each(|ch| ch.apply(&mut n))?;
+        // What the deck reader derives from the co-ordinates, derived from
+        // the new ones: the angles each element tracks from its directions,
+        // and the value of every row the deck gives none. Co-ordinates at
+        // which an element cannot be evaluated are left for the run, which
+        // says so at position 1.
+        if changes.iter().any(|ch| matches!(ch, Change::Coord(..))) {
+            if let Ok(mut start) = c.mechanism.start_state(n.state.x.clone()) {
+                for (t, p) in start.target.iter_mut().zip(&n.para) {
+                    if let Some(v) = p {
+                        *t = *v;
+                    }
+                }
+                n.state = start;
+            }
+        }
         Ok(n)
     }
 }
