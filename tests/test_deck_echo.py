@@ -7,6 +7,7 @@ import shutil
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import mechfem
 
@@ -18,6 +19,8 @@ def test_runs_of_one_deck_share_its_model_and_storage(tmp_path: Path) -> None:
     shutil.copy(SUPPLY, deck)
     a, b = mechfem.run_deck(deck), mechfem.run_deck(deck)
     assert a.model is b.model and a.storage is b.storage
+    # Nothing to report but the numbers of the run: the same report.
+    assert a.report.complete and a.report is b.report
     assert mechfem.check_deck(deck).model is a.model
     np.testing.assert_array_equal(a.coords, b.coords)
 
@@ -42,3 +45,11 @@ def test_the_same_text_at_another_path_is_another_deck(tmp_path: Path) -> None:
     second = mechfem.run_deck(other)
     assert second.model is not first.model
     assert [c.adjusted for c in second.model.coordinates] == [c.adjusted for c in first.model.coordinates]
+
+
+def test_a_run_that_stops_gets_a_report_of_its_own() -> None:
+    deck = Path(__file__).resolve().parent / "decks" / "rocker.mec"
+    with pytest.warns(mechfem.IncompleteRunWarning):
+        first, second = mechfem.run_deck(deck), mechfem.run_deck(deck)
+    assert not first.report.complete
+    assert first.report is not second.report and first.report == second.report

@@ -538,10 +538,10 @@ T = TypeVar("T")
 class _Converted:
     """What was made of dictionaries the compiled module hands out again: a deck file run again unchanged, to
     the same position 1, gets the very same model echo and storage dictionaries (``_core`` keeps them with the
-    compiled deck), so they are converted once. Keyed by the dictionary itself, which is held here so that its
+    compiled deck), and the same report when its run met nothing but its numbers, so they are converted once. Keyed by the dictionary itself, which is held here so that its
     id is not reused; the oldest of ``size`` goes first."""
 
-    def __init__(self, size: int = 32) -> None:
+    def __init__(self, size: int = 48) -> None:
         self._size = size
         self._kept: dict[int, tuple[object, object]] = {}
 
@@ -564,6 +564,15 @@ def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
     return model, [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
 
 
+def _report(d: _core.ReportDict, names: list[str], coords: FloatArray, model: Model) -> RunReport:
+    """The run's report. One of a run that stopped gets the mean step for its advice (a pass over every position,
+    saved when none stopped); one with nothing to report is converted once for every run of its deck that hands
+    the same dictionary over again (see :class:`_Converted`)."""
+    if d["stop"] is not None:
+        return RunReport.from_core(d, names, mean_step(coords, model))
+    return _CONVERTED.get(d, lambda r: RunReport.from_core(r, names))
+
+
 def run_result(deck: Path, d: _core.RunDict) -> RunResult:
     """Builds a :class:`RunResult` from the compiled module's dictionary. Runs of one deck file share its
     :class:`Model` and :class:`Storage` (read them, do not change them)."""
@@ -578,10 +587,7 @@ def run_result(deck: Path, d: _core.RunDict) -> RunResult:
         coords=coords,
         time=np.asarray(d["time"], dtype=np.float64),
         det=np.asarray(d["det"], dtype=np.float64),
-        # The mean step only serves a stop message's advice: a pass over every position saved when none stopped.
-        report=RunReport.from_core(
-            d["report"], names, None if d["report"]["stop"] is None else mean_step(coords, model)
-        ),
+        report=_report(d["report"], names, coords, model),
         model=model,
         storage=_CONVERTED.get(d["storage"], Storage.from_core),
         kx1={n: kx1[:, k] for k, n in enumerate(d["kx1_coords"])},

@@ -40,9 +40,10 @@ pub struct Echo {
     storage: Py<PyDict>,
 }
 
-/// The echo of one kept deck, filled after its first run.
+/// The echo of one kept deck, filled after its first run, and the report
+/// of its last run that met nothing to report (see [`EchoSlot::report`]).
 #[derive(Default)]
-pub struct EchoSlot(Mutex<Option<Echo>>);
+pub struct EchoSlot(Mutex<Option<Echo>>, Mutex<Option<(Vec<u64>, Py<PyDict>)>>);
 
 impl EchoSlot {
     /// The model echo and storage dicts for a run whose position 1 is
@@ -63,6 +64,26 @@ impl EchoSlot {
         let (model, storage) = make()?;
         *lock() = Some(Echo { position_1: bits, model: model.clone().unbind(), storage: storage.clone().unbind() });
         Ok((model, storage))
+    }
+
+    /// The report dict of a run that met no limit position and did not
+    /// stop, described by `numbers` (its adjustment, positions and steps,
+    /// as bit patterns): the one given for the last such run with the same
+    /// numbers, else the one `make` builds (then kept). Such a report holds
+    /// nothing but those numbers, so Python converts it once too.
+    pub fn report<'py>(
+        &self,
+        py: Python<'py>,
+        numbers: Vec<u64>,
+        make: impl FnOnce() -> PyResult<Bound<'py, PyDict>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let lock = || self.1.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((_, d)) = lock().as_ref().filter(|(k, _)| *k == numbers) {
+            return Ok(d.bind(py).clone());
+        }
+        let d = make()?;
+        *lock() = Some((numbers, d.clone().unbind()));
+        Ok(d)
     }
 }
 

@@ -259,7 +259,18 @@ fn run_deck(
     d.set_item("dynamic", dynamic)?;
     d.set_item("simulation", sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
-    d.set_item("report", convert::report(py, mech, &report, steps)?)?;
+    let report_dict = || convert::report(py, mech, &report, steps);
+    let plain = report.stop.is_none() && report.limits.is_empty() && report.singular_positions.is_empty();
+    let report_dict = if plain && sim.is_none() {
+        let a = &report.adjust;
+        let mut numbers = vec![a.iterations as u64, a.stages as u64, a.residual.to_bits()];
+        numbers.extend([report.positions, report.subdivided_steps, steps].map(|k| k as u64));
+        numbers.extend(a.initial_deformations.iter().map(|v| v.to_bits()));
+        slot.report(py, numbers, report_dict)?
+    } else {
+        report_dict()?
+    };
+    d.set_item("report", report_dict)?;
     d.set_item("model", model)?;
     d.set_item("storage", storage)?;
     d.set_item("interrupted", interrupted)?;
