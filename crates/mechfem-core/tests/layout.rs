@@ -22,9 +22,18 @@ struct Both {
 
 impl Observer for Both {
     fn position(&mut self, view: &PositionView<'_>) {
+        let at = self.by_quantity.len();
         record(&self.quantities, view, self.dynamics.as_mut(), &mut self.by_quantity);
         if let Some(d) = self.dynamics.as_mut() {
             d.evaluate(view);
+        }
+        // `record` reads some quantities by a shorter way: each is what the quantity gives on its own.
+        for (q, &x) in self.quantities.iter().zip(&self.by_quantity[at..]) {
+            let own = match self.dynamics.as_ref() {
+                Some(d) if q.is_dynamic() => q.dynamic_value(view.mech, d),
+                _ => q.value(view),
+            };
+            assert_eq!(x.to_bits(), own.to_bits(), "{q:?} at position {}", view.index + 1);
         }
         self.layout.record(view, self.dynamics.as_ref(), &mut self.by_layout);
         self.positions += 1;
