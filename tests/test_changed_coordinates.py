@@ -12,6 +12,7 @@ import numpy as np
 import mechfem
 from mechfem import Driven, Keep, Mechanism, Motion, Output, _core, deckio
 from mechfem.storage import Storage
+from test_kept_models import crossing as kept_models_crossing
 
 
 def fourbar(b: tuple[float, float] = (3.5, 2.5)) -> Mechanism:
@@ -28,14 +29,8 @@ def fourbar(b: tuple[float, float] = (3.5, 2.5)) -> Mechanism:
 
 
 def crossing(by: float) -> Mechanism:
-    """A four-bar whose rocker B0->B points left, just above (``by`` > 0) or just below the x axis."""
-    m = Mechanism("crossing")
-    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 4.0, 0.0)
-    A, B = m.point("A", 1.0, 0.0), m.point("B", 1.6, by)
-    m.bar("crank", A0, A, length=1.0, angle=Driven(start=0.0))
-    m.bar("coupler", A, B, length=3.2)
-    m.bar("rocker", B0, B, length=2.5, angle=Output("psi"))
-    m.motion = Motion.by(36, 2 * math.pi)
+    """The four-bar of test_kept_models whose rocker points left, just above or below the x axis, recording psi."""
+    m = kept_models_crossing(by)
     m.storage = Storage().buffer(1, "BUFE0", "psi")
     return m
 

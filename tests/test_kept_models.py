@@ -115,19 +115,21 @@ def test_a_row_without_value_takes_it_from_the_coordinates_it_has_now() -> None:
     assert kept_models()[-1] is kept
 
 
+def crossing(by: float) -> Mechanism:
+    """A four-bar whose rocker B0->B points left, just above (``by`` > 0) or just below the x axis."""
+    m = Mechanism("crossing")
+    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 4.0, 0.0)
+    A, B = m.point("A", 1.0, 0.0), m.point("B", 1.6, by)
+    m.bar("crank", A0, A, length=1.0, angle=Driven(start=0.0))
+    m.bar("coupler", A, B, length=3.2)
+    m.bar("rocker", B0, B, length=2.5, angle=Output("psi"))
+    m.motion = Motion.by(36, 2 * math.pi)
+    return m
+
+
 def test_an_element_turned_across_its_branch_is_compiled_again() -> None:
     # The rocker B0->B points left, just above the x axis (about 177 degrees), then just below it (-177): the
     # compiled model tracks its angle from the direction it was compiled at, so it is compiled again.
-    def crossing(by: float) -> Mechanism:
-        m = Mechanism("crossing")
-        A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 4.0, 0.0)
-        A, B = m.point("A", 1.0, 0.0), m.point("B", 1.6, by)
-        m.bar("crank", A0, A, length=1.0, angle=Driven(start=0.0))
-        m.bar("coupler", A, B, length=3.2)
-        m.bar("rocker", B0, B, length=2.5, angle=Output("psi"))
-        m.motion = Motion.by(36, 2 * math.pi)
-        return m
-
     m = crossing(0.1)
     assert_same(m.run(), deck_text_run(m))
     kept = kept_models()[-1]
