@@ -11,9 +11,10 @@ import pytest
 import mechfem
 import mechfem._core as _core
 from conftest import ROOT
-from mechfem import Driven, Keep, Mechanism, deckio
+from mechfem import Driven, Mechanism, deckio
 from mechfem.explain import PythonWords, parts_of
 from mechfem.words import Part, Words
+from test_python_words import superfluous
 
 DECKS = ROOT / "tests" / "decks"
 
@@ -41,17 +42,6 @@ def fourbar(names: dict[str, str] | None = None) -> Mechanism:
     m.bar(n["crank"], A0, A, length=1.0, angle=Driven())
     m.bar(n["coupler"], A, B, length=3.5)
     m.bar(n["rocker"], B0, B, length=3.0)
-    return m
-
-
-def superfluous() -> Mechanism:
-    m = Mechanism("superfluous")
-    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 4.0, 0.0)
-    A, B = m.point("A", 0.5, 0.866), m.point("B", 3.88, 3.0)
-    m.bar("crank", A0, A, length=Keep())
-    m.bar("coupler", A, B, length=Keep())
-    m.bar("rocker", B0, B, angle=Driven())
-    m.bar("frame", A0, B0, length=Keep())
     return m
 
 
