@@ -1,6 +1,4 @@
-"""Types of the compiled module ``mechfem._core`` (crates/mechfem-py). Private: use :mod:`mechfem`.
-Numbers that name things are the deck's, 1-based (destinations signed); positions are 1-based.
-"""
+"""Types of ``mechfem._core`` (crates/mechfem-py); private: use :mod:`mechfem`. Numbers are the deck's, 1-based."""
 
 import os
 from collections.abc import Callable

@@ -9,12 +9,12 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
+from mechfem.converted import Converted
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
 from mechfem.words import Part, Words, words_of
@@ -532,31 +532,7 @@ def mean_step(coords: FloatArray, model: Model) -> float | None:
     return mean if np.isfinite(mean) and mean > 0.0 else None
 
 
-T = TypeVar("T")
-
-
-class _Converted:
-    """What was made of dictionaries the compiled module hands out again: a deck file run again unchanged, to
-    the same position 1, gets the very same model echo and storage dictionaries (``_core`` keeps them with the
-    compiled deck), and the same report when its run met nothing but its numbers, so they are converted once. Keyed by the dictionary itself, which is held here so that its
-    id is not reused; the oldest of ``size`` goes first."""
-
-    def __init__(self, size: int = 48) -> None:
-        self._size = size
-        self._kept: dict[int, tuple[object, object]] = {}
-
-    def get(self, d: object, make: Callable[[Any], T]) -> T:
-        hit = self._kept.get(id(d))
-        if hit is not None and hit[0] is d:
-            return hit[1]  # type: ignore[return-value]
-        value = make(d)
-        if len(self._kept) >= self._size:
-            self._kept.pop(next(iter(self._kept)))
-        self._kept[id(d)] = (d, value)
-        return value
-
-
-_CONVERTED = _Converted()
+_CONVERTED = Converted()
 
 
 def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
@@ -567,7 +543,7 @@ def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
 def _report(d: _core.ReportDict, names: list[str], coords: FloatArray, model: Model) -> RunReport:
     """The run's report. One of a run that stopped gets the mean step for its advice (a pass over every position,
     saved when none stopped); one with nothing to report is converted once for every run of its deck that hands
-    the same dictionary over again (see :class:`_Converted`)."""
+    the same dictionary over again (see :class:`mechfem.converted.Converted`)."""
     if d["stop"] is not None:
         return RunReport.from_core(d, names, mean_step(coords, model))
     return _CONVERTED.get(d, lambda r: RunReport.from_core(r, names))
