@@ -8,15 +8,10 @@ its numbers as changes, taken from its parts.
 
 The topology (:func:`topology`) is what the deck writer puts on the deck's lines besides those numbers, in deck
 numbers: the mechanism's name, its elements (types and co-ordinates), which co-ordinates are fixed, its rows (kind,
-terms, whether a value is given), its masses and loads, motion and storage. Two values a deck reader derives from
-the numbers when it compiles are guarded as well, so that a kept model gives to the last bit what the deck text
-gives:
-
-* a prescribed row or input without a value holds its value at the given co-ordinates: the co-ordinates of its
-  elements are part of the topology;
-* every element remembers the direction of its first two points at the given co-ordinates and tracks its angles
-  from there (within a half turn): a kept model serves while none of these directions has turned by a quarter turn
-  or more since it was compiled, and is compiled again otherwise.
+terms, whether a value is given), its masses and loads, motion and storage. What a deck reader derives from the
+co-ordinates when it compiles (the directions its elements track their angles from, the value of a row the deck
+gives none) the compiled model derives again from the co-ordinates of every run (``Mechanism::start_state`` in the
+core), so a kept model gives to the last bit what the deck text gives whatever its points' positions.
 
 A deck that needs files beside it (a table motion, a load table) has no kept model: it runs from its text.
 """
@@ -26,7 +21,7 @@ from __future__ import annotations
 import math
 import threading
 from collections.abc import Hashable
-from dataclasses import dataclass, fields
+from dataclasses import fields
 
 import mechfem._core as _core
 from mechfem import deckio
@@ -42,15 +37,7 @@ Change = tuple[int, int, float]
 value) for PARA."""
 
 
-@dataclass(eq=False)
-class Kept:
-    """A compiled model and the directions its elements track their angles from (see the module's doc)."""
-
-    model: _core.Model
-    directions: tuple[float, ...]
-
-
-_COMPILED: dict[Hashable, Kept] = {}
+_COMPILED: dict[Hashable, _core.Model] = {}
 """The kept models by topology, the least recently used first."""
 _KEEP = 16
 # Runs on several threads share the kept models.
@@ -72,36 +59,34 @@ def kept_model(
     changes = _changes(numbering)
     if changes is None:
         return None
-    directions = _directions(numbering)
     with _LOCK:
         kept = _COMPILED.get(key)
         # The most recently used last; a key is compared once more only when it moves.
         if kept is not None and next(reversed(_COMPILED.values())) is not kept:
             _COMPILED.pop(key, None)
             _COMPILED[key] = kept
-    # Its angles are tracked from the directions it was compiled at (see the module's doc).
-    if kept is not None and all(abs(a - b) < math.pi / 2 for a, b in zip(kept.directions, directions, strict=True)):
+    if kept is not None:
         # The deck writer checks the motion's units at every run: so does a kept model.
         if motion is not None:
             check_units(motion, numbering.inputs)
-        return kept.model, numbering, changes
+        return kept, numbering, changes
     deck = deckio.write(mech, motion, storage)
     if deck.tables:
         return None
-    kept = Kept(_core.Model(deck.text, deck.path, "."), directions)
+    kept = _core.Model(deck.text, deck.path, ".")
     with _LOCK:
         _COMPILED.pop(key, None)
         while len(_COMPILED) >= _KEEP:
             _COMPILED.pop(next(iter(_COMPILED)))
         _COMPILED[key] = kept
-    return kept.model, numbering, changes
+    return kept, numbering, changes
 
 
 def topology(
     mech: Mechanism, motion: Motion | None, storage: Storage | None, numbering: Numbering
 ) -> tuple[object, ...] | None:
     """What the deck of ``mech`` (numbered ``numbering``) with ``motion`` and ``storage`` says besides the numbers
-    of XFIX, XMOV and PARA, and the co-ordinates the value of a row without one is taken from; None when the deck
+    of XFIX, XMOV and PARA; None when the deck
     needs files beside it, or when the deck writer would refuse the model (it then says why)."""
     try:
         return _topology(mech, motion, storage, numbering)
@@ -119,16 +104,12 @@ def _topology(
         [(r.kind, r.value is None, *[(number(f), p.form, element[p.element]) for f, p in r.terms]) for r in nb.rows]
     )
     fixed = tuple([bool(c.fixed) for c in nb.coords])
-    # A row without a value is prescribed (or starts) at its value at the given co-ordinates, computed when compiled.
-    given = tuple(
-        [number(c.value) for r in nb.prescribed if r.value is None for _, p in r.terms for c in p.element.coordinates]
-    )
     loads = None if mech.loads is None else _loads(mech.loads, nb, element)
     moves = None if motion is None else _motion(motion, nb)
     stored = None if storage is None else _storage(mech, storage, nb)
     if (mech.loads is not None and loads is None) or (motion is not None and moves is None):
         return None
-    return (mech.name, elements, rows, fixed, given, loads, moves, stored)
+    return (mech.name, elements, rows, fixed, loads, moves, stored)
 
 
 def _loads(loads: Loads, nb: Numbering, element: dict[Element, int]) -> tuple[object, ...] | None:
@@ -204,19 +185,6 @@ def _changes(nb: Numbering) -> list[Change] | None:
     # A NaN or an infinity makes the sum not finite (and so do values large enough to overflow it: the deck text
     # runs those too).
     return changes if math.isfinite(sum([v for _, _, v in changes])) else None
-
-
-def _directions(nb: Numbering) -> tuple[float, ...]:
-    """The direction of the first two points of every element (0 for one with fewer), at the given co-ordinates."""
-    out: list[float] = []
-    for e in nb.elements:
-        points = e.points
-        if len(points) < 2:
-            out.append(0.0)
-            continue
-        p, q = points[0], points[1]
-        out.append(math.atan2(q.y.value - p.y.value, q.x.value - p.x.value))
-    return tuple(out)
 
 
 __all__ = ["Change", "kept_model", "topology"]
