@@ -30,12 +30,12 @@ import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
-from mechfem import cluster
+from mechfem import cluster, compiled
 from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
 from mechfem.hooks import Hook
 from mechfem.limits import memory_limit
-from mechfem.model import Coordinate, Mechanism, Motion, Row, Storage
+from mechfem.model import Mechanism, Motion, Storage
 from mechfem.names import unknown_name
 
 if TYPE_CHECKING:
@@ -325,17 +325,6 @@ class Study:
         return f"Study({len(self)} variants, {ok} ok; columns {', '.join(self.columns)})"
 
 
-def _changes(over: Mapping[Row | Coordinate, float], numbering: deckio.Numbering) -> list[tuple[int, int, float]]:
-    """``over`` (see :meth:`Mechanism._targets`) as changes of the deck written with ``numbering``."""
-    out = []
-    for obj, value in over.items():
-        if isinstance(obj, Coordinate):
-            out.append((0, numbering.coord_number[obj], float(value)))
-        else:
-            out.append((1, numbering.row_dest[obj], float(value)))
-    return out
-
-
 def _nan_extreme(reduce: np.ufunc, fallback: Callable[[FloatArray], np.float64]) -> Callable[[FloatArray], float]:
     """``np.nanmin`` or ``np.nanmax`` (``fallback``) as the reduction by ``np.fmin`` or ``np.fmax`` that they are:
     the same value, without their checks, which cost more than reducing a few hundred positions. Only where every
@@ -483,7 +472,7 @@ def sweep(
     if isinstance(model, Mechanism):
         # One deck for the whole study; each variant changes numbers of it.
         base = deckio.write(model, motion or model.motion, storage or model.storage)
-        variants = [(0, _changes(model._targets(p), base.numbering)) for p in sets]
+        variants = [(0, compiled.changes_of(model._targets(p), base.numbering)) for p in sets]
         decks, mechanisms = [base], [model]
     else:
         _check_arguments(model, sets)

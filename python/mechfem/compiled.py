@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import threading
-from collections.abc import Hashable
+from collections.abc import Hashable, Mapping
 from dataclasses import fields
 
 import mechfem._core as _core
@@ -172,19 +172,28 @@ def _storage(mech: Mechanism, storage: Storage, nb: Numbering) -> tuple[object, 
     return (buffers, printbuf, tuple(map(str, storage.savedata)), storage.animate, pictures)
 
 
+def changes_of(values: Mapping[Row | Coordinate, float], nb: Numbering) -> list[Change]:
+    """``values`` of co-ordinates (XFIX, XMOV) and prescribed rows (PARA) as changes of the deck numbered ``nb``."""
+    return [
+        (0, nb.coord_number[obj], float(v)) if isinstance(obj, Coordinate) else (1, nb.row_dest[obj], float(v))
+        for obj, v in values.items()
+    ]
+
+
 def _changes(nb: Numbering) -> list[Change] | None:
     """The numbers of XFIX, XMOV and PARA; None when one is not finite or when a constant length is not above
     zero, which the deck reader refuses (with a message the kept model could not give)."""
-    changes: list[Change] = [(0, i, float(c.value)) for i, c in enumerate(nb.coords, 1)]
-    for k, r in enumerate(nb.prescribed, 1):
+    values: dict[Row | Coordinate, float] = {c: c.value for c in nb.coords}
+    for r in nb.prescribed:
         if r.value is not None:
-            changes.append((1, k, float(r.value)))
+            values[r] = r.value
             if r.kind == "prescribed" and len(r.terms) == 1 and r.terms[0][1].form == "LENL":
                 if not r.value / r.terms[0][0] > 0:
                     return None
+    changes = changes_of(values, nb)
     # A NaN or an infinity makes the sum not finite (and so do values large enough to overflow it: the deck text
     # runs those too).
     return changes if math.isfinite(sum([v for _, _, v in changes])) else None
 
 
-__all__ = ["Change", "kept_model", "topology"]
+__all__ = ["Change", "changes_of", "kept_model", "topology"]
