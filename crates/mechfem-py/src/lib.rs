@@ -278,7 +278,11 @@ fn run_deck(
 }
 
 /// Columns `range` of a row-major table `width` wide, one after the other
-/// (column-major).
+/// (column-major). A deck's few buffers are recorded row by row and
+/// transposed once after the run: writing each position into its columns
+/// as it comes (`mechfem_core::run::Columns`, as the full layout of a named
+/// model's run does) makes a run of a few columns slower, its stores spread
+/// over as many streams as it has columns.
 fn columns_of(data: &[f64], width: usize, range: std::ops::Range<usize>) -> Vec<f64> {
     let rows = data.len().checked_div(width).unwrap_or(0);
     let mut out = vec![0.0; rows * range.len()];
