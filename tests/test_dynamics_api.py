@@ -13,9 +13,9 @@ import pytest
 
 import mechfem
 from mechfem import Driven, Mechanism, Motion, Output
-from mechfem.analysis import Analysis
 from mechfem.loads import Body, Gravity, LoadTable
 from mechfem.model import Storage
+from mechfem.result import Analysis
 
 FloatArray = npt.NDArray[np.float64]
 G = 9.81

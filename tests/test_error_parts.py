@@ -165,7 +165,7 @@ def test_plain_words_of_a_message_are_never_rewritten() -> None:
 
 
 def test_a_stop_built_without_parts_says_its_message() -> None:
-    from mechfem.result import Stop
+    from mechfem.run_report import Stop
 
     stop = Stop(3, [1.0], [0.9], "no_convergence", "element 1 (BIN) stays as written", None)
     with warnings.catch_warnings():

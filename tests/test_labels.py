@@ -8,7 +8,6 @@ parameter and which co-ordinate is an angle, a length or a ratio) and the buffer
 from __future__ import annotations
 
 import csv
-import dataclasses
 import math
 import re
 from pathlib import Path
@@ -18,11 +17,12 @@ from matplotlib.figure import Figure
 
 import mechfem
 from conftest import ROOT, SUPPLY
+from mechfem.echo import ModelNames
 from mechfem.labels import Label, buffer_labels, label, over, point_name, squared
 from mechfem.model import Driven, Mechanism, Motion, Output, Storage
 from mechfem.output import print_file_lines, write_data_set
 from mechfem.plots import picture_figure
-from mechfem.result import ModelNames, RunResult
+from mechfem.result import RunResult
 
 EVERY_ELEMENT = ROOT / "tests" / "decks" / "every_element.mec"
 SUPPLY_DYN = ROOT / "examples" / "supply" / "supply_dyn.mec"
@@ -238,7 +238,7 @@ def test_the_data_set_header_holds_number_and_name(supply: RunResult, tmp_path: 
 
 def test_a_name_with_a_comma_is_quoted_in_the_header(supply: RunResult, tmp_path: Path) -> None:
     names = ModelNames(coordinates=[], prescribed=["a"] * 12, dependent=["angle, output"], inputs=["crank"])
-    named = dataclasses.replace(supply, names=names)
+    named = supply.replace(names=names)
     path = write_data_set(named, tmp_path / "named.csv")
     first = path.read_text().splitlines()[0]
     assert first.startswith('99 crank,"100 angle, output","101 d(angle, output)/dcrank"')

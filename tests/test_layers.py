@@ -8,7 +8,7 @@ from collections.abc import Callable
 import pytest
 
 import mechfem
-from mechfem import analysis, model
+from mechfem import model, result
 from mechfem.hooks import Hook
 
 
@@ -21,7 +21,7 @@ def test_an_unfilled_hook_names_the_module_to_import() -> None:
 
 
 def test_import_mechfem_fills_every_hook_of_the_lower_layers() -> None:
-    hooks = [v for mod in (model, analysis) for v in vars(mod).values() if isinstance(v, Hook)]
+    hooks = [v for mod in (model, result) for v in vars(mod).values() if isinstance(v, Hook)]
     assert len(hooks) >= 14
     for hook in hooks:
         assert callable(hook.call), hook.what

@@ -14,7 +14,7 @@ import pytest
 import mechfem
 import mechfem._core as _core
 from mechfem import deckio
-from mechfem.analysis import Analysis
+from mechfem.result import Analysis
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 # One and two inputs, masses and loads, a motion that stops early at a limit position, free motion started at a dead

@@ -42,9 +42,9 @@ from pathlib import Path as _Path
 
 from mechfem import _core, limits
 from mechfem._version import __version__
-from mechfem.analysis import Analysis
 from mechfem.batch import Study, run_many, sweep
 from mechfem.design import Infeasible
+from mechfem.echo import Buffer, Coordinate, Element, Model, Picture, Plot, Row, Storage, Term
 from mechfem.errors import (
     AssemblyError,
     ConvergenceError,
@@ -61,29 +61,12 @@ from mechfem.errors import (
 from mechfem.export import export_drawing
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
-from mechfem.result import (
-    AdjustInfo,
-    Buffer,
-    CheckResult,
-    Coordinate,
-    Element,
-    Limit,
-    Model,
-    Picture,
-    Plot,
-    Row,
-    RunReport,
-    RunResult,
-    Stop,
-    Storage,
-    Term,
-    check_result,
-    run_result,
-)
+from mechfem.result import Analysis, CheckResult, RunResult, check_result, run_result
+from mechfem.run_report import AdjustInfo, Limit, RunReport, Stop
 from mechfem.tolerance import Spread, ToleranceStudy, tolerance_study
 
 # Every module that fills a hook of a lower layer (docs/architecture.md), so that `import mechfem` has them all.
-from mechfem import deckio, figures, notebook, running  # noqa: F401  isort: skip
+from mechfem import deckio, figures, namespace, notebook, running  # noqa: F401  isort: skip
 
 Progress = _Callable[[int, int], object]
 """Called as ``progress(done, total)`` with the number of positions computed so far."""

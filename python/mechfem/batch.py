@@ -31,12 +31,14 @@ import numpy.typing as npt
 
 import mechfem._core as _core
 from mechfem import cluster, compiled
-from mechfem.analysis import Analysis, _pandas
 from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
 from mechfem.hooks import Hook
 from mechfem.limits import memory_limit
 from mechfem.model import Mechanism, Motion, Storage
 from mechfem.names import unknown_name
+from mechfem.namespace import model_result
+from mechfem.result import Analysis
+from mechfem.result_tables import _pandas
 
 if TYPE_CHECKING:
     from mechfem import deckio
@@ -159,7 +161,7 @@ def _run_many_here(
         if isinstance(o, MechfemError):
             results.append(deckio.translate(o, d, m.name))
         else:
-            results.append(Analysis(m, d.numbering, o, path=d.path))
+            results.append(model_result(m, d.numbering, o, d.path))
     return results
 
 
@@ -396,7 +398,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
             text = str(err).splitlines()[0] if str(err) else type(err).__name__
             rows[k] = _failed_row(p, c.names, len(c.measures), text)
             return
-        a = Analysis(m, d.numbering, o, parameters=p, path=d.path)
+        a = model_result(m, d.numbering, o, d.path, p)
         kept[k] = a if c.keep else None
         # What the table needs of the report, from the run's own dict (cheaper than the full report).
         report = o["report"]

@@ -35,7 +35,6 @@ Messages go to stderr as one short paragraph, never a traceback.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import sys
 import warnings
 from pathlib import Path
@@ -244,7 +243,7 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
     )
     written_deck = optimise_deck.write_design_deck(outcome, outdir)
     result, interrupted = run_with_progress(written_deck, args.memory_limit, console.bar)
-    result = dataclasses.replace(result, deck=deck)
+    result = result.replace(deck=deck)
     status = finish_run(
         args, deck, outdir, result, interrupted, optimise_deck.print_lines(outcome, written_deck), [written_deck]
     )

@@ -20,7 +20,7 @@ import tempfile
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 
@@ -333,16 +333,41 @@ def read(path: Path) -> Mechanism:
     return read_text(text, path.stem, path.parent if str(path.parent) else Path("."), os.fspath(path))
 
 
-def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> Mechanism:
-    """Reads deck text into a mechanism; MOV_FUNC files are read from ``base_dir``."""
-    d = _core.describe_deck_text(text, path or f"{name}.mec", os.fspath(base_dir))
+class Declared(NamedTuple):
+    """A co-ordinate as a deck declares it: its number, value and whether it moves."""
+
+    number: int
+    value: float
+    moving: bool
+
+
+class DeclaredRow(NamedTuple):
+    """A row as a deck declares it: destination, terms ``(element number, form, factor)``, PARA and its DOF."""
+
+    dest: int
+    terms: list[tuple[int, str, float]]
+    para: float | None
+    input: int | None
+
+
+def topology(
+    name: str,
+    coords: list[Declared],
+    elements: list[tuple[int, str, list[int]]],
+    prescribed: list[DeclaredRow],
+    dependent: list[DeclaredRow],
+) -> Mechanism:
+    """The mechanism a deck's topology and geometry make (elements ``(number, type, co-ordinate numbers)`` in
+    element order, rows in destination order): points named after their x co-ordinate (``P5``), other co-ordinates
+    ``x13``, elements ``E1``..., a row of one form parameter its element's own (``E8.angle``), others ``row6`` and
+    ``out1``. The deck's numbers are kept."""
     m = Mechanism(name)
-    coords = {c["number"]: c for c in d["coordinates"]}
+    by_number = {c.number: c for c in coords}
     objects: dict[int, Coordinate] = {}
 
     def new_coordinate(i: int, cname: str, kind: Literal["x", "y", "angle", "scalar"]) -> Coordinate:
-        spec = coords[i]
-        c = Coordinate(cname, spec["value"], not spec["moving"], kind, number=i)
+        spec = by_number[i]
+        c = Coordinate(cname, spec.value, not spec.moving, kind, number=i)
         m._claim(cname, c)
         m.coordinates.append(c)
         objects[i] = c
@@ -351,9 +376,9 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
     # Points: every (x, y) pair an element uses, named after the x co-ordinate's number.
     pairs: dict[tuple[int, int], Point] = {}
     angle_use: set[int] = set()
-    for e in d["elements"]:
-        nums = list(e["coords"])
-        for kind in SLOTS[e["type"]]:
+    for _, etype, numbers in elements:
+        nums = list(numbers)
+        for kind in SLOTS[etype]:
             if kind == "P":
                 ix, iy = nums[0], nums[1]
                 nums = nums[2:]
@@ -372,47 +397,62 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
                 if kind == "a":
                     angle_use.add(nums[0])
                 nums = nums[1:]
-    for i in sorted(coords):
+    for i in sorted(by_number):
         if i not in objects:
             new_coordinate(i, f"x{i}", "angle" if i in angle_use else "scalar")
 
-    elements: list[Element] = []
-    for e in d["elements"]:
-        nums = list(e["coords"])
+    made: list[Element] = []
+    for k, etype, numbers in elements:
+        nums = list(numbers)
         slots: list[Slot] = []
-        for kind in SLOTS[e["type"]]:
+        for kind in SLOTS[etype]:
             if kind == "P":
                 slots.append(pairs[(nums[0], nums[1])])
                 nums = nums[2:]
             else:
                 slots.append(objects[nums[0]])
                 nums = nums[1:]
-        el = Element(f"E{e['number']}", e["type"], slots)
+        el = Element(f"E{k}", etype, slots)
         m._claim(el.name, el)
         m.elements.append(el)
-        elements.append(el)
+        made.append(el)
 
     # Rows in destination order; a single form parameter with factor 1 becomes its element's own row.
     own: set[FormParameter] = set()
 
-    def add_row(spec: _core.DescribedRowDict, kind: Literal["prescribed", "input", "output"], fallback: str) -> Row:
-        terms = tuple((t["factor"], FormParameter(elements[t["element"] - 1], t["form"])) for t in spec["terms"])
+    def add_row(spec: DeclaredRow, kind: Literal["prescribed", "input", "output"], fallback: str) -> Row:
+        terms = tuple((f, FormParameter(made[e - 1], form)) for e, form, f in spec.terms)
         fp = terms[0][1]
         single = len(terms) == 1 and terms[0][0] == 1.0 and fp not in own and kind != "output"
         if single and fp.label not in m:
             own.add(fp)
-            row = Row(fp.label, kind, terms, spec["para"], element=True)
+            row = Row(fp.label, kind, terms, spec.para, element=True)
         else:
-            row = Row(fallback, kind, terms, spec["para"])
+            row = Row(fallback, kind, terms, spec.para)
         m._claim(row.name, row)
         m.rows.append(row)
         return row
 
-    for spec in d["prescribed"]:
-        add_row(spec, "input" if spec["input"] is not None else "prescribed", f"row{spec['dest']}")
-    for spec in d["dependent"]:
-        add_row(spec, "output", f"out{-spec['dest']}")
+    for spec in prescribed:
+        add_row(spec, "input" if spec.input is not None else "prescribed", f"row{spec.dest}")
+    for spec in dependent:
+        add_row(spec, "output", f"out{-spec.dest}")
+    return m
 
+
+def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> Mechanism:
+    """Reads deck text into a mechanism; MOV_FUNC files are read from ``base_dir``."""
+    d = _core.describe_deck_text(text, path or f"{name}.mec", os.fspath(base_dir))
+    coords = [Declared(c["number"], c["value"], c["moving"]) for c in d["coordinates"]]
+    elements = [(e["number"], e["type"], list(e["coords"])) for e in d["elements"]]
+
+    def declared_rows(specs: list[_core.DescribedRowDict]) -> list[DeclaredRow]:
+        return [
+            DeclaredRow(r["dest"], [(t["element"], t["form"], t["factor"]) for t in r["terms"]], r["para"], r["input"])
+            for r in specs
+        ]
+
+    m = topology(name, coords, elements, declared_rows(d["prescribed"]), declared_rows(d["dependent"]))
     nb = number_model(m)
     if d["motion"] is not None:
         mv = d["motion"]

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from mechfem.result import Model
+from mechfem.echo import Model
 
 FloatArray = npt.NDArray[np.float64]
 PointKey = tuple[int, int]

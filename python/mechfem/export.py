@@ -31,8 +31,8 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import analysis as _analysis
 from mechfem import labels
+from mechfem import result as _result
 from mechfem.animation import path_sample
 from mechfem.atomic import atomic_path
 from mechfem.drawing import STYLES, MechanismDrawing, Shape, arc_points
@@ -40,7 +40,7 @@ from mechfem.figures import PATH_COLOURS
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
-    from mechfem.analysis import Analysis
+    from mechfem.result import Analysis
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -454,7 +454,7 @@ def draw_files(
     return [write(d, outdir / f"{name}.{fmt}", fmt, units) for fmt in formats]
 
 
-@_analysis.TO_DXF.register
+@_result.TO_DXF.register
 def analysis_dxf(
     a: Analysis, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str], units: str | None
 ) -> Path:
@@ -462,7 +462,7 @@ def analysis_dxf(
     return write_dxf(analysis_drawing(a, position, paths), path, units)
 
 
-@_analysis.TO_SVG.register
+@_result.TO_SVG.register
 def analysis_svg(a: Analysis, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str]) -> Path:
     """:meth:`Analysis.to_svg`: as :func:`analysis_dxf`, an SVG file."""
     return write_svg(analysis_drawing(a, position, paths), path)

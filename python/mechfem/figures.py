@@ -13,20 +13,20 @@ import dataclasses
 import io
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechfem import analysis as _analysis
 from mechfem import model as _model
+from mechfem import result as _result
 from mechfem.errors import MechfemError
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from mechfem.analysis import Analysis
     from mechfem.model import Mechanism
+    from mechfem.result import Analysis
 
 PATH_COLOURS = ["#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f"]
 
@@ -66,8 +66,7 @@ def mechanism_figure(mech: Mechanism, names: bool = True) -> Figure:
     """The mechanism at position 1 (after the adjustment of its initial co-ordinates), points named."""
     from matplotlib.figure import Figure
 
-    # Mechanism.check is typed in the model layer (an Outcome); the run layer gives an Analysis.
-    a = cast("Analysis", mech.check())
+    a = mech.check()
     fig = Figure(figsize=(6.0, 5.0), layout="constrained")
     ax = fig.add_subplot()
     _draw_mechanism(ax, a, 0, names)
@@ -93,7 +92,7 @@ def result_figure(
     if picture is not None:
         from mechfem.plots import picture_figure
 
-        fig = picture_figure(a.run_result(), picture)
+        fig = picture_figure(a, picture)
         assert isinstance(fig, Figure)
         return fig
     names = list(outputs) or [r.name for r in a.numbering.dependent]
@@ -128,7 +127,7 @@ def result_figure(
             key = against if against is not None else a.numbering.inputs[0].name
             j = a.numbering.dof(key)
             xname = a.numbering.inputs[j - 1].name
-            xs, xlabel = a.input(key), with_unit(xname, input_unit(a.run_result(), j))
+            xs, xlabel = a.input(key), with_unit(xname, input_unit(a, j))
         first = None
         k = 0
         for row, (unit, group) in enumerate(units.items()):
@@ -154,13 +153,12 @@ def result_figure(
 def _unit(a: Analysis, name: str) -> str:
     """The unit of what ``a.value(name)`` gives: an output's or row's, a co-ordinate's, a point's (a length)."""
     from mechfem.labels import LENGTH, coordinate_unit, row_dest_unit
-    from mechfem.model import Coordinate, Row
 
-    obj = a._lookup(name)
-    if isinstance(obj, Row):
-        return row_dest_unit(a.run_result(), a.numbering.row_dest[obj])
-    if isinstance(obj, Coordinate):
-        return coordinate_unit(a.run_result(), a.numbering.coord_number[obj])
+    t = a._any(name)
+    if t.kind == "row":
+        return row_dest_unit(a, t.numbers[0])
+    if t.kind == "coordinate":
+        return coordinate_unit(a, t.numbers[0])
     return LENGTH
 
 
@@ -191,7 +189,7 @@ def animate(
     """Writes the animation of the motion to ``path`` (``name.gif``, and ``name.mp4`` when ffmpeg is installed),
     with the paths and velocity arrows of ``points`` (default: every moving point); returns the files."""
     from mechfem.animation import MAX_FRAMES, write_animation
-    from mechfem.result import Picture, Plot
+    from mechfem.echo import Picture, Plot
 
     target = Path(path)
     rr = a.run_result()
@@ -199,12 +197,12 @@ def animate(
         Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in a._traced_points(points)
     ]
     storage = dataclasses.replace(rr.storage, animate=target.stem, pictures=[Picture("", 0, plots)])
-    rr = dataclasses.replace(rr, storage=storage)
+    rr = rr.replace(storage=storage)
     info = write_animation(rr, target.parent, max_frames=max_frames or MAX_FRAMES)
     return list(info.files)
 
 
 _model.FIGURE.register(mechanism_figure)
 _model.PNG.register(mechanism_png)
-_analysis.PLOT.register(result_figure)
-_analysis.ANIMATE.register(animate)
+_result.PLOT.register(result_figure)
+_result.ANIMATE.register(animate)

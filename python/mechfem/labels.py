@@ -20,7 +20,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from mechfem.catalogue import CATALOGUE, FORMS, Dimension, coordinate_dimensions, form_dimension
-from mechfem.result import Buffer, Model, Row, RunResult
+from mechfem.echo import Buffer, Model, Row
+from mechfem.result import RunResult
 
 ANGLE = "rad"
 LENGTH = "length"

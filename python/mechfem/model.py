@@ -55,6 +55,7 @@ from mechfem.parts import (
     Slot,
     kind_of,
 )
+from mechfem.result import RunResult
 from mechfem.storage import BUFFER_ARGS, Picture, Ref, Storage
 from mechfem.units import Unit, check_unit, to_radians
 
@@ -73,7 +74,6 @@ if TYPE_CHECKING:
         RowRef,
         Spring,
     )
-    from mechfem.outcome import Outcome
 
 
 class Mechanism(ElementMethods):
@@ -380,7 +380,7 @@ class Mechanism(ElementMethods):
         order: int | None = 2,
         *,
         raise_on_stop: bool = False,
-    ) -> Outcome[Mechanism]:
+    ) -> RunResult:
         """Runs the motion (default :attr:`motion`; without one, position 1 only) and returns every result.
 
         ``progress`` True shows a progress bar, a callable is called as ``progress(done, total)``.
@@ -423,7 +423,7 @@ class Mechanism(ElementMethods):
         order: int | None = 2,
         raise_on_stop: bool = False,
         unit: Unit | None = None,
-    ) -> Outcome[Mechanism]:
+    ) -> RunResult:
         """Simulates the motion under the masses and loads from time 0 to ``t_end`` (mode ``DYN SIM``), with results
         at ``steps + 1`` positions ``t_end / steps`` apart: the inputs of ``drive`` (input -> :class:`By`,
         :class:`To` or :class:`Table`) follow that motion, every other input moves under the forces from the speed
@@ -438,7 +438,7 @@ class Mechanism(ElementMethods):
         )
         return self.run(motion, storage, progress, order, raise_on_stop=raise_on_stop)
 
-    def check(self, motion: Motion | None = None) -> Outcome[Mechanism]:
+    def check(self, motion: Motion | None = None) -> RunResult:
         """Computes position 1 only (with the first values of a table motion, as a run would)."""
         return RUN.call(self, motion or self.motion, self.storage, with_motion=False)
 
@@ -465,7 +465,7 @@ SAVE_DECK: Hook[Callable[[Mechanism, Path, Motion | None, Storage | None], Path]
 )
 READ_DECK: Hook[Callable[[Path], Mechanism]] = Hook("Mechanism.from_deck", "mechfem.deckio")
 READ_DECK_TEXT: Hook[Callable[[str, str, Path], Mechanism]] = Hook("Mechanism.from_deck_text", "mechfem.deckio")
-RUN: Hook[Callable[..., Outcome[Mechanism]]] = Hook("Mechanism.run", "mechfem.running")
+RUN: Hook[Callable[..., RunResult]] = Hook("Mechanism.run", "mechfem.running")
 FIGURE: Hook[Callable[[Mechanism, bool], Any]] = Hook("Mechanism.figure", "mechfem.figures")
 PNG: Hook[Callable[[Mechanism], bytes | None]] = Hook("Mechanism._repr_png_", "mechfem.figures")
 

@@ -25,15 +25,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechfem import analysis as _analysis
 from mechfem import batch as _batch
 from mechfem import labels
 from mechfem import result as _result
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
-    from mechfem.analysis import Analysis
     from mechfem.batch import Study
+    from mechfem.result import Analysis
 
 #: Rows of a study's table shown in a notebook; the rest are counted.
 STUDY_ROWS = 10
@@ -269,7 +268,16 @@ def study_html(study: Study) -> str:
     return block(f"Study of {n} variant{'s' if n != 1 else ''}", *parts)
 
 
-_analysis.PNG.register(analysis_png)
-_analysis.HTML.register(analysis_html)
-_result.HTML.register(run_result_html)
+def result_png(result: RunResult) -> bytes | None:
+    """A named model's run shows its picture; a deck's run shows its summary only (its pictures are the deck's)."""
+    return analysis_png(result) if result.named else None
+
+
+def result_html(result: RunResult) -> str:
+    """The summary of a named model's run (:func:`analysis_html`) or of a deck's run (:func:`run_result_html`)."""
+    return analysis_html(result) if result.named else run_result_html(result)
+
+
+_result.PNG.register(result_png)
+_result.HTML.register(result_html)
 _batch.HTML.register(study_html)

@@ -15,19 +15,19 @@ import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, Literal, TypeAlias, cast
+from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import analysis as _analysis
 from mechfem import deckio, design
+from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
 from mechfem.storage import Storage
 
 if TYPE_CHECKING:
-    from mechfem.analysis import Analysis
     from mechfem.model import Mechanism, Motion
+    from mechfem.result import Analysis
 
 Name: TypeAlias = "str | Coordinate | Row | FormParameter"
 
@@ -110,8 +110,7 @@ class Optimum:
 
     def run(self) -> Analysis:
         """The optimised mechanism run through the motion the optimisation used."""
-        # Mechanism.run is typed in the model layer (an Outcome); the run layer gives an Analysis.
-        return cast("Analysis", self.mechanism.run(self.motion))
+        return self.mechanism.run(self.motion)
 
 
 @dataclass
@@ -471,7 +470,7 @@ def _named(
     return call
 
 
-_analysis.SENSITIVITY.register(sensitivity)
+_result.SENSITIVITY.register(sensitivity)
 
 
 __all__ = [

@@ -17,9 +17,10 @@ import numpy as np
 
 from mechfem.atomic import atomic_text
 from mechfem.datasets import write_binary
+from mechfem.echo import Model, Storage
 from mechfem.inverse_dynamics import summary_lines
 from mechfem.labels import Label, buffer_labels
-from mechfem.result import Model, RunResult, Storage
+from mechfem.result import RunResult
 
 if TYPE_CHECKING:
     from mechfem.progress import ProgressBar

@@ -26,9 +26,10 @@ import numpy.typing as npt
 
 from mechfem.atomic import atomic_path
 from mechfem.drawing import MechanismDrawing
+from mechfem.echo import Picture, Plot
 from mechfem.labels import Label, buffer_labels, coordinate_axis, input_name, label, point_name
 from mechfem.mpl_drawing import MplMechanism
-from mechfem.result import Picture, Plot, RunResult
+from mechfem.result import RunResult
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]

@@ -1,506 +1,309 @@
-"""What a run or a check returns: plain, typed data built from the compiled module's dictionaries.
+"""What a run returns, however it was started (a deck, a named :class:`~mechfem.Mechanism`, a study's variant):
+one :class:`RunResult`, addressed by names, its buffers also by number.
 
-Numbers that name things (co-ordinates, elements, rows, DOFs, buffers, positions) are the deck's own,
-1-based and signed, never 0-based indices.
+Arrays have one entry per position (row k is position k + 1). A run's tables arrive from the compiled module as
+one table of columns with a layout that names its blocks (``kx1``, ``e0``, ``buffers``, ``time``, ...): a named
+model's run records every quantity, a deck's run the buffers its STORAGE block asks for (plus time, det(D^c) and
+what its pictures need). A name is resolved to the deck's numbers by the result's :class:`Names`: the model's own
+names, or for a deck the names it declares (:mod:`mechfem.namespace`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+import copy
+import functools
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
 from mechfem.converted import Converted
+from mechfem.echo import Model as Model
+from mechfem.echo import ModelNames, Storage
 from mechfem.hooks import Hook
-from mechfem.inverse_dynamics import DynamicSeries, DynamicsModel, Simulation
-from mechfem.words import Part, Words, words_of
-from mechfem.words import free_motion_line as free_motion_line  # named here as before
-from mechfem.words import input_name as input_name
+from mechfem.inverse_dynamics import DynamicSeries, Simulation
+from mechfem.result_tables import Energy, ResultTables, Target
+from mechfem.run_report import AdjustInfo, Limit, RunReport
+from mechfem.words import Words
 
 FloatArray = npt.NDArray[np.float64]
 
 
-@dataclass(frozen=True)
-class AdjustInfo:
-    """The Newton adjustment of the initial co-ordinates that makes position 1."""
-
-    iterations: int
-    """Newton iterations made."""
-    stages: int
-    """Stages the prescribed changes were applied in (more than 1 when they had to be split)."""
-    initial_deformations: list[float]
-    """Deformation of every prescribed row before the adjustment (value at the given co-ordinates minus PARA value)."""
-    residual: float
-    """Largest deformation after the adjustment."""
-
-    @classmethod
-    def from_core(cls, d: _core.AdjustDict) -> AdjustInfo:
-        return cls(d["iterations"], d["stages"], list(d["initial_deformations"]), d["residual"])
-
-    def largest(self) -> tuple[int, float] | None:
-        """The row (1-based) with the largest initial deformation and that deformation, or None without rows."""
-        if not self.initial_deformations:
-            return None
-        k = max(range(len(self.initial_deformations)), key=lambda r: abs(self.initial_deformations[r]))
-        return k + 1, self.initial_deformations[k]
-
-
-@dataclass(frozen=True)
-class Limit:
-    """A limit position met during the motion (theory, section 5.5), located between two positions."""
-
-    kind: str
-    """``sign_change``: det(D^c) changed sign between two positions of a driven motion; ``near_zero``: |det(D^c)|
-    has a local minimum near zero; ``input_limit``: a driven input reached its extreme value, and the motion stopped
-    there; ``passed``: free motion passed an extreme value of the input."""
-    after: int
-    """The position before it (the position itself for ``near_zero``)."""
-    inputs: list[float]
-    """The input values there; for ``input_limit`` and ``passed`` the input's extreme value."""
-    coords: list[float]
-    """All co-ordinates there (index i - 1 for co-ordinate i)."""
-    det: float
-    """det(D^c) there: zero up to rounding, except at a ``near_zero`` minimum."""
-
-    @classmethod
-    def from_core(cls, d: _core.LimitDict) -> Limit:
-        return cls(d["kind"], d["after"], list(d["inputs"]), list(d["coords"]), d["det"])
+class Names(Protocol):
+    """How a result resolves what a user names (:mod:`mechfem.namespace` builds one)."""
 
     @property
-    def where(self) -> str:
-        """``between positions k and k+1``, or ``at position k`` for a near-zero minimum."""
-        if self.kind == "near_zero":
-            return f"at position {self.after}"
-        return f"between positions {self.after} and {self.after + 1}"
+    def mechanism(self) -> Any:
+        """The :class:`~mechfem.Mechanism` the names belong to (for a deck, the one its topology makes)."""
 
-    def what(self, names: Sequence[str] | Words = ()) -> str:
-        """The kind in words; ``names`` are the inputs' rows (:attr:`RunReport.input_names`), or the :class:`Words`
-        to name things with."""
-        inp = words_of(names).input(1) if len(self.inputs) == 1 else "an input"
-        return {
-            "sign_change": "det(D^c) changes sign: the driven motion passed a singular position",
-            "near_zero": "det(D^c) has a minimum near zero: close to a limit position, the transfer quality is poor",
-            "input_limit": f"{inp} reaches its limit position: the driven motion cannot go on",
-            "passed": f"free motion passes a limit position of {inp}, which turns back there",
-        }.get(self.kind, "a limit position")
+    @property
+    def numbering(self) -> Any:
+        """Its :class:`~mechfem.numbering.Numbering`: the deck numbers of its parts."""
 
-    def values(self, names: Sequence[str] | Words = ()) -> str:
-        """``input 1 = ..., det(D^c) = ...``."""
-        at = [words_of(names).at(j, v, 12) for j, v in enumerate(self.inputs, 1)]
-        return ", ".join([*at, f"det(D^c) = {self.det:.3g}"])
+    @property
+    def named(self) -> bool:
+        """True for a named model's own names, False for those of a deck."""
 
-    def describe(self, names: Sequence[str] | Words = ()) -> str:
-        """One sentence: what, where, the input values and det(D^c)."""
-        return f"{self.what(names)}, {self.where} ({self.values(names)})."
+    def target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
+        """The point, co-ordinate or row ``ref`` names (of ``kinds``), in deck numbers."""
+
+    def dof(self, key: object) -> int:
+        """The DOF number (1-based) of an input."""
+
+    def words(self, report: RunReport) -> Words:
+        """The words to say ``report``'s stop reason and warnings with."""
+
+    def model_names(self) -> ModelNames | None:
+        """The names the labels of pictures and tables use (None: the deck's numbers)."""
+
+    def traced(self, names: Sequence[str] | None) -> list[Any]:
+        """The points whose paths pictures trace: those called ``names``, or every moving point."""
+
+    def columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
+        """The inputs, outputs and (with ``coordinates``) moving co-ordinates :meth:`RunResult.table` lists."""
 
 
-@dataclass(frozen=True)
-class Stop:
-    """Why a motion stopped before its last position."""
+class RunResult(ResultTables):
+    """Everything a run computed, position by position, addressed by names.
 
-    last_good: int
-    """The last position that was computed (1-based)."""
-    inputs: list[float]
-    """Input values that could not be reached (empty under free motion)."""
-    last_inputs: list[float]
-    """Input values at the last good position."""
-    kind: str
-    """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
-    ``interrupted``, ``simulation`` (a simulation's integrator could not go on)."""
-    message: str
-    """The solver's own words, as the deck says them."""
-    limit: Limit | None
-    """The limit position the input ran into, when one was located."""
-    parts: list[Part] = field(default_factory=list)
-    """The solver's message in parts, the things it names as structure (:data:`mechfem.words.Part`): what
-    :meth:`describe` words it from (from ``message`` alone when empty)."""
+    ``coords`` holds every co-ordinate (positions x co-ordinates, column i - 1 is co-ordinate i), ``time`` and
+    ``det`` (det(D^c)) one value per position, ``buffers`` the deck's buffers by number. :meth:`value`,
+    :meth:`velocity`, :meth:`acceleration`, :meth:`input` and the inverse dynamics take names: a named model's
+    (``"C"``, ``"rocker.angle"``), or for a deck's run ``x13``, ``P9`` (the point whose x is co-ordinate 9),
+    ``ANGB(3)``, a row's formula, ``row6``/``out1`` and the names its comments declare. A deck's run holds what
+    its STORAGE block records: asking for anything else says which BUF line records it.
+    """
 
-    @classmethod
-    def from_core(cls, d: _core.StopDict) -> Stop:
-        limit = None if d["limit"] is None else Limit.from_core(d["limit"])
-        return cls(
-            d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit, list(d["parts"])
-        )
-
-    def describe(
+    def __init__(
         self,
-        total: int,
-        names: Sequence[str] | Words = (),
-        free_step: float | None = None,
-        written: bool = False,
-    ) -> str:
-        """One paragraph: where the motion stopped, why, and what to change.
+        deck: Path,
+        raw: Mapping[str, Any],
+        names: Names | None = None,
+        parameters: dict[str, Any] | None = None,
+    ) -> None:
+        self.deck = deck
+        """The deck file run (for a named model, the name of the deck written for it)."""
+        self.parameters: dict[str, Any] = parameters or {}
+        """The values a design study gave this variant."""
+        self.motion: Any = None
+        """The :class:`~mechfem.Motion` a named model's run followed (None: position 1 only, a deck, or not known)."""
+        self.coords: FloatArray = np.asarray(raw["coords"], dtype=np.float64)
+        self._raw = raw
+        self._namespace = names
+        sim = raw.get("simulation")
+        self.simulation: Simulation | None = None if sim is None else Simulation.from_core(sim)
+        """What the integrator of a simulation did (method, tolerances, steps, rejected steps, evaluations of the
+        equations of motion, the time reached); None for a run of a prescribed motion."""
+        super().__init__(raw)
 
-        ``names`` are the inputs' rows (:attr:`RunReport.input_names`), or the :class:`Words` to say it with;
-        ``free_step`` the ds to suggest for free motion, and ``written`` says whether the positions computed
-        have been written to output files.
-        """
-        words = words_of(names)
-        message = words.render(self.parts or [self.message])
-        k = self.last_good
-        kept = "written to the output files" if written else "kept in the result"
-        kept = (
-            f"Position 1 was computed and is {kept}."
-            if k == 1
-            else f"Positions 1 to {k} were computed and are all {kept}."
-        )
-        if self.kind == "interrupted":
-            return f"The motion was interrupted after position {k} of {total}. {kept}"
-        if self.kind == "simulation":
-            return (
-                f"The simulation stopped after position {k} of {total}: {message}. {kept} "
-                "A collapsing step usually means a limit position (no position exists beyond it); a very stiff "
-                f"spring or damper needs far more steps than its outputs: soften it, or loosen {words.tolerances}."
-            )
-        limit = self.limit
-        if limit is not None and limit.kind == "input_limit" and len(self.inputs) == 1 == len(limit.inputs):
-            return (
-                f"The motion stopped after position {k} of {total}: {words.input(1)} reached its limit "
-                f"position at {words.at(1, limit.inputs[0], 12)}, located between positions {k} and {k + 1} "
-                f"(det(D^c) = {limit.det:.2g} there), and cannot be driven on to {self.inputs[0]:.10g}. {kept} A "
-                "driven input cannot move the mechanism through its limit position; free motion can. "
-                f"{self._free_advice(free_step, words, total)} (At the smallest step the solver reported: "
-                f"{message}.)"
-            )
-        frm = ", ".join(words.at(j, v, 10) for j, v in enumerate(self.last_inputs, 1))
-        to = ", ".join(words.at(j, v, 10) for j, v in enumerate(self.inputs, 1))
-        step = f"the step from {frm} to {to}" if to else f"the free-motion step from {frm}"
-        located = "" if limit is None else f" Located: {limit.describe(words)}"
-        hint = _hint(self.kind, words)
-        if not self.inputs and self.kind != "element":
-            hint = words.smaller_free_step
-        elif len(self.inputs) == 1 and self.kind != "element":
-            advice = self._free_advice(free_step, words, total)
-            hint += f" If the input is near a limit position, use free motion. {advice}"
-        elif self.kind != "element":
-            hint += (
-                " Near a limit position, drive the mechanism with other inputs or stop the motion before it "
-                f"({words.free_needs_one_input})."
-            )
-        return (
-            f"The motion stopped after position {k} of {total}: {step} failed, even with smaller steps: "
-            f"{message}.{located} {kept} {hint}"
-        )
+    # -- what the run was
 
-    def _free_advice(self, free_step: float | None, words: Words, total: int) -> str:
-        """The free motion to use instead of the driven one, for a one-DOF driven motion of ``total`` positions."""
-        direction = -1.0 if self.inputs and self.inputs[0] < self.last_inputs[0] else 1.0
-        ds = abs(free_step) if free_step else 0.01
-        return words.free_advice(direction * ds, bool(free_step), total - 1)
+    @property
+    def path(self) -> str:
+        """The deck's path as text."""
+        return str(self.deck)
 
+    @property
+    def _names(self) -> Names:
+        if self._namespace is None:
+            self._namespace = DECK_NAMES.call(self)
+        return self._namespace
 
-def _hint(kind: str, words: Words) -> str:
-    """What to change after a stop of ``kind``."""
-    more = f"Try more, smaller steps ({words.more_steps})."
-    return {
-        "singular": "D^c became singular: an input is in a limit position and cannot drive the mechanism through "
-        "it. Stop the motion before it, or drive the mechanism with another input.",
-        "branch_jump": f"The corrector kept jumping to another assembly branch. {more}",
-        "element": "An element could not be evaluated (two of its points coincide, or a belt lost its free span); "
-        "check the dimensions or stop the motion earlier.",
-    }.get(kind, more)
+    @property
+    def named(self) -> bool:
+        """True for the run of a named :class:`~mechfem.Mechanism` (or a study's variant), False for a deck's."""
+        return self._namespace is not None and self._namespace.named
 
+    @property
+    def mechanism(self) -> Any:
+        """The :class:`~mechfem.Mechanism` run; for a deck, the one its topology makes (points ``P5``, co-ordinates
+        ``x13``, elements ``E1``, the names the deck declares)."""
+        return self._names.mechanism
 
-@dataclass(frozen=True)
-class RunReport:
-    """What a run did."""
+    @property
+    def numbering(self) -> Any:
+        """The deck numbers of the mechanism's parts (:class:`~mechfem.numbering.Numbering`)."""
+        return self._names.numbering
 
-    adjust: AdjustInfo
-    """The adjustment of position 1."""
-    positions: int
-    """Positions computed (1 without a MOVEMENT block)."""
-    steps: int
-    """Steps the motion asked for (positions asked for: ``steps + 1``)."""
-    subdivided_steps: int
-    """Steps that had to be subdivided to converge."""
-    limits: list[Limit]
-    """Limit positions met on the way, in order (the one a driven motion stopped at is ``stop.limit``)."""
-    singular_positions: list[int]
-    """Positions where D^c was singular, so that no transfer functions exist there (free motion only): buffers made
-    from transfer functions hold NaN at exactly these positions."""
-    stop: Stop | None
-    """Set when the motion stopped early."""
-    input_names: list[str] = field(default_factory=list)
-    """For DOF j (list index j - 1): the input's row and its form parameters, e.g. ``row 6: ANGB(1)``."""
-    free_step: float | None = None
-    """The mean distance the moving co-ordinates moved per step: the ds a stop message suggests for MOV_FREE."""
+    @functools.cached_property
+    def model(self) -> Model:
+        """The model as compiled (the print file's echo)."""
+        return _model_and_names(self._raw["model"])[0]
 
-    @classmethod
-    def from_core(
-        cls, d: _core.ReportDict, input_names: Sequence[str] = (), free_step: float | None = None
-    ) -> RunReport:
-        return cls(
-            adjust=AdjustInfo.from_core(d["adjust"]),
-            positions=d["positions"],
-            steps=d["steps"],
-            subdivided_steps=d["subdivided_steps"],
-            limits=[Limit.from_core(x) for x in d["limits"]],
-            singular_positions=list(d["singular_positions"]),
-            stop=None if d["stop"] is None else Stop.from_core(d["stop"]),
-            input_names=list(input_names),
-            free_step=free_step,
+    @functools.cached_property
+    def storage(self) -> Storage:
+        """The storage requests: buffers, tables, data set, pictures, animation."""
+        return _CONVERTED.get(self._raw["storage"], Storage.from_core)
+
+    @functools.cached_property
+    def report(self) -> RunReport:
+        """What the run did: the adjustment of position 1, the limit positions met, why it stopped."""
+        d: _core.ReportDict = self._raw["report"]
+        names = _model_and_names(self._raw["model"])[1]
+        if d["stop"] is not None:
+            return RunReport.from_core(d, names, mean_step(self.coords, self.model))
+        return _CONVERTED.get(d, lambda r: RunReport.from_core(r, names))
+
+    @functools.cached_property
+    def names(self) -> ModelNames | None:
+        """A named model's own names for the deck numbers (None for a deck's run: labels use deck numbers)."""
+        return self._namespace.model_names() if self._namespace is not None else None
+
+    @functools.cached_property
+    def kx1(self) -> dict[int, FloatArray]:
+        """d x_i / d input 1 at every position by co-ordinate i, for the hodographs (a deck's run: the co-ordinates
+        its PLOTHODO lines name; NaN where D^c is singular)."""
+        if "hodograph" in self._layout:
+            start = self._layout["hodograph"][0]
+            return {i: self._table[:, start + k] for k, i in enumerate(self._raw["hodograph_coords"])}
+        nd = self._layout["kx1"][1][1]
+        return {i: self._series("kx1", i - 1, 0) for i in range(1, self.coords.shape[1] + 1)} if nd else {}
+
+    @functools.cached_property
+    def dynamic(self) -> DynamicSeries | None:
+        """Inputs, drive forces, energies and power at every position of a run with masses or loads (None
+        otherwise)."""
+        if "drive" not in self._layout:
+            return None
+        return DynamicSeries(
+            *(self._block(b) for b in ("inputs", "drive")), *(self._block(b) for b in ("ekin", "epot", "power"))
         )
 
     @property
-    def located_limits(self) -> list[Limit]:
-        """Every located limit position, in order: those met on the way, then the one the motion stopped at."""
-        out = list(self.limits)
-        if self.stop is not None and self.stop.limit is not None:
-            out.append(self.stop.limit)
-        return out
-
-    @property
-    def warnings(self) -> list[str]:
-        """What deserves a second look, one sentence each: sign changes and near-zero minima of det(D^c) in a
-        driven motion, and positions where no transfer functions exist."""
-        return self.describe_warnings()
-
-    def describe_warnings(self, words: Words | None = None) -> list[str]:
-        """:attr:`warnings`, said with ``words`` (default: the deck's)."""
-        w = words or Words(self.input_names)
-        out = [x.describe(w) for x in self.limits if x.kind in ("sign_change", "near_zero")]
-        if self.singular_positions:
-            at = ", ".join(map(str, self.singular_positions))
-            out.append(
-                f"D^c is singular at position{'s' if len(self.singular_positions) > 1 else ''} {at}: the mechanism "
-                f"is in a limit position of its input there, no transfer functions exist, and {w.singular_results}."
-            )
-        return out
+    def positions(self) -> int:
+        """Positions computed."""
+        return int(self.coords.shape[0])
 
     @property
     def complete(self) -> bool:
         """True when every position asked for was computed."""
-        return self.stop is None
+        return self.report.complete
 
-    def stop_reason(self, written: bool = False, words: Words | None = None) -> str | None:
-        """The paragraph saying why the motion stopped, or None when it did not; ``written`` says that the
-        positions computed have been written to output files, ``words`` how to say it (default: the deck's)."""
-        if self.stop is None:
-            return None
-        return self.stop.describe(self.steps + 1, words or self.input_names, self.free_step, written)
+    @property
+    def limits(self) -> list[Limit]:
+        """Limit positions met on the way."""
+        return self.report.limits
 
+    def stop_reason(self) -> str | None:
+        """Why the motion stopped early, where, and what to change (in the words of the model or the deck), or
+        None."""
+        return self.report.stop_reason(words=self._names.words(self.report))
 
-@dataclass(frozen=True)
-class Element:
-    """One ELEM line."""
+    @property
+    def warnings(self) -> list[str]:
+        """The limit positions and singular positions, one sentence each."""
+        return self.report.describe_warnings(self._names.words(self.report))
 
-    number: int
-    type: str
-    coords: list[int]
-    coord_names: list[str]
-    line: int
-
-
-@dataclass(frozen=True)
-class Term:
-    """One FORM line: ``factor * form`` of element ``element``."""
-
-    element: int
-    form: str
-    factor: float
-    seq: int
-    """The FORM line's sequence number."""
-    line: int
-
-
-@dataclass(frozen=True)
-class Row:
-    """A prescribed row of D^c (``dest > 0``) or a dependent form parameter (``dest < 0``)."""
-
-    dest: int
-    terms: list[Term]
-    para: float | None
-    """The value PARA prescribes, if any."""
-    input: int | None
-    """The DOF whose input this row is, if it is one."""
-    value: float
-    """Value at position 1."""
-
-    def formula(self) -> str:
-        """The combination, e.g. ``ANGB(2) - ANGB(4)``."""
-        out = ""
-        for t in self.terms:
-            mag = abs(t.factor)
-            text = f"{t.form}({t.element})" if mag == 1.0 else f"{mag:g}*{t.form}({t.element})"
-            if not out:
-                out = ("-" if t.factor < 0 else "") + text
-            else:
-                out += (" - " if t.factor < 0 else " + ") + text
+    def replace(self, **fields: Any) -> RunResult:
+        """A copy with ``fields`` (``storage``, ``names``, ``report``, ``model``) replaced, e.g. to draw a picture
+        the deck does not ask for."""
+        out = copy.copy(self)
+        out.__dict__.update(fields)
         return out
 
+    # -- names
 
-@dataclass(frozen=True)
-class Coordinate:
-    """One co-ordinate: fixed or moving, its given value and its value at position 1."""
+    def _target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
+        return self._names.target(ref, what, kinds)
 
-    number: int
-    moving: bool
-    given: float
-    adjusted: float
+    def _dof(self, wrt: object) -> int:
+        return self._names.dof(wrt) - 1
 
+    def _traced_points(self, names: Sequence[str] | None = None) -> list[Any]:
+        """The points whose paths a picture, animation or drawing traces: those called ``names``, or by default
+        every moving point whose two co-ordinates the run computed."""
+        return self._names.traced(names)
 
-@dataclass(frozen=True)
-class Model:
-    """The model as compiled from the deck, for the echo in the print file."""
+    def _columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
+        return self._names.columns(coordinates)
 
-    elements: list[Element]
-    prescribed: list[Row]
-    dependent: list[Row]
-    dofs: list[int]
-    """For DOF j (1-based, list index j - 1): the prescribed row that is its input."""
-    coordinates: list[Coordinate]
-    mode: str = "KIN ANA"
-    """The deck's mode line."""
-    dynamics: DynamicsModel | None = None
-    """The masses and loads of a DYN deck."""
+    def _input_is_angle(self, j: int) -> bool:
+        return bool(self.numbering.inputs[j].is_angle)
 
-    @classmethod
-    def from_core(cls, d: _core.ModelDict) -> Model:
-        def row(r: _core.RowDict) -> Row:
-            terms = [Term(t["element"], t["form"], t["factor"], t["seq"], t["line"]) for t in r["terms"]]
-            return Row(r["dest"], terms, r["para"], r["input"], r["value"])
+    def _input_name(self, j: int) -> str:
+        return str(self.numbering.inputs[j].name)
 
-        return cls(
-            elements=[
-                Element(e["number"], e["type"], list(e["coords"]), list(e["coord_names"]), e["line"])
-                for e in d["elements"]
-            ],
-            prescribed=[row(r) for r in d["prescribed"]],
-            dependent=[row(r) for r in d["dependent"]],
-            dofs=list(d["dofs"]),
-            coordinates=[Coordinate(c["number"], c["moving"], c["given"], c["adjusted"]) for c in d["coordinates"]],
-            mode=d.get("mode", "KIN ANA"),
-            dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
+    def _coordinate_name(self, i: int) -> str:
+        return str(self.numbering.coords[i - 1].name)
+
+    def _dynamic_needed(self, what: str) -> None:
+        if "drive" in self._layout:
+            return
+        if self.named:
+            raise ValueError(
+                f"the mechanism {self.mechanism.name!r} has no masses or loads, so its run computed no {what}: give "
+                "them with Mechanism.mass, point_mass, inertia, gravity, force, load, load_table, spring or motor"
+            )
+        raise ValueError(
+            f"the deck {self.path} is a {self.model.mode} deck, so its run computed no {what}: give it a DYNAMICS "
+            "block and the mode DYN ANA"
         )
 
-    @property
-    def n_coords(self) -> int:
-        return len(self.coordinates)
+    def _moving(self, i: int) -> bool:
+        return bool(self.model.coordinates[i - 1].moving)
 
-    @property
-    def n_moving(self) -> int:
-        return sum(c.moving for c in self.coordinates)
+    # -- pictures
 
+    def run_result(self) -> RunResult:
+        """The result itself (pictures, print file and report read this same type)."""
+        return self
 
-@dataclass(frozen=True)
-class Buffer:
-    """One BUF... line: buffer ``number`` holds the quantity ``keyword args``."""
+    def sensitivity(self, quantity: Any, wrt: str | Sequence[str]) -> FloatArray:
+        """The derivative of ``quantity`` at every position with respect to the design variables ``wrt`` (names of
+        prescribed values or fixed co-ordinates, as for :func:`mechfem.optimize`): positions x variables, or one
+        value per position for a single name. ``quantity`` is a name (its value) or ``Q(name, order, wrt)`` for a
+        transfer function. Exact: from the factorisation of D^c at each position (one more run of the motion).
+        For a named model's run."""
+        if not self.named:
+            raise ValueError(
+                "sensitivity() runs the mechanism again with its motion: read the deck into a model with "
+                "Mechanism.read_deck and run that, then ask its result"
+            )
+        names = [wrt] if isinstance(wrt, str) else list(wrt)
+        out = SENSITIVITY.call(self, quantity, names)
+        return out[:, 0].copy() if isinstance(wrt, str) else out
 
-    number: int
-    keyword: str
-    args: list[int]
-    line: int
+    def plot(self, *outputs: str, **options: Any) -> Any:
+        """A figure (``matplotlib.figure.Figure``): the mechanism at position 1 with the paths of its moving points,
+        beside the ``outputs`` (default: every output) against the first input. Options: ``picture=k`` draws
+        picture k of the storage as the deck does; ``points=[...]`` chooses the paths; ``against="time"``."""
+        return PLOT.call(self, outputs, **options)
 
-    def label(self) -> str:
-        """The definition as written in a deck, e.g. ``BUFKE1 -1 1``."""
-        return " ".join([self.keyword, *map(str, self.args)])
+    def animate(self, path: str | Path, points: Sequence[str] | None = None) -> list[Path]:
+        """Writes an animation of the motion to ``path`` (GIF; also MP4 when ffmpeg is installed) with the paths
+        of ``points`` (default: every moving point); returns the files written."""
+        return ANIMATE.call(self, path, points)
 
+    def to_dxf(
+        self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True, units: str | None = None
+    ) -> Path:
+        """Writes the mechanism at ``position`` (1-based) as a DXF file with the paths of its moving points
+        (``paths``: True, False or point names) and the points' names, one layer per kind of shape; ``units``
+        ("mm", "m", ...) declares the length unit. Needs ezdxf (``pip install 'mechfem[dxf]'``)."""
+        return TO_DXF.call(self, path, position, paths, units)
 
-@dataclass(frozen=True)
-class Plot:
-    """One PLOTFUNC, PLOTCURV or PLOTHODO line."""
+    def to_svg(self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True) -> Path:
+        """Writes the mechanism at ``position`` (1-based) as an SVG file, as :meth:`to_dxf` does a DXF file."""
+        return TO_SVG.call(self, path, position, paths)
 
-    keyword: str
-    a: int
-    b: int
-
-
-@dataclass(frozen=True)
-class Picture:
-    """One BEGINPIC ... ENDPIC block."""
-
-    title: str
-    line: int
-    plots: list[Plot]
-
-
-@dataclass(frozen=True)
-class Storage:
-    """What the STORAGE block asks to be done with the buffers."""
-
-    buffers: list[Buffer]
-    printbuf: list[int] | None
-    """Buffers to tabulate in the print file (all of them for a PRINTBUF without numbers); None without PRINTBUF."""
-    savedata: list[int]
-    """Buffers of the data set, in column order (empty: no data set)."""
-    animate: str | None
-    pictures: list[Picture]
-
-    @classmethod
-    def from_core(cls, d: _core.StorageDict) -> Storage:
-        buffers = [Buffer(b["number"], b["keyword"], list(b["args"]), b["line"]) for b in d["buffers"]]
-        printbuf = d["printbuf"]
-        if printbuf is not None and not printbuf:
-            printbuf = [b.number for b in buffers]
-        return cls(
-            buffers=buffers,
-            printbuf=None if printbuf is None else list(printbuf),
-            savedata=list(d["savedata"]),
-            animate=d["animate"],
-            pictures=[
-                Picture(p["title"], p["line"], [Plot(q["keyword"], q["a"], q["b"]) for q in p["plots"]])
-                for p in d["pictures"]
-            ],
-        )
-
-    def buffer(self, number: int) -> Buffer:
-        """The definition of buffer ``number``."""
-        for b in self.buffers:
-            if b.number == number:
-                return b
-        raise KeyError(number)
-
-
-@dataclass(frozen=True)
-class ModelNames:
-    """A named model's own names for the deck numbers of its run (:class:`mechfem.Mechanism`), so that labels
-    (:mod:`mechfem.labels`) speak the model's language instead of the deck's."""
-
-    coordinates: list[str]
-    """Co-ordinate i is ``coordinates[i - 1]``, e.g. ``P.x``."""
-    prescribed: list[str]
-    """Prescribed row r is ``prescribed[r - 1]``."""
-    dependent: list[str]
-    """Dependent form parameter -k (an output) is ``dependent[k - 1]``."""
-    inputs: list[str]
-    """The input of DOF j is ``inputs[j - 1]``."""
-
-
-@dataclass(frozen=True)
-class RunResult:
-    """Everything a run computed, position by position (row k is position k + 1)."""
-
-    deck: Path
-    buffers: dict[int, FloatArray]
-    """Buffer number -> its value at every position."""
-    coords: FloatArray
-    """All co-ordinates, positions x co-ordinates (column i - 1 is co-ordinate i)."""
-    time: FloatArray
-    det: FloatArray
-    """det(D^c) at every position."""
-    report: RunReport
-    model: Model
-    storage: Storage
-    kx1: dict[int, FloatArray] = field(default_factory=dict)
-    """d x_i / d input 1 at every position, for the co-ordinates i named by PLOTHODO lines (for the hodographs;
-    NaN where D^c is singular)."""
-    dynamic: DynamicSeries | None = None
-    """Drive forces, energies and power at every position of a DYN deck's run."""
-    simulation: Simulation | None = None
-    """What the integrator of a DYN SIM run did."""
-    names: ModelNames | None = None
-    """The model's own names, for the run of a named model (None for a deck's run: labels use deck numbers)."""
-
-    @property
-    def positions(self) -> int:
-        return int(self.coords.shape[0])
+    def _repr_png_(self) -> bytes | None:
+        return PNG.call(self)
 
     def _repr_html_(self) -> str:
         return HTML.call(self)
+
+    def __repr__(self) -> str:
+        name = self.mechanism.name if self.named else self.path
+        state = "complete" if self.complete else f"stopped after position {self.positions}"
+        return f"RunResult({name!r}: {self.positions} positions, {state}, {len(self.limits)} limit(s))"
+
+
+Analysis = RunResult
+"""The result of :meth:`Mechanism.run <mechfem.Mechanism.run>`: the same :class:`RunResult` every run returns."""
 
 
 @dataclass(frozen=True)
@@ -532,44 +335,52 @@ def mean_step(coords: FloatArray, model: Model) -> float | None:
     return mean if np.isfinite(mean) and mean > 0.0 else None
 
 
+# The echo, storage requests and report of a deck run again unchanged arrive as the same dictionaries; each is
+# converted once (see mechfem.converted).
 _CONVERTED = Converted()
 
 
 def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
-    model = Model.from_core(d)
-    return model, [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
+    def make(d: _core.ModelDict) -> tuple[Model, list[str]]:
+        model = Model.from_core(d)
+        return model, [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
+
+    return _CONVERTED.get(d, make)
 
 
-def _report(d: _core.ReportDict, names: list[str], coords: FloatArray, model: Model) -> RunReport:
-    """The run's report. One of a run that stopped gets the mean step for its advice (a pass over every position,
-    saved when none stopped); one with nothing to report is converted once for every run of its deck that hands
-    the same dictionary over again (see :class:`mechfem.converted.Converted`)."""
-    if d["stop"] is not None:
-        return RunReport.from_core(d, names, mean_step(coords, model))
-    return _CONVERTED.get(d, lambda r: RunReport.from_core(r, names))
+def run_result(deck: Path, d: Mapping[str, Any]) -> RunResult:
+    """The result of a run of the deck ``deck`` (``d``: the compiled module's dictionary); runs of one deck file
+    share its model echo and storage requests (read them, do not change them)."""
+    if "table" not in d:
+        d = _old_contract(d)
+    return RunResult(deck, d)
 
 
-def run_result(deck: Path, d: _core.RunDict) -> RunResult:
-    """Builds a :class:`RunResult` from the compiled module's dictionary. Runs of one deck file share its
-    :class:`Model` and :class:`Storage` (read them, do not change them)."""
-    values = np.asarray(d["buffer_values"], dtype=np.float64)
-    kx1 = np.asarray(d["kx1_values"], dtype=np.float64)
-    buffers = {n: values[:, k] for k, n in enumerate(d["buffer_numbers"])}
-    coords = np.asarray(d["coords"], dtype=np.float64)
-    model, names = _CONVERTED.get(d["model"], _model_and_names)
-    return RunResult(
-        deck=deck,
-        buffers=buffers,
-        coords=coords,
-        time=np.asarray(d["time"], dtype=np.float64),
-        det=np.asarray(d["det"], dtype=np.float64),
-        report=_report(d["report"], names, coords, model),
-        model=model,
-        storage=_CONVERTED.get(d["storage"], Storage.from_core),
-        kx1={n: kx1[:, k] for k, n in enumerate(d["kx1_coords"])},
-        dynamic=None if d.get("dynamic") is None else DynamicSeries.from_core(d["dynamic"]),  # type: ignore[arg-type]
-        simulation=None if d.get("simulation") is None else Simulation.from_core(d["simulation"]),  # type: ignore[arg-type]
-    )
+def _old_contract(d: Mapping[str, Any]) -> dict[str, Any]:
+    columns = [np.asarray(d["buffer_values"]), np.asarray(d["kx1_values"])]
+    layout: dict[str, tuple[int, tuple[int, ...]]] = {}
+    start = 0
+    for name, a in (("buffers", columns[0]), ("hodograph", columns[1])):
+        layout[name] = (start, (a.shape[1],))
+        start += a.shape[1]
+    parts = columns
+    dyn = d.get("dynamic")
+    if dyn is not None:
+        for name in ("inputs", "drive", "ekin", "epot", "power"):
+            a = np.asarray(dyn[name])
+            a = a.reshape(a.shape[0], -1)
+            layout[name] = (start, (a.shape[1],) if name in ("inputs", "drive") else ())
+            start += a.shape[1]
+            parts.append(a)
+    for name in ("time", "det"):
+        layout[name] = (start, ())
+        start += 1
+        parts.append(np.asarray(d[name]).reshape(-1, 1))
+    out = dict(d)
+    out["table"] = np.asfortranarray(np.hstack(parts))
+    out["layout"] = layout
+    out["hodograph_coords"] = d["kx1_coords"]
+    return out
 
 
 def check_result(deck: Path, d: _core.CheckDict) -> CheckResult:
@@ -584,9 +395,25 @@ def check_result(deck: Path, d: _core.CheckDict) -> CheckResult:
         det=d["det"],
         coords=np.asarray(d["coords"], dtype=np.float64),
         adjust=AdjustInfo.from_core(d["adjust"]),
-        model=_CONVERTED.get(d["model"], _model_and_names)[0],
+        model=_model_and_names(d["model"])[0],
     )
 
 
-# RunResult._repr_html_ is drawn by mechfem.notebook, a layer above (docs/architecture.md), which fills this hook.
+# The work upper layers do for this one (docs/architecture.md): names for a deck (mechanism.namespace), sensitivities
+# (mechfem.optimise), figures (mechfem.figures), drawings (mechfem.export), notebook views (mechfem.notebook).
+DECK_NAMES: Hook[Callable[[RunResult], Names]] = Hook("RunResult names of a deck", "mechfem.namespace")
+SENSITIVITY: Hook[Callable[[RunResult, Any, list[str]], FloatArray]] = Hook("RunResult.sensitivity", "mechfem.optimise")
+PLOT: Hook[Callable[..., Any]] = Hook("RunResult.plot", "mechfem.figures")
+ANIMATE: Hook[Callable[[RunResult, str | Path, Sequence[str] | None], list[Path]]] = Hook(
+    "RunResult.animate", "mechfem.figures"
+)
+TO_DXF: Hook[Callable[[RunResult, str | Path, int, bool | Sequence[str], str | None], Path]] = Hook(
+    "RunResult.to_dxf", "mechfem.export"
+)
+TO_SVG: Hook[Callable[[RunResult, str | Path, int, bool | Sequence[str]], Path]] = Hook(
+    "RunResult.to_svg", "mechfem.export"
+)
+PNG: Hook[Callable[[RunResult], bytes | None]] = Hook("RunResult._repr_png_", "mechfem.notebook")
 HTML: Hook[Callable[[RunResult], str]] = Hook("RunResult._repr_html_", "mechfem.notebook")
+
+__all__ = ["Analysis", "CheckResult", "Energy", "Names", "RunResult", "check_result", "mean_step", "run_result"]

@@ -17,13 +17,14 @@ from collections.abc import Callable
 import mechfem._core as _core
 from mechfem import compiled, deckio
 from mechfem import model as _model
-from mechfem.analysis import Analysis
 from mechfem.deckio import Progress
 from mechfem.errors import MechfemError, RunInterrupted, on_stop
 from mechfem.explain import translate
 from mechfem.limits import memory_limit
 from mechfem.model import Mechanism
 from mechfem.motion import Motion
+from mechfem.namespace import model_result
+from mechfem.result import Analysis
 from mechfem.storage import Storage
 
 
@@ -60,7 +61,7 @@ def run(
         close = getattr(callback, "close", None)
         if close is not None:
             close()
-    analysis = Analysis(mech, numbering, d, path=f"{mech.name}.mec")
+    analysis = model_result(mech, numbering, d, f"{mech.name}.mec")
     analysis.motion = motion if with_motion else None
     if d["interrupted"]:
         raise RunInterrupted(analysis)

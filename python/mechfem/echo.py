@@ -1,0 +1,198 @@
+"""The model and the storage requests of a run as the deck declares them (the echo of the print file), built
+from the compiled module's dictionaries.
+
+Numbers that name things (co-ordinates, elements, rows, buffers) are the deck's own, 1-based and signed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mechfem._core as _core
+from mechfem.inverse_dynamics import DynamicsModel
+
+
+@dataclass(frozen=True)
+class Element:
+    """One ELEM line."""
+
+    number: int
+    type: str
+    coords: list[int]
+    coord_names: list[str]
+    line: int
+
+
+@dataclass(frozen=True)
+class Term:
+    """One FORM line: ``factor * form`` of element ``element``."""
+
+    element: int
+    form: str
+    factor: float
+    seq: int
+    """The FORM line's sequence number."""
+    line: int
+
+
+@dataclass(frozen=True)
+class Row:
+    """A prescribed row of D^c (``dest > 0``) or a dependent form parameter (``dest < 0``)."""
+
+    dest: int
+    terms: list[Term]
+    para: float | None
+    """The value PARA prescribes, if any."""
+    input: int | None
+    """The DOF whose input this row is, if it is one."""
+    value: float
+    """Value at position 1."""
+
+    def formula(self) -> str:
+        """The combination, e.g. ``ANGB(2) - ANGB(4)``."""
+        out = ""
+        for t in self.terms:
+            mag = abs(t.factor)
+            text = f"{t.form}({t.element})" if mag == 1.0 else f"{mag:g}*{t.form}({t.element})"
+            if not out:
+                out = ("-" if t.factor < 0 else "") + text
+            else:
+                out += (" - " if t.factor < 0 else " + ") + text
+        return out
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """One co-ordinate: fixed or moving, its given value and its value at position 1."""
+
+    number: int
+    moving: bool
+    given: float
+    adjusted: float
+
+
+@dataclass(frozen=True)
+class Model:
+    """The model as compiled from the deck, for the echo in the print file."""
+
+    elements: list[Element]
+    prescribed: list[Row]
+    dependent: list[Row]
+    dofs: list[int]
+    """For DOF j (1-based, list index j - 1): the prescribed row that is its input."""
+    coordinates: list[Coordinate]
+    mode: str = "KIN ANA"
+    """The deck's mode line."""
+    dynamics: DynamicsModel | None = None
+    """The masses and loads of a DYN deck."""
+
+    @classmethod
+    def from_core(cls, d: _core.ModelDict) -> Model:
+        def row(r: _core.RowDict) -> Row:
+            terms = [Term(t["element"], t["form"], t["factor"], t["seq"], t["line"]) for t in r["terms"]]
+            return Row(r["dest"], terms, r["para"], r["input"], r["value"])
+
+        return cls(
+            elements=[
+                Element(e["number"], e["type"], list(e["coords"]), list(e["coord_names"]), e["line"])
+                for e in d["elements"]
+            ],
+            prescribed=[row(r) for r in d["prescribed"]],
+            dependent=[row(r) for r in d["dependent"]],
+            dofs=list(d["dofs"]),
+            coordinates=[Coordinate(c["number"], c["moving"], c["given"], c["adjusted"]) for c in d["coordinates"]],
+            mode=d.get("mode", "KIN ANA"),
+            dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
+        )
+
+    @property
+    def n_coords(self) -> int:
+        return len(self.coordinates)
+
+    @property
+    def n_moving(self) -> int:
+        return sum(c.moving for c in self.coordinates)
+
+
+@dataclass(frozen=True)
+class Buffer:
+    """One BUF... line: buffer ``number`` holds the quantity ``keyword args``."""
+
+    number: int
+    keyword: str
+    args: list[int]
+    line: int
+
+    def label(self) -> str:
+        """The definition as written in a deck, e.g. ``BUFKE1 -1 1``."""
+        return " ".join([self.keyword, *map(str, self.args)])
+
+
+@dataclass(frozen=True)
+class Plot:
+    """One PLOTFUNC, PLOTCURV or PLOTHODO line."""
+
+    keyword: str
+    a: int
+    b: int
+
+
+@dataclass(frozen=True)
+class Picture:
+    """One BEGINPIC ... ENDPIC block."""
+
+    title: str
+    line: int
+    plots: list[Plot]
+
+
+@dataclass(frozen=True)
+class Storage:
+    """What the STORAGE block asks to be done with the buffers."""
+
+    buffers: list[Buffer]
+    printbuf: list[int] | None
+    """Buffers to tabulate in the print file (all of them for a PRINTBUF without numbers); None without PRINTBUF."""
+    savedata: list[int]
+    """Buffers of the data set, in column order (empty: no data set)."""
+    animate: str | None
+    pictures: list[Picture]
+
+    @classmethod
+    def from_core(cls, d: _core.StorageDict) -> Storage:
+        buffers = [Buffer(b["number"], b["keyword"], list(b["args"]), b["line"]) for b in d["buffers"]]
+        printbuf = d["printbuf"]
+        if printbuf is not None and not printbuf:
+            printbuf = [b.number for b in buffers]
+        return cls(
+            buffers=buffers,
+            printbuf=None if printbuf is None else list(printbuf),
+            savedata=list(d["savedata"]),
+            animate=d["animate"],
+            pictures=[
+                Picture(p["title"], p["line"], [Plot(q["keyword"], q["a"], q["b"]) for q in p["plots"]])
+                for p in d["pictures"]
+            ],
+        )
+
+    def buffer(self, number: int) -> Buffer:
+        """The definition of buffer ``number``."""
+        for b in self.buffers:
+            if b.number == number:
+                return b
+        raise KeyError(number)
+
+
+@dataclass(frozen=True)
+class ModelNames:
+    """A named model's own names for the deck numbers of its run (:class:`mechfem.Mechanism`), so that labels
+    (:mod:`mechfem.labels`) speak the model's language instead of the deck's."""
+
+    coordinates: list[str]
+    """Co-ordinate i is ``coordinates[i - 1]``, e.g. ``P.x``."""
+    prescribed: list[str]
+    """Prescribed row r is ``prescribed[r - 1]``."""
+    dependent: list[str]
+    """Dependent form parameter -k (an output) is ``dependent[k - 1]``."""
+    inputs: list[str]
+    """The input of DOF j is ``inputs[j - 1]``."""

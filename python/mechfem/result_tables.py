@@ -1,0 +1,432 @@
+"""The values of a :class:`~mechfem.RunResult`: its table of columns, read by block name, and the quantities a
+user asks for by name (values, transfer functions, velocities, accelerations, inverse dynamics, named tables).
+
+A run's table has one column per quantity and a layout naming its blocks (``mechfem_core::run::Layout``): a named
+model's run records every block (``kx1``: d x_i / d input_j of every co-ordinate i and input j, ``e0`` every
+row's value, ...), a deck's run only the block ``buffers`` (its STORAGE block's buffers, in deck order) and those
+its outputs need. A quantity is found in its block when the run recorded the block, else in the buffer that
+records it; a deck's run that recorded neither says which BUF line would.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any, NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+from mechfem.echo import Model, Storage
+from mechfem.units import Unit, check_unit, factor
+
+FloatArray = npt.NDArray[np.float64]
+
+
+class Target(NamedTuple):
+    """What a name stands for, in deck numbers."""
+
+    kind: str
+    """``point``, ``coordinate`` or ``row``."""
+    numbers: tuple[int, ...]
+    """A point's co-ordinates (x, y), a co-ordinate's number, or a row's signed destination (``-k``: output k)."""
+    name: str
+    """Its name, for messages."""
+    angle: bool
+    """True for an angle (a co-ordinate or row whose unit is the radian)."""
+
+
+class NotRecordedError(KeyError):
+    """A quantity a deck's run did not record. A ``KeyError`` whose ``str()`` is the message itself."""
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
+
+
+class Energy(NamedTuple):
+    """Energies at every position: ``kinetic`` T, ``potential`` V (gravity and springs) and ``total`` T + V."""
+
+    kinetic: FloatArray
+    potential: FloatArray
+    total: FloatArray
+
+
+#: The block of the full layout that holds each buffer keyword's quantity (``x0``: the co-ordinates, kept beside
+#: the table).
+BLOCK_OF: dict[str, str] = {
+    "BUFINP": "inputs",
+    "BUFTIME": "time",
+    "BUFX0": "x0",
+    "BUFKX1": "kx1",
+    "BUFKX2": "kx2",
+    "BUFVX": "vx",
+    "BUFAX": "ax",
+    "BUFE0": "e0",
+    "BUFKE1": "ke1",
+    "BUFKE2": "ke2",
+    "BUFVE": "ve",
+    "BUFAE": "ae",
+    "BUFDET": "det",
+    "BUFSIG": "sigma",
+    "BUFDRV": "drive",
+    "BUFREA": "reaction",
+    "BUFEKIN": "ekin",
+    "BUFEPOT": "epot",
+    "BUFPOW": "power",
+    "BUFMRED": "mass",
+}
+KEYWORD_OF = {b: k for k, b in BLOCK_OF.items()}
+#: The argument kinds of each block's index: ``i`` a co-ordinate, ``r`` a row, ``j`` an input.
+INDEX_KINDS = {
+    **dict.fromkeys(["x0", "vx", "ax", "reaction"], "i"),
+    **dict.fromkeys(["e0", "ve", "ae", "sigma"], "r"),
+    **dict.fromkeys(["inputs", "drive"], "j"),
+    **{"kx1": "ij", "kx2": "ijj", "ke1": "rj", "ke2": "rjj", "mass": "jj"},
+}
+
+
+class ResultTables:
+    """The value part of :class:`~mechfem.RunResult` (see there); ``_raw`` is the compiled module's dictionary."""
+
+    coords: FloatArray
+    _raw: Mapping[str, Any]
+
+    def __init__(self, raw: Mapping[str, Any]) -> None:
+        self._table: FloatArray = np.asarray(raw["table"], dtype=np.float64)
+        self._layout: Mapping[str, tuple[int, Sequence[int]]] = raw["layout"]
+
+    # -- what the result class gives
+
+    @property
+    def model(self) -> Model:
+        raise NotImplementedError
+
+    @property
+    def storage(self) -> Storage:
+        raise NotImplementedError
+
+    @property
+    def named(self) -> bool:
+        raise NotImplementedError
+
+    @property
+    def path(self) -> str:
+        raise NotImplementedError
+
+    def _target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
+        raise NotImplementedError
+
+    def _dof(self, wrt: object) -> int:
+        raise NotImplementedError
+
+    def _input_is_angle(self, j: int) -> bool:
+        raise NotImplementedError
+
+    def _dynamic_needed(self, what: str) -> None:
+        raise NotImplementedError
+
+    def _moving(self, i: int) -> bool:
+        raise NotImplementedError
+
+    def _columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
+        raise NotImplementedError
+
+    def _coordinate_name(self, i: int) -> str:
+        raise NotImplementedError
+
+    def _input_name(self, j: int) -> str:
+        raise NotImplementedError
+
+    # -- the table
+
+    def _block(self, name: str) -> FloatArray:
+        """The layout's block ``name`` at every position: positions x its shape (a view of the table)."""
+        start, shape = self._layout[name]
+        width = math.prod(shape)
+        return self._table[:, start : start + width].reshape(self._table.shape[0], *shape)
+
+    @functools.cached_property
+    def _recorded(self) -> dict[tuple[object, ...], int]:
+        """The table column of each quantity a deck's buffer (or hodograph) records, by (block, 0-based index)."""
+        out: dict[tuple[object, ...], int] = {}
+        if "buffers" in self._layout:
+            start = self._layout["buffers"][0]
+            column = {n: start + k for k, n in enumerate(self._raw["buffer_numbers"])}
+            for b in self.storage.buffers:
+                block = BLOCK_OF[b.keyword]
+                kinds = INDEX_KINDS.get(block, "")
+                args = list(b.args) + ([b.args[-1]] if len(b.args) < len(kinds) else [])
+                index = tuple(self._index(k, a) for k, a in zip(kinds, args, strict=False))
+                out.setdefault((block, *index), column[b.number])
+        if "hodograph" in self._layout:
+            start = self._layout["hodograph"][0]
+            for k, i in enumerate(self._raw["hodograph_coords"]):
+                out.setdefault(("kx1", i - 1, 0), start + k)
+        return out
+
+    def _index(self, kind: str, number: int) -> int:
+        """The 0-based index in a block of a deck number of ``kind`` (a row's: prescribed rows, then outputs)."""
+        if kind == "r" and number < 0:
+            return len(self.model.prescribed) - number - 1
+        return number - 1
+
+    def _series(self, block: str, *index: int) -> FloatArray:
+        """Quantity ``index`` (0-based) of ``block`` at every position: a view of the table."""
+        if block == "x0":
+            return self.coords[:, index[0]]
+        where = self._layout.get(block)
+        if where is not None and block != "buffers":
+            start, shape = where
+            return self._table[:, start + (int(np.ravel_multi_index(index, tuple(shape))) if shape else 0)]
+        column = self._recorded.get((block, *index))
+        if column is None:
+            raise NotRecordedError(self._unrecorded(block, index))
+        return self._table[:, column]
+
+    def _unrecorded(self, block: str, index: Sequence[int]) -> str:
+        """Why a deck's run has no ``block`` ``index``, and the buffer that would record it."""
+        np_ = len(self.model.prescribed)
+        numbers = []
+        for kind, k in zip(INDEX_KINDS.get(block, ""), index, strict=False):
+            numbers.append(str((k + 1 if k < np_ else np_ - k - 1) if kind == "r" else k + 1))
+        line = " ".join([KEYWORD_OF[block], *numbers, "<number>"])
+        return (
+            f"the run of {self.path} did not record {line.replace(' <number>', '')}: a deck's run records what its "
+            f"STORAGE block asks for; add the buffer `{line}` there"
+        )
+
+    @functools.cached_property
+    def buffers(self) -> dict[int, FloatArray]:
+        """The deck's own buffers by number (from the storage of the run)."""
+        if "buffers" in self._layout:
+            start = self._layout["buffers"][0]
+            return {n: self._table[:, start + k] for k, n in enumerate(self._raw["buffer_numbers"])}
+        values = np.asarray(self._raw["buffer_values"], dtype=np.float64)
+        return {n: values[:, k] for k, n in enumerate(self._raw["buffer_numbers"])}
+
+    @functools.cached_property
+    def time(self) -> FloatArray:
+        """The time at every position."""
+        return self._block("time")
+
+    @functools.cached_property
+    def det(self) -> FloatArray:
+        """det(D^c) at every position."""
+        return self._block("det")
+
+    @functools.cached_property
+    def inputs(self) -> FloatArray:
+        """Input values, positions x inputs (DOF order)."""
+        if "inputs" in self._layout:
+            return self._block("inputs")
+        nd = len(self.model.dofs)
+        return np.column_stack([self._input(j) for j in range(nd)]) if nd else np.zeros((self.coords.shape[0], 0))
+
+    def _input(self, j: int) -> FloatArray:
+        """Input ``j`` (0-based): its block or buffer, else the value of its row."""
+        try:
+            return self._series("inputs", j)
+        except KeyError:
+            return self._series("e0", self.model.dofs[j] - 1)
+
+    # -- values by name
+
+    def _of(self, t: Target, coords: str, rows: str, *inputs: int) -> FloatArray:
+        """The quantity ``t`` names from block ``coords`` (a point or co-ordinate) or ``rows`` (a row), at the
+        input indices ``inputs``: a new array."""
+        if t.kind == "row":
+            return self._series(rows, self._index("r", t.numbers[0]), *inputs).copy()
+        columns = [self._series(coords, i - 1, *inputs) for i in t.numbers]
+        return np.column_stack(columns) if t.kind == "point" else columns[0].copy()
+
+    def _any(self, ref: object) -> Target:
+        return self._target(ref, "point, co-ordinate, row or output", ("point", "coordinate", "row"))
+
+    def x(self, point: object) -> FloatArray:
+        """x of a point at every position."""
+        return self.coords[:, self._target(point, "point", ("point",)).numbers[0] - 1].copy()
+
+    def y(self, point: object) -> FloatArray:
+        """y of a point at every position."""
+        return self.coords[:, self._target(point, "point", ("point",)).numbers[1] - 1].copy()
+
+    def value(
+        self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: Unit | None = None
+    ) -> FloatArray:
+        """A point (positions x 2), co-ordinate, row or output at every position (``order`` 0), or its transfer
+        function of first (d/d ``wrt``) or second order (d2/d ``wrt`` d ``wrt2``; ``wrt2`` defaults to ``wrt``).
+        ``unit="deg"`` gives every angle in degrees: an angle's value, and a transfer function per degree of an
+        angle input (d psi / d alpha of two angles is the same in either unit)."""
+        t = self._any(name)
+        if order == 0:
+            return self._in_unit(self._of(t, "x0", "e0"), t, (), unit)
+        j = self._dof(wrt)
+        if order == 1:
+            return self._in_unit(self._of(t, "kx1", "ke1", j), t, (j,), unit)
+        if order == 2:
+            m = j if wrt2 is None else self._dof(wrt2)
+            return self._in_unit(self._of(t, "kx2", "ke2", j, m), t, (j, m), unit)
+        raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
+
+    def _in_unit(self, values: FloatArray, t: Target, dofs: Sequence[int], unit: Unit | None) -> FloatArray:
+        """``values`` of ``t`` differentiated by the inputs ``dofs`` (0-based) in ``unit``: with ``"deg"``, an
+        angle's value times 180/pi, divided by 180/pi for each angle input it is differentiated by."""
+        if check_unit(unit) != "deg":
+            return values
+        power = int(t.angle) - sum(self._input_is_angle(j) for j in dofs)
+        if not t.angle and power == 0:
+            raise ValueError(
+                f"{t.name!r} is not an angle, and neither is an input it is differentiated by: unit='deg' applies to "
+                "angles only"
+            )
+        return values * factor("deg") ** power if power else values
+
+    def position(self, name: object, unit: Unit | None = None) -> FloatArray:
+        """The same as ``value(name)``: a point's (x, y), a co-ordinate, a row or an output (an angle in ``unit``,
+        ``"rad"`` or ``"deg"``)."""
+        return self.value(name, unit=unit)
+
+    def output(
+        self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: Unit | None = None
+    ) -> FloatArray:
+        """An output (or any row: a prescribed value, an input) and its transfer functions; see :meth:`value`."""
+        self._target(name, "output or row", ("row",))
+        return self.value(name, order, wrt, wrt2, unit)
+
+    def transfer(
+        self, name: object, order: int = 1, wrt: object = None, wrt2: object = None, unit: Unit | None = None
+    ) -> FloatArray:
+        """Transfer function of first or second order; see :meth:`value`."""
+        if order not in (1, 2):
+            raise ValueError(f"a transfer function has order 1 or 2, not {order!r}")
+        return self.value(name, order, wrt, wrt2, unit)
+
+    def velocity(self, name: object, unit: Unit | None = None) -> FloatArray:
+        """Velocity (time derivative) of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit``
+        per time)."""
+        t = self._any(name)
+        return self._in_unit(self._of(t, "vx", "ve"), t, (), unit)
+
+    def acceleration(self, name: object, unit: Unit | None = None) -> FloatArray:
+        """Acceleration of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit`` per time
+        squared)."""
+        t = self._any(name)
+        return self._in_unit(self._of(t, "ax", "ae"), t, (), unit)
+
+    def input(self, name: object = None, unit: Unit | None = None) -> FloatArray:
+        """The value of an input at every position (under free motion: where it went), an angle in ``unit``
+        (``"rad"``, the default, or ``"deg"``)."""
+        j = self._dof(name)
+        angle = self._input_is_angle(j)
+        t = Target("row", (self.model.dofs[j],), self._input_name(j), angle)
+        return self._in_unit(self._input(j).copy(), t, (), unit)
+
+    # -- inverse dynamics
+
+    def drive_torque(self, input: object = None) -> FloatArray:
+        """The force or torque the drive of an input delivers at every position (the stress of its row), positive when
+        it does positive work as the input increases; ``input`` as ``wrt`` (it may be left out with one input)."""
+        self._dynamic_needed("drive torques")
+        return self._series("drive", self._dof(input)).copy()
+
+    def stress(self, row: object) -> FloatArray:
+        """The generalised stress of a prescribed row (or input): the force or torque its constraint applies in the
+        direction of increasing value, e.g. the axial force of a bar of prescribed length, positive when it pushes
+        its ends apart."""
+        self._dynamic_needed("stresses")
+        t = self._target(row, "prescribed value or input", ("row",))
+        dest = t.numbers[0]
+        if dest < 0:
+            raise KeyError(f"{t.name!r} is an output, which carries no stress: only prescribed rows and inputs do")
+        return self._series("sigma", dest - 1).copy()
+
+    def reaction(self, point_or_coordinate: object) -> FloatArray:
+        """The force the frame applies at a fixed point (positions x 2: x, y) or on one fixed co-ordinate."""
+        self._dynamic_needed("reactions")
+        t = self._target(point_or_coordinate, "point or co-ordinate", ("point", "coordinate"))
+        moving = [self._coordinate_name(i) for i in t.numbers if self._moving(i)]
+        if moving:
+            fixed = [self._coordinate_name(i) for i in t.numbers if not self._moving(i)]
+            hint = f"; ask for the fixed one, reaction({fixed[0]!r})" if fixed else ""
+            raise KeyError(f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}")
+        out = np.column_stack([self._series("reaction", i - 1) for i in t.numbers])
+        return out if t.kind == "point" else out[:, 0].copy()
+
+    def energy(self) -> Energy:
+        """Kinetic, potential (gravity and springs) and total energy at every position."""
+        self._dynamic_needed("energies")
+        t, v = self._series("ekin").copy(), self._series("epot").copy()
+        return Energy(t, v, t + v)
+
+    def power(self) -> FloatArray:
+        """The power the drives deliver at every position (the sum of drive torque times input speed)."""
+        self._dynamic_needed("power")
+        return self._series("power").copy()
+
+    def mass_matrix(self) -> FloatArray:
+        """The mass matrix M(q) in the inputs at every position (positions x D x D; kinetic energy
+        ``T = 1/2 qdot^T M qdot``)."""
+        self._dynamic_needed("mass matrix")
+        if "mass" in self._layout:
+            return self._block("mass").copy()
+        nd = len(self.model.dofs)
+        out = [[self._series("mass", j, m) for m in range(nd)] for j in range(nd)]
+        return np.stack([np.stack(row, axis=-1) for row in out], axis=1)
+
+    # -- tables
+
+    def table(self, coordinates: bool = True) -> dict[str, FloatArray]:
+        """Every result as named columns: ``time``, ``det``, then each input, output and (with ``coordinates``)
+        moving co-ordinate ``q`` as ``q``, ``q'``, ``q''`` (transfer functions; ``q'(a)``, ``q''(a,b)`` with
+        several inputs), ``q_dot`` and ``q_ddot`` (velocity, acceleration). A deck's run gives those its buffers
+        recorded."""
+        inputs, outputs, coords = self._columns(coordinates)
+        names = [r.name for r in inputs]
+        single = len(names) == 1
+        out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
+
+        def put(key: str, get: Any, *args: Any) -> None:
+            try:
+                out[key] = get(*args)
+            except KeyError:
+                if self.named:
+                    raise
+
+        def add(name: str, ref: object) -> None:
+            put(name, self.value, ref)
+            for j, a in enumerate(names):
+                put(f"{name}'" if single else f"{name}'({a})", self.value, ref, 1, j + 1)
+                for m, b in enumerate(names[j:], j):
+                    put(f"{name}''" if single else f"{name}''({a},{b})", self.value, ref, 2, j + 1, m + 1)
+            put(f"{name}_dot", self.velocity, ref)
+            put(f"{name}_ddot", self.acceleration, ref)
+
+        for r in inputs:
+            put(r.name, self.input, r)
+            put(f"{r.name}_dot", self.velocity, r)
+            put(f"{r.name}_ddot", self.acceleration, r)
+        for r in outputs:
+            add(r.name, r)
+        for c in coords:
+            add(c.name, c)
+        return out
+
+    def to_pandas(self, coordinates: bool = True) -> Any:
+        """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...). Needs pandas
+        (``pip install 'mechfem[pandas]'``)."""
+        pd = _pandas()
+        frame = pd.DataFrame(self.table(coordinates))
+        frame.index = pd.RangeIndex(1, self.coords.shape[0] + 1, name="position")
+        return frame
+
+
+def _pandas() -> Any:
+    try:
+        return importlib.import_module("pandas")
+    except ImportError:
+        raise ImportError(
+            "to_pandas() needs pandas, which mechfem does not install by itself: pip install 'mechfem[pandas]' "
+            "(or pip install pandas)"
+        ) from None
