@@ -9,22 +9,9 @@ import numpy.typing as npt
 
 # The names of the compiled module; the TypedDicts below exist only for the type checker (@type_check_only).
 __all__ = [
-    "MechfemError",
-    "DeckError",
-    "AssemblyError",
-    "ConvergenceError",
-    "LimitPositionError",
-    "ResourceError",
-    "DEFAULTS",
-    "catalogue",
-    "check_deck",
-    "run_deck",
-    "run_deck_text",
-    "describe_deck_text",
-    "run_deck_variants",
-    "DesignModel",
-    "Model",
-    "optimised_deck_text",
+    "MechfemError", "DeckError", "AssemblyError", "ConvergenceError", "LimitPositionError", "ResourceError",
+    "DEFAULTS", "catalogue", "check_deck", "run_deck", "run_deck_text", "describe_deck_text", "run_deck_variants",
+    "DesignModel", "Model", "optimised_deck_text",
 ]
 
 _F64 = npt.NDArray[np.float64]
@@ -155,6 +142,8 @@ class ElementDict(TypedDict):
     coords: list[int]
     coord_names: list[str]
     line: int
+    name: str | None
+    """The name its ELEM line's comment declares (docs/deck.md, "Names in comments"); None without one."""
 
 @type_check_only
 class TermDict(TypedDict):
@@ -173,6 +162,8 @@ class RowDict(TypedDict):
     """The DOF whose input this row is, if it is one."""
     value: float
     """Value at position 1."""
+    name: str | None
+    """The name the comment of its first FORM line (or its PARA line) declares; None without one."""
 
 @type_check_only
 class CoordDict(TypedDict):
@@ -180,6 +171,8 @@ class CoordDict(TypedDict):
     moving: bool
     given: float
     adjusted: float
+    name: str | None
+    """The name its XFIX or XMOV line's comment declares; None without one."""
 
 @type_check_only
 class BodyDict(TypedDict):

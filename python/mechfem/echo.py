@@ -21,6 +21,8 @@ class Element:
     coords: list[int]
     coord_names: list[str]
     line: int
+    name: str | None = None
+    """The name the comment of its ELEM line declares (``; crank: A0 A``), or None."""
 
 
 @dataclass(frozen=True)
@@ -47,6 +49,8 @@ class Row:
     """The DOF whose input this row is, if it is one."""
     value: float
     """Value at position 1."""
+    name: str | None = None
+    """The name the comment of its first FORM line (or its PARA line) declares (``; coupler.length``), or None."""
 
     def formula(self) -> str:
         """The combination, e.g. ``ANGB(2) - ANGB(4)``."""
@@ -69,6 +73,8 @@ class Coordinate:
     moving: bool
     given: float
     adjusted: float
+    name: str | None = None
+    """The name the comment of its XFIX or XMOV line declares (``; A.x``), or None."""
 
 
 @dataclass(frozen=True)
@@ -90,17 +96,19 @@ class Model:
     def from_core(cls, d: _core.ModelDict) -> Model:
         def row(r: _core.RowDict) -> Row:
             terms = [Term(t["element"], t["form"], t["factor"], t["seq"], t["line"]) for t in r["terms"]]
-            return Row(r["dest"], terms, r["para"], r["input"], r["value"])
+            return Row(r["dest"], terms, r["para"], r["input"], r["value"], r["name"])
 
         return cls(
             elements=[
-                Element(e["number"], e["type"], list(e["coords"]), list(e["coord_names"]), e["line"])
+                Element(e["number"], e["type"], list(e["coords"]), list(e["coord_names"]), e["line"], e["name"])
                 for e in d["elements"]
             ],
             prescribed=[row(r) for r in d["prescribed"]],
             dependent=[row(r) for r in d["dependent"]],
             dofs=list(d["dofs"]),
-            coordinates=[Coordinate(c["number"], c["moving"], c["given"], c["adjusted"]) for c in d["coordinates"]],
+            coordinates=[
+                Coordinate(c["number"], c["moving"], c["given"], c["adjusted"], c["name"]) for c in d["coordinates"]
+            ],
             mode=d.get("mode", "KIN ANA"),
             dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
         )

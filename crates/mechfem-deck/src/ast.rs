@@ -186,6 +186,8 @@ pub struct ElemDef {
     pub ty: Spanned<ElementType>,
     /// Co-ordinate numbers in the type's order.
     pub coords: Vec<Spanned<i64>>,
+    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
+    pub comment: Option<String>,
 }
 
 /// `FORM s NAME k dest [f]`
@@ -203,6 +205,8 @@ pub struct FormDef {
     pub dest: Spanned<i64>,
     /// Factor f, if given (1.0 otherwise).
     pub factor: Option<Spanned<f64>>,
+    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
+    pub comment: Option<String>,
 }
 
 impl FormDef {
@@ -234,6 +238,8 @@ pub struct CoordDef {
     pub index: Spanned<i64>,
     /// Value (initial estimate for a moving co-ordinate).
     pub value: Spanned<f64>,
+    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
+    pub comment: Option<String>,
 }
 
 /// `PARA row value`
@@ -245,6 +251,8 @@ pub struct ParaDef {
     pub row: Spanned<i64>,
     /// Prescribed value.
     pub value: Spanned<f64>,
+    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
+    pub comment: Option<String>,
 }
 
 /// The DYNAMICS block (modes `DYN ANA` and `DYN SIM`), compiled to a

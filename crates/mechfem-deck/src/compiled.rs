@@ -49,6 +49,8 @@ pub struct Compiled {
     pub prescribed: Vec<RowInfo>,
     /// The dependent form parameters 1..n_d.
     pub dependent: Vec<RowInfo>,
+    /// The names the deck declares in its comments.
+    pub names: Names,
     /// The masses and loads (0-based indices): `Some` exactly for a
     /// [`Mode::DynAna`] or [`Mode::DynSim`] deck.
     pub dynamics: Option<Dynamics>,
@@ -146,4 +148,39 @@ pub struct TermInfo {
     pub factor: f64,
     /// Line of the FORM keyword.
     pub line: usize,
+}
+
+/// The names a deck declares in the `;` comments of its lines, by deck
+/// number (index i - 1 for number i); `None` where no name is declared.
+///
+/// mechfem's rule, made for the decks its Python writer produces
+/// (`ELEM 1 BIN 1 2 5 6 ; crank: A0 A`, `FORM 3 LENL 2 2 1 ; coupler.length`,
+/// `XMOV 5 0.95 ; A.x`, `PARA 2 3.5 ; phi`) while free-text comments of
+/// hand-written decks (`; crank A0-A`) name nothing:
+///
+/// * a co-ordinate takes the comment of its XFIX or XMOV line (a line that
+///   repeats the keyword has its own), an element that of its ELEM line, a
+///   prescribed row or dependent form parameter that of the first FORM line
+///   with its destination, and a prescribed row whose first FORM line has no
+///   comment that of its PARA line;
+/// * the comment is trimmed; of an ELEM or FORM comment only the part before
+///   the first `:` counts (what follows is the element's slots or the row's
+///   formula), trimmed again;
+/// * that text is a name when it is one word of the form
+///   `[A-Za-z_][A-Za-z0-9_.]*` (`A.x`, `crank_angle`, `coupler.length`):
+///   anything with a blank, a comma or a hyphen in it is a note, not a name;
+/// * names are compared as written, case and all. A name declared for two
+///   co-ordinates, two elements or two rows, or for a co-ordinate and an
+///   element or row, would not say which is meant: it is dropped for all of
+///   them. An element and a row may share a name.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Names {
+    /// Co-ordinates 1..N.
+    pub coordinates: Vec<Option<String>>,
+    /// Elements 1..n_e.
+    pub elements: Vec<Option<String>>,
+    /// Prescribed rows 1..n_p.
+    pub prescribed: Vec<Option<String>>,
+    /// Dependent form parameters 1..n_d.
+    pub dependent: Vec<Option<String>>,
 }

@@ -11,7 +11,8 @@
 //! A tour, in the order data flows:
 //!
 //! * [`parse_file`] / [`parse_str`]: text to a typed [`Deck`]. The lexer
-//!   splits lines at blanks and tabs, drops `;` comments and reads Fortran
+//!   splits lines at blanks and tabs, sets a line's `;` comment aside (ELEM,
+//!   FORM, XFIX, XMOV and PARA items keep it) and reads Fortran
 //!   numbers (`-3.d-2`, `1.5D0`, `.5`); a line that starts with a number
 //!   repeats the previous keyword of its block, and a keyword alone on its
 //!   line (as `FORM` in the theory's tables) waits for such lines. What one
@@ -35,7 +36,9 @@
 //!   targets with TARGET files read like MOV_FUNC files, bounds, the
 //!   objective), the output [`Buffer`]s of STORAGE and OPTIMISE, lists and
 //!   [`Picture`]s, and a description of the elements and rows for echoing
-//!   the model. References between lines are checked here.
+//!   the model, with the [`Names`] the deck's comments declare for its
+//!   co-ordinates, elements and rows (`XMOV 5 0.95 ; A.x`; free text such as
+//!   `; crank A0-A` names nothing). References between lines are checked here.
 //! * [`load`]: both steps for a file.
 //! * [`rewrite::design_deck`]: a deck's text with new PARA and XFIX/XMOV
 //!   values, a `KIN OPT` deck turned into the `KIN ANA` deck of its final
@@ -101,7 +104,7 @@ use std::path::Path;
 
 pub use ast::{Deck, Mode};
 pub use compile::compile;
-pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
+pub use compiled::{Buffer, Compiled, ElementInfo, Names, Picture, PlotItem, RowInfo, TermInfo};
 pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned, MAX_OUTPUT_NAME};
 pub use keywords::{Block, Keyword};
 pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};

@@ -65,7 +65,8 @@ impl Parser<'_> {
                 }
                 let factor = args.get(4).map(|w| src.real(w, "the factor")).transpose()?;
                 let name = Spanned::new(name.text.to_ascii_uppercase(), name.span);
-                self.topology.forms.push(FormDef { line: line_no, seq, name, element, dest, factor });
+                let comment = line.comment.clone();
+                self.topology.forms.push(FormDef { line: line_no, seq, name, element, dest, factor, comment });
             }
             Keyword::Nrdof => {
                 let n = src.whole(arg(0)?, "the number of degrees of freedom")?;
@@ -81,12 +82,13 @@ impl Parser<'_> {
                 let index = src.whole(arg(0)?, "the co-ordinate number")?;
                 let value = src.real(arg(1)?, "the co-ordinate's value")?;
                 let moving = kw.value == Keyword::Xmov;
-                self.geometry.coords.push(CoordDef { line: line_no, moving, index, value });
+                let comment = line.comment.clone();
+                self.geometry.coords.push(CoordDef { line: line_no, moving, index, value, comment });
             }
             Keyword::Para => {
                 let row = src.whole(arg(0)?, "the row number")?;
                 let value = src.real(arg(1)?, "the prescribed value")?;
-                self.geometry.paras.push(ParaDef { line: line_no, row, value });
+                self.geometry.paras.push(ParaDef { line: line_no, row, value, comment: line.comment.clone() });
             }
             Keyword::Tstepe => {
                 let steps = src.whole(arg(0)?, "the number of steps")?;
@@ -314,7 +316,7 @@ impl Parser<'_> {
         }
         let coords = coords.iter().map(|w| src.whole(w, "a co-ordinate number")).collect::<Result<Vec<_>, _>>()?;
         let ty = Spanned::new(ty, ty_word.span);
-        self.topology.elements.push(ElemDef { line: line.number, number, ty, coords });
+        self.topology.elements.push(ElemDef { line: line.number, number, ty, coords, comment: line.comment.clone() });
         Ok(())
     }
 

@@ -128,7 +128,9 @@ pub fn rows<'py>(py: Python<'py>, infos: &[RowInfo], values: &[f64]) -> PyResult
 }
 
 /// The echo of the model: elements, rows with their FORM terms and values
-/// at position 1, DOFs, and co-ordinates as given and at position 1.
+/// at position 1, DOFs, and co-ordinates as given and at position 1; each
+/// co-ordinate, element and row with the `name` its deck declares
+/// ([`mechfem_deck::Names`]; None without one).
 pub fn model<'py>(
     py: Python<'py>,
     c: &Compiled,
@@ -168,6 +170,7 @@ impl Echo {
                 cd.set_item("moving", mech.is_moving(i))?;
                 cd.set_item("given", f64::NAN)?;
                 cd.set_item("adjusted", f64::NAN)?;
+                cd.set_item("name", declared(&c.names.coordinates, i))?;
                 Ok(cd.unbind())
             })
             .collect::<PyResult<Vec<_>>>()?;
@@ -177,12 +180,12 @@ impl Echo {
             None => py.None().into_bound(py),
         };
         Ok(Echo {
-            elements: PyList::new(py, elements(py, c)?)?.unbind(),
+            elements: PyList::new(py, named(elements(py, c)?, &c.names.elements)?)?.unbind(),
             dofs: PyList::new(py, (0..mech.n_dof()).map(|j| mech.input_row(j) + 1))?.unbind(),
             dynamics: dynamics.unbind(),
             mode: c.mode.name(),
-            prescribed: unbind(rows(py, &c.prescribed, &[])?),
-            dependent: unbind(rows(py, &c.dependent, &[])?),
+            prescribed: unbind(named(rows(py, &c.prescribed, &[])?, &c.names.prescribed)?),
+            dependent: unbind(named(rows(py, &c.dependent, &[])?, &c.names.dependent)?),
             coordinates,
             para: c.prescribed.iter().map(|r| r.para).collect(),
         })
@@ -223,6 +226,19 @@ impl Echo {
         d.set_item("dynamics", self.dynamics.bind(py))?;
         Ok(d)
     }
+}
+
+/// `dicts` with the names the deck declares for them. The names belong to a
+/// run's echo only, so they are set here rather than in [`elements`] and
+/// [`rows`], which describe_deck_text shares.
+fn named<'py>(dicts: Vec<Bound<'py, PyDict>>, names: &[Option<String>]) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    dicts.iter().enumerate().try_for_each(|(k, d)| d.set_item("name", declared(names, k)))?;
+    Ok(dicts)
+}
+
+/// The name the deck declares for thing `k` (0-based) of a kind, if any.
+fn declared(names: &[Option<String>], k: usize) -> Option<&str> {
+    names.get(k).and_then(Option::as_deref)
 }
 
 /// Copies of the dicts `templates` with `set` made in each (k, copy).

@@ -6,6 +6,7 @@ mod design;
 mod dynamics;
 mod model;
 mod motion;
+mod names;
 mod optimise;
 mod refs;
 mod rows;
@@ -52,6 +53,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         elements: m.elements,
         prescribed: m.prescribed,
         dependent: m.dependent,
+        names: m.names,
         dynamics,
         optimise,
     })
