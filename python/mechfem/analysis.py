@@ -461,13 +461,18 @@ class Analysis:
 
         d: dict[str, Any] = dict(self._raw)
         nd = self.inputs.shape[1]
-        d["time"], d["det"] = self.time, self.det
-        d["kx1_coords"] = list(range(1, self.coords.shape[1] + 1)) if nd else []
-        d["kx1_values"] = self._block("kx1")[:, :, 0] if nd else np.zeros((self.positions, 0))
-        d["dynamic"] = None
+        # A deck's own blocks (``run_deck``'s layout), in its order: the buffers, the hodographs of every
+        # co-ordinate, the dynamics, time and det.
+        blocks = {"buffers": np.asarray(d["buffer_values"], dtype=np.float64)}
+        blocks["hodograph"] = self._block("kx1")[:, :, 0] if nd else np.zeros((self.positions, 0))
         if self.dynamic:
-            t, v, power = (self._block(name) for name in ("ekin", "epot", "power"))
-            d["dynamic"] = {"inputs": self.inputs, "drive": self._block("drive"), "ekin": t, "epot": v, "power": power}
+            blocks["inputs"], blocks["drive"] = self.inputs, self._block("drive")
+            blocks.update((name, self._block(name)) for name in ("ekin", "epot", "power"))
+        blocks["time"], blocks["det"] = self.time, self.det
+        starts = np.cumsum([0] + [math.prod(b.shape[1:]) for b in blocks.values()])
+        d["layout"] = {name: (int(at), b.shape[1:]) for (name, b), at in zip(blocks.items(), starts, strict=False)}
+        d["table"] = np.column_stack([b.reshape(self.positions, -1) for b in blocks.values()])
+        d["hodograph_coords"] = list(range(1, self.coords.shape[1] + 1)) if nd else []
         result = run_result(Path(self.path), d)  # type: ignore[arg-type]
         nb = self.numbering
         # The model's own names, so that the pictures and tables label every quantity as the model calls it.

@@ -6,6 +6,7 @@ Numbers that name things (co-ordinates, elements, rows, DOFs, buffers, positions
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -552,8 +553,14 @@ def _report(d: _core.ReportDict, names: list[str], coords: FloatArray, model: Mo
 def run_result(deck: Path, d: _core.RunDict) -> RunResult:
     """Builds a :class:`RunResult` from the compiled module's dictionary. Runs of one deck file share its
     :class:`Model` and :class:`Storage` (read them, do not change them)."""
-    values = np.asarray(d["buffer_values"], dtype=np.float64)
-    kx1 = np.asarray(d["kx1_values"], dtype=np.float64)
+    table = np.asarray(d["table"], dtype=np.float64)
+
+    def block(name: str) -> FloatArray:
+        # The core names the table's blocks: block name -> (first column, shape at one position).
+        start, shape = d["layout"][name]
+        return table[:, start : start + math.prod(shape)].reshape(table.shape[0], *shape)
+
+    values, kx1, dynamic = block("buffers"), block("hodograph"), ("inputs", "drive", "ekin", "epot", "power")
     buffers = {n: values[:, k] for k, n in enumerate(d["buffer_numbers"])}
     coords = np.asarray(d["coords"], dtype=np.float64)
     model, names = _CONVERTED.get(d["model"], _model_and_names)
@@ -561,13 +568,13 @@ def run_result(deck: Path, d: _core.RunDict) -> RunResult:
         deck=deck,
         buffers=buffers,
         coords=coords,
-        time=np.asarray(d["time"], dtype=np.float64),
-        det=np.asarray(d["det"], dtype=np.float64),
+        time=block("time"),
+        det=block("det"),
         report=_report(d["report"], names, coords, model),
         model=model,
         storage=_CONVERTED.get(d["storage"], Storage.from_core),
-        kx1={n: kx1[:, k] for k, n in enumerate(d["kx1_coords"])},
-        dynamic=None if d.get("dynamic") is None else DynamicSeries.from_core(d["dynamic"]),  # type: ignore[arg-type]
+        kx1={n: kx1[:, k] for k, n in enumerate(d["hodograph_coords"])},
+        dynamic=DynamicSeries.from_core({n: block(n) for n in dynamic}) if "ekin" in d["layout"] else None,
         simulation=None if d.get("simulation") is None else Simulation.from_core(d["simulation"]),  # type: ignore[arg-type]
     )
 
