@@ -302,39 +302,27 @@ class SimulationDict(TypedDict):
     """The time the integration reached."""
 
 @type_check_only
-class DynamicRunDict(TypedDict):
-    """The inverse dynamics of a DYN ANA run, per position."""
-
-    inputs: _F64
-    """positions x DOFs."""
-    drive: _F64
-    """positions x DOFs: the drive force or torque of each input."""
-    ekin: _F64
-    epot: _F64
-    power: _F64
-
-@type_check_only
 class RunDict(TypedDict):
-    buffer_numbers: list[int]
-    buffer_values: _F64
-    """positions x buffers, columns in the order of ``buffer_numbers``."""
     coords: _F64
     """positions x co-ordinates."""
-    time: _F64
-    det: _F64
-    kx1_coords: list[int]
+    table: _F64
+    """positions x the columns of ``layout`` (Fortran order: each column contiguous)."""
+    layout: dict[str, tuple[int, tuple[int, ...]]]
+    """The deck's recording, block name -> (first column, shape at one position), for B buffers, H co-ordinates
+    in ``hodograph_coords`` and D inputs: ``buffers`` (B, in the order of ``buffer_numbers``), ``hodograph`` (H: d
+    x_i / d input 1, NaN where D^c is singular); for a DYN deck ``inputs``, ``drive`` (D), ``ekin``, ``epot``,
+    ``power`` (one value each); then ``time`` and ``det`` (one value each). The blocks cover the columns once, in
+    this order."""
+    buffer_numbers: list[int]
+    hodograph_coords: list[int]
     """The co-ordinates named by PLOTHODO lines (empty without them or without a DOF)."""
-    kx1_values: _F64
-    """positions x len(kx1_coords): d x_i / d input 1, NaN where D^c is singular."""
     report: ReportDict
     model: ModelDict
     storage: StorageDict
-    interrupted: bool
-    """Ctrl-C stopped the run; the positions before it are here."""
-    dynamic: DynamicRunDict | None
-    """None for a KIN ANA deck."""
     simulation: SimulationDict | None
     """None unless the deck is a DYN SIM one."""
+    interrupted: bool
+    """Ctrl-C stopped the run; the positions before it are here."""
 
 # --- the element catalogue and the solver's defaults (crates/mechfem-py/src/catalogue.rs) ---
 

@@ -351,36 +351,7 @@ def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
 def run_result(deck: Path, d: Mapping[str, Any]) -> RunResult:
     """The result of a run of the deck ``deck`` (``d``: the compiled module's dictionary); runs of one deck file
     share its model echo and storage requests (read them, do not change them)."""
-    if "table" not in d:
-        d = _old_contract(d)
     return RunResult(deck, d)
-
-
-def _old_contract(d: Mapping[str, Any]) -> dict[str, Any]:
-    columns = [np.asarray(d["buffer_values"]), np.asarray(d["kx1_values"])]
-    layout: dict[str, tuple[int, tuple[int, ...]]] = {}
-    start = 0
-    for name, a in (("buffers", columns[0]), ("hodograph", columns[1])):
-        layout[name] = (start, (a.shape[1],))
-        start += a.shape[1]
-    parts = columns
-    dyn = d.get("dynamic")
-    if dyn is not None:
-        for name in ("inputs", "drive", "ekin", "epot", "power"):
-            a = np.asarray(dyn[name])
-            a = a.reshape(a.shape[0], -1)
-            layout[name] = (start, (a.shape[1],) if name in ("inputs", "drive") else ())
-            start += a.shape[1]
-            parts.append(a)
-    for name in ("time", "det"):
-        layout[name] = (start, ())
-        start += 1
-        parts.append(np.asarray(d[name]).reshape(-1, 1))
-    out = dict(d)
-    out["table"] = np.asfortranarray(np.hstack(parts))
-    out["layout"] = layout
-    out["hodograph_coords"] = d["kx1_coords"]
-    return out
 
 
 def check_result(deck: Path, d: _core.CheckDict) -> CheckResult:

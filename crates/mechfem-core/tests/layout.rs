@@ -2,9 +2,10 @@
 //! position recorded block by block holds, bit for bit, what the quantity of
 //! each column gives on its own ([`record`]), over example decks of every
 //! kind: one and several inputs, dependent rows, limit positions, free
-//! motion, masses and loads, a simulation, and first-order runs.
+//! motion, masses and loads, a simulation, and first-order runs. A deck's
+//! own recording ([`Selection`]) names its blocks as the full layout does.
 
-use mechfem_core::run::{Columns, Layout};
+use mechfem_core::run::{Columns, Layout, Selection};
 use mechfem_core::{record, run, simulate, InverseDynamics, Observer, PositionView, Quantity, TransferOrder};
 use std::path::Path;
 
@@ -129,6 +130,50 @@ fn blocks_tile_the_table_once() {
             assert_eq!(layout.column(Quantity::Vx(n)), None);
             assert_eq!(layout.column(Quantity::Ekin).is_some(), dynamic);
         }
+    }
+}
+
+#[test]
+fn a_decks_selection_names_its_blocks_as_the_full_layout_does() {
+    for deck in DECKS {
+        let c = load(deck);
+        let (mech, dynamic) = (&c.mechanism, c.dynamics.is_some());
+        let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
+        let hodograph: Vec<usize> = (0..mech.n_coords()).rev().collect();
+        let s = Selection::deck(&buffers, &hodograph, mech.n_dof(), dynamic);
+        let mut next = 0;
+        for b in s.blocks() {
+            assert_eq!(b.start, next, "{deck}: block {} starts where the one before it ends", b.name);
+            next = b.columns().end;
+        }
+        assert_eq!((next, s.quantities().len()), (s.width(), s.width()), "{deck}");
+        let names: Vec<&str> = s.blocks().iter().map(|b| b.name).collect();
+        let mut expected = vec!["buffers", "hodograph"];
+        if dynamic {
+            expected.extend(["inputs", "drive", "ekin", "epot", "power"]);
+        }
+        expected.extend(["time", "det"]);
+        assert_eq!(names, expected, "{deck}");
+        assert_eq!(s.quantities()[s.block("buffers").unwrap().columns()], buffers[..], "{deck}");
+        let at = s.block("hodograph").unwrap().start;
+        for (k, &coord) in hodograph.iter().enumerate() {
+            assert_eq!(s.quantities()[at + k], Quantity::Kx1 { coord, j: 0 }, "{deck}");
+        }
+        // Every block but the deck's own has the shape and quantities of the full layout's block of that name.
+        let full = Layout::full(mech, dynamic);
+        let quantities = full.quantities();
+        for b in s.blocks().iter().filter(|b| !["buffers", "hodograph"].contains(&b.name)) {
+            let f = full.block(b.name).unwrap_or_else(|| panic!("{deck}: the full layout has {}", b.name));
+            assert_eq!(b.shape, f.shape, "{deck}: {}", b.name);
+            assert_eq!(s.quantities()[b.columns()], quantities[f.columns()], "{deck}: {}", b.name);
+        }
+        // det(D^c) is asked for by a reader, not by its block.
+        let plain = Selection::deck(&[Quantity::X0(0)], &[], mech.n_dof(), false);
+        assert_eq!(plain.transfer_order(), None, "{deck}");
+        assert_eq!(
+            Selection::deck(&[Quantity::Det], &[], mech.n_dof(), false).transfer_order(),
+            Some(TransferOrder::First)
+        );
     }
 }
 

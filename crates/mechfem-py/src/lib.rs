@@ -6,12 +6,14 @@
 //!
 //! * `check_deck` reads a deck with [`mechfem_deck::load`] and computes
 //!   position 1 with [`mechfem_core::run()`] (no motion).
-//! * `run_deck` runs the deck's whole motion and returns the buffers, the
-//!   co-ordinates, time and det(D^c) per position as numpy arrays, plus the
-//!   run report, the model echo and the storage requests as dicts
-//!   (`convert`). For the hodographs it also records d x_i / d input 1
-//!   of every co-ordinate a PLOTHODO line names. The run releases the GIL;
-//!   `observe` attaches only to report progress.
+//! * `run_deck` runs the deck's whole motion and returns what the deck
+//!   records, one table in the core's named blocks
+//!   ([`mechfem_core::run::Selection`]: the buffers, d x_i / d input 1 of
+//!   every co-ordinate a PLOTHODO line names, a DYN deck's inputs, drive
+//!   forces and energies, time and det(D^c)) with its block names, and
+//!   the co-ordinates, as numpy arrays; plus the run report, the model
+//!   echo and the storage requests as dicts (`convert`). The run releases
+//!   the GIL; `observe` attaches only to report progress.
 //! * `text` runs deck text (what the Python model API writes) and records
 //!   every quantity of the buffer table; `batch` runs many variants of a
 //!   few deck texts on worker threads without the GIL, for design studies.
@@ -45,12 +47,12 @@ mod text;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use mechfem_core::run::SimReport;
-use mechfem_core::{InputMotion, Mechanism, Motion, Quantity, RunReport};
+use mechfem_core::run::{Selection, SimReport};
+use mechfem_core::{InputMotion, Motion, Quantity, RunReport};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 
 use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
@@ -92,17 +94,6 @@ fn hodograph_coords(c: &Compiled) -> Vec<usize> {
     out
 }
 
-/// What a DYN deck's run records beyond its buffers, for the print file's
-/// summary and the report's default charts: every input, every drive
-/// force, kinetic and potential energy and drive power.
-fn dynamic_quantities(mech: &Mechanism) -> Vec<Quantity> {
-    let nd = mech.n_dof();
-    let mut q: Vec<Quantity> = (0..nd).map(Quantity::Input).collect();
-    q.extend((0..nd).map(Quantity::Drive));
-    q.extend([Quantity::Ekin, Quantity::Epot, Quantity::Power]);
-    q
-}
-
 /// A finished run: the compiled deck, the recording and the report.
 struct Ran {
     compiled: Compiled,
@@ -140,17 +131,11 @@ fn execute(
         // Position 1 alone, as a run would compute it.
         m.apply_initial_inputs(&c.mechanism, &mut c.state);
     }
-    let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
-    let mut extra: Vec<Quantity> = if with_motion && c.mechanism.n_dof() > 0 {
-        hodograph_coords(&c).into_iter().map(|coord| Quantity::Kx1 { coord, j: 0 }).collect()
-    } else {
-        Vec::new()
-    };
-    if c.dynamics.is_some() {
-        extra.extend(dynamic_quantities(&c.mechanism));
-    }
+    let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
+    let hodograph = if with_motion { hodograph_coords(&c) } else { Vec::new() };
+    let selection = Selection::deck(&buffers, &hodograph, c.mechanism.n_dof(), c.dynamics.is_some());
     let total = motion.map_or(0, |m| m.steps) + 1;
-    let mut rec = Recording::new(&quantities, &extra, total, progress, det);
+    let mut rec = Recording::new(selection, total, progress, det);
     rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
     let n = c.mechanism.n_coords();
     if let Some(message) = errors::memory_refusal(total, rec.recorder.values_per_position(n), memory_limit) {
@@ -185,7 +170,8 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("n_prescribed", mech.n_prescribed())?;
     d.set_item("n_dependent", mech.n_dependent())?;
     d.set_item("n_dof", mech.n_dof())?;
-    d.set_item("det", rec.recorder.data()[rec.n_buffers + 1])?;
+    let det = rec.selection.block("det").map_or(f64::NAN, |b| rec.recorder.data()[b.start]);
+    d.set_item("det", det)?;
     d.set_item("coords", PyArray1::from_vec(py, at_1.clone()))?;
     d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
     d.set_item("model", model)?;
@@ -201,17 +187,21 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// returns the positions so far with `interrupted` set: the caller writes
 /// them and then raises. A run whose results would take more than
 /// `memory_limit` bytes raises `ResourceError` before it starts.
-/// `kx1_values` holds d x_i / d input 1 of the co-ordinates `kx1_coords`
-/// that PLOTHODO lines name (for the hodographs). For a DYN deck `dynamic`
-/// holds every input, every drive force, the kinetic and potential energy
-/// and the drive power per position (None otherwise).
+///
+/// The recording is `table` (positions x columns, numpy in Fortran order:
+/// each column contiguous), laid out in the core's named blocks of a deck
+/// ([`Selection::deck`]), which `layout` gives as block name -> (first
+/// column, shape at one position): `buffers` (in the order of
+/// `buffer_numbers`), `hodograph` (d x_i / d input 1 of the co-ordinates
+/// `hodograph_coords`, 1-based, that PLOTHODO lines name), for a DYN deck
+/// `inputs`, `drive`, `ekin`, `epot` and `power`, then `time` and `det`.
+/// `coords` holds every co-ordinate per position.
 ///
 /// With `det=False` det(D^c) is computed only where a buffer asks for it:
-/// `det` holds NaN otherwise, no sign change of det(D^c) is watched for,
-/// and a deck whose buffers are all positions and values computes
-/// positions only. Array columns (`buffer_values[:, k]` and the like) are
-/// contiguous. A deck file run again unchanged is not read into a model
-/// again ([`cache`]).
+/// the `det` block holds NaN otherwise, no sign change of det(D^c) is
+/// watched for, and a deck whose buffers are all positions and values
+/// computes positions only. A deck file run again unchanged is not read
+/// into a model again ([`cache`]).
 #[pyfunction]
 #[pyo3(signature = (path, progress=None, memory_limit=u64::MAX, det=true))]
 fn run_deck(
@@ -225,38 +215,22 @@ fn run_deck(
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
         execute(py, compiled, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
-    let (n, nb, positions) = (mech.n_coords(), rec.n_buffers, rec.recorder.positions());
+    let (n, width, positions) = (mech.n_coords(), rec.selection.width(), rec.recorder.positions());
     let (model, storage) = echo(py, &slot, &c, &given, &rec.recorder.coords()[..n], &rec)?;
-    let n_dynamic = if c.dynamics.is_some() { dynamic_quantities(mech).len() } else { 0 };
-    let n_kx1 = rec.n_extra - n_dynamic;
-    let kx1_coords: Vec<usize> = if n_kx1 > 0 { hodograph_coords(&c) } else { Vec::new() };
-    let width = nb + 2 + rec.n_extra;
+    let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
+    let hodograph_coords: Vec<usize> = hodograph_coords(&c).iter().take(hodograph).map(|i| i + 1).collect();
+    let layout = PyDict::new(py);
+    for b in rec.selection.blocks() {
+        layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
+    }
     let (data, coords) = rec.recorder.into_parts();
-    // Column by column, so that each column of the array Python gets is contiguous.
-    let block = |from: usize, to: usize| columns_of(&data, width, from..to);
-    let column = |q: usize| block(q, q + 1);
 
     let d = PyDict::new(py);
-    d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
-    d.set_item("buffer_values", convert::columns(py, block(0, nb), positions, nb)?)?;
     d.set_item("coords", convert::array2(py, coords, positions, n)?)?;
-    d.set_item("time", PyArray1::from_vec(py, column(nb)))?;
-    d.set_item("det", PyArray1::from_vec(py, column(nb + 1)))?;
-    d.set_item("kx1_coords", kx1_coords.iter().map(|i| i + 1).collect::<Vec<_>>())?;
-    d.set_item("kx1_values", convert::columns(py, block(nb + 2, nb + 2 + n_kx1), positions, n_kx1)?)?;
-    let dynamic = if n_dynamic > 0 {
-        let (nd, at) = (mech.n_dof(), nb + 2 + n_kx1);
-        let dd = PyDict::new(py);
-        dd.set_item("inputs", convert::columns(py, block(at, at + nd), positions, nd)?)?;
-        dd.set_item("drive", convert::columns(py, block(at + nd, at + 2 * nd), positions, nd)?)?;
-        dd.set_item("ekin", PyArray1::from_vec(py, column(at + 2 * nd)))?;
-        dd.set_item("epot", PyArray1::from_vec(py, column(at + 2 * nd + 1)))?;
-        dd.set_item("power", PyArray1::from_vec(py, column(at + 2 * nd + 2)))?;
-        Some(dd)
-    } else {
-        None
-    };
-    d.set_item("dynamic", dynamic)?;
+    d.set_item("table", convert::columns(py, transposed(&data, width), positions, width)?)?;
+    d.set_item("layout", layout)?;
+    d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
+    d.set_item("hodograph_coords", hodograph_coords)?;
     d.set_item("simulation", sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &report, steps);
@@ -277,17 +251,17 @@ fn run_deck(
     Ok(d)
 }
 
-/// Columns `range` of a row-major table `width` wide, one after the other
-/// (column-major). A deck's few buffers are recorded row by row and
-/// transposed once after the run: writing each position into its columns
-/// as it comes (`mechfem_core::run::Columns`, as the full layout of a named
-/// model's run does) makes a run of a few columns slower, its stores spread
-/// over as many streams as it has columns.
-fn columns_of(data: &[f64], width: usize, range: std::ops::Range<usize>) -> Vec<f64> {
+/// A row-major table `width` wide, column after column (column-major).
+/// A deck's few quantities are recorded row by row and transposed once
+/// after the run: writing each position into its columns as it comes
+/// (`mechfem_core::run::Columns`, as the full layout of a named model's run
+/// does) makes a run of a few columns slower, its stores spread over as
+/// many streams as it has columns.
+fn transposed(data: &[f64], width: usize) -> Vec<f64> {
     let rows = data.len().checked_div(width).unwrap_or(0);
-    let mut out = vec![0.0; rows * range.len()];
+    let mut out = vec![0.0; data.len()];
     for (k, row) in data.chunks_exact(width.max(1)).enumerate() {
-        for (q, &v) in row[range.clone()].iter().enumerate() {
+        for (q, &v) in row.iter().enumerate() {
             out[q * rows + k] = v;
         }
     }

@@ -1,5 +1,6 @@
-//! The observer of a run: records the buffers, time, det(D^c), the extra
-//! quantities the pictures need and every co-ordinate per position, keeps
+//! The observer of a run: records the quantities of a deck's
+//! [`Selection`] (its buffers, the hodographs, a DYN deck's dynamics, time
+//! and det(D^c)) and every co-ordinate per position, keeps
 //! the row values of position 1 for the model echo, and reports progress to
 //! Python about every 1% of positions ([`Progress`], which the observer of
 //! deck-text runs shares).
@@ -7,19 +8,17 @@
 use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
-use mechfem_core::run::InverseDynamics;
-use mechfem_core::{Mechanism, Observer, PositionView, Quantity, Recorder, TransferOrder};
+use mechfem_core::run::{InverseDynamics, Selection};
+use mechfem_core::{Mechanism, Observer, PositionView, Recorder, TransferOrder};
 use pyo3::prelude::*;
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
 /// progress and to notice Ctrl-C.
 pub struct Recording {
-    /// Buffers, then time, then det(D^c), then the extra quantities.
+    /// The quantities of `selection`, in its column order.
     pub recorder: Recorder,
-    /// Number of buffer columns at the front of the recorder.
-    pub n_buffers: usize,
-    /// Number of extra columns at the end of the recorder.
-    pub n_extra: usize,
+    /// The named blocks of the recorder's columns.
+    pub selection: Selection,
     /// Values of the prescribed rows at position 1.
     pub prescribed_at_1: Vec<f64>,
     /// Values of the dependent form parameters at position 1.
@@ -124,33 +123,17 @@ impl Progress {
 }
 
 impl Recording {
-    /// Records `buffers` and `extra` (quantities no buffer asks for) over a
-    /// run of `total` positions. With `det`, det(D^c) is computed at every
-    /// position (and with it the first order, and the watch for limit
-    /// positions by its sign); without, its column holds NaN unless a
-    /// buffer asks for it, and a run whose quantities are all positions and
-    /// values computes positions only.
-    pub fn new(
-        buffers: &[Quantity],
-        extra: &[Quantity],
-        total: usize,
-        progress: Option<Py<PyAny>>,
-        det: bool,
-    ) -> Recording {
-        let order = buffers
-            .iter()
-            .chain(extra)
-            .map(Quantity::transfer_order)
-            .max()
-            .flatten()
-            .max(det.then_some(TransferOrder::First));
-        let mut quantities = buffers.to_vec();
-        quantities.extend([Quantity::Time, Quantity::Det]);
-        quantities.extend_from_slice(extra);
+    /// Records the quantities of `selection` over a run of `total`
+    /// positions. With `det`, det(D^c) is computed at every position (and
+    /// with it the first order, and the watch for limit positions by its
+    /// sign); without, its column holds NaN unless a buffer asks for it,
+    /// and a run whose quantities are all positions and values computes
+    /// positions only.
+    pub fn new(selection: Selection, total: usize, progress: Option<Py<PyAny>>, det: bool) -> Recording {
+        let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
         Recording {
-            recorder: Recorder::new(quantities, true),
-            n_buffers: buffers.len(),
-            n_extra: extra.len(),
+            recorder: Recorder::new(selection.quantities().to_vec(), true),
+            selection,
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
             progress: Progress::new(progress, total),

@@ -11,8 +11,9 @@
 //!
 //! Every mode hands its positions to an [`Observer`] and ends with a
 //! [`RunReport`] (`observe.rs`); a [`Recorder`] (`record.rs`) keeps the
-//! [`Quantity`]s of the deck's buffer table, and a [`Layout`] (`layout.rs`)
-//! names the columns of a recording of all of them.
+//! [`Quantity`]s of the deck's buffer table, a [`Layout`] (`layout.rs`)
+//! names the columns of a recording of all of them, and a [`Selection`]
+//! (`selection.rs`) those of a deck's own recording, in blocks the same way.
 
 pub mod design;
 mod inverse;
@@ -20,6 +21,7 @@ mod kinematic;
 mod layout;
 mod observe;
 mod record;
+mod selection;
 mod simulate;
 
 pub use inverse::InverseDynamics;
@@ -27,4 +29,5 @@ pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
 pub use record::{record, record_evaluated, Quantity, Recorder};
+pub use selection::Selection;
 pub use simulate::{simulate, simulate_within, SimReport};
