@@ -9,9 +9,22 @@ import numpy.typing as npt
 
 # The names of the compiled module; the TypedDicts below exist only for the type checker (@type_check_only).
 __all__ = [
-    "MechfemError", "DeckError", "AssemblyError", "ConvergenceError", "LimitPositionError", "ResourceError",
-    "DEFAULTS", "catalogue", "check_deck", "run_deck", "run_deck_text", "describe_deck_text", "run_deck_variants",
-    "DesignModel", "Model", "optimised_deck_text",
+    "MechfemError",
+    "DeckError",
+    "AssemblyError",
+    "ConvergenceError",
+    "LimitPositionError",
+    "ResourceError",
+    "DEFAULTS",
+    "catalogue",
+    "check_deck",
+    "run_deck",
+    "run_deck_text",
+    "describe_deck_text",
+    "run_deck_variants",
+    "DesignModel",
+    "Model",
+    "optimised_deck_text",
 ]
 
 _F64 = npt.NDArray[np.float64]

@@ -4,7 +4,7 @@ A study of one mechanism writes one deck in Python; every variant is a copy of i
 changed, compiled once and run by the compiled module on worker threads without the GIL
 (``_core.run_deck_variants``), so no Python runs per position (a model function writes one deck per
 variant instead). Per
-variant, the ``measures`` (Python functions of its :class:`~mechfem.Analysis`) give one number each::
+variant, the ``measures`` (Python functions of its :class:`~mechfem.RunResult`) give one number each::
 
     study = mechfem.sweep(
         supply,
@@ -37,14 +37,14 @@ from mechfem.limits import memory_limit
 from mechfem.model import Mechanism, Motion, Storage
 from mechfem.names import unknown_name
 from mechfem.namespace import model_result
-from mechfem.result import Analysis
+from mechfem.result import RunResult
 from mechfem.result_tables import _pandas
 
 if TYPE_CHECKING:
     from mechfem import deckio
 
 FloatArray = npt.NDArray[np.float64]
-Measure = Callable[[Analysis], float]
+Measure = Callable[[RunResult], float]
 Progress = bool | Callable[[int, int], object] | None
 
 
@@ -89,20 +89,20 @@ def run_many(
     chunk_size: int | None = None,
     retries: int = cluster.RETRIES,
     raise_on_stop: bool = False,
-) -> list[Analysis | MechfemError]:
+) -> list[RunResult | MechfemError]:
     """Runs every mechanism (each with ``motion``, default its own :attr:`~Mechanism.motion`) on ``workers``
     threads (default: one per core), computing the transfer functions of ``order`` (see
-    :meth:`Mechanism.run`). Returns, in order, an :class:`Analysis` or the error that stopped that mechanism
+    :meth:`Mechanism.run`). Returns, in order, a :class:`RunResult` or the error that stopped that mechanism
     at position 1 (with the model's names).
 
     With an ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``) the mechanisms go
     out in chunks of ``chunk_size`` (see :func:`sweep`), each run on ``workers`` threads of its worker (default
-    1); an :class:`Analysis` that comes back holds a copy of its mechanism, and a chunk that could not be run
+    1); a :class:`RunResult` that comes back holds a copy of its mechanism, and a chunk that could not be run
     gives a :class:`MechfemError` with the reason for each of its mechanisms.
 
-    A run whose motion stops before its last position gives its :class:`Analysis` all the same (its
+    A run whose motion stops before its last position gives its :class:`RunResult` all the same (its
     ``stop_reason()`` says why), and the call warns once with :class:`~mechfem.IncompleteRunWarning`; with
-    ``raise_on_stop`` such a run gives a :class:`~mechfem.RunStoppedError` carrying its :class:`Analysis` instead.
+    ``raise_on_stop`` such a run gives a :class:`~mechfem.RunStoppedError` carrying its :class:`RunResult` instead.
     """
     if executor is not None:
         out = _run_many_on(executor, list(mechanisms), motion, storage, workers, progress, order, chunk_size, retries)
@@ -111,17 +111,17 @@ def run_many(
     return _stopped_runs(out, raise_on_stop)
 
 
-def _stopped_runs(results: list[Analysis | MechfemError], raise_on_stop: bool) -> list[Analysis | MechfemError]:
+def _stopped_runs(results: list[RunResult | MechfemError], raise_on_stop: bool) -> list[RunResult | MechfemError]:
     """``results`` with each run that stopped early as a :class:`RunStoppedError` (``raise_on_stop``), or as it
     is after one warning that counts them."""
-    stopped = [k for k, r in enumerate(results) if isinstance(r, Analysis) and r._raw["report"]["stop"] is not None]
+    stopped = [k for k, r in enumerate(results) if isinstance(r, RunResult) and r._raw["report"]["stop"] is not None]
     for k in stopped if raise_on_stop else ():
         a = results[k]
-        assert isinstance(a, Analysis)
+        assert isinstance(a, RunResult)
         results[k] = RunStoppedError(a.stop_reason() or "", a)
     if stopped and not raise_on_stop:
         first = results[stopped[0]]
-        assert isinstance(first, Analysis)
+        assert isinstance(first, RunResult)
         warnings.warn(
             f"{len(stopped)} of {len(results)} runs stopped before their last position; the first, index "
             f"{stopped[0]} (mechanism {first.mechanism.name!r}): {first.stop_reason()} (raise_on_stop=True gives "
@@ -139,7 +139,7 @@ def _run_many_here(
     workers: int | None,
     progress: Progress,
     order: int | None,
-) -> list[Analysis | MechfemError]:
+) -> list[RunResult | MechfemError]:
     """:func:`run_many` on the threads of this process."""
     from mechfem import deckio
 
@@ -156,7 +156,7 @@ def _run_many_here(
         variants.append((written[key], []))
     decks = [texts[t] for t, _ in variants]
     outs = _run_variants(texts, variants, workers, progress, order=order)
-    results: list[Analysis | MechfemError] = []
+    results: list[RunResult | MechfemError] = []
     for m, d, o in zip(mechanisms, decks, outs, strict=True):
         if isinstance(o, MechfemError):
             results.append(deckio.translate(o, d, m.name))
@@ -176,7 +176,7 @@ class _ManyChunk:
     order: int | None
 
 
-def _run_many_chunk(c: _ManyChunk) -> list[Analysis | MechfemError]:
+def _run_many_chunk(c: _ManyChunk) -> list[RunResult | MechfemError]:
     return _run_many_here(c.mechanisms, c.motion, c.storage, c.workers, False, c.order)
 
 
@@ -190,14 +190,14 @@ def _run_many_on(
     order: int | None,
     requested: int | None,
     retries: int,
-) -> list[Analysis | MechfemError]:
+) -> list[RunResult | MechfemError]:
     if not mechanisms:
         return []
     size = cluster.chunk_size(len(mechanisms), _positions(motion or mechanisms[0].motion), executor, requested)
     parts = cluster.chunks(len(mechanisms), size)
     tasks = [_ManyChunk([mechanisms[k] for k in r], motion, storage, workers or 1, order) for r in parts]
     outs = _on_executor(executor, _run_many_chunk, tasks, parts, progress, retries)
-    results: list[Analysis | MechfemError] = []
+    results: list[RunResult | MechfemError] = []
     for r, out in zip(parts, outs, strict=True):
         if isinstance(out, cluster.TaskFailed):
             results += [MechfemError(f"the task of this chunk failed: {out.reason}") for _ in r]
@@ -277,7 +277,7 @@ class Study:
     Columns: the parameters, ``ok`` (the variant ran: position 1 was computed, and with ``raise_on_stop`` every
     position), ``complete`` (every position),
     ``positions``, ``limits`` (limit positions met), ``error`` (the error's text, "" when ok), then the
-    measures (NaN for a variant that failed). ``results`` keeps every :class:`Analysis` (or error) when
+    measures (NaN for a variant that failed). ``results`` keeps every :class:`RunResult` (or error) when
     the study was run with ``keep_results=True``.
     """
 
@@ -286,7 +286,7 @@ class Study:
         columns: dict[str, npt.NDArray[Any]],
         parameters: list[str],
         measures: list[str],
-        results: list[Analysis | MechfemError] | None,
+        results: list[RunResult | MechfemError] | None,
     ) -> None:
         self.columns = columns
         self.parameters = parameters
@@ -374,7 +374,7 @@ class _Chunk:
     raise_on_stop: bool = False
 
 
-Rows = tuple[list[list[Any]], list["Analysis | MechfemError | None"]]
+Rows = tuple[list[list[Any]], list["RunResult | MechfemError | None"]]
 
 
 def _failed_row(p: dict[str, Any], names: list[str], measures: int, text: str) -> list[Any]:
@@ -386,7 +386,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
     from mechfem import deckio
 
     rows: list[list[Any]] = [[] for _ in c.sets]
-    kept: list[Analysis | MechfemError | None] = [None] * len(c.sets)
+    kept: list[RunResult | MechfemError | None] = [None] * len(c.sets)
 
     def take(k: int, o: _core.TextRunDict | MechfemError) -> None:
         # Called as each variant finishes, while the workers go on with the others.
@@ -445,7 +445,7 @@ def sweep(
     points) the parameters change, or a function that builds a mechanism from the parameters as keyword
     arguments. ``parameters`` is a mapping name -> values (every combination is run: one name gives a
     range, several a grid) or a list of parameter sets. ``measures`` maps a column name to a function of
-    the variant's :class:`Analysis` (default :func:`default_measures`); a measure that raises leaves NaN and
+    the variant's :class:`RunResult` (default :func:`default_measures`); a measure that raises leaves NaN and
     its error in the variant's ``error``. Variants run on ``workers`` threads
     (default: one per core) with a progress bar (``progress=False`` for none, or a callable
     ``progress(done, total)``). ``order`` is the transfer functions computed (see :meth:`Mechanism.run`);
@@ -461,7 +461,7 @@ def sweep(
     A variant whose motion stops before its last position has ``complete`` False and measures of the positions it
     computed, and the study warns once with :class:`~mechfem.IncompleteRunWarning`; with ``raise_on_stop`` such
     a variant fails instead: ``ok`` False, NaN measures, the stop reason in ``error`` (and a
-    :class:`~mechfem.RunStoppedError` carrying its :class:`Analysis` in ``results``).
+    :class:`~mechfem.RunStoppedError` carrying its :class:`RunResult` in ``results``).
     """
     from mechfem import deckio
 

@@ -8,8 +8,8 @@ mistakes in the deck's terms. This module words them for the model:
   in the model's words, built from what the error carries (the deck line's model part, the element, the rows
   and co-ordinates at fault) and from the model itself; the attributes stay (``line``, ``name``, ``deck``,
   ``element``, ``rows``, ``coords``, ...);
-* :class:`PythonWords` says why a motion stopped (:meth:`mechfem.Analysis.stop_reason`) and what deserves a
-  second look (:attr:`mechfem.Analysis.warnings`), with the inputs' names and ``Motion.free``.
+* :class:`PythonWords` says why a motion stopped (:meth:`mechfem.RunResult.stop_reason`) and what deserves a
+  second look (:attr:`mechfem.RunResult.warnings`), with the inputs' names and ``Motion.free``.
 
 The core's messages arrive in parts (:data:`mechfem.words.Part`): the things they name (elements, co-ordinates,
 rows, deck terms) are structure, which :class:`PythonWords` names by the model's names; the words between them are

@@ -40,7 +40,7 @@ from mechfem.figures import PATH_COLOURS
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
-    from mechfem.result import Analysis
+    from mechfem.result import RunResult
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -193,9 +193,9 @@ def result_drawing(
 
 
 def analysis_drawing(
-    a: Analysis, position: int = 1, paths: bool | Sequence[str] = True, names: bool = True
+    a: RunResult, position: int = 1, paths: bool | Sequence[str] = True, names: bool = True
 ) -> ExportDrawing:
-    """The drawing of an :class:`~mechfem.Analysis` at ``position``; ``paths``: True for every moving point, False
+    """The drawing of a :class:`~mechfem.RunResult` at ``position``; ``paths``: True for every moving point, False
     for none, or the names of the points whose paths to draw; ``names`` writes the points' names."""
 
     rr = a.run_result()
@@ -417,7 +417,7 @@ def write(d: ExportDrawing, path: str | os.PathLike[str], format: str | None = N
 
 
 def export_drawing(
-    result: RunResult | Analysis,
+    result: RunResult,
     path: str | os.PathLike[str],
     position: int = 1,
     *,
@@ -425,16 +425,15 @@ def export_drawing(
     format: str | None = None,
     units: str | None = None,
 ) -> Path:
-    """Writes the mechanism of ``result`` (a deck's :class:`~mechfem.RunResult`, or an
-    :class:`~mechfem.Analysis`) at ``position`` (1-based) to ``path`` as DXF or SVG (``format``, default from the
-    suffix) with the paths of its moving points (``paths``: True, False, or which points: co-ordinate number pairs
-    for a RunResult, names for an Analysis). ``units`` ("mm", "m", ...) declares the deck's length unit in a DXF
-    file. Returns the file written."""
+    """Writes the mechanism of ``result`` (a deck's run or a named model's) at ``position`` (1-based) to ``path``
+    as DXF or SVG (``format``, default from the suffix) with the paths of its moving points (``paths``: True, False,
+    or which points: co-ordinate number pairs for a deck's run, names for a named model's). ``units`` ("mm", "m",
+    ...) declares the deck's length unit in a DXF file. Returns the file written."""
     fmt = file_format(path, format)
-    if isinstance(result, RunResult):
-        d = result_drawing(result, position, paths)
-    else:
+    if result.named:
         d = analysis_drawing(result, position, paths)
+    else:
+        d = result_drawing(result, position, paths)
     return write(d, path, fmt, units)
 
 
@@ -456,13 +455,13 @@ def draw_files(
 
 @_result.TO_DXF.register
 def analysis_dxf(
-    a: Analysis, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str], units: str | None
+    a: RunResult, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str], units: str | None
 ) -> Path:
-    """:meth:`Analysis.to_dxf`: the mechanism at ``position`` with the paths of its moving points as a DXF file."""
+    """:meth:`RunResult.to_dxf`: the mechanism at ``position`` with the paths of its moving points as a DXF file."""
     return write_dxf(analysis_drawing(a, position, paths), path, units)
 
 
 @_result.TO_SVG.register
-def analysis_svg(a: Analysis, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str]) -> Path:
-    """:meth:`Analysis.to_svg`: as :func:`analysis_dxf`, an SVG file."""
+def analysis_svg(a: RunResult, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str]) -> Path:
+    """:meth:`RunResult.to_svg`: as :func:`analysis_dxf`, an SVG file."""
     return write_svg(analysis_drawing(a, position, paths), path)

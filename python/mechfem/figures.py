@@ -1,8 +1,8 @@
-"""Pictures of a :class:`~mechfem.Mechanism` and of an :class:`~mechfem.Analysis`, for scripts and notebooks.
+"""Pictures of a :class:`~mechfem.Mechanism` and of a :class:`~mechfem.RunResult`, for scripts and notebooks.
 
 They are drawn with the code of the deck's pictures and animation (:mod:`mechfem.drawing`,
 :mod:`mechfem.plots`, :mod:`mechfem.animation`) on the run as the deck written from the mechanism gives
-it (:meth:`Analysis.run_result`), with the mechanism's names added. Figures are
+it (:meth:`RunResult.run_result`), with the mechanism's names added. Figures are
 ``matplotlib.figure.Figure`` objects (no pyplot state); in Jupyter a mechanism and an analysis show
 themselves as PNG images.
 """
@@ -26,12 +26,12 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from mechfem.model import Mechanism
-    from mechfem.result import Analysis
+    from mechfem.result import RunResult
 
 PATH_COLOURS = ["#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f"]
 
 
-def _draw_mechanism(ax: Axes, a: Analysis, position: int = 0, names: bool = True) -> tuple[float, float, float, float]:
+def _draw_mechanism(ax: Axes, a: RunResult, position: int = 0, names: bool = True) -> tuple[float, float, float, float]:
     from mechfem.drawing import MechanismDrawing
     from mechfem.mpl_drawing import MplMechanism
 
@@ -75,7 +75,7 @@ def mechanism_figure(mech: Mechanism, names: bool = True) -> Figure:
 
 
 def result_figure(
-    a: Analysis,
+    a: RunResult,
     outputs: Sequence[str] = (),
     *,
     picture: int | None = None,
@@ -150,7 +150,7 @@ def result_figure(
     return fig
 
 
-def _unit(a: Analysis, name: str) -> str:
+def _unit(a: RunResult, name: str) -> str:
     """The unit of what ``a.value(name)`` gives: an output's or row's, a co-ordinate's, a point's (a length)."""
     from mechfem.labels import LENGTH, coordinate_unit, row_dest_unit
 
@@ -176,7 +176,7 @@ def mechanism_png(mech: Mechanism) -> bytes | None:
         return None
 
 
-def result_png(a: Analysis) -> bytes | None:
+def result_png(a: RunResult) -> bytes | None:
     """:func:`result_figure` as PNG bytes, or None when it cannot be drawn."""
     if a.positions == 0:
         return None
@@ -184,7 +184,7 @@ def result_png(a: Analysis) -> bytes | None:
 
 
 def animate(
-    a: Analysis, path: str | Path, points: Sequence[str] | None = None, max_frames: int | None = None
+    a: RunResult, path: str | Path, points: Sequence[str] | None = None, max_frames: int | None = None
 ) -> list[Path]:
     """Writes the animation of the motion to ``path`` (``name.gif``, and ``name.mp4`` when ffmpeg is installed),
     with the paths and velocity arrows of ``points`` (default: every moving point); returns the files."""

@@ -1,7 +1,7 @@
 """Hooks: how a lower layer offers a convenience method whose work an upper layer does.
 
-:meth:`Mechanism.run <mechfem.Mechanism.run>` needs the deck writer and the run, :meth:`Analysis.plot
-<mechfem.Analysis.plot>` needs matplotlib's figures; both classes sit below those modules, and a lower module never
+:meth:`Mechanism.run <mechfem.Mechanism.run>` needs the deck writer and the run, :meth:`RunResult.plot
+<mechfem.RunResult.plot>` needs matplotlib's figures; both classes sit below those modules, and a lower module never
 imports an upper one (docs/architecture.md). So the lower module declares a :class:`Hook` with the signature it
 needs, and the upper module registers its function when it is imported. ``import mechfem`` imports every layer, so
 every hook is filled before a user can call one; a hook called before that says which module to import.

@@ -393,10 +393,10 @@ class Mechanism(ElementMethods):
         :class:`~mechfem.AssemblyError`, :class:`~mechfem.ConvergenceError` or
         :class:`~mechfem.LimitPositionError` when position 1 cannot be computed, in this model's words, and
         :class:`~mechfem.ResourceError` before the run when its results would exceed the memory limit
-        (:mod:`mechfem.limits`). Ctrl-C raises :class:`~mechfem.RunInterrupted` with the :class:`Analysis` of
+        (:mod:`mechfem.limits`). Ctrl-C raises :class:`~mechfem.RunInterrupted` with the :class:`RunResult` of
         the positions computed so far. A motion that stops early returns the positions up to there
-        (:meth:`Analysis.stop_reason` says why) and warns with :class:`~mechfem.IncompleteRunWarning`; with
-        ``raise_on_stop`` it raises :class:`~mechfem.RunStoppedError` carrying that :class:`Analysis` instead.
+        (:meth:`RunResult.stop_reason` says why) and warns with :class:`~mechfem.IncompleteRunWarning`; with
+        ``raise_on_stop`` it raises :class:`~mechfem.RunStoppedError` carrying that :class:`RunResult` instead.
         """
         return RUN.call(
             self,
@@ -430,7 +430,7 @@ class Mechanism(ElementMethods):
         ``v0`` (a number for the only one, a mapping by input for several; None: from rest; an angle's speed in
         ``unit`` per time, ``"rad"`` or ``"deg"``). ``rtol`` and ``atol``
         are the integrator's tolerances (default ``accuracy``, 1e-10); the rest is as for :meth:`run`, whose
-        :class:`Analysis` it returns, with :attr:`Analysis.simulation` the integrator's work. A simulation that
+        :class:`RunResult` it returns, with :attr:`RunResult.simulation` the integrator's work. A simulation that
         stops early (a limit position, a step size that collapsed) returns the positions it reached and says why,
         as a run does. The same as ``run(Motion.dynamic(...))`` with every input named."""
         motion = simulation(

@@ -1,8 +1,8 @@
 """How results show themselves in Jupyter: the HTML behind ``_repr_html_``.
 
-* An :class:`~mechfem.Analysis`: a summary table (mechanism, positions, complete or why it stopped, limit
+* A :class:`~mechfem.RunResult`: a summary table (mechanism, positions, complete or why it stopped, limit
   positions, parameters of a study's variant), its outputs with their smallest and largest values and units, and
-  the picture of :meth:`~mechfem.Analysis.plot` (the mechanism with the paths of its moving points beside the
+  the picture of :meth:`~mechfem.RunResult.plot` (the mechanism with the paths of its moving points beside the
   outputs) as an inline PNG.
 * A :class:`~mechfem.RunResult` of a deck: the same summary, its buffers with their labels
   (:mod:`mechfem.labels`), extrema and units, and the mechanism at position 1 with the paths of its moving points
@@ -32,7 +32,7 @@ from mechfem.result import RunResult
 
 if TYPE_CHECKING:
     from mechfem.batch import Study
-    from mechfem.result import Analysis
+    from mechfem.result import RunResult
 
 #: Rows of a study's table shown in a notebook; the rest are counted.
 STUDY_ROWS = 10
@@ -42,8 +42,8 @@ STUDY_COLUMNS = 12
 _TABLE = 'style="border-collapse:collapse;margin:0.3em 0"'
 _CELL = 'style="border:1px solid #ccc;padding:2px 8px;text-align:{align}"'
 
-# Jupyter asks an object for every representation it has (HTML and PNG), so an Analysis's picture is rendered once
-# and kept while the Analysis lives.
+# Jupyter asks an object for every representation it has (HTML and PNG), so a RunResult's picture is rendered once
+# and kept while the RunResult lives.
 _PNG_CACHE: weakref.WeakKeyDictionary[Any, bytes | None] = weakref.WeakKeyDictionary()
 
 
@@ -123,11 +123,11 @@ def block(title: str, *parts: str) -> str:
     return f'<div class="mechfem"><strong>{esc(title)}</strong>{"".join(parts)}</div>'
 
 
-# -- an Analysis ----------------------------------------------------------------------------------------
+# -- a RunResult ----------------------------------------------------------------------------------------
 
 
-def analysis_png(a: Analysis) -> bytes | None:
-    """The picture of ``a`` (:func:`mechfem.figures.result_png`), rendered once per Analysis."""
+def analysis_png(a: RunResult) -> bytes | None:
+    """The picture of ``a`` (:func:`mechfem.figures.result_png`), rendered once per RunResult."""
     try:
         return _PNG_CACHE[a]
     except (KeyError, TypeError):
@@ -142,7 +142,7 @@ def analysis_png(a: Analysis) -> bytes | None:
     return png
 
 
-def analysis_outputs(a: Analysis) -> list[list[str]]:
+def analysis_outputs(a: RunResult) -> list[list[str]]:
     """One row per output: name, smallest value, largest value, unit."""
     rr = a.run_result()
     by_dest = {r.dest: r for r in rr.model.dependent}
@@ -155,8 +155,8 @@ def analysis_outputs(a: Analysis) -> list[list[str]]:
     return rows
 
 
-def analysis_html(a: Analysis) -> str:
-    """The HTML of an :class:`~mechfem.Analysis` in a notebook."""
+def analysis_html(a: RunResult) -> str:
+    """The HTML of a :class:`~mechfem.RunResult` in a notebook."""
     report = a.report
     summary = [
         ("mechanism", a.mechanism.name),

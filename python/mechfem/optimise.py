@@ -1,6 +1,6 @@
 """Design sensitivities and optimisation of a named mechanism: :func:`optimize` and the targets it takes.
 
-A quantity is named as for :meth:`Analysis.value`: a co-ordinate (``"C.x"``, an angle), a row or an output, as a
+A quantity is named as for :meth:`RunResult.value`: a co-ordinate (``"C.x"``, an angle), a row or an output, as a
 name or the object, with ``order`` 0 (the value), 1 or 2 (its transfer function with respect to an input) — write
 :class:`Q` for order 1 and 2, a plain name for the value. The model is written as a deck with one buffer for each
 quantity and evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.design`).
@@ -27,7 +27,7 @@ from mechfem.storage import Storage
 
 if TYPE_CHECKING:
     from mechfem.model import Mechanism, Motion
-    from mechfem.result import Analysis
+    from mechfem.result import RunResult
 
 Name: TypeAlias = "str | Coordinate | Row | FormParameter"
 
@@ -108,7 +108,7 @@ class Optimum:
     starts: list[Start] = field(default_factory=list, repr=False)
     """Every start's outcome (one for a single start); this optimum is the best of them."""
 
-    def run(self) -> Analysis:
+    def run(self) -> RunResult:
         """The optimised mechanism run through the motion the optimisation used."""
         return self.mechanism.run(self.motion)
 
@@ -416,9 +416,9 @@ def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequenc
             mech[c.name].value = float(value)
 
 
-def sensitivity(analysis: Analysis, quantity: Quantity, wrt: Sequence[str]) -> FloatArray:
+def sensitivity(analysis: RunResult, quantity: Quantity, wrt: Sequence[str]) -> FloatArray:
     """The derivative of ``quantity`` at every position with respect to each design variable in ``wrt``
-    (positions x variables); see :meth:`Analysis.sensitivity`."""
+    (positions x variables); see :meth:`RunResult.sensitivity`."""
     mech, motion = analysis.mechanism, analysis.motion
     if motion is None:
         raise ValueError("sensitivities need a motion: the analysis computed position 1 only")

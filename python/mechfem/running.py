@@ -1,4 +1,4 @@
-"""Runs a :class:`~mechfem.Mechanism` and gives the result as an :class:`~mechfem.Analysis`, its errors in the
+"""Runs a :class:`~mechfem.Mechanism` and gives the result as a :class:`~mechfem.RunResult`, its errors in the
 model's words.
 
 A mechanism runs on its kept compiled model (:mod:`mechfem.compiled`): no deck text is written or read unless its
@@ -24,7 +24,7 @@ from mechfem.limits import memory_limit
 from mechfem.model import Mechanism
 from mechfem.motion import Motion
 from mechfem.namespace import model_result
-from mechfem.result import Analysis
+from mechfem.result import RunResult
 from mechfem.storage import Storage
 
 
@@ -37,7 +37,7 @@ def run(
     with_motion: bool = True,
     order: int | None = 2,
     raise_on_stop: bool | None = None,
-) -> Analysis:
+) -> RunResult:
     """Runs the mechanism through ``motion`` (position 1 only without one, or with ``with_motion=False``),
     computing the transfer functions of ``order`` (see :meth:`Mechanism.run`). A run that stopped early warns, or
     with ``raise_on_stop`` raises :class:`~mechfem.RunStoppedError`; ``raise_on_stop`` None leaves that to the

@@ -4,7 +4,7 @@ within their tolerances.
 Every named value given a tolerance (a prescribed length or angle ``"E1.length"``, ``"kappa"``; a fixed
 co-ordinate ``"B0.x"``; a point ``"B0"``, whose two co-ordinates are drawn independently) is drawn ``n`` times
 around its value in the mechanism; the draws run as one :func:`~mechfem.sweep` (locally, or on a cluster with an
-``executor``), and every output function (a measure: a function of a variant's :class:`~mechfem.Analysis` that
+``executor``), and every output function (a measure: a function of a variant's :class:`~mechfem.RunResult` that
 returns one number) is summarised over the variants that ran through the whole motion::
 
     tol = mechfem.tolerance_study(
@@ -100,7 +100,7 @@ def tolerance_study(
     """Draws ``n`` variants of ``mechanism`` with each value of ``tolerances`` (name -> tolerance ``t``) within
     its tolerance, runs them (:func:`~mechfem.sweep`, with ``executor``, ``chunk_size``, ``workers``,
     ``progress``, ``order``) and summarises every output of ``outputs`` (name -> function of an
-    :class:`~mechfem.Analysis` returning a number).
+    :class:`~mechfem.RunResult` returning a number).
 
     ``distribution="normal"``: value + N(0, (t / ``sigmas``)^2), so that ±t holds ``sigmas`` standard deviations
     (99.7% of the parts for the default 3); ``"uniform"``: uniform within value ± t. The draws come from
