@@ -21,8 +21,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::observe::Progress;
+use crate::rundict::Outcome;
 use crate::rundict::{outcome_dict, Shared};
-use crate::text::{compile_text, run_variant, Change, Outcome};
+use crate::text::{compile_text, run_variant, Change};
 
 /// A change as Python gives it: (kind, number, value); see [`Change::from_triple`].
 type ChangeTriple = (u8, usize, f64);

@@ -1,5 +1,6 @@
 //! A run of deck text as the dict Python gets from `run_deck_text`,
-//! `Model.run` and `run_deck_variants`.
+//! `Model.run` and `run_deck_variants`: what a run gave ([`Outcome`],
+//! [`FullRun`]) and how it is wrapped.
 //!
 //! Everything a run computed arrives finished from [`crate::text::execute`]
 //! (tables column by column, the row values of position 1, the PARA
@@ -12,16 +13,56 @@
 
 use std::path::Path;
 
-use mechfem_core::run::Layout;
-use mechfem_deck::Compiled;
+use mechfem_core::run::{Layout, SimReport};
+use mechfem_core::{RunReport, SolveError, State};
+use mechfem_deck::{Compiled, Diagnostics};
 use numpy::npyffi::NPY_ORDER;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
-use crate::text::{FullRun, Outcome};
 use crate::{convert, errors};
+
+/// A finished run with everything recorded, ready to be wrapped for Python.
+pub struct FullRun {
+    /// The full layout ([`Layout`]), column by column: positions x its width.
+    pub table: Vec<f64>,
+    /// The deck's buffers in the order of their definitions, column by column.
+    pub buffers: Vec<f64>,
+    /// Row-major, positions x co-ordinates.
+    pub coords: Vec<f64>,
+    /// Positions computed.
+    pub positions: usize,
+    /// Columns of `table`.
+    pub width: usize,
+    /// What the run did.
+    pub report: RunReport,
+    /// What the integrator of a simulation did.
+    pub sim: Option<SimReport>,
+    /// Steps the motion asked for.
+    pub steps: usize,
+    /// The co-ordinates as the deck gives them (before the adjustment of position 1).
+    pub given: Vec<f64>,
+    /// PARA value of each prescribed row.
+    pub para: Vec<Option<f64>>,
+    /// Value of every row, prescribed then dependent, at position 1.
+    pub rows_at_1: Vec<f64>,
+}
+
+/// What running one deck text gave.
+pub enum Outcome {
+    /// The deck has a mistake.
+    Deck(Diagnostics),
+    /// Position 1 could not be computed (the state where it failed).
+    Failed(Box<State>, SolveError),
+    /// The run (possibly stopped early; see the report).
+    Ran(Box<FullRun>),
+    /// The results would not fit in the memory limit: nothing was run.
+    Refused(String),
+    /// A change names a co-ordinate or row the deck does not have.
+    BadChange(String),
+}
 
 /// What every run of one compiled deck has in common, converted for Python
 /// once. Each run's dict holds these very objects: they are not to be

@@ -29,7 +29,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::observe::Progress;
-use crate::rundict::{outcome_dict, Shared};
+use crate::rundict::{outcome_dict, FullRun, Outcome, Shared};
 use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
@@ -212,46 +212,6 @@ impl Numbers {
         }
         Ok(n)
     }
-}
-
-/// A finished run with everything recorded, ready to be wrapped for Python.
-pub struct FullRun {
-    /// The full layout ([`Layout`]), column by column: positions x its width.
-    pub table: Vec<f64>,
-    /// The deck's buffers in the order of their definitions, column by column.
-    pub buffers: Vec<f64>,
-    /// Row-major, positions x co-ordinates.
-    pub coords: Vec<f64>,
-    /// Positions computed.
-    pub positions: usize,
-    /// Columns of `table`.
-    pub width: usize,
-    /// What the run did.
-    pub report: RunReport,
-    /// What the integrator of a simulation did.
-    pub sim: Option<SimReport>,
-    /// Steps the motion asked for.
-    pub steps: usize,
-    /// The co-ordinates as the deck gives them (before the adjustment of position 1).
-    pub given: Vec<f64>,
-    /// PARA value of each prescribed row.
-    pub para: Vec<Option<f64>>,
-    /// Value of every row, prescribed then dependent, at position 1.
-    pub rows_at_1: Vec<f64>,
-}
-
-/// What running one deck text gave.
-pub enum Outcome {
-    /// The deck has a mistake.
-    Deck(Diagnostics),
-    /// Position 1 could not be computed (the state where it failed).
-    Failed(Box<State>, SolveError),
-    /// The run (possibly stopped early; see the report).
-    Ran(Box<FullRun>),
-    /// The results would not fit in the memory limit: nothing was run.
-    Refused(String),
-    /// A change names a co-ordinate or row the deck does not have.
-    BadChange(String),
 }
 
 /// Runs a compiled deck with `numbers` (its motion only when
