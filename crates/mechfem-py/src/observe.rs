@@ -8,17 +8,19 @@
 use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
-use mechfem_core::run::{InverseDynamics, Selection};
-use mechfem_core::{Mechanism, Observer, PositionView, Recorder, TransferOrder};
+use mechfem_core::run::{Columns, InverseDynamics, Selection};
+use mechfem_core::{Mechanism, Observer, PositionView, TransferOrder};
 use pyo3::prelude::*;
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
 /// progress and to notice Ctrl-C.
 pub struct Recording {
-    /// The quantities of `selection`, in its column order.
-    pub recorder: Recorder,
-    /// The named blocks of the recorder's columns.
+    /// The named blocks of the table's columns.
     pub selection: Selection,
+    /// The quantities of `selection` at every position, column by column.
+    pub table: Columns,
+    /// Every co-ordinate at every position, row-major (positions x N).
+    pub coords: Vec<f64>,
     /// Values of the prescribed rows at position 1.
     pub prescribed_at_1: Vec<f64>,
     /// Values of the dependent form parameters at position 1.
@@ -27,6 +29,11 @@ pub struct Recording {
     pub progress: Progress,
     /// The transfer functions the run computes at every position.
     order: Option<TransferOrder>,
+    /// One position's values, before they go into their columns.
+    row: Vec<f64>,
+    /// Inverse dynamics, evaluated at every position when a dynamic
+    /// quantity is recorded.
+    dynamics: Option<InverseDynamics>,
 }
 
 /// Progress reporting of a single run: attaches to Python about every 1%
@@ -123,33 +130,40 @@ impl Progress {
 }
 
 impl Recording {
-    /// Records the quantities of `selection` over a run of `total`
-    /// positions. With `det`, det(D^c) is computed at every position (and
-    /// with it the first order, and the watch for limit positions by its
-    /// sign); without, its column holds NaN unless a buffer asks for it,
-    /// and a run whose quantities are all positions and values computes
-    /// positions only.
-    pub fn new(selection: Selection, total: usize, progress: Option<Py<PyAny>>, det: bool) -> Recording {
+    /// Records the quantities of `selection` and the `n_coords`
+    /// co-ordinates over a run of `total` positions, into tables sized for
+    /// them up front. With `det`, det(D^c) is computed at every position
+    /// (and with it the first order, and the watch for limit positions by
+    /// its sign); without, its column holds NaN unless a buffer asks for
+    /// it, and a run whose quantities are all positions and values
+    /// computes positions only.
+    pub fn new(
+        selection: Selection,
+        n_coords: usize,
+        total: usize,
+        progress: Option<Py<PyAny>>,
+        det: bool,
+    ) -> Recording {
         let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
         Recording {
-            recorder: Recorder::new(selection.quantities().to_vec(), true),
+            // Straight into columns: the table Python gets, with no
+            // row-major copy to be transposed after the run.
+            table: Columns::new(selection.width(), total),
+            coords: Vec::with_capacity(total.saturating_mul(n_coords)),
+            row: Vec::with_capacity(selection.width()),
             selection,
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
             progress: Progress::new(progress, total),
             order,
+            dynamics: None,
         }
     }
-}
 
-impl Recording {
     /// Records the dynamic quantities with the mass and load model of a
     /// DYN deck (checked when the deck was compiled).
     pub fn with_dynamics(&mut self, mech: &Mechanism, dynamics: Option<&Dynamics>) {
-        if let Some(d) = dynamics {
-            let recorder = std::mem::take(&mut self.recorder);
-            self.recorder = recorder.with_dynamics(InverseDynamics::new(mech, d.clone()));
-        }
+        self.dynamics = dynamics.map(|d| InverseDynamics::new(mech, d.clone()));
     }
 }
 
@@ -161,7 +175,10 @@ impl Observer for Recording {
             self.prescribed_at_1 = view.state.target.clone();
             self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
         }
-        self.recorder.position(view);
+        self.row.clear();
+        self.selection.record(view, self.dynamics.as_mut(), &mut self.row);
+        self.table.push(&self.row);
+        self.coords.extend_from_slice(&view.state.x);
         self.progress.report(view.index + 1);
     }
 
