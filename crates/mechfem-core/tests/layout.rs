@@ -198,12 +198,16 @@ impl Observer for Selected {
 #[test]
 fn a_selection_records_what_each_quantity_gives_to_the_last_bit() {
     for deck in DECKS {
-        for order in [TransferOrder::First, TransferOrder::Second] {
+        for (order, own) in
+            [TransferOrder::First, TransferOrder::Second].into_iter().flat_map(|o| [(o, true), (o, false)])
+        {
             let mut c = load(deck);
             let mech = &c.mechanism;
             let (n, nd) = (mech.n_coords(), mech.n_dof());
-            // The deck's buffers and every co-ordinate's position, velocity and acceleration.
-            let mut buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
+            // The deck's buffers (or none: then a one-input mechanism's are
+            // all read directly) and every co-ordinate's position, velocity
+            // and acceleration.
+            let mut buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).filter(|_| own).collect();
             buffers.extend((0..n).flat_map(|i| [Quantity::X0(i), Quantity::Vx(i), Quantity::Ax(i)]));
             buffers.extend((0..n).flat_map(|coord| (0..nd).map(move |j| Quantity::Kx1 { coord, j })));
             let selection = Selection::deck(mech, &buffers, &(0..n).collect::<Vec<_>>(), c.dynamics.is_some());

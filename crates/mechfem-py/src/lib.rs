@@ -51,8 +51,9 @@ use mechfem_core::run::{Selection, SimReport};
 use mechfem_core::{InputMotion, Motion, Quantity, RunReport};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
+use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
@@ -172,7 +173,7 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("det", det)?;
     d.set_item("coords", PyArray1::from_vec(py, at_1.clone()))?;
     d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
-    d.set_item("model", model)?;
+    d.set_item(intern!(py, "model"), model)?;
     Ok(d)
 }
 
@@ -193,7 +194,9 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// `buffer_numbers`), `hodograph` (d x_i / d input 1 of the co-ordinates
 /// `hodograph_coords`, 1-based, that PLOTHODO lines name), for a DYN deck
 /// `inputs`, `drive`, `ekin`, `epot` and `power`, then `time` and `det`.
-/// `coords` holds every co-ordinate per position.
+/// `coords` holds every co-ordinate per position. Every run of one deck
+/// file shares its `layout`, `buffer_numbers` and `hodograph_coords`
+/// objects ([`EchoSlot::shape`]).
 ///
 /// With `det=False` det(D^c) is computed only where a buffer asks for it:
 /// the `det` block holds NaN otherwise, no sign change of det(D^c) is
@@ -215,21 +218,26 @@ fn run_deck(
     let mech = &c.mechanism;
     let (n, width, positions) = (mech.n_coords(), rec.selection.width(), rec.table.positions());
     let (model, storage) = echo(py, &slot, &c, &given, &rec.coords[..n], &rec)?;
-    let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
-    let hodograph_coords: Vec<usize> = hodograph_coords(&c).iter().take(hodograph).map(|i| i + 1).collect();
-    let layout = PyDict::new(py);
-    for b in rec.selection.blocks() {
-        layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
-    }
+    // The same for every run of the deck: made once, and shared.
+    let [layout, buffer_numbers, hodograph_coords] = slot.shape(py, || {
+        let layout = PyDict::new(py);
+        for b in rec.selection.blocks() {
+            layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
+        }
+        let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
+        let coords = hodograph_coords(&c).into_iter().take(hodograph).map(|i| i + 1);
+        let numbers = PyList::new(py, c.buffers.iter().map(|b| b.number))?;
+        Ok([layout.into_any(), numbers.into_any(), PyList::new(py, coords)?.into_any()])
+    })?;
     let (table, coords) = (rec.table.into_vec(), rec.coords);
 
     let d = PyDict::new(py);
-    d.set_item("coords", convert::array2(py, coords, positions, n)?)?;
-    d.set_item("table", convert::columns(py, table, positions, width)?)?;
-    d.set_item("layout", layout)?;
-    d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
-    d.set_item("hodograph_coords", hodograph_coords)?;
-    d.set_item("simulation", sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
+    d.set_item(intern!(py, "coords"), convert::array2(py, coords, positions, n)?)?;
+    d.set_item(intern!(py, "table"), convert::columns(py, table, positions, width)?)?;
+    d.set_item(intern!(py, "layout"), layout)?;
+    d.set_item(intern!(py, "buffer_numbers"), buffer_numbers)?;
+    d.set_item(intern!(py, "hodograph_coords"), hodograph_coords)?;
+    d.set_item(intern!(py, "simulation"), sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &report, steps);
     let plain = report.stop.is_none() && report.limits.is_empty() && report.singular_positions.is_empty();
@@ -242,10 +250,10 @@ fn run_deck(
     } else {
         report_dict()?
     };
-    d.set_item("report", report_dict)?;
-    d.set_item("model", model)?;
-    d.set_item("storage", storage)?;
-    d.set_item("interrupted", interrupted)?;
+    d.set_item(intern!(py, "report"), report_dict)?;
+    d.set_item(intern!(py, "model"), model)?;
+    d.set_item(intern!(py, "storage"), storage)?;
+    d.set_item(intern!(py, "interrupted"), interrupted)?;
     Ok(d)
 }
 
