@@ -45,11 +45,9 @@ pub struct Progress {
     /// The most positions reported so far.
     reported: usize,
     /// The count of positions at which Python is next attached to: the
-    /// next multiple of the stride with a callback; without one, only
-    /// Ctrl-C is looked for, about every 10% of the run (attaching every
-    /// 1% costs a short run of a small mechanism more than its positions
-    /// do), and at the end. Kept as a count to compare with, not found by a
-    /// division at every position.
+    /// next multiple of the stride with a callback; without one, at which
+    /// the clock is looked at ([`Progress::interrupts`]). Kept as a count to
+    /// compare with, not found by a division at every position.
     next: usize,
     /// The first error raised by the callback or a signal handler; it stops
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
@@ -63,10 +61,15 @@ pub struct Progress {
 const INTERRUPT_CHECK: Duration = Duration::from_millis(100);
 
 impl Progress {
-    /// Progress over `total` positions.
+    /// Progress over `total` positions: reported to `callback` about every
+    /// 1% of them; without a callback only Ctrl-C is looked for, as
+    /// [`Progress::interrupts`] looks for it.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        let stride = (total / 100).max(1);
-        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None, asked: None };
+        let (stride, asked) = match callback {
+            Some(_) => ((total / 100).max(1), None),
+            None => (64, Some(Instant::now())),
+        };
+        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None, asked };
         p.next = p.after(0);
         p
     }
@@ -74,11 +77,11 @@ impl Progress {
     /// No progress to report, only Ctrl-C to notice, for a run on the thread
     /// Python's signal handlers run on: Python is asked about every tenth of
     /// a second of the run (the clock read every 64 positions), so that a
-    /// run of many short variants pays next to nothing for it.
+    /// short run, or a study of many, pays next to nothing for it (a run of
+    /// 360 positions attached to Python at every tenth of it would cost a
+    /// few microseconds more), and at the last of `total` positions.
     pub fn interrupts() -> Progress {
-        let mut p = Progress { stride: 64, asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) };
-        p.next = p.after(0);
-        p
+        Progress::new(None, usize::MAX)
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -93,9 +96,7 @@ impl Progress {
     /// The count after `done` at which Python is attached to next (with
     /// [`Progress::interrupts`], at which the clock is looked at).
     fn after(&self, done: usize) -> usize {
-        let every = self.callback.is_some() || self.asked.is_some();
-        let step = if every { self.stride } else { 10 * self.stride };
-        (done / step).saturating_add(1).saturating_mul(step).min(self.total)
+        (done / self.stride).saturating_add(1).saturating_mul(self.stride).min(self.total)
     }
 
     /// Reports that `done` positions are computed, when that is a multiple
@@ -113,7 +114,9 @@ impl Progress {
         }
         self.next = self.after(done);
         if let Some(asked) = self.asked.as_mut() {
-            if asked.elapsed() < INTERRUPT_CHECK {
+            // And once at the end, so that a run shorter than the interval
+            // still notices a Ctrl-C made during it.
+            if done < self.total && asked.elapsed() < INTERRUPT_CHECK {
                 return;
             }
             *asked = Instant::now();
