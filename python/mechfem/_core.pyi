@@ -325,7 +325,8 @@ class RunDict(TypedDict):
     in ``hodograph_coords`` and D inputs: ``buffers`` (B, in the order of ``buffer_numbers``), ``hodograph`` (H: d
     x_i / d input 1, NaN where D^c is singular); for a DYN deck ``inputs``, ``drive`` (D), ``ekin``, ``epot``,
     ``power`` (one value each); then ``time`` and ``det`` (one value each). The blocks cover the columns once, in
-    this order."""
+    this order. Every run of one deck file shares this dict and the lists ``buffer_numbers`` and
+    ``hodograph_coords``: read them, do not change them."""
     buffer_numbers: list[int]
     hodograph_coords: list[int]
     """The co-ordinates named by PLOTHODO lines (empty without them or without a DOF)."""

@@ -140,7 +140,7 @@ fn a_decks_selection_names_its_blocks_as_the_full_layout_does() {
         let (mech, dynamic) = (&c.mechanism, c.dynamics.is_some());
         let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
         let hodograph: Vec<usize> = (0..mech.n_coords()).rev().collect();
-        let s = Selection::deck(&buffers, &hodograph, mech.n_dof(), dynamic);
+        let s = Selection::deck(mech, &buffers, &hodograph, dynamic);
         let mut next = 0;
         for b in s.blocks() {
             assert_eq!(b.start, next, "{deck}: block {} starts where the one before it ends", b.name);
@@ -168,12 +168,72 @@ fn a_decks_selection_names_its_blocks_as_the_full_layout_does() {
             assert_eq!(s.quantities()[b.columns()], quantities[f.columns()], "{deck}: {}", b.name);
         }
         // det(D^c) is asked for by a reader, not by its block.
-        let plain = Selection::deck(&[Quantity::X0(0)], &[], mech.n_dof(), false);
+        let plain = Selection::deck(mech, &[Quantity::X0(0)], &[], false);
         assert_eq!(plain.transfer_order(), None, "{deck}");
-        assert_eq!(
-            Selection::deck(&[Quantity::Det], &[], mech.n_dof(), false).transfer_order(),
-            Some(TransferOrder::First)
-        );
+        assert_eq!(Selection::deck(mech, &[Quantity::Det], &[], false).transfer_order(), Some(TransferOrder::First));
+    }
+}
+
+/// Records every position of a deck's selection twice: by
+/// [`Selection::record`] and quantity by quantity ([`record`]).
+struct Selected {
+    selection: Selection,
+    dynamics: Option<InverseDynamics>,
+    order: TransferOrder,
+    by_selection: Vec<f64>,
+    by_quantity: Vec<f64>,
+}
+
+impl Observer for Selected {
+    fn position(&mut self, view: &PositionView<'_>) {
+        record(self.selection.quantities(), view, self.dynamics.as_mut(), &mut self.by_quantity);
+        self.selection.record(view, self.dynamics.as_mut(), &mut self.by_selection);
+    }
+
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        Some(self.order)
+    }
+}
+
+#[test]
+fn a_selection_records_what_each_quantity_gives_to_the_last_bit() {
+    for deck in DECKS {
+        for (order, own) in
+            [TransferOrder::First, TransferOrder::Second].into_iter().flat_map(|o| [(o, true), (o, false)])
+        {
+            let mut c = load(deck);
+            let mech = &c.mechanism;
+            let (n, nd) = (mech.n_coords(), mech.n_dof());
+            // The deck's buffers (or none: then a one-input mechanism's are
+            // all read directly) and every co-ordinate's position, velocity
+            // and acceleration.
+            let mut buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).filter(|_| own).collect();
+            buffers.extend((0..n).flat_map(|i| [Quantity::X0(i), Quantity::Vx(i), Quantity::Ax(i)]));
+            buffers.extend((0..n).flat_map(|coord| (0..nd).map(move |j| Quantity::Kx1 { coord, j })));
+            let selection = Selection::deck(mech, &buffers, &(0..n).collect::<Vec<_>>(), c.dynamics.is_some());
+            let mut out = Selected {
+                selection,
+                dynamics: c.dynamics.clone().map(|d| InverseDynamics::new(mech, d)),
+                order,
+                by_selection: Vec::new(),
+                by_quantity: Vec::new(),
+            };
+            let motion = c.motion.as_ref().expect("the deck has a motion");
+            match (&c.dynamics, c.mode.name()) {
+                (Some(d), "DYN SIM") => {
+                    simulate(mech, &mut c.state, motion, &c.params, &c.integration, d, &mut out).map(drop)
+                }
+                _ => run(mech, &mut c.state, Some(motion), &c.params, &mut out).map(drop),
+            }
+            .unwrap_or_else(|e| panic!("{deck}: {e}"));
+            let width = out.selection.width();
+            assert!(out.by_quantity.len() > width, "{deck}");
+            assert_eq!(out.by_selection.len(), out.by_quantity.len(), "{deck}");
+            for (k, (x, y)) in out.by_selection.iter().zip(&out.by_quantity).enumerate() {
+                let q = out.selection.quantities()[k % width];
+                assert_eq!(x.to_bits(), y.to_bits(), "{deck}, {order:?}: position {}, {q:?}", k / width);
+            }
+        }
     }
 }
 

@@ -11,7 +11,8 @@
 //! requests as Python was given them after a run. They depend only on the
 //! deck and on its position 1, so a run of the same text that reaches the
 //! same position 1 hands Python the very same objects again, and Python
-//! converts them once (`mechfem.result` keeps what it made of them).
+//! converts them once (`mechfem.result` keeps what it made of them). So
+//! does the layout of its runs' tables, which depends on the deck alone.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -40,10 +41,12 @@ pub struct Echo {
     storage: Py<PyDict>,
 }
 
-/// The echo of one kept deck, filled after its first run, and the report
-/// of its last run that met nothing to report (see [`EchoSlot::report`]).
+/// The echo of one kept deck, filled after its first run, the report of
+/// its last run that met nothing to report (see [`EchoSlot::report`]), and
+/// what its runs' dicts hold that depends on the deck alone
+/// ([`EchoSlot::shape`]).
 #[derive(Default)]
-pub struct EchoSlot(Mutex<Option<Echo>>, Mutex<Option<(Vec<u64>, Py<PyDict>)>>);
+pub struct EchoSlot(Mutex<Option<Echo>>, Mutex<Option<(Vec<u64>, Py<PyDict>)>>, Mutex<Option<[Py<PyAny>; 3]>>);
 
 impl EchoSlot {
     /// The model echo and storage dicts for a run whose position 1 is
@@ -84,6 +87,24 @@ impl EchoSlot {
         let d = make()?;
         *lock() = Some((numbers, d.clone().unbind()));
         Ok(d)
+    }
+
+    /// The objects of a run's dict that depend on the deck alone (its
+    /// layout and numbers of buffers and co-ordinates): those of the last
+    /// run, else those `make` builds (then kept). Every run of the deck
+    /// shares them, and Python converts them once.
+    pub fn shape<'py>(
+        &self,
+        py: Python<'py>,
+        make: impl FnOnce() -> PyResult<[Bound<'py, PyAny>; 3]>,
+    ) -> PyResult<[Bound<'py, PyAny>; 3]> {
+        let lock = || self.2.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(kept) = lock().as_ref() {
+            return Ok(kept.each_ref().map(|o| o.bind(py).clone()));
+        }
+        let made = make()?;
+        *lock() = Some(made.each_ref().map(|o| o.clone().unbind()));
+        Ok(made)
     }
 }
 

@@ -6,8 +6,9 @@ use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::SimReport;
 use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
-use numpy::npyffi::NPY_ORDER;
-use numpy::{PyArray1, PyArrayMethods};
+use numpy::ndarray::{Array2, ShapeBuilder, ShapeError};
+use numpy::PyArray2;
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -15,13 +16,20 @@ use crate::errors;
 
 /// A row-major `rows x cols` array.
 pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
-    Ok(PyArray1::from_vec(py, data).reshape([rows, cols])?.into_any())
+    owned(py, Array2::from_shape_vec((rows, cols), data))
 }
 
 /// A rows x cols array from `data` given column by column (Fortran order):
-/// a view of one numpy array, whose columns are contiguous.
+/// one numpy array, whose columns are contiguous.
 pub fn columns<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
-    Ok(PyArray1::from_vec(py, data).reshape_with_order([rows, cols], NPY_ORDER::NPY_FORTRANORDER)?.into_any())
+    owned(py, Array2::from_shape_vec((rows, cols).f(), data))
+}
+
+/// The numpy array that owns `array`'s values (made in its own order, not
+/// reshaped from a flat one).
+fn owned<'py>(py: Python<'py>, array: Result<Array2<f64>, ShapeError>) -> PyResult<Bound<'py, PyAny>> {
+    let array = array.map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(PyArray2::from_owned_array(py, array).into_any())
 }
 
 /// `AdjustInfo` as a dict.

@@ -51,8 +51,9 @@ use mechfem_core::run::{Selection, SimReport};
 use mechfem_core::{InputMotion, Motion, Quantity, RunReport};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
+use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
@@ -133,15 +134,13 @@ fn execute(
     }
     let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let hodograph = if with_motion { hodograph_coords(&c) } else { Vec::new() };
-    let selection = Selection::deck(&buffers, &hodograph, c.mechanism.n_dof(), c.dynamics.is_some());
-    let total = motion.map_or(0, |m| m.steps) + 1;
-    let mut rec = Recording::new(selection, total, progress, det);
-    rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
-    let n = c.mechanism.n_coords();
-    if let Some(message) = errors::memory_refusal(total, rec.recorder.values_per_position(n), memory_limit) {
+    let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, c.dynamics.is_some());
+    let (total, n) = (motion.map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
+    if let Some(message) = errors::memory_refusal(total, selection.width() + n, memory_limit) {
         return Err(ResourceError::new_err(message));
     }
-    rec.recorder.reserve(total, n);
+    let mut rec = Recording::new(selection, n, total, progress, det);
+    rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
     let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
     let sim = text::simulation(c.mode, c.dynamics.as_ref(), &c.integration);
     let result = py.detach(|| text::move_through(mech, state, motion, params, sim, &mut rec));
@@ -162,7 +161,7 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let Ran { compiled: c, given, rec, report, .. } = execute(py, compiled, false, None, u64::MAX, true)?;
     let mech = &c.mechanism;
     let n = mech.n_coords();
-    let at_1 = rec.recorder.coords()[..n].to_vec();
+    let at_1 = rec.coords[..n].to_vec();
     let (model, _) = echo(py, &slot, &c, &given, &at_1, &rec)?;
     let d = PyDict::new(py);
     d.set_item("n_coords", n)?;
@@ -170,11 +169,11 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("n_prescribed", mech.n_prescribed())?;
     d.set_item("n_dependent", mech.n_dependent())?;
     d.set_item("n_dof", mech.n_dof())?;
-    let det = rec.selection.block("det").map_or(f64::NAN, |b| rec.recorder.data()[b.start]);
+    let det = rec.selection.block("det").map_or(f64::NAN, |b| rec.table.get(0, b.start));
     d.set_item("det", det)?;
     d.set_item("coords", PyArray1::from_vec(py, at_1.clone()))?;
     d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
-    d.set_item("model", model)?;
+    d.set_item(intern!(py, "model"), model)?;
     Ok(d)
 }
 
@@ -195,7 +194,9 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// `buffer_numbers`), `hodograph` (d x_i / d input 1 of the co-ordinates
 /// `hodograph_coords`, 1-based, that PLOTHODO lines name), for a DYN deck
 /// `inputs`, `drive`, `ekin`, `epot` and `power`, then `time` and `det`.
-/// `coords` holds every co-ordinate per position.
+/// `coords` holds every co-ordinate per position. Every run of one deck
+/// file shares its `layout`, `buffer_numbers` and `hodograph_coords`
+/// objects ([`EchoSlot::shape`]).
 ///
 /// With `det=False` det(D^c) is computed only where a buffer asks for it:
 /// the `det` block holds NaN otherwise, no sign change of det(D^c) is
@@ -215,23 +216,28 @@ fn run_deck(
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
         execute(py, compiled, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
-    let (n, width, positions) = (mech.n_coords(), rec.selection.width(), rec.recorder.positions());
-    let (model, storage) = echo(py, &slot, &c, &given, &rec.recorder.coords()[..n], &rec)?;
-    let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
-    let hodograph_coords: Vec<usize> = hodograph_coords(&c).iter().take(hodograph).map(|i| i + 1).collect();
-    let layout = PyDict::new(py);
-    for b in rec.selection.blocks() {
-        layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
-    }
-    let (data, coords) = rec.recorder.into_parts();
+    let (n, width, positions) = (mech.n_coords(), rec.selection.width(), rec.table.positions());
+    let (model, storage) = echo(py, &slot, &c, &given, &rec.coords[..n], &rec)?;
+    // The same for every run of the deck: made once, and shared.
+    let [layout, buffer_numbers, hodograph_coords] = slot.shape(py, || {
+        let layout = PyDict::new(py);
+        for b in rec.selection.blocks() {
+            layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
+        }
+        let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
+        let coords = hodograph_coords(&c).into_iter().take(hodograph).map(|i| i + 1);
+        let numbers = PyList::new(py, c.buffers.iter().map(|b| b.number))?;
+        Ok([layout.into_any(), numbers.into_any(), PyList::new(py, coords)?.into_any()])
+    })?;
+    let (table, coords) = (rec.table.into_vec(), rec.coords);
 
     let d = PyDict::new(py);
-    d.set_item("coords", convert::array2(py, coords, positions, n)?)?;
-    d.set_item("table", convert::columns(py, transposed(&data, width), positions, width)?)?;
-    d.set_item("layout", layout)?;
-    d.set_item("buffer_numbers", c.buffers.iter().map(|b| b.number).collect::<Vec<_>>())?;
-    d.set_item("hodograph_coords", hodograph_coords)?;
-    d.set_item("simulation", sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
+    d.set_item(intern!(py, "coords"), convert::array2(py, coords, positions, n)?)?;
+    d.set_item(intern!(py, "table"), convert::columns(py, table, positions, width)?)?;
+    d.set_item(intern!(py, "layout"), layout)?;
+    d.set_item(intern!(py, "buffer_numbers"), buffer_numbers)?;
+    d.set_item(intern!(py, "hodograph_coords"), hodograph_coords)?;
+    d.set_item(intern!(py, "simulation"), sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &report, steps);
     let plain = report.stop.is_none() && report.limits.is_empty() && report.singular_positions.is_empty();
@@ -244,28 +250,11 @@ fn run_deck(
     } else {
         report_dict()?
     };
-    d.set_item("report", report_dict)?;
-    d.set_item("model", model)?;
-    d.set_item("storage", storage)?;
-    d.set_item("interrupted", interrupted)?;
+    d.set_item(intern!(py, "report"), report_dict)?;
+    d.set_item(intern!(py, "model"), model)?;
+    d.set_item(intern!(py, "storage"), storage)?;
+    d.set_item(intern!(py, "interrupted"), interrupted)?;
     Ok(d)
-}
-
-/// A row-major table `width` wide, column after column (column-major).
-/// A deck's few quantities are recorded row by row and transposed once
-/// after the run: writing each position into its columns as it comes
-/// (`mechfem_core::run::Columns`, as the full layout of a named model's run
-/// does) makes a run of a few columns slower, its stores spread over as
-/// many streams as it has columns.
-fn transposed(data: &[f64], width: usize) -> Vec<f64> {
-    let rows = data.len().checked_div(width).unwrap_or(0);
-    let mut out = vec![0.0; data.len()];
-    for (k, row) in data.chunks_exact(width.max(1)).enumerate() {
-        for (q, &v) in row.iter().enumerate() {
-            out[q * rows + k] = v;
-        }
-    }
-    out
 }
 
 /// The module `mechfem._core`.

@@ -8,17 +8,19 @@
 use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
-use mechfem_core::run::{InverseDynamics, Selection};
-use mechfem_core::{Mechanism, Observer, PositionView, Recorder, TransferOrder};
+use mechfem_core::run::{Columns, InverseDynamics, Selection};
+use mechfem_core::{Mechanism, Observer, PositionView, TransferOrder};
 use pyo3::prelude::*;
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
 /// progress and to notice Ctrl-C.
 pub struct Recording {
-    /// The quantities of `selection`, in its column order.
-    pub recorder: Recorder,
-    /// The named blocks of the recorder's columns.
+    /// The named blocks of the table's columns.
     pub selection: Selection,
+    /// The quantities of `selection` at every position, column by column.
+    pub table: Columns,
+    /// Every co-ordinate at every position, row-major (positions x N).
+    pub coords: Vec<f64>,
     /// Values of the prescribed rows at position 1.
     pub prescribed_at_1: Vec<f64>,
     /// Values of the dependent form parameters at position 1.
@@ -27,6 +29,11 @@ pub struct Recording {
     pub progress: Progress,
     /// The transfer functions the run computes at every position.
     order: Option<TransferOrder>,
+    /// One position's values, before they go into their columns.
+    row: Vec<f64>,
+    /// Inverse dynamics, evaluated at every position when a dynamic
+    /// quantity is recorded.
+    dynamics: Option<InverseDynamics>,
 }
 
 /// Progress reporting of a single run: attaches to Python about every 1%
@@ -38,11 +45,9 @@ pub struct Progress {
     /// The most positions reported so far.
     reported: usize,
     /// The count of positions at which Python is next attached to: the
-    /// next multiple of the stride with a callback; without one, only
-    /// Ctrl-C is looked for, about every 10% of the run (attaching every
-    /// 1% costs a short run of a small mechanism more than its positions
-    /// do), and at the end. Kept as a count to compare with, not found by a
-    /// division at every position.
+    /// next multiple of the stride with a callback; without one, at which
+    /// the clock is looked at ([`Progress::interrupts`]). Kept as a count to
+    /// compare with, not found by a division at every position.
     next: usize,
     /// The first error raised by the callback or a signal handler; it stops
     /// the run, and is raised (or, for Ctrl-C, reported) once the positions
@@ -56,10 +61,15 @@ pub struct Progress {
 const INTERRUPT_CHECK: Duration = Duration::from_millis(100);
 
 impl Progress {
-    /// Progress over `total` positions.
+    /// Progress over `total` positions: reported to `callback` about every
+    /// 1% of them; without a callback only Ctrl-C is looked for, as
+    /// [`Progress::interrupts`] looks for it.
     pub fn new(callback: Option<Py<PyAny>>, total: usize) -> Progress {
-        let stride = (total / 100).max(1);
-        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None, asked: None };
+        let (stride, asked) = match callback {
+            Some(_) => ((total / 100).max(1), None),
+            None => (64, Some(Instant::now())),
+        };
+        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None, asked };
         p.next = p.after(0);
         p
     }
@@ -67,11 +77,11 @@ impl Progress {
     /// No progress to report, only Ctrl-C to notice, for a run on the thread
     /// Python's signal handlers run on: Python is asked about every tenth of
     /// a second of the run (the clock read every 64 positions), so that a
-    /// run of many short variants pays next to nothing for it.
+    /// short run, or a study of many, pays next to nothing for it (a run of
+    /// 360 positions attached to Python at every tenth of it would cost a
+    /// few microseconds more), and at the last of `total` positions.
     pub fn interrupts() -> Progress {
-        let mut p = Progress { stride: 64, asked: Some(Instant::now()), ..Progress::new(None, usize::MAX) };
-        p.next = p.after(0);
-        p
+        Progress::new(None, usize::MAX)
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -86,9 +96,7 @@ impl Progress {
     /// The count after `done` at which Python is attached to next (with
     /// [`Progress::interrupts`], at which the clock is looked at).
     fn after(&self, done: usize) -> usize {
-        let every = self.callback.is_some() || self.asked.is_some();
-        let step = if every { self.stride } else { 10 * self.stride };
-        (done / step).saturating_add(1).saturating_mul(step).min(self.total)
+        (done / self.stride).saturating_add(1).saturating_mul(self.stride).min(self.total)
     }
 
     /// Reports that `done` positions are computed, when that is a multiple
@@ -106,7 +114,9 @@ impl Progress {
         }
         self.next = self.after(done);
         if let Some(asked) = self.asked.as_mut() {
-            if asked.elapsed() < INTERRUPT_CHECK {
+            // And once at the end, so that a run shorter than the interval
+            // still notices a Ctrl-C made during it.
+            if done < self.total && asked.elapsed() < INTERRUPT_CHECK {
                 return;
             }
             *asked = Instant::now();
@@ -123,33 +133,40 @@ impl Progress {
 }
 
 impl Recording {
-    /// Records the quantities of `selection` over a run of `total`
-    /// positions. With `det`, det(D^c) is computed at every position (and
-    /// with it the first order, and the watch for limit positions by its
-    /// sign); without, its column holds NaN unless a buffer asks for it,
-    /// and a run whose quantities are all positions and values computes
-    /// positions only.
-    pub fn new(selection: Selection, total: usize, progress: Option<Py<PyAny>>, det: bool) -> Recording {
+    /// Records the quantities of `selection` and the `n_coords`
+    /// co-ordinates over a run of `total` positions, into tables sized for
+    /// them up front. With `det`, det(D^c) is computed at every position
+    /// (and with it the first order, and the watch for limit positions by
+    /// its sign); without, its column holds NaN unless a buffer asks for
+    /// it, and a run whose quantities are all positions and values
+    /// computes positions only.
+    pub fn new(
+        selection: Selection,
+        n_coords: usize,
+        total: usize,
+        progress: Option<Py<PyAny>>,
+        det: bool,
+    ) -> Recording {
         let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
         Recording {
-            recorder: Recorder::new(selection.quantities().to_vec(), true),
+            // Straight into columns: the table Python gets, with no
+            // row-major copy to be transposed after the run.
+            table: Columns::new(selection.width(), total),
+            coords: Vec::with_capacity(total.saturating_mul(n_coords)),
+            row: Vec::with_capacity(selection.width()),
             selection,
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
             progress: Progress::new(progress, total),
             order,
+            dynamics: None,
         }
     }
-}
 
-impl Recording {
     /// Records the dynamic quantities with the mass and load model of a
     /// DYN deck (checked when the deck was compiled).
     pub fn with_dynamics(&mut self, mech: &Mechanism, dynamics: Option<&Dynamics>) {
-        if let Some(d) = dynamics {
-            let recorder = std::mem::take(&mut self.recorder);
-            self.recorder = recorder.with_dynamics(InverseDynamics::new(mech, d.clone()));
-        }
+        self.dynamics = dynamics.map(|d| InverseDynamics::new(mech, d.clone()));
     }
 }
 
@@ -161,7 +178,10 @@ impl Observer for Recording {
             self.prescribed_at_1 = view.state.target.clone();
             self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
         }
-        self.recorder.position(view);
+        self.row.clear();
+        self.selection.record(view, self.dynamics.as_mut(), &mut self.row);
+        self.table.push(&self.row);
+        self.coords.extend_from_slice(&view.state.x);
         self.progress.report(view.index + 1);
     }
 

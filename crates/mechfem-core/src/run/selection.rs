@@ -6,9 +6,11 @@
 //! ```
 //! use mechfem_core::run::Selection;
 //! use mechfem_core::Quantity;
+//! # let deck = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/fourbar/fourbar.mec");
+//! # let model = mechfem_deck::load(deck).unwrap();
 //! // Two buffers and the hodograph of co-ordinates 9 and 10 (0-based 8, 9)
-//! // of a kinematic deck with one input.
-//! let s = Selection::deck(&[Quantity::X0(8), Quantity::X0(9)], &[8, 9], 1, false);
+//! // of a kinematic deck of one input.
+//! let s = Selection::deck(&model.mechanism, &[Quantity::X0(8), Quantity::X0(9)], &[8, 9], false);
 //! let names: Vec<&str> = s.blocks().iter().map(|b| b.name).collect();
 //! assert_eq!(names, ["buffers", "hodograph", "time", "det"]);
 //! let hodograph = s.block("hodograph").unwrap();
@@ -19,22 +21,48 @@
 //!
 //! [`Layout`]: super::Layout
 
+use super::inverse::InverseDynamics;
 use super::layout::Block;
-use super::record::Quantity;
+use super::observe::PositionView;
+use super::record::{record_evaluated, Quantity};
+use crate::model::{Mechanism, FIXED};
 use crate::solver::TransferOrder;
 
-/// Named blocks of chosen quantities: the quantity of every column
-/// ([`Self::quantities`], what a [`Recorder`](super::Recorder) of them
-/// records) and the blocks that name them ([`Self::blocks`]), which cover
-/// the columns once each, in order.
+/// Named blocks of chosen quantities of one mechanism: the quantity of
+/// every column ([`Self::quantities`]) and the blocks that name them
+/// ([`Self::blocks`]), which cover the columns once each, in order.
+/// [`Self::record`] records a position of them.
 #[derive(Debug, Clone, Default)]
 pub struct Selection {
     blocks: Vec<Block>,
     quantities: Vec<Quantity>,
+    /// How each column is read at a position.
+    reads: Vec<Read>,
+    /// Whether a column is one of inverse dynamics.
+    dynamic: bool,
+}
+
+/// How [`Selection::record`] reads one column: the quantities a deck
+/// records most of a mechanism of one input from its transfer functions
+/// directly, by the column of the co-ordinate in them (found once), to the
+/// same values and sums as [`Quantity::value`]; any other as
+/// [`record_evaluated`] does.
+#[derive(Debug, Clone, Copy)]
+enum Read {
+    Coord(usize),
+    Time,
+    Det,
+    /// d x_i / d input 1 of the co-ordinate at this column (FIXED for a fixed one).
+    Kx1(usize),
+    /// The velocity of the co-ordinate at this column.
+    Velocity(usize),
+    /// The acceleration of the co-ordinate at this column.
+    Acceleration(usize),
+    Other,
 }
 
 impl Selection {
-    /// What a deck's run records, for a mechanism of `n_dof` inputs, block
+    /// What a deck's run of `mech` (D inputs) records, block
     /// by block:
     ///
     /// | block | shape | value |
@@ -51,8 +79,9 @@ impl Selection {
     /// | `ekin`, `epot`, `power` | one value | kinetic and potential energy, drive power |
     ///
     /// and last `time` and `det` (det(D^c)), one value each. The hodograph
-    /// needs an input: without one (`n_dof` 0) the block is empty.
-    pub fn deck(buffers: &[Quantity], hodograph: &[usize], n_dof: usize, dynamic: bool) -> Selection {
+    /// needs an input: without one the block is empty.
+    pub fn deck(mech: &Mechanism, buffers: &[Quantity], hodograph: &[usize], dynamic: bool) -> Selection {
+        let n_dof = mech.n_dof();
         let mut s = Selection::default();
         s.add("buffers", vec![buffers.len()], buffers.iter().copied());
         let hodograph = if n_dof > 0 { hodograph } else { &[] };
@@ -66,6 +95,8 @@ impl Selection {
         }
         s.add("time", vec![], [Quantity::Time]);
         s.add("det", vec![], [Quantity::Det]);
+        s.reads = s.quantities.iter().map(|&q| read(mech, q)).collect();
+        s.dynamic = s.quantities.iter().any(Quantity::is_dynamic);
         s
     }
 
@@ -104,5 +135,64 @@ impl Selection {
         let det = self.block("det").map(Block::columns).unwrap_or_default();
         let asked = self.quantities.iter().enumerate().filter(|(c, _)| !det.contains(c));
         asked.map(|(_, q)| q.transfer_order()).max().flatten()
+    }
+
+    /// Appends the values of every column at the position `v` to `out`,
+    /// each the one [`Quantity::value`] (or [`Quantity::dynamic_value`])
+    /// gives, to the last bit; those of inverse dynamics from `dynamics`,
+    /// evaluated here (NaN without it).
+    pub fn record(&self, v: &PositionView<'_>, dynamics: Option<&mut InverseDynamics>, out: &mut Vec<f64>) {
+        let dynamics = match dynamics {
+            Some(d) if self.dynamic => {
+                d.evaluate(v);
+                Some(&*d)
+            }
+            _ => None,
+        };
+        let kin = v.kin;
+        // The direct reads are those of one input; without transfer
+        // functions (a limit position) the quantities made of them are NaN.
+        let transfer = kin.order().is_some() && v.mech.n_dof() == 1;
+        let (x1, x2, qd, qdd) = if transfer {
+            (kin.x1(0), kin.x2(0, 0), v.input_vel[0], v.input_acc[0])
+        } else {
+            (&[][..], &[][..], f64::NAN, f64::NAN)
+        };
+        let at = |x: &[f64], c: usize| if c == FIXED { 0.0 } else { x[c] };
+        out.reserve(self.reads.len());
+        for (r, q) in self.reads.iter().zip(&self.quantities) {
+            let value = match *r {
+                Read::Coord(i) => v.state.x[i],
+                Read::Time => v.time,
+                Read::Det => kin.det(),
+                Read::Kx1(c) if transfer => at(x1, c),
+                // Summed as `Kinematics::velocity` and `Kinematics::acceleration` sum.
+                Read::Velocity(c) if transfer => std::iter::once(at(x1, c) * qd).sum(),
+                Read::Acceleration(c) if transfer => {
+                    let mut a = 0.0;
+                    a += at(x1, c) * qdd;
+                    a += at(x2, c) * qd * qd;
+                    a
+                }
+                _ => {
+                    record_evaluated(std::slice::from_ref(q), v, dynamics, out);
+                    continue;
+                }
+            };
+            out.push(value);
+        }
+    }
+}
+
+/// How [`Selection::record`] reads quantity `q` of `mech`.
+fn read(mech: &Mechanism, q: Quantity) -> Read {
+    match q {
+        Quantity::X0(i) => Read::Coord(i),
+        Quantity::Time => Read::Time,
+        Quantity::Det => Read::Det,
+        Quantity::Kx1 { coord, j: 0 } => Read::Kx1(mech.column(coord)),
+        Quantity::Vx(i) => Read::Velocity(mech.column(i)),
+        Quantity::Ax(i) => Read::Acceleration(mech.column(i)),
+        _ => Read::Other,
     }
 }

@@ -274,12 +274,13 @@ impl Kinematics {
                 for m in j..self.n_dof {
                     let p = self.pair[j * self.n_dof + m];
                     let (a, b) = (&self.x1[j * n..(j + 1) * n], &self.x1[m * n..(m + 1) * n]);
-                    second_products(&mech.prescribed, &state.x, &self.cache, (a, b), Over::Columns, &mut self.rhs);
-                    for r in self.rhs.iter_mut() {
+                    // Solved in its place in x2, not copied there.
+                    let x2 = &mut self.x2[p * n..(p + 1) * n];
+                    second_products(&mech.prescribed, &state.x, &self.cache, (a, b), Over::Columns, x2);
+                    for r in x2.iter_mut() {
                         *r = -*r;
                     }
-                    self.lu.solve(&mut self.rhs, &mut self.work);
-                    self.x2[p * n..(p + 1) * n].copy_from_slice(&self.rhs);
+                    self.lu.solve(x2, &mut self.work);
                 }
             }
             self.second_cleared = false;
