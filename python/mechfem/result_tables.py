@@ -179,11 +179,16 @@ class ResultTables:
         where = self._layout.get(block)
         if where is not None and block != "buffers":
             start, shape = where
-            return self._table[:, start + (int(np.ravel_multi_index(index, tuple(shape))) if shape else 0)]
-        column = self._recorded.get((block, *index))
-        if column is None:
+            column = 0
+            for i, n in zip(index, shape, strict=True):  # row-major in the block's shape
+                if not 0 <= i < n:
+                    raise IndexError(f"index {i} out of range 0..{n - 1} in the block {block!r} of the run's table")
+                column = column * n + i
+            return self._table[:, start + column]
+        recorded = self._recorded.get((block, *index))
+        if recorded is None:
             raise NotRecordedError(self._unrecorded(block, index))
-        return self._table[:, column]
+        return self._table[:, recorded]
 
     def _unrecorded(self, block: str, index: Sequence[int]) -> str:
         """Why a deck's run has no ``block`` ``index``, and the buffer that would record it."""
@@ -259,7 +264,9 @@ class ResultTables:
         function of first (d/d ``wrt``) or second order (d2/d ``wrt`` d ``wrt2``; ``wrt2`` defaults to ``wrt``).
         ``unit="deg"`` gives every angle in degrees: an angle's value, and a transfer function per degree of an
         angle input (d psi / d alpha of two angles is the same in either unit)."""
-        t = self._any(name)
+        return self._value(self._any(name), order, wrt, wrt2, unit)
+
+    def _value(self, t: Target, order: int, wrt: object, wrt2: object, unit: Unit | None) -> FloatArray:
         if order == 0:
             return self._in_unit(self._of(t, "x0", "e0"), t, (), unit)
         j = self._dof(wrt)
@@ -292,8 +299,7 @@ class ResultTables:
         self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: Unit | None = None
     ) -> FloatArray:
         """An output (or any row: a prescribed value, an input) and its transfer functions; see :meth:`value`."""
-        self._target(name, "output or row", ("row",))
-        return self.value(name, order, wrt, wrt2, unit)
+        return self._value(self._target(name, "output or row", ("row",)), order, wrt, wrt2, unit)
 
     def transfer(
         self, name: object, order: int = 1, wrt: object = None, wrt2: object = None, unit: Unit | None = None
