@@ -199,8 +199,11 @@ impl Numbers {
         // the new ones: the angles each element tracks from its directions,
         // and the value of every row the deck gives none. Co-ordinates at
         // which an element cannot be evaluated are left for the run, which
-        // says so at position 1.
-        if changes.iter().any(|ch| matches!(ch, Change::Coord(..))) {
+        // says so at position 1. Co-ordinates equal to the deck's own (a
+        // named model run again with its points unmoved) keep what the
+        // reader derived from them.
+        let moved = n.state.x.iter().zip(&c.state.x).any(|(a, b)| a.to_bits() != b.to_bits());
+        if moved {
             if let Ok(mut start) = c.mechanism.start_state(n.state.x.clone()) {
                 for (t, p) in start.target.iter_mut().zip(&n.para) {
                     if let Some(v) = p {
