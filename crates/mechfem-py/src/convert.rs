@@ -3,14 +3,14 @@
 //! deck's 1-based numbering here.
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
-use mechfem_core::run::SimReport;
+use mechfem_core::run::{Block, SimReport};
 use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
 use numpy::ndarray::{Array2, ShapeBuilder, ShapeError};
 use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple};
 
 use crate::errors;
 
@@ -33,6 +33,16 @@ fn owned<'py>(py: Python<'py>, array: Result<Array2<f64>, ShapeError>) -> PyResu
 }
 
 /// `AdjustInfo` as a dict.
+/// A table's layout for Python: block name -> (first column, shape at one
+/// position), as the core names its blocks.
+pub fn layout<'py>(py: Python<'py>, blocks: &[Block]) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for b in blocks {
+        d.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
+    }
+    Ok(d)
+}
+
 pub fn adjust<'py>(py: Python<'py>, a: &AdjustInfo) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("iterations", a.iterations)?;

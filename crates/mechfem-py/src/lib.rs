@@ -53,7 +53,7 @@ use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyTuple};
+use pyo3::types::{PyDict, PyList};
 
 use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
@@ -220,10 +220,7 @@ fn run_deck(
     let (model, storage) = echo(py, &slot, &c, &given, &rec.coords[..n], &rec)?;
     // The same for every run of the deck: made once, and shared.
     let [layout, buffer_numbers, hodograph_coords] = slot.shape(py, || {
-        let layout = PyDict::new(py);
-        for b in rec.selection.blocks() {
-            layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
-        }
+        let layout = convert::layout(py, rec.selection.blocks())?;
         let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
         let coords = hodograph_coords(&c).into_iter().take(hodograph).map(|i| i + 1);
         let numbers = PyList::new(py, c.buffers.iter().map(|b| b.number))?;

@@ -20,7 +20,7 @@ use numpy::npyffi::NPY_ORDER;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyTuple};
+use pyo3::types::{PyDict, PyList};
 
 use crate::{convert, errors};
 
@@ -78,12 +78,9 @@ pub struct Shared {
 impl Shared {
     /// The Python objects of compiled deck `c` that every run of it shares.
     pub fn new(py: Python<'_>, c: &Compiled) -> PyResult<Shared> {
-        let layout = PyDict::new(py);
-        for b in Layout::full(&c.mechanism, c.dynamics.is_some()).blocks() {
-            layout.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
-        }
+        let layout = Layout::full(&c.mechanism, c.dynamics.is_some());
         Ok(Shared {
-            layout: layout.unbind(),
+            layout: convert::layout(py, layout.blocks())?.unbind(),
             storage: convert::storage(py, c)?.unbind(),
             buffer_numbers: PyList::new(py, c.buffers.iter().map(|b| b.number))?.unbind(),
             echo: convert::Echo::new(py, c)?,

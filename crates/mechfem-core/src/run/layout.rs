@@ -396,7 +396,7 @@ impl Layout {
 /// A velocity from first-order transfer functions `d1` and the input
 /// velocities `qd` (eq. 5.29), summed as [`crate::Kinematics::velocity`] does.
 #[inline]
-fn velocity(d1: &[f64], qd: &[f64]) -> f64 {
+pub(super) fn velocity(d1: &[f64], qd: &[f64]) -> f64 {
     d1.iter().zip(qd).map(|(d, q)| d * q).sum()
 }
 
@@ -404,7 +404,7 @@ fn velocity(d1: &[f64], qd: &[f64]) -> f64 {
 /// `d2` (row-major in the input pairs) and the input velocities and
 /// accelerations (eq. 5.30), summed as [`crate::Kinematics::acceleration`] does.
 #[inline]
-fn acceleration(d1: &[f64], d2: &[f64], qd: &[f64], qdd: &[f64]) -> f64 {
+pub(super) fn acceleration(d1: &[f64], d2: &[f64], qd: &[f64], qdd: &[f64]) -> f64 {
     let nd = d1.len();
     let mut a = 0.0;
     for j in 0..nd {

@@ -22,7 +22,7 @@
 //! [`Layout`]: super::Layout
 
 use super::inverse::InverseDynamics;
-use super::layout::Block;
+use super::layout::{acceleration, velocity, Block};
 use super::observe::PositionView;
 use super::record::{record_evaluated, Quantity};
 use crate::model::{Mechanism, FIXED};
@@ -166,14 +166,8 @@ impl Selection {
                 Read::Time => v.time,
                 Read::Det => kin.det(),
                 Read::Kx1(c) if transfer => at(x1, c),
-                // Summed as `Kinematics::velocity` and `Kinematics::acceleration` sum.
-                Read::Velocity(c) if transfer => std::iter::once(at(x1, c) * qd).sum(),
-                Read::Acceleration(c) if transfer => {
-                    let mut a = 0.0;
-                    a += at(x1, c) * qdd;
-                    a += at(x2, c) * qd * qd;
-                    a
-                }
+                Read::Velocity(c) if transfer => velocity(&[at(x1, c)], &[qd]),
+                Read::Acceleration(c) if transfer => acceleration(&[at(x1, c)], &[at(x2, c)], &[qd], &[qdd]),
                 _ => {
                     record_evaluated(std::slice::from_ref(q), v, dynamics, out);
                     continue;
