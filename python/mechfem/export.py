@@ -198,16 +198,15 @@ def analysis_drawing(
     """The drawing of a :class:`~mechfem.RunResult` at ``position``; ``paths``: True for every moving point, False
     for none, or the names of the points whose paths to draw; ``names`` writes the points' names."""
 
-    rr = a.run_result()
-    k = check_position(position, rr.positions) - 1
+    k = check_position(position, a.positions) - 1
     cols = a.numbering.coord_number
     chosen = [] if paths is False else a._traced_points(None if paths is True else paths)
     keys = [(cols[p.x], cols[p.y]) for p in chosen]
-    base = result_drawing(rr, k + 1, keys)
+    base = result_drawing(a, k + 1, keys)
     tracks = [Path2D(p.name, t.x, t.y) for p, t in zip(chosen, base.paths, strict=True)]
     labels = []
     if names:
-        x = rr.coords[k]
+        x = a.coords[k]
         for p in a.mechanism.points:
             if p.x in cols and p.y in cols:
                 px, py = float(x[cols[p.x] - 1]), float(x[cols[p.y] - 1])

@@ -35,11 +35,10 @@ def _draw_mechanism(ax: Axes, a: RunResult, position: int = 0, names: bool = Tru
     from mechfem.drawing import MechanismDrawing
     from mechfem.mpl_drawing import MplMechanism
 
-    rr = a.run_result()
-    drawing = MechanismDrawing(rr.model, rr.coords)
-    MplMechanism(ax, drawing, rr.coords[position])
+    drawing = MechanismDrawing(a.model, a.coords)
+    MplMechanism(ax, drawing, a.coords[position])
     if names:
-        x = rr.coords[position]
+        x = a.coords[position]
         offset = 0.6 * drawing.unit
         for p in a.mechanism.points:
             try:
@@ -192,13 +191,11 @@ def animate(
     from mechfem.echo import Picture, Plot
 
     target = Path(path)
-    rr = a.run_result()
     plots = [
         Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in a._traced_points(points)
     ]
-    storage = dataclasses.replace(rr.storage, animate=target.stem, pictures=[Picture("", 0, plots)])
-    rr = rr.replace(storage=storage)
-    info = write_animation(rr, target.parent, max_frames=max_frames or MAX_FRAMES)
+    storage = dataclasses.replace(a.storage, animate=target.stem, pictures=[Picture("", 0, plots)])
+    info = write_animation(a.replace(storage=storage), target.parent, max_frames=max_frames or MAX_FRAMES)
     return list(info.files)
 
 

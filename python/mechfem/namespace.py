@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from mechfem import deckio
+from mechfem import deckio, echo
 from mechfem import result as _result
 from mechfem.echo import Model, ModelNames
 from mechfem.explain import PythonWords
@@ -150,14 +150,12 @@ def deck_namespace(result: RunResult) -> Namespace:
         [_declared_row(r) for r in model.prescribed],
         [_declared_row(r) for r in model.dependent],
     )
-    coords = sorted(mech.coordinates, key=lambda c: c.number or 0)
-    # The topology makes the rows in the echo's order: the prescribed ones by destination, then the outputs.
-    n_p = len(model.prescribed)
-    numbering = Numbering(coords, list(mech.elements), mech.rows[:n_p], mech.rows[n_p:])
+    # The deck's own numbers, as for a deck read into a mechanism (its inputs are its last prescribed rows).
+    numbering = deckio.number_model(mech)
     return Namespace(mech, numbering, named=False, aliases=_aliases(model, numbering, mech))
 
 
-def _declared_row(r: Any) -> deckio.DeclaredRow:
+def _declared_row(r: echo.Row) -> deckio.DeclaredRow:
     return deckio.DeclaredRow(r.dest, [(t.element, t.form, t.factor) for t in r.terms], r.para, r.input)
 
 
@@ -168,22 +166,19 @@ def _aliases(model: Model, nb: Numbering, mech: Mechanism) -> dict[str, object]:
     declared: dict[str, object] = {}
     for c in model.coordinates:
         out[f"x{c.number}"] = nb.coords[c.number - 1]
-        name = getattr(c, "name", None)
-        if name:
-            declared[name] = nb.coords[c.number - 1]
+        if c.name:
+            declared[c.name] = nb.coords[c.number - 1]
     for echo_rows, rows, stem in ((model.prescribed, nb.prescribed, "row"), (model.dependent, nb.dependent, "out")):
         for e, r in zip(echo_rows, rows, strict=True):
             out[f"{stem}{abs(e.dest)}"] = r
             out.setdefault(e.formula(), r)
             if len(r.terms) == 1 and r.terms[0][0] == 1.0:
                 out.setdefault(r.terms[0][1].label, r)
-            name = getattr(e, "name", None)
-            if name:
-                declared[name] = r
+            if e.name:
+                declared[e.name] = r
     for declared_element, element in zip(model.elements, nb.elements, strict=True):
-        name = getattr(declared_element, "name", None)
-        if name:
-            declared[name] = element
+        if declared_element.name:
+            declared[declared_element.name] = element
     # A point for co-ordinates declared ``A.x`` and ``A.y`` that an element uses as a pair.
     for name, obj in list(declared.items()):
         if name.endswith(".x") and isinstance(obj, Coordinate) and obj.point is not None:

@@ -144,13 +144,12 @@ def analysis_png(a: RunResult) -> bytes | None:
 
 def analysis_outputs(a: RunResult) -> list[list[str]]:
     """One row per output: name, smallest value, largest value, unit."""
-    rr = a.run_result()
-    by_dest = {r.dest: r for r in rr.model.dependent}
+    by_dest = {r.dest: r for r in a.model.dependent}
     rows = []
     for k, row in enumerate(a.numbering.dependent, 1):
         lo, hi = extrema(a.value(row))
         core = by_dest.get(-k)
-        unit = labels.row_unit(rr.model, core) if core is not None else ""
+        unit = labels.row_unit(a.model, core) if core is not None else ""
         rows.append([row.name, lo, hi, unit])
     return rows
 

@@ -15,7 +15,7 @@ import functools
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -26,45 +26,10 @@ from mechfem.echo import Model as Model
 from mechfem.echo import ModelNames, Storage
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, Simulation
-from mechfem.result_tables import Energy, ResultTables, Target
+from mechfem.result_tables import Energy, Names, ResultTables
 from mechfem.run_report import AdjustInfo, Limit, RunReport
-from mechfem.words import Words
 
 FloatArray = npt.NDArray[np.float64]
-
-
-class Names(Protocol):
-    """How a result resolves what a user names (:mod:`mechfem.namespace` builds one)."""
-
-    @property
-    def mechanism(self) -> Any:
-        """The :class:`~mechfem.Mechanism` the names belong to (for a deck, the one its topology makes)."""
-
-    @property
-    def numbering(self) -> Any:
-        """Its :class:`~mechfem.numbering.Numbering`: the deck numbers of its parts."""
-
-    @property
-    def named(self) -> bool:
-        """True for a named model's own names, False for those of a deck."""
-
-    def target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
-        """The point, co-ordinate or row ``ref`` names (of ``kinds``), in deck numbers."""
-
-    def dof(self, key: object) -> int:
-        """The DOF number (1-based) of an input."""
-
-    def words(self, report: RunReport) -> Words:
-        """The words to say ``report``'s stop reason and warnings with."""
-
-    def model_names(self) -> ModelNames | None:
-        """The names the labels of pictures and tables use (None: the deck's numbers)."""
-
-    def traced(self, names: Sequence[str] | None) -> list[Any]:
-        """The points whose paths pictures trace: those called ``names``, or every moving point."""
-
-    def columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
-        """The inputs, outputs and (with ``coordinates``) moving co-ordinates :meth:`RunResult.table` lists."""
 
 
 class RunResult(ResultTables):
@@ -207,44 +172,10 @@ class RunResult(ResultTables):
 
     # -- names
 
-    def _target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
-        return self._names.target(ref, what, kinds)
-
-    def _dof(self, wrt: object) -> int:
-        return self._names.dof(wrt) - 1
-
     def _traced_points(self, names: Sequence[str] | None = None) -> list[Any]:
         """The points whose paths a picture, animation or drawing traces: those called ``names``, or by default
         every moving point whose two co-ordinates the run computed."""
         return self._names.traced(names)
-
-    def _columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
-        return self._names.columns(coordinates)
-
-    def _input_is_angle(self, j: int) -> bool:
-        return bool(self.numbering.inputs[j].is_angle)
-
-    def _input_name(self, j: int) -> str:
-        return str(self.numbering.inputs[j].name)
-
-    def _coordinate_name(self, i: int) -> str:
-        return str(self.numbering.coords[i - 1].name)
-
-    def _dynamic_needed(self, what: str) -> None:
-        if "drive" in self._layout:
-            return
-        if self.named:
-            raise ValueError(
-                f"the mechanism {self.mechanism.name!r} has no masses or loads, so its run computed no {what}: give "
-                "them with Mechanism.mass, point_mass, inertia, gravity, force, load, load_table, spring or motor"
-            )
-        raise ValueError(
-            f"the deck {self.path} is a {self.model.mode} deck, so its run computed no {what}: give it a DYNAMICS "
-            "block and the mode DYN ANA"
-        )
-
-    def _moving(self, i: int) -> bool:
-        return bool(self.model.coordinates[i - 1].moving)
 
     # -- pictures
 

@@ -14,13 +14,15 @@ import functools
 import importlib
 import math
 from collections.abc import Mapping, Sequence
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
-from mechfem.echo import Model, Storage
+from mechfem.echo import Model, ModelNames, Storage
+from mechfem.run_report import RunReport
 from mechfem.units import Unit, check_unit, factor
+from mechfem.words import Words
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -87,6 +89,40 @@ INDEX_KINDS = {
 }
 
 
+class Names(Protocol):
+    """How a result resolves what a user names (:mod:`mechfem.namespace` builds one)."""
+
+    @property
+    def mechanism(self) -> Any:
+        """The :class:`~mechfem.Mechanism` the names belong to (for a deck, the one its topology makes)."""
+
+    @property
+    def numbering(self) -> Any:
+        """Its :class:`~mechfem.numbering.Numbering`: the deck numbers of its parts."""
+
+    @property
+    def named(self) -> bool:
+        """True for a named model's own names, False for those of a deck."""
+
+    def target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
+        """The point, co-ordinate or row ``ref`` names (of ``kinds``), in deck numbers."""
+
+    def dof(self, key: object) -> int:
+        """The DOF number (1-based) of an input."""
+
+    def words(self, report: RunReport) -> Words:
+        """The words to say ``report``'s stop reason and warnings with."""
+
+    def model_names(self) -> ModelNames | None:
+        """The names the labels of pictures and tables use (None: the deck's numbers)."""
+
+    def traced(self, names: Sequence[str] | None) -> list[Any]:
+        """The points whose paths pictures trace: those called ``names``, or every moving point."""
+
+    def columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
+        """The inputs, outputs and (with ``coordinates``) moving co-ordinates :meth:`RunResult.table` lists."""
+
+
 class ResultTables:
     """The value part of :class:`~mechfem.RunResult` (see there); ``_raw`` is the compiled module's dictionary."""
 
@@ -98,6 +134,10 @@ class ResultTables:
         self._layout: Mapping[str, tuple[int, Sequence[int]]] = raw["layout"]
 
     # -- what the result class gives
+
+    @property
+    def _names(self) -> Names:
+        raise NotImplementedError
 
     @property
     def model(self) -> Model:
@@ -115,29 +155,27 @@ class ResultTables:
     def path(self) -> str:
         raise NotImplementedError
 
+    # -- names
+
     def _target(self, ref: object, what: str, kinds: tuple[str, ...]) -> Target:
-        raise NotImplementedError
+        return self._names.target(ref, what, kinds)
 
     def _dof(self, wrt: object) -> int:
-        raise NotImplementedError
-
-    def _input_is_angle(self, j: int) -> bool:
-        raise NotImplementedError
+        """The 0-based index of the input ``wrt`` names."""
+        return self._names.dof(wrt) - 1
 
     def _dynamic_needed(self, what: str) -> None:
-        raise NotImplementedError
-
-    def _moving(self, i: int) -> bool:
-        raise NotImplementedError
-
-    def _columns(self, coordinates: bool) -> tuple[list[Any], list[Any], list[Any]]:
-        raise NotImplementedError
-
-    def _coordinate_name(self, i: int) -> str:
-        raise NotImplementedError
-
-    def _input_name(self, j: int) -> str:
-        raise NotImplementedError
+        if "drive" in self._layout:
+            return
+        if self.named:
+            raise ValueError(
+                f"the mechanism {self._names.mechanism.name!r} has no masses or loads, so its run computed no {what}: "
+                "give them with Mechanism.mass, point_mass, inertia, gravity, force, load, load_table, spring or motor"
+            )
+        raise ValueError(
+            f"the deck {self.path} is a {self.model.mode} deck, so its run computed no {what}: give it a DYNAMICS "
+            "block and the mode DYN ANA"
+        )
 
     # -- the table
 
@@ -282,7 +320,7 @@ class ResultTables:
         angle's value times 180/pi, divided by 180/pi for each angle input it is differentiated by."""
         if check_unit(unit) != "deg":
             return values
-        power = int(t.angle) - sum(self._input_is_angle(j) for j in dofs)
+        power = int(t.angle) - sum(self._names.numbering.inputs[j].is_angle for j in dofs)
         if not t.angle and power == 0:
             raise ValueError(
                 f"{t.name!r} is not an angle, and neither is an input it is differentiated by: unit='deg' applies to "
@@ -325,8 +363,8 @@ class ResultTables:
         """The value of an input at every position (under free motion: where it went), an angle in ``unit``
         (``"rad"``, the default, or ``"deg"``)."""
         j = self._dof(name)
-        angle = self._input_is_angle(j)
-        t = Target("row", (self.model.dofs[j],), self._input_name(j), angle)
+        row = self._names.numbering.inputs[j]
+        t = Target("row", (self.model.dofs[j],), row.name, row.is_angle)
         return self._in_unit(self._input(j).copy(), t, (), unit)
 
     # -- inverse dynamics
@@ -352,9 +390,10 @@ class ResultTables:
         """The force the frame applies at a fixed point (positions x 2: x, y) or on one fixed co-ordinate."""
         self._dynamic_needed("reactions")
         t = self._target(point_or_coordinate, "point or co-ordinate", ("point", "coordinate"))
-        moving = [self._coordinate_name(i) for i in t.numbers if self._moving(i)]
+        coords = [(self._names.numbering.coords[i - 1].name, self.model.coordinates[i - 1].moving) for i in t.numbers]
+        moving = [name for name, m in coords if m]
         if moving:
-            fixed = [self._coordinate_name(i) for i in t.numbers if not self._moving(i)]
+            fixed = [name for name, m in coords if not m]
             hint = f"; ask for the fixed one, reaction({fixed[0]!r})" if fixed else ""
             raise KeyError(f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}")
         out = np.column_stack([self._series("reaction", i - 1) for i in t.numbers])
@@ -388,7 +427,7 @@ class ResultTables:
         moving co-ordinate ``q`` as ``q``, ``q'``, ``q''`` (transfer functions; ``q'(a)``, ``q''(a,b)`` with
         several inputs), ``q_dot`` and ``q_ddot`` (velocity, acceleration). A deck's run gives those its buffers
         recorded."""
-        inputs, outputs, coords = self._columns(coordinates)
+        inputs, outputs, coords = self._names.columns(coordinates)
         names = [r.name for r in inputs]
         single = len(names) == 1
         out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
