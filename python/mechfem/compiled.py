@@ -14,14 +14,20 @@ gives none) the compiled model derives again from the co-ordinates of every run 
 core), so a kept model gives to the last bit what the deck text gives whatever its points' positions.
 
 A deck that needs files beside it (a table motion, a load table) has no kept model: it runs from its text.
+
+Working out the topology walks the whole model, which costs about as much as a short run. So each mechanism also
+remembers what its last run read (:func:`_shape`): the same objects, with the attributes the numbering and the
+topology read from them. While that is unchanged, so are the numbering and the topology, and the run takes the model
+its last run had without working either out again.
 """
 
 from __future__ import annotations
 
 import math
 import threading
+import weakref
 from collections.abc import Hashable, Mapping
-from dataclasses import fields
+from dataclasses import dataclass, fields
 
 import mechfem._core as _core
 from mechfem import deckio
@@ -44,6 +50,18 @@ _KEEP = 16
 _LOCK = threading.Lock()
 
 
+@dataclass
+class _Last:
+    """What the last run of one mechanism read, and what it ran on."""
+
+    shape: tuple[object, ...]
+    model: _core.Model
+    numbering: Numbering
+
+
+_LAST: weakref.WeakKeyDictionary[Mechanism, _Last] = weakref.WeakKeyDictionary()
+
+
 def kept_model(
     mech: Mechanism, motion: Motion | None, storage: Storage | None
 ) -> tuple[_core.Model, Numbering, list[Change]] | None:
@@ -52,6 +70,16 @@ def kept_model(
     files, and one that the deck writer or reader would refuse, so that they name the mistake.
 
     Compiling raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.Model`` gives it)."""
+    shape = _shape(mech, motion, storage)
+    with _LOCK:
+        last = _LAST.get(mech)
+    if last is not None and last.shape == shape:
+        changes = _changes(last.numbering)
+        if changes is None:
+            return None
+        if motion is not None:
+            check_units(motion, last.numbering.inputs)
+        return last.model, last.numbering, changes
     numbering = deckio.number_model(mech)
     key = topology(mech, motion, storage, numbering)
     if key is None:
@@ -69,17 +97,49 @@ def kept_model(
         # The deck writer checks the motion's units at every run: so does a kept model.
         if motion is not None:
             check_units(motion, numbering.inputs)
-        return kept, numbering, changes
-    deck = deckio.write(mech, motion, storage)
-    if deck.tables:
-        return None
-    kept = _core.Model(deck.text, deck.path, ".")
+    else:
+        deck = deckio.write(mech, motion, storage)
+        if deck.tables:
+            return None
+        kept = _core.Model(deck.text, deck.path, ".")
+        with _LOCK:
+            _COMPILED.pop(key, None)
+            while len(_COMPILED) >= _KEEP:
+                _COMPILED.pop(next(iter(_COMPILED)))
+            _COMPILED[key] = kept
     with _LOCK:
-        _COMPILED.pop(key, None)
-        while len(_COMPILED) >= _KEEP:
-            _COMPILED.pop(next(iter(_COMPILED)))
-        _COMPILED[key] = kept
+        _LAST[mech] = _Last(shape, kept, numbering)
     return kept, numbering, changes
+
+
+def _shape(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> tuple[object, ...]:
+    """Everything :func:`deckio.number_model` and :func:`topology` read, apart from the numbers a kept model takes
+    anew at every run: each object by identity, with the attributes read from it. Equal shapes number the model alike
+    and make equal topologies.
+
+    The values of the inputs stand in it, since a :class:`~mechfem.motion.To` motion is checked against its input's
+    start; so does the count of names, which resolve a buffer's arguments (a mechanism only ever adds names)."""
+    rows = mech.rows
+    loads = mech.loads
+    return (
+        mech.name,
+        len(mech._names),
+        [(c, c.fixed, c.number) for c in mech.coordinates],
+        [(p, p.x, p.y) for p in mech.points],
+        [(e, e.type, e.slots) for e in mech.elements],
+        [(r, r.kind, r.name, r.value is None, r.terms, [(p.element, p.form) for _, p in r.terms]) for r in rows],
+        [r.value for r in rows if r.kind == "input"],
+        None if loads is None else (loads, list(loads.items)),
+        None if motion is None else (motion, list(motion.inputs.items())),
+        None if storage is None else _storage_shape(storage),
+    )
+
+
+def _storage_shape(storage: Storage) -> tuple[object, ...]:
+    """The storage block's lists as they are now (a storage is changed in place by :meth:`Storage.buffer`)."""
+    printbuf = None if storage.printbuf is None else list(storage.printbuf)
+    pictures = [(p, p.title, list(p.plots)) for p in storage.pictures]
+    return (storage, list(storage.buffers), printbuf, list(storage.savedata), storage.animate, pictures)
 
 
 def topology(
@@ -183,14 +243,14 @@ def changes_of(values: Mapping[Row | Coordinate, float], nb: Numbering) -> list[
 def _changes(nb: Numbering) -> list[Change] | None:
     """The numbers of XFIX, XMOV and PARA; None when one is not finite or when a constant length is not above
     zero, which the deck reader refuses (with a message the kept model could not give)."""
-    values: dict[Row | Coordinate, float] = {c: c.value for c in nb.coords}
-    for r in nb.prescribed:
-        if r.value is not None:
-            values[r] = r.value
-            if r.kind == "prescribed" and len(r.terms) == 1 and r.terms[0][1].form == "LENL":
-                if not r.value / r.terms[0][0] > 0:
-                    return None
-    changes = changes_of(values, nb)
+    changes = [(0, i, float(c.value)) for i, c in enumerate(nb.coords, 1)]
+    for k, r in enumerate(nb.prescribed, 1):
+        if r.value is None:
+            continue
+        if r.kind == "prescribed" and len(r.terms) == 1 and r.terms[0][1].form == "LENL":
+            if not r.value / r.terms[0][0] > 0:
+                return None
+        changes.append((1, k, float(r.value)))
     # A NaN or an infinity makes the sum not finite (and so do values large enough to overflow it: the deck text
     # runs those too).
     return changes if math.isfinite(sum([v for _, _, v in changes])) else None
