@@ -375,7 +375,7 @@ impl ElementType {
 
     /// [`Self::eval`] of an element whose co-ordinates are `x[coords[k]]`.
     /// Indices are checked when a model is built; one out of range reads NaN.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn eval_at(
         self,
         form: usize,
