@@ -1,6 +1,6 @@
 """Times mechfem's Python API end to end against pylinkage (numba) on the four-bar of bench_peers.py.
 
-    .venv/bin/python benches/bench_api.py [--steps 360 100000] [--repeat 7] [--min-time 0.2]
+    .venv/bin/python benches/bench_api.py [--steps 360 100000] [--repeat 7] [--variants 400]
 
 Timed, each the best of repeated calls (``bench_peers.best_of``), the tools alternated position count by
 position count in one run:
@@ -9,7 +9,8 @@ position count in one run:
   and one recording its velocity and acceleration too (first- and second-order transfer functions);
 * the same velocity/acceleration deck as a named model, ``Mechanism.run(order=2)``, and through a compiled
   handle, ``_core.Model.from_path(deck).run(order=2)``, for the same work;
-* ``mechfem.sweep`` of 360-position variants of the four-bar (its crank length), on 1 and on 2 workers;
+* ``mechfem.sweep`` of 360-position variants of the four-bar (its crank length), on 1 and on 2 workers alternated,
+  the best of ``--repeat`` rounds;
 * pylinkage's ``step_fast`` and ``step_fast_with_kinematics``.
 
 Every tool's coupler point is first checked against the closed form of the four-bar (the crank pin on its
@@ -138,7 +139,9 @@ def main() -> None:
     name = "E1.length"
     values = np.linspace(0.9, 1.1, args.variants)
     study_rates = {}
-    for workers in (1, 2, 1, 2):
+    # Alternated as the tools are, best of ``--repeat`` rounds: a study takes a tenth of a second, so a moment of
+    # the machine's noise can spoil a round.
+    for workers in (1, 2) * args.repeat:
         t0 = time.perf_counter()
         mechfem.sweep(base, {name: values}, workers=workers, progress=False)
         rate = args.variants / (time.perf_counter() - t0)
