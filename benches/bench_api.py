@@ -84,7 +84,7 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates) -> None
         "Mechanism.run(order=2)": lambda: mech.run(order=2, progress=False),
         "compiled handle run(order=2)": lambda: handle.run(order=2),
     }
-    rounds = args.repeat if steps < 10_000 else max(3, args.repeat // 2)
+    rounds = args.repeat
     for _ in range(rounds):
         for name, fn in tools.items():
             if name == "pylinkage step_fast":
