@@ -30,7 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
-from mechfem import cluster, compiled
+from mechfem import cluster, compiled, optional
 from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
 from mechfem.hooks import Hook
 from mechfem.limits import memory_limit
@@ -38,7 +38,6 @@ from mechfem.model import Mechanism, Motion, Storage
 from mechfem.names import unknown_name
 from mechfem.namespace import model_result
 from mechfem.result import RunResult
-from mechfem.result_tables import _pandas
 
 if TYPE_CHECKING:
     from mechfem import deckio
@@ -317,7 +316,7 @@ class Study:
 
     def to_pandas(self) -> Any:
         """The table as a ``pandas.DataFrame`` (needs pandas: ``pip install 'mechfem[pandas]'``)."""
-        return _pandas().DataFrame(self.columns)
+        return optional.pandas().DataFrame(self.columns)
 
     def _repr_html_(self) -> str:
         return HTML.call(self)

@@ -9,13 +9,13 @@ written under a temporary name and renamed when complete, like every output.
 
 from __future__ import annotations
 
-import importlib
 from pathlib import Path
 from types import ModuleType
 
 import numpy as np
 import numpy.typing as npt
 
+from mechfem import optional
 from mechfem.atomic import atomic_binary
 from mechfem.errors import MechfemError
 from mechfem.labels import buffer_labels
@@ -65,15 +65,12 @@ def write_npz(result: RunResult, path: Path) -> Path:
 
 def pyarrow() -> ModuleType:
     """The pyarrow module, or a :class:`MissingDependency` saying how to install it."""
-    try:
-        # Imported by name, like pandas and ezdxf: pyarrow ships no annotations, and the caller needs only the module.
-        importlib.import_module("pyarrow.parquet")  # the writer is a submodule; this imports pyarrow too
-        return importlib.import_module("pyarrow")
-    except ImportError:
-        raise MissingDependency(
-            "the Parquet data set needs pyarrow, which is not installed: install it with "
-            "`pip install 'mechfem[parquet]'`, or write the data set as csv or npz (--format)"
-        ) from None
+    missing = (
+        "the Parquet data set needs pyarrow, which is not installed: install it with "
+        "`pip install 'mechfem[parquet]'`, or write the data set as csv or npz (--format)"
+    )
+    optional.module("pyarrow.parquet", missing, MissingDependency)  # the writer is a submodule
+    return optional.module("pyarrow", missing, MissingDependency)
 
 
 def write_parquet(result: RunResult, path: Path) -> Path:

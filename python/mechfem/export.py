@@ -19,7 +19,6 @@ Every file is written under a temporary name beside its target and renamed when 
 
 from __future__ import annotations
 
-import importlib
 import math
 import os
 from collections.abc import Sequence
@@ -31,7 +30,7 @@ from xml.sax.saxutils import escape, quoteattr
 import numpy as np
 import numpy.typing as npt
 
-from mechfem import labels
+from mechfem import labels, optional
 from mechfem import result as _result
 from mechfem.animation import path_sample
 from mechfem.atomic import atomic_path
@@ -220,13 +219,11 @@ def analysis_drawing(
 
 
 def _ezdxf() -> Any:
-    try:
-        return importlib.import_module("ezdxf")
-    except ImportError:
-        raise ImportError(
-            "writing DXF needs ezdxf, which mechfem does not install by itself: pip install 'mechfem[dxf]' "
-            "(or pip install ezdxf); SVG needs nothing more"
-        ) from None
+    return optional.module(
+        "ezdxf",
+        "writing DXF needs ezdxf, which mechfem does not install by itself: pip install 'mechfem[dxf]' "
+        "(or pip install ezdxf); SVG needs nothing more",
+    )
 
 
 def dxf_available() -> bool:

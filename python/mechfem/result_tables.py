@@ -11,7 +11,6 @@ records it; a deck's run that recorded neither says which BUF line would.
 from __future__ import annotations
 
 import functools
-import importlib
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any, NamedTuple, Protocol
@@ -19,6 +18,7 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 import numpy.typing as npt
 
+from mechfem import optional
 from mechfem.echo import Model, ModelNames, Storage
 from mechfem.run_report import RunReport
 from mechfem.units import Unit, check_unit, factor
@@ -461,17 +461,7 @@ class ResultTables:
     def to_pandas(self, coordinates: bool = True) -> Any:
         """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...). Needs pandas
         (``pip install 'mechfem[pandas]'``)."""
-        pd = _pandas()
+        pd = optional.pandas()
         frame = pd.DataFrame(self.table(coordinates))
         frame.index = pd.RangeIndex(1, self.coords.shape[0] + 1, name="position")
         return frame
-
-
-def _pandas() -> Any:
-    try:
-        return importlib.import_module("pandas")
-    except ImportError:
-        raise ImportError(
-            "to_pandas() needs pandas, which mechfem does not install by itself: pip install 'mechfem[pandas]' "
-            "(or pip install pandas)"
-        ) from None
