@@ -242,6 +242,11 @@ impl Mechanism {
     pub fn input_row(&self, j: usize) -> usize {
         self.n_prescribed() - self.n_dof + j
     }
+    /// The input (0-based DOF) whose prescribed row is `r`; `None` for a
+    /// row that is not an input's (the inputs are the last rows).
+    pub fn input_of(&self, r: usize) -> Option<usize> {
+        r.checked_sub(self.n_prescribed() - self.n_dof).filter(|&j| j < self.n_dof)
+    }
     /// Whether co-ordinate `i` moves.
     pub fn is_moving(&self, i: usize) -> bool {
         self.moving[i]

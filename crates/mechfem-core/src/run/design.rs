@@ -132,7 +132,7 @@ fn scale_starts(sens: &mut Sensitivity, mech: &Mechanism, motion: &Motion, index
     let n = sens.vars().len() - usize::from(extremum);
     for k in 0..n {
         if let DesignVar::Row(r) = sens.vars()[k] {
-            if let Some(j) = (0..mech.n_dof()).find(|&j| mech.input_row(j) == r) {
+            if let Some(j) = mech.input_of(r) {
                 let (factor, rate) = motion.start_rates(j, index);
                 sens.scale_input(k, j, if extremum { 0.0 } else { factor }, rate);
             }

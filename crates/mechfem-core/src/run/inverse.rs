@@ -155,7 +155,7 @@ impl InverseDynamics {
     fn form_state(mech: &Mechanism, kin: &Kinematics, form: FormRef, qd: &[f64]) -> (f64, f64) {
         match form {
             FormRef::Prescribed(r) => {
-                let rate = (0..mech.n_dof()).find(|&j| mech.input_row(j) == r).map_or(0.0, |j| qd[j]);
+                let rate = mech.input_of(r).map_or(0.0, |j| qd[j]);
                 (kin.row_value(r), rate)
             }
             FormRef::Dependent(d) => (kin.dep(d), kin.dep_velocity(d, qd)),

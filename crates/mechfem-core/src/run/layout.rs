@@ -160,7 +160,7 @@ impl Layout {
         add("time", vec![]);
         add("det", vec![]);
         let width = start;
-        let input_of: Vec<Option<usize>> = (0..np).map(|r| (0..nd).find(|&j| mech.input_row(j) == r)).collect();
+        let input_of: Vec<Option<usize>> = (0..np).map(|r| mech.input_of(r)).collect();
         let prescribed_ke1 =
             input_of.iter().flat_map(|input| (0..nd).map(move |j| f64::from(u8::from(*input == Some(j))))).collect();
         let start = |name: &str| blocks.iter().find(|b| b.name == name).map_or(width, |b| b.start);

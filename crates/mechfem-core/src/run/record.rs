@@ -129,7 +129,6 @@ impl Quantity {
         let (qd, qdd) = (v.input_vel, v.input_acc);
         // A prescribed row's derivatives are those of an identity: 1 for its
         // own input, 0 otherwise; constant rows do not move at all.
-        let input_of = |r: usize| (0..mech.n_dof()).find(|&j| mech.input_row(j) == r);
         // At a limit position D^c has no inverse: transfer functions, and
         // the velocities and accelerations made from them, do not exist.
         if kin.order().is_none() && self.needs_transfer() {
@@ -145,13 +144,13 @@ impl Quantity {
             Quantity::Ax(i) => kin.acceleration(mech, i, qd, qdd),
             Quantity::E0(FormRef::Prescribed(r)) => kin.row_value(r),
             Quantity::E0(FormRef::Dependent(d)) => kin.dep(d),
-            Quantity::Ke1(FormRef::Prescribed(r), j) => f64::from(u8::from(input_of(r) == Some(j))),
+            Quantity::Ke1(FormRef::Prescribed(r), j) => f64::from(u8::from(mech.input_of(r) == Some(j))),
             Quantity::Ke1(FormRef::Dependent(d), j) => kin.dep1(d, j),
             Quantity::Ke2(FormRef::Prescribed(_), _, _) => 0.0,
             Quantity::Ke2(FormRef::Dependent(d), j, m) => kin.dep2(d, j, m),
-            Quantity::Ve(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, |j| qd[j]),
+            Quantity::Ve(FormRef::Prescribed(r)) => mech.input_of(r).map_or(0.0, |j| qd[j]),
             Quantity::Ve(FormRef::Dependent(d)) => kin.dep_velocity(d, qd),
-            Quantity::Ae(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, |j| qdd[j]),
+            Quantity::Ae(FormRef::Prescribed(r)) => mech.input_of(r).map_or(0.0, |j| qdd[j]),
             Quantity::Ae(FormRef::Dependent(d)) => kin.dep_acceleration(d, qd, qdd),
             Quantity::Det => kin.det(),
             _ => f64::NAN,
@@ -189,7 +188,6 @@ impl Quantity {
                 s.input_factor(var)
             }
         };
-        let input_of = |r: usize| (0..nd).find(|&j| mech.input_row(j) == r);
         let dvel = |j: usize| s.input_rate(j, var);
         match *self {
             // The times are the motion's (TSTEPE, a MOV_FUNC table's), whatever the design.
@@ -209,7 +207,7 @@ impl Quantity {
                 }
                 a
             }
-            Quantity::E0(FormRef::Prescribed(r)) => match input_of(r) {
+            Quantity::E0(FormRef::Prescribed(r)) => match mech.input_of(r) {
                 Some(j) => input_scale(j),
                 None => own_row(r),
             },
@@ -217,7 +215,7 @@ impl Quantity {
             Quantity::Ke1(FormRef::Prescribed(_), _) | Quantity::Ke2(FormRef::Prescribed(_), _, _) => 0.0,
             Quantity::Ke1(FormRef::Dependent(d), j) => s.dep1(d, j, var),
             Quantity::Ke2(FormRef::Dependent(d), j, m) => s.dep2(d, j, m, var),
-            Quantity::Ve(FormRef::Prescribed(r)) => input_of(r).map_or(0.0, dvel),
+            Quantity::Ve(FormRef::Prescribed(r)) => mech.input_of(r).map_or(0.0, dvel),
             Quantity::Ae(FormRef::Prescribed(_)) => 0.0,
             Quantity::Ve(FormRef::Dependent(d)) => {
                 (0..nd).map(|j| s.dep1(d, j, var) * qd[j] + v.kin.dep1(d, j) * dvel(j)).sum()
