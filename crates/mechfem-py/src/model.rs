@@ -9,6 +9,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::rundict::Shared;
 use crate::text::{compile_text, run_compiled, Change, Numbers};
 use crate::{cache, errors};
 
@@ -19,6 +20,8 @@ use crate::{cache, errors};
 pub struct Model {
     compiled: Compiled,
     path: PathBuf,
+    /// What every run's dict holds alike, converted for Python once.
+    shared: Shared,
 }
 
 #[pymethods]
@@ -27,14 +30,14 @@ impl Model {
     fn new(py: Python<'_>, text: &str, path: PathBuf, base_dir: PathBuf) -> PyResult<Model> {
         let compiled =
             py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
-        Ok(Model { compiled, path })
+        Model::kept(py, compiled, path)
     }
 
     /// The deck file at `path`, compiled (or taken from the decks kept by `run_deck`).
     #[staticmethod]
     fn from_path(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
         let (compiled, _) = py.detach(|| cache::load(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
-        Ok(Model { compiled, path })
+        Model::kept(py, compiled, path)
     }
 
     /// Number of co-ordinates.
@@ -67,6 +70,14 @@ impl Model {
     ) -> PyResult<Bound<'py, PyDict>> {
         let changes = changes.into_iter().map(Change::from_triple).collect::<PyResult<Vec<_>>>()?;
         let numbers = Numbers::with(&self.compiled, &changes).map_err(PyValueError::new_err)?;
-        run_compiled(py, &self.compiled, numbers, &self.path, motion, progress, order, memory_limit)
+        let text = (&self.compiled, &self.shared);
+        run_compiled(py, text, numbers, &self.path, motion, progress, order, memory_limit)
+    }
+}
+
+impl Model {
+    fn kept(py: Python<'_>, compiled: Compiled, path: PathBuf) -> PyResult<Model> {
+        let shared = Shared::new(py, &compiled)?;
+        Ok(Model { compiled, path, shared })
     }
 }

@@ -377,16 +377,18 @@ pub fn run_deck_text<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
     let numbers = Numbers::with(&c, &[]).map_err(PyValueError::new_err)?;
-    run_compiled(py, &c, numbers, &path, motion, progress, order, memory_limit)
+    let shared = Shared::new(py, &c)?;
+    run_compiled(py, (&c, &shared), numbers, &path, motion, progress, order, memory_limit)
 }
 
 /// Runs a compiled deck with `numbers` (its motion when `motion`) and
 /// returns the run's dict with `interrupted` set: what `run_deck_text` and
-/// a kept `Model` return alike.
+/// a kept `Model` return alike. `text` is the deck with the objects its
+/// runs share ([`Shared`], converted once for a kept `Model`).
 #[allow(clippy::too_many_arguments)]
 pub fn run_compiled<'py>(
     py: Python<'py>,
-    c: &Compiled,
+    text: (&Compiled, &Shared),
     numbers: Numbers,
     path: &Path,
     motion: bool,
@@ -394,13 +396,14 @@ pub fn run_compiled<'py>(
     order: Option<u8>,
     memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let c = text.0;
     let order = transfer_order(c, order)?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
     let cancel = AtomicBool::new(false);
     let (outcome, raised) =
         py.detach(|| execute(c, numbers, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
     let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
-    let d = outcome_dict(py, outcome, Some((c, &Shared::new(py, c)?)), path)?;
+    let d = outcome_dict(py, outcome, Some(text), path)?;
     d.set_item("interrupted", interrupted)?;
     Ok(d)
 }
