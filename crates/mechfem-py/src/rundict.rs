@@ -16,8 +16,6 @@ use std::path::Path;
 use mechfem_core::run::{Layout, SimReport};
 use mechfem_core::{RunReport, SolveError, State};
 use mechfem_deck::{Compiled, Diagnostics};
-use numpy::npyffi::NPY_ORDER;
-use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -88,12 +86,6 @@ impl Shared {
     }
 }
 
-/// A positions x columns array from values given column by column: numpy
-/// in Fortran order, owning `data`.
-fn columns<'py>(py: Python<'py>, data: Vec<f64>, positions: usize, width: usize) -> PyResult<Bound<'py, PyAny>> {
-    Ok(PyArray1::from_vec(py, data).reshape_with_order([positions, width], NPY_ORDER::NPY_FORTRANORDER)?.into_any())
-}
-
 /// The run as a dict: `table` (positions x the columns of `layout`, the
 /// core's full layout, in Fortran order), `layout` (block name -> first
 /// column and shape), `buffer_values` (positions x the deck's buffers, in
@@ -118,8 +110,8 @@ fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, r: FullRun) -> PyRes
     d.set_item("dynamic", c.dynamics.is_some())?;
     d.set_item("simulation", r.sim.as_ref().map(|sim| convert::simulation(py, sim)).transpose()?)?;
     d.set_item("layout", s.layout.bind(py))?;
-    d.set_item("table", columns(py, r.table, positions, r.width)?)?;
-    d.set_item("buffer_values", columns(py, r.buffers, positions, c.buffers.len())?)?;
+    d.set_item("table", convert::columns(py, r.table, positions, r.width)?)?;
+    d.set_item("buffer_values", convert::columns(py, r.buffers, positions, c.buffers.len())?)?;
     d.set_item("coords", convert::array2(py, r.coords, positions, n)?)?;
     Ok(d)
 }
