@@ -32,7 +32,6 @@ fn owned<'py>(py: Python<'py>, array: Result<Array2<f64>, ShapeError>) -> PyResu
     Ok(PyArray2::from_owned_array(py, array).into_any())
 }
 
-/// `AdjustInfo` as a dict.
 /// A table's layout for Python: block name -> (first column, shape at one
 /// position), as the core names its blocks.
 pub fn layout<'py>(py: Python<'py>, blocks: &[Block]) -> PyResult<Bound<'py, PyDict>> {
@@ -43,6 +42,7 @@ pub fn layout<'py>(py: Python<'py>, blocks: &[Block]) -> PyResult<Bound<'py, PyD
     Ok(d)
 }
 
+/// `AdjustInfo` as a dict.
 pub fn adjust<'py>(py: Python<'py>, a: &AdjustInfo) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("iterations", a.iterations)?;
@@ -96,6 +96,21 @@ pub fn report<'py>(py: Python<'py>, mech: &Mechanism, r: &RunReport, steps: usiz
     d.set_item("singular_positions", r.singular_positions.iter().map(|k| k + 1).collect::<Vec<_>>())?;
     d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, s)).transpose()?)?;
     Ok(d)
+}
+
+/// Every number [`report`] converts from a run that met nothing to tell of
+/// (no stop, limit or singular position): two such runs with equal keys
+/// have equal report dicts, so one dict can serve both. `None` for a run
+/// that did meet something.
+pub fn plain_report_key(r: &RunReport, steps: usize) -> Option<Vec<u64>> {
+    if r.stop.is_some() || !r.limits.is_empty() || !r.singular_positions.is_empty() {
+        return None;
+    }
+    let a = &r.adjust;
+    let mut numbers = vec![a.iterations as u64, a.stages as u64, a.residual.to_bits()];
+    numbers.extend([r.positions, r.subdivided_steps, steps].map(|k| k as u64));
+    numbers.extend(a.initial_deformations.iter().map(|v| v.to_bits()));
+    Some(numbers)
 }
 
 /// The elements of a deck as dicts, with the deck's numbering.

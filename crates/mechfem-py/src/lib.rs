@@ -237,15 +237,9 @@ fn run_deck(
     d.set_item(intern!(py, "simulation"), sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &report, steps);
-    let plain = report.stop.is_none() && report.limits.is_empty() && report.singular_positions.is_empty();
-    let report_dict = if plain && sim.is_none() {
-        let a = &report.adjust;
-        let mut numbers = vec![a.iterations as u64, a.stages as u64, a.residual.to_bits()];
-        numbers.extend([report.positions, report.subdivided_steps, steps].map(|k| k as u64));
-        numbers.extend(a.initial_deformations.iter().map(|v| v.to_bits()));
-        slot.report(py, numbers, report_dict)?
-    } else {
-        report_dict()?
+    let report_dict = match convert::plain_report_key(&report, steps).filter(|_| sim.is_none()) {
+        Some(key) => slot.report(py, key, report_dict)?,
+        None => report_dict()?,
     };
     d.set_item(intern!(py, "report"), report_dict)?;
     d.set_item(intern!(py, "model"), model)?;
