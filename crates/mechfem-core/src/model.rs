@@ -329,6 +329,16 @@ impl Clone for State {
 }
 
 impl State {
+    /// Sets the prescribed values that are given (`values[r]` `Some`),
+    /// leaving the others as they are (derived from the co-ordinates).
+    pub fn set_given(&mut self, values: &[Option<f64>]) {
+        for (t, v) in self.target.iter_mut().zip(values) {
+            if let Some(v) = v {
+                *t = *v;
+            }
+        }
+    }
+
     /// Current value of prescribed row `r` at the co-ordinates.
     pub fn prescribed_value(&mut self, mech: &Mechanism, r: usize) -> Result<f64, SolveError> {
         mech.eval_row(mech.prescribed.row(r), &self.x, &mut self.branch)

@@ -205,11 +205,7 @@ impl Numbers {
         let moved = n.state.x.iter().zip(&c.state.x).any(|(a, b)| a.to_bits() != b.to_bits());
         if moved {
             if let Ok(mut start) = c.mechanism.start_state(n.state.x.clone()) {
-                for (t, p) in start.target.iter_mut().zip(&n.para) {
-                    if let Some(v) = p {
-                        *t = *v;
-                    }
-                }
+                start.set_given(&n.para);
                 n.state = start;
             }
         }

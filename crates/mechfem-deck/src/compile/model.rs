@@ -53,11 +53,7 @@ pub(crate) fn model(deck: &Deck) -> Result<Model, Box<Diagnostic>> {
         b.dependent(&terms(row));
     }
     let (mechanism, mut state) = b.build().map_err(|e| model_error(deck, e))?;
-    for (r, v) in paras.iter().enumerate() {
-        if let (Some(v), Some(t)) = (v, state.target.get_mut(r)) {
-            *t = *v;
-        }
-    }
+    state.set_given(&paras);
 
     let elements = deck
         .topology
