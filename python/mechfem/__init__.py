@@ -100,9 +100,7 @@ def run_deck(
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)
-    # The report is converted for Python only when there is a stop to tell of: a few µs a call otherwise.
-    reason = None if d["report"]["stop"] is None else result.report.stop_reason()
-    return on_stop(result, reason, raise_on_stop)
+    return on_stop(result, result.stop_reason(), raise_on_stop)
 
 
 def check_deck(path: str | _os.PathLike[str]) -> CheckResult:

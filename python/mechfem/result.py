@@ -156,6 +156,10 @@ class RunResult(ResultTables):
     def stop_reason(self) -> str | None:
         """Why the motion stopped early, where, and what to change (in the words of the model or the deck), or
         None."""
+        # A run that went to its end needs neither its report nor its names converted for that (a report replaced
+        # by ``replace`` is asked itself).
+        if "report" not in self.__dict__ and self._raw["report"]["stop"] is None:
+            return None
         return self.report.stop_reason(words=self._names.words(self.report))
 
     @property

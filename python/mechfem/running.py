@@ -67,10 +67,7 @@ def run(
         raise RunInterrupted(analysis)
     if raise_on_stop is None:
         return analysis
-    # The stop reason is told in the model's words, which costs more than the run of a small mechanism: only when
-    # there is one.
-    reason = None if d["report"]["stop"] is None else analysis.stop_reason()
-    return on_stop(analysis, reason, raise_on_stop)
+    return on_stop(analysis, analysis.stop_reason(), raise_on_stop)
 
 
 def _run_text(
