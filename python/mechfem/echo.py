@@ -122,6 +122,35 @@ class Model:
         return sum(c.moving for c in self.coordinates)
 
 
+BUFFER_ARGS: dict[str, str] = {
+    "BUFINP": "j",
+    "BUFTIME": "",
+    "BUFX0": "i",
+    "BUFKX1": "ij",
+    "BUFKX2": "ijm",
+    "BUFVX": "i",
+    "BUFAX": "i",
+    "BUFE0": "r",
+    "BUFKE1": "rj",
+    "BUFKE2": "rjm",
+    "BUFVE": "r",
+    "BUFAE": "r",
+    "BUFDET": "",
+    "BUFSIG": "r",
+    "BUFDRV": "j",
+    "BUFREA": "i",
+    "BUFEKIN": "",
+    "BUFEPOT": "",
+    "BUFPOW": "",
+    "BUFMRED": "jj",
+}
+"""The arguments of each BUF keyword before the buffer number.
+
+``i`` a co-ordinate, ``r`` a row, ``j`` and ``m`` an input (a last ``m`` may be left out: it is then ``j``).
+BUFSIG takes a prescribed row, BUFREA a fixed co-ordinate; they and the other buffers of the dynamics
+(BUFDRV, BUFEKIN, BUFEPOT, BUFPOW, BUFMRED) need masses or loads on the mechanism (mode ``DYN ANA``)."""
+
+
 @dataclass(frozen=True)
 class Buffer:
     """One BUF... line: buffer ``number`` holds the quantity ``keyword args``."""

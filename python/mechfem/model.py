@@ -36,6 +36,7 @@ import numpy.typing as npt
 from mechfem.builders import ElementMethods
 from mechfem.catalogue import FORMS, MAX_ITER, SLOTS
 from mechfem.checks import check_name, finite
+from mechfem.echo import BUFFER_ARGS
 from mechfem.hooks import Hook
 from mechfem.motion import By, Dynamic, Free, InputKey, InputMotion, Motion, Table, To, input_dof, simulation
 from mechfem.names import article, plural, suggestion, unknown_name
@@ -56,7 +57,7 @@ from mechfem.parts import (
     kind_of,
 )
 from mechfem.result import RunResult
-from mechfem.storage import BUFFER_ARGS, Picture, Ref, Storage
+from mechfem.storage import Picture, Ref, Storage
 from mechfem.units import Unit, check_unit, to_radians
 
 if TYPE_CHECKING:

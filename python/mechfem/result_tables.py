@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import optional
-from mechfem.echo import Model, ModelNames, Storage
+from mechfem.echo import BUFFER_ARGS, Model, ModelNames, Storage
 from mechfem.run_report import RunReport
 from mechfem.units import Unit, check_unit, factor
 from mechfem.words import Words
@@ -80,13 +80,9 @@ BLOCK_OF: dict[str, str] = {
     "BUFMRED": "mass",
 }
 KEYWORD_OF = {b: k for k, b in BLOCK_OF.items()}
-#: The argument kinds of each block's index: ``i`` a co-ordinate, ``r`` a row, ``j`` an input.
-INDEX_KINDS = {
-    **dict.fromkeys(["x0", "vx", "ax", "reaction"], "i"),
-    **dict.fromkeys(["e0", "ve", "ae", "sigma"], "r"),
-    **dict.fromkeys(["inputs", "drive"], "j"),
-    **{"kx1": "ij", "kx2": "ijj", "ke1": "rj", "ke2": "rjj", "mass": "jj"},
-}
+#: The argument kinds of each block's index, as its buffer keyword takes them: ``i`` a co-ordinate, ``r`` a row, ``j``
+#: an input (a buffer's second input, ``m``, is one too).
+INDEX_KINDS = {BLOCK_OF[kw]: kinds.replace("m", "j") for kw, kinds in BUFFER_ARGS.items()}
 
 
 class Names(Protocol):

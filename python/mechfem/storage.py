@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeAlias, Union
 
 from mechfem.checks import name_problem
+from mechfem.echo import BUFFER_ARGS
 
 if TYPE_CHECKING:
     from collections.abc import Callable, Mapping
@@ -15,34 +16,6 @@ if TYPE_CHECKING:
 
 Ref: TypeAlias = Union[int, str, "Coordinate", "Point", "FormParameter", "Row"]
 """Something a buffer or plot refers to: a deck number, a name, or the object itself."""
-
-BUFFER_ARGS: dict[str, str] = {
-    "BUFINP": "j",
-    "BUFTIME": "",
-    "BUFX0": "i",
-    "BUFKX1": "ij",
-    "BUFKX2": "ijm",
-    "BUFVX": "i",
-    "BUFAX": "i",
-    "BUFE0": "r",
-    "BUFKE1": "rj",
-    "BUFKE2": "rjm",
-    "BUFVE": "r",
-    "BUFAE": "r",
-    "BUFDET": "",
-    "BUFSIG": "r",
-    "BUFDRV": "j",
-    "BUFREA": "i",
-    "BUFEKIN": "",
-    "BUFEPOT": "",
-    "BUFPOW": "",
-    "BUFMRED": "jj",
-}
-"""The arguments of each BUF keyword before the buffer number.
-
-``i`` a co-ordinate, ``r`` a row, ``j`` and ``m`` an input (a last ``m`` may be left out: it is then ``j``).
-BUFSIG takes a prescribed row, BUFREA a fixed co-ordinate; they and the other buffers of the dynamics
-(BUFDRV, BUFEKIN, BUFEPOT, BUFPOW, BUFMRED) need masses or loads on the mechanism (mode ``DYN ANA``)."""
 
 
 @dataclass
