@@ -22,8 +22,7 @@ import numpy.typing as npt
 
 import mechfem._core as _core
 from mechfem.converted import Converted
-from mechfem.echo import Model as Model
-from mechfem.echo import ModelNames, Storage
+from mechfem.echo import Model, ModelNames, Storage
 from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, Simulation
 from mechfem.result_tables import Energy, Names, ResultTables
@@ -119,24 +118,12 @@ class RunResult(ResultTables):
         return self._namespace.model_names() if self._namespace is not None else None
 
     @functools.cached_property
-    def kx1(self) -> dict[int, FloatArray]:
-        """d x_i / d input 1 at every position by co-ordinate i, for the hodographs (a deck's run: the co-ordinates
-        its PLOTHODO lines name; NaN where D^c is singular)."""
-        if "hodograph" in self._layout:
-            start = self._layout["hodograph"][0]
-            return {i: self._table[:, start + k] for k, i in enumerate(self._raw["hodograph_coords"])}
-        nd = self._layout["kx1"][1][1]
-        return {i: self._series("kx1", i - 1, 0) for i in range(1, self.coords.shape[1] + 1)} if nd else {}
-
-    @functools.cached_property
     def dynamic(self) -> DynamicSeries | None:
         """Inputs, drive forces, energies and power at every position of a run with masses or loads (None
         otherwise)."""
         if "drive" not in self._layout:
             return None
-        return DynamicSeries(
-            *(self._block(b) for b in ("inputs", "drive")), *(self._block(b) for b in ("ekin", "epot", "power"))
-        )
+        return DynamicSeries(*(self._block(b) for b in ("inputs", "drive", "ekin", "epot", "power")))
 
     @property
     def positions(self) -> int:

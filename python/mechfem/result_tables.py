@@ -186,8 +186,7 @@ class ResultTables:
         """The table column of each quantity a deck's buffer (or hodograph) records, by (block, 0-based index)."""
         out: dict[tuple[object, ...], int] = {}
         if "buffers" in self._layout:
-            start = self._layout["buffers"][0]
-            column = {n: start + k for k, n in enumerate(self._raw["buffer_numbers"])}
+            column = self._columns("buffers", "buffer_numbers")
             for b in self.storage.buffers:
                 block = BLOCK_OF[b.keyword]
                 kinds = INDEX_KINDS.get(block, "")
@@ -195,10 +194,15 @@ class ResultTables:
                 index = tuple(self._index(k, a) for k, a in zip(kinds, args, strict=False))
                 out.setdefault((block, *index), column[b.number])
         if "hodograph" in self._layout:
-            start = self._layout["hodograph"][0]
-            for k, i in enumerate(self._raw["hodograph_coords"]):
-                out.setdefault(("kx1", i - 1, 0), start + k)
+            for i, c in self._columns("hodograph", "hodograph_coords").items():
+                out.setdefault(("kx1", i - 1, 0), c)
         return out
+
+    def _columns(self, block: str, numbers: str) -> dict[int, int]:
+        """The table column of each entry of a deck's ``block`` (``buffers``, ``hodograph``), by the number the
+        list ``numbers`` of the run gives it (a buffer's, a co-ordinate's)."""
+        start = self._layout[block][0]
+        return {n: start + k for k, n in enumerate(self._raw[numbers])}
 
     def _index(self, kind: str, number: int) -> int:
         """The 0-based index in a block of a deck number of ``kind`` (a row's: prescribed rows, then outputs)."""
@@ -240,10 +244,18 @@ class ResultTables:
     def buffers(self) -> dict[int, FloatArray]:
         """The deck's own buffers by number (from the storage of the run)."""
         if "buffers" in self._layout:
-            start = self._layout["buffers"][0]
-            return {n: self._table[:, start + k] for k, n in enumerate(self._raw["buffer_numbers"])}
+            return {n: self._table[:, c] for n, c in self._columns("buffers", "buffer_numbers").items()}
         values = np.asarray(self._raw["buffer_values"], dtype=np.float64)
         return {n: values[:, k] for k, n in enumerate(self._raw["buffer_numbers"])}
+
+    @functools.cached_property
+    def kx1(self) -> dict[int, FloatArray]:
+        """d x_i / d input 1 at every position by co-ordinate i, for the hodographs (a deck's run: the co-ordinates
+        its PLOTHODO lines name; NaN where D^c is singular)."""
+        if "hodograph" in self._layout:
+            return {i: self._table[:, c] for i, c in self._columns("hodograph", "hodograph_coords").items()}
+        nd = self._layout["kx1"][1][1]
+        return {i: self._series("kx1", i - 1, 0) for i in range(1, self.coords.shape[1] + 1)} if nd else {}
 
     @functools.cached_property
     def time(self) -> FloatArray:
