@@ -24,7 +24,7 @@ import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 from xml.sax.saxutils import escape, quoteattr
 
 import numpy as np
@@ -37,9 +37,6 @@ from mechfem.atomic import atomic_path
 from mechfem.drawing import STYLES, MechanismDrawing, Shape, arc_points
 from mechfem.figures import PATH_COLOURS
 from mechfem.result import RunResult
-
-if TYPE_CHECKING:
-    from mechfem.result import RunResult
 
 FloatArray = npt.NDArray[np.float64]
 

@@ -32,7 +32,6 @@ from mechfem.result import RunResult
 
 if TYPE_CHECKING:
     from mechfem.batch import Study
-    from mechfem.result import RunResult
 
 #: Rows of a study's table shown in a notebook; the rest are counted.
 STUDY_ROWS = 10
