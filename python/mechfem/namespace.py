@@ -92,6 +92,12 @@ class Namespace:
             return Target("coordinate", (self._number(obj),), obj.name, obj.kind == "angle")
         raise TypeError(f"{ref!r} is not a point, co-ordinate, row or output")
 
+    def input(self, j: int) -> Target:
+        return self.target(self.numbering.inputs[j], "input", ("row",))
+
+    def coordinate(self, i: int) -> Target:
+        return self.target(self.numbering.coords[i - 1], "co-ordinate", ("coordinate",))
+
     def _number(self, c: Coordinate) -> int:
         try:
             return self.numbering.coord_number[c]

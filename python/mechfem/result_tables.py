@@ -106,6 +106,12 @@ class Names(Protocol):
     def dof(self, key: object) -> int:
         """The DOF number (1-based) of an input."""
 
+    def input(self, j: int) -> Target:
+        """The row of input ``j`` (0-based DOF)."""
+
+    def coordinate(self, i: int) -> Target:
+        """Co-ordinate ``i`` (its deck number)."""
+
     def words(self, report: RunReport) -> Words:
         """The words to say ``report``'s stop reason and warnings with."""
 
@@ -328,7 +334,7 @@ class ResultTables:
         angle's value times 180/pi, divided by 180/pi for each angle input it is differentiated by."""
         if check_unit(unit) != "deg":
             return values
-        power = int(t.angle) - sum(self._names.numbering.inputs[j].is_angle for j in dofs)
+        power = int(t.angle) - sum(self._names.input(j).angle for j in dofs)
         if not t.angle and power == 0:
             raise ValueError(
                 f"{t.name!r} is not an angle, and neither is an input it is differentiated by: unit='deg' applies to "
@@ -371,9 +377,7 @@ class ResultTables:
         """The value of an input at every position (under free motion: where it went), an angle in ``unit``
         (``"rad"``, the default, or ``"deg"``)."""
         j = self._dof(name)
-        row = self._names.numbering.inputs[j]
-        t = Target("row", (self.model.dofs[j],), row.name, row.is_angle)
-        return self._in_unit(self._input(j).copy(), t, (), unit)
+        return self._in_unit(self._input(j).copy(), self._names.input(j), (), unit)
 
     # -- inverse dynamics
 
@@ -398,7 +402,7 @@ class ResultTables:
         """The force the frame applies at a fixed point (positions x 2: x, y) or on one fixed co-ordinate."""
         self._dynamic_needed("reactions")
         t = self._target(point_or_coordinate, "point or co-ordinate", ("point", "coordinate"))
-        coords = [(self._names.numbering.coords[i - 1].name, self.model.coordinates[i - 1].moving) for i in t.numbers]
+        coords = [(self._names.coordinate(i).name, self.model.coordinates[i - 1].moving) for i in t.numbers]
         moving = [name for name, m in coords if m]
         if moving:
             fixed = [name for name, m in coords if not m]
