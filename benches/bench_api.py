@@ -10,7 +10,7 @@ position count in one run:
 * the same velocity/acceleration deck as a named model, ``Mechanism.run(order=2)``, and through a compiled
   handle, ``_core.Model.from_path(deck).run(order=2)``, for the same work;
 * ``mechfem.sweep`` of 360-position variants of the four-bar (its crank length), on 1 and on 2 workers alternated,
-  the best of ``--repeat`` rounds;
+  the best of the rounds run between the tools' rounds;
 * pylinkage's ``step_fast`` and ``step_fast_with_kinematics``.
 
 Every tool's coupler point is first checked against the closed form of the four-bar (the crank pin on its
@@ -45,8 +45,9 @@ def closed_form_check(coords, steps: int) -> None:  # type: ignore[no-untyped-de
     assert np.allclose(cx, ax + P * np.cos(theta), atol=1e-9) and np.allclose(cy, ay + P * np.sin(theta), atol=1e-9)
 
 
-def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates) -> None:  # type: ignore[no-untyped-def]
-    """Checks, then times every tool at ``steps`` steps, alternating them."""
+def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_round) -> None:  # type: ignore[no-untyped-def]
+    """Checks, then times every tool at ``steps`` steps, alternating them, and a round of the study after each
+    round of the tools."""
     import numpy as np
 
     import mechfem
@@ -85,20 +86,24 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates) -> None
         "compiled handle run(order=2)": lambda: handle.run(order=2),
     }
     rounds = args.repeat
+    # A call at 100 000 positions writes tens of MB, and its time moves by a third from call to call with the
+    # memory's state: more calls a round there, so that the best of them is the call's own cost.
+    min_time = 0.05 if steps < 10_000 else 0.25
     for _ in range(rounds):
         for name, fn in tools.items():
             if name == "pylinkage step_fast":
-                t, _ = best_of(1, lambda lk: lk.step_fast(iterations=steps), lambda: pylinkage_fourbar(steps), 0.05)
+                t, _ = best_of(1, lambda lk: lk.step_fast(iterations=steps), lambda: pylinkage_fourbar(steps), min_time)
             elif name == "pylinkage step_fast_with_kinematics":
                 t, _ = best_of(
                     1,
                     lambda lk: lk.step_fast_with_kinematics(iterations=steps),
                     lambda: pylinkage_fourbar(steps),
-                    0.05,
+                    min_time,
                 )
             else:
-                t, _ = best_of(1, fn, min_time=0.05)
+                t, _ = best_of(1, fn, min_time=min_time)
             best[name] = min(best.get(name, math.inf), t)
+        study_round()
     for name, t in best.items():
         add(name, steps, t)
     pairs = [
@@ -130,22 +135,24 @@ def main() -> None:
         rates[tool, steps] = rate
         print(f"  {tool:<48} {seconds * 1e3:10.3f} ms  {rate:14,.0f} {per}/s", flush=True)
 
-    for steps in args.steps:
-        measure(steps, args, tmp, add, rates)
-
     # A study: variants of the crank length, 360 positions each.
     (tmp / "study.mec").write_text(fourbar_deck(360, True))
     base = mechfem.Mechanism.from_deck(str(tmp / "study.mec"))
     name = "E1.length"
     values = np.linspace(0.9, 1.1, args.variants)
-    study_rates = {}
-    # Alternated as the tools are, best of ``--repeat`` rounds: a study takes a tenth of a second, so a moment of
-    # the machine's noise can spoil a round.
-    for workers in (1, 2) * args.repeat:
-        t0 = time.perf_counter()
-        mechfem.sweep(base, {name: values}, workers=workers, progress=False)
-        rate = args.variants / (time.perf_counter() - t0)
-        study_rates[workers] = max(study_rates.get(workers, 0.0), rate)
+    study_rates: dict[int, float] = {}
+
+    def study_round() -> None:
+        # One and two workers, alternated like the tools; its rounds are spread over the whole run, between the
+        # tools' rounds, so that a few seconds of the machine's noise cannot spoil every one of them.
+        for workers in (1, 2):
+            t0 = time.perf_counter()
+            mechfem.sweep(base, {name: values}, workers=workers, progress=False)
+            rate = args.variants / (time.perf_counter() - t0)
+            study_rates[workers] = max(study_rates.get(workers, 0.0), rate)
+
+    for steps in args.steps:
+        measure(steps, args, tmp, add, rates, study_round)
     for w, rate in study_rates.items():
         print(f"  sweep, {args.variants} variants x 360 positions, {w} worker(s): {rate:,.0f} variants/s")
     print(f"  sweep speed-up 1 -> 2 workers: {study_rates[2] / study_rates[1]:.2f}")
