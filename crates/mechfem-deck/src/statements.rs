@@ -1,13 +1,13 @@
 //! One keyword line to one item of the typed deck.
 
+pub(crate) mod dynamics;
 mod optimise;
 
 use mechfem_core::ElementType;
 
-use crate::args::Source;
 use crate::ast::{
-    BufDef, BufList, CoordDef, ElemDef, ForceDef, FormDef, GravityDef, InertiaDef, IntTolDef, LoadDef, LoadDefKind,
-    MassDef, Mode, MotionDef, MotionKind, ParaDef, PictureDef, PlotDef, PointMassDef, Tstepe,
+    BufDef, BufList, CoordDef, ElemDef, FormDef, IntTolDef, Mode, MotionDef, MotionKind, ParaDef, PictureDef, PlotDef,
+    Tstepe,
 };
 use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::{Block, Keyword};
@@ -143,7 +143,7 @@ impl Parser<'_> {
                     Keyword::MovRele => MotionKind::Relative(src.real(value, "the total change")?),
                     Keyword::MovAbse => MotionKind::Absolute(src.real(value, "the end value")?),
                     Keyword::MovFunc => MotionKind::Function(Spanned::new(value.text.clone(), value.span)),
-                    Keyword::MovDyn => MotionKind::Dynamic(src.real(value, "the initial velocity")?),
+                    Keyword::MovDyn => MotionKind::Dynamic(dynamics::bounded(src, value, "the initial velocity")?),
                     _ => {
                         let ds = src.real(value, "the step length")?;
                         if ds.value == 0.0 {
@@ -197,8 +197,8 @@ impl Parser<'_> {
                 self.movement.maxiter = Some(m);
             }
             Keyword::Inttol => {
-                let rtol = tolerance(src, arg(0)?, "the relative tolerance rtol")?;
-                let atol = tolerance(src, arg(1)?, "the absolute tolerance atol")?;
+                let rtol = dynamics::tolerance(src, arg(0)?, dynamics::Tolerance::Relative)?;
+                let atol = dynamics::tolerance(src, arg(1)?, dynamics::Tolerance::Absolute)?;
                 self.once(kw)?;
                 self.movement.inttol = Some(IntTolDef { line: line_no, rtol, atol });
             }
@@ -375,79 +375,6 @@ impl Parser<'_> {
         }
     }
 
-    /// Reads one line of the DYNAMICS block (its argument count is checked).
-    fn dynamics_statement(&mut self, kw: Spanned<Keyword>, line: &Line, args: &[Word]) -> Result<(), Box<Diagnostic>> {
-        let arg =
-            |k: usize| args.get(k).ok_or_else(|| self.src.count_error(line, args, None, "missing argument".into()));
-        let line_no = line.number;
-        let src = &self.src;
-        const COORD: &str = "the co-ordinate number";
-        const INERTIA: &str = "the moment of inertia";
-        match kw.value {
-            Keyword::Mass => {
-                let element = src.whole(arg(0)?, "the element number")?;
-                let mass = not_negative(src, arg(1)?, "the mass", "give the body's mass, 0 or more")?;
-                let u = src.real(arg(2)?, "the centre of mass u")?;
-                let v = src.real(arg(3)?, "the centre of mass v")?;
-                let inertia = args.get(4).map(|w| not_negative(src, w, INERTIA, HINT_BODY_INERTIA)).transpose()?;
-                self.dynamics.masses.push(MassDef { line: line_no, element, mass, u, v, inertia });
-            }
-            Keyword::Pmass => {
-                let x = src.whole(arg(0)?, COORD)?;
-                let y = src.whole(arg(1)?, COORD)?;
-                let mass = not_negative(src, arg(2)?, "the mass", "give the point's mass, 0 or more")?;
-                self.dynamics.point_masses.push(PointMassDef { line: line_no, x, y, mass });
-            }
-            Keyword::Inertia => {
-                let coord = src.whole(arg(0)?, COORD)?;
-                let inertia = not_negative(src, arg(1)?, INERTIA, HINT_WHEEL_INERTIA)?;
-                self.dynamics.inertias.push(InertiaDef { line: line_no, coord, inertia });
-            }
-            Keyword::Gravity => {
-                let gx = src.real(arg(0)?, "the acceleration of gravity")?;
-                let gy = src.real(arg(1)?, "the acceleration of gravity")?;
-                self.once(kw)?;
-                self.dynamics.gravity = Some(GravityDef { line: line_no, gx, gy });
-            }
-            Keyword::Force => {
-                let x = src.whole(arg(0)?, COORD)?;
-                let y = src.whole(arg(1)?, COORD)?;
-                let fx = src.real(arg(2)?, "the force")?;
-                let fy = src.real(arg(3)?, "the force")?;
-                self.dynamics.forces.push(ForceDef { line: line_no, x, y, fx, fy });
-            }
-            _ => {
-                let form = src.whole(arg(0)?, "the form parameter's destination")?;
-                let kind = match kw.value {
-                    Keyword::Load => LoadDefKind::Constant(src.real(arg(1)?, "the load")?),
-                    Keyword::LoadFunc => {
-                        let file = arg(1)?;
-                        LoadDefKind::Function(Spanned::new(file.text.clone(), file.span))
-                    }
-                    // A negative stiffness or damping is refused: it is far more
-                    // often a slip of the sign than a model, and it makes the
-                    // equilibrium unstable (a negative damper feeds energy in).
-                    Keyword::Spring => LoadDefKind::Spring {
-                        k: not_negative(src, arg(1)?, "the spring's stiffness", HINT_STIFFNESS)?,
-                        e0: src.real(arg(2)?, "the free value")?,
-                        c: args.get(3).map(|w| not_negative(src, w, "the damping", HINT_DAMPING)).transpose()?,
-                    },
-                    _ => {
-                        let t0 = src.real(arg(1)?, "the stall torque")?;
-                        let w0 = src.real(arg(2)?, "the no-load speed")?;
-                        if w0.value == 0.0 {
-                            let message = "the no-load speed w0 of a motor must not be 0";
-                            return Err(src.error(DiagnosticKind::BadValue, w0.span, message).with_hint(HINT_MOTOR));
-                        }
-                        LoadDefKind::Motor { t0, w0 }
-                    }
-                };
-                self.dynamics.loads.push(LoadDef { line: line_no, keyword: kw, form, kind });
-            }
-        }
-        Ok(())
-    }
-
     fn check_tstepe_first(&mut self, kw: Spanned<Keyword>) -> Result<(), Box<Diagnostic>> {
         if kw.value == Keyword::Tstepe {
             // Even a refused TSTEPE line is in its place.
@@ -497,44 +424,6 @@ fn element_type(parser: &Parser<'_>, word: &Word) -> Result<ElementType, Box<Dia
         .src
         .error(DiagnosticKind::UnknownElementType, word.span, message)
         .with_hint(format!("element types are {}", names.join(", "))))
-}
-
-const HINT_BODY_INERTIA: &str = "give the moment of inertia about the centre of mass, 0 or more (default 0)";
-const HINT_WHEEL_INERTIA: &str = "give the moment of inertia about the angle's axis, 0 or more";
-const HINT_STIFFNESS: &str =
-    "give k, 0 or more: the spring's force -k (eps_r - e0) pulls eps_r back towards its free value e0";
-const HINT_DAMPING: &str = "give c, 0 or more: the damper's force -c d(eps_r)/dt works against the motion";
-const HINT_MOTOR: &str = "the motor's force T0 (1 - d(eps_r)/dt / w0) falls to zero at the speed w0: give that speed \
-                          (negative for a motor that runs backwards)";
-
-/// The word read as a number that must not be negative (a mass, an inertia,
-/// a stiffness).
-fn not_negative(src: &Source<'_>, w: &Word, what: &str, hint: &str) -> Result<Spanned<f64>, Box<Diagnostic>> {
-    let v = src.real(w, what)?;
-    if v.value < 0.0 {
-        return Err(src
-            .error(DiagnosticKind::BadValue, w.span, format!("{what} must not be negative, got {}", real(v.value)))
-            .with_hint(hint));
-    }
-    Ok(v)
-}
-
-/// The word read as a tolerance of the integrator: a positive number.
-fn tolerance(src: &Source<'_>, w: &Word, what: &str) -> Result<Spanned<f64>, Box<Diagnostic>> {
-    let v = src.real(w, what)?;
-    if v.value <= 0.0 {
-        return Err(src
-            .error(
-                DiagnosticKind::BadValue,
-                w.span,
-                format!("{what} of INTTOL must be positive, got {}", real(v.value)),
-            )
-            .with_hint(
-                "give `INTTOL rtol atol`, both positive: each step's estimated error in a DOF and its velocity stays \
-                 below atol + rtol * |value|, e.g. `INTTOL 1e-8 1e-10`",
-            ));
-    }
-    Ok(v)
 }
 
 /// What the arguments before the buffer number of a `BUF...` keyword mean.

@@ -82,12 +82,18 @@ fn mov_dyn_compiles_to_an_input_moved_by_the_forces() {
 }
 
 #[test]
-fn the_initial_velocity_is_any_finite_number() {
-    for (word, v0) in [("-3.5", -3.5), ("1.5D1", 15.0), ("-0", 0.0), ("1e300", 1e300)] {
+fn the_initial_velocity_is_0_or_of_a_magnitude_from_1e_minus_100_to_1e100() {
+    for (word, v0) in [("-3.5", -3.5), ("1.5D1", 15.0), ("-0", 0.0), ("1e100", 1e100), ("-1e-100", -1e-100)] {
         let c = ok(&pendulum("DYN SIM", &format!("TSTEPE 10 0.01\nMOV_DYN 1 {word}\n")));
         assert_eq!(c.motion.expect("motion").inputs, [InputMotion::Dynamic { v0 }], "{word}");
     }
-    for (word, kind) in [("nan", DiagnosticKind::NotANumber), ("-inf", DiagnosticKind::NotANumber)] {
+    for (word, kind) in [
+        ("nan", DiagnosticKind::NotANumber),
+        ("-inf", DiagnosticKind::NotANumber),
+        ("1e300", DiagnosticKind::NumberOutOfRange),
+        ("-1.1e100", DiagnosticKind::NumberOutOfRange),
+        ("1e-320", DiagnosticKind::NumberOutOfRange),
+    ] {
         let text = pendulum("DYN SIM", &format!("TSTEPE 10 0.01\nMOV_DYN 1 {word}\n"));
         assert_eq!(errors(&text), [(kind, 17)], "{word}");
     }

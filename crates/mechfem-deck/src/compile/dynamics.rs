@@ -11,6 +11,7 @@ use super::table::{self, Layout};
 use crate::ast::{self, missing_dynamics, Deck, LoadDefKind, MassDef};
 use crate::diagnostic::{count, numbered, Diagnostic, DiagnosticKind, Hint, Span, Spanned, Subject};
 use crate::keywords::Keyword;
+use crate::statements::dynamics::out_of_bounds;
 
 /// The largest LOADFUNC file read: a load table is a few thousand rows at
 /// most, and a larger file is more likely the wrong file.
@@ -32,7 +33,25 @@ pub(crate) fn dynamics(
         return Err(missing_dynamics(&deck.path, &deck.source, mode, deck.mode.span));
     };
     let mut d = Dynamics::default();
+    // What each line puts a mass or load on, and the line: a second line
+    // of the same keyword on the same thing is refused (its numbers would
+    // add up unseen).
+    let mut given: Vec<(Keyword, Carrier, usize)> = Vec::new();
+    let mut once = |kw: Keyword, carrier: Carrier, line: usize, span: Span| {
+        let Some(&(_, _, first)) = given.iter().find(|(k, c, _)| (*k, *c) == (kw, carrier)) else {
+            given.push((kw, carrier, line));
+            return Ok(());
+        };
+        let name = carrier.name();
+        Err(deck
+            .error(DiagnosticKind::DuplicateKeyword, span, format!("{name} already has a {kw}, given at line {first}"))
+            .with_hint(format!(
+                "give one {kw} line for {name}: add the values of the two lines into one, or correct the number if \
+                 the second line is meant for something else"
+            )))
+    };
     for m in &block.masses {
+        once(Keyword::Mass, Carrier::Element(m.element.value), m.line, m.element.span)?;
         d.bodies.push(Body {
             element: element(deck, m)?,
             mass: m.mass.value,
@@ -43,6 +62,7 @@ pub(crate) fn dynamics(
     }
     for p in &block.point_masses {
         let (x, y) = (coordinate(deck, sizes, Keyword::Pmass, &p.x)?, coordinate(deck, sizes, Keyword::Pmass, &p.y)?);
+        once(Keyword::Pmass, Carrier::Point(p.x.value, p.y.value), p.line, p.x.span.to(p.y.span))?;
         d.point_masses.push(PointMass { x, y, mass: p.mass.value });
     }
     for i in &block.inertias {
@@ -50,6 +70,7 @@ pub(crate) fn dynamics(
         // angle is still a rotation the user may mean (a wheel's angle
         // coupled by a combined row, say).
         let coord = coordinate(deck, sizes, Keyword::Inertia, &i.coord)?;
+        once(Keyword::Inertia, Carrier::Coordinate(i.coord.value), i.line, i.coord.span)?;
         d.inertias.push(Inertia { coord, inertia: i.inertia.value });
     }
     if let Some(g) = &block.gravity {
@@ -57,10 +78,12 @@ pub(crate) fn dynamics(
     }
     for f in &block.forces {
         let (x, y) = (coordinate(deck, sizes, Keyword::Force, &f.x)?, coordinate(deck, sizes, Keyword::Force, &f.y)?);
+        once(Keyword::Force, Carrier::Point(f.x.value, f.y.value), f.line, f.x.span.to(f.y.span))?;
         d.forces.push(Force { x, y, f: [f.fx.value, f.fy.value] });
     }
     for l in &block.loads {
         let form = form(deck, sizes, l.keyword.value, &l.form)?;
+        once(l.keyword.value, Carrier::Form(l.form.value), l.line, l.form.span)?;
         let kind = match &l.kind {
             LoadDefKind::Constant(q) => LoadKind::Constant(q.value),
             LoadDefKind::Function(file) => LoadKind::Table(load_table(deck, file, deck_dir)?),
@@ -82,6 +105,30 @@ pub(crate) fn dynamics(
         )
     })?;
     Ok(Some(d))
+}
+
+/// What a line of the DYNAMICS block puts its mass or load on, in the
+/// deck's numbers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Carrier {
+    Element(i64),
+    /// A point, by its x and y co-ordinates.
+    Point(i64, i64),
+    Coordinate(i64),
+    /// A form parameter by its destination.
+    Form(i64),
+}
+
+impl Carrier {
+    fn name(self) -> String {
+        match self {
+            Carrier::Element(k) => format!("element {k}"),
+            Carrier::Point(x, y) => format!("the point ({x}, {y})"),
+            Carrier::Coordinate(i) => format!("co-ordinate {i}"),
+            Carrier::Form(r) if r > 0 => format!("prescribed row {r}"),
+            Carrier::Form(r) => format!("dependent form parameter {r}"),
+        }
+    }
 }
 
 /// The element of a MASS line as a 0-based index: it must exist and have a
@@ -174,6 +221,11 @@ fn load_table(deck: &Deck, file: &Spanned<String>, deck_dir: &Path) -> Result<Ve
                 .with_hint(
                     "list the rows of a LOADFUNC file in order of time; two rows at the same time make a jump",
                 ));
+        }
+        for (v, what) in [(t, "the time"), (value, "the load")] {
+            if let Some((message, hint)) = out_of_bounds(what, v.value) {
+                return Err(table.error(DiagnosticKind::NumberOutOfRange, v.span, message).with_hint(hint));
+            }
         }
         previous = Some((*line, t.value));
         rows.push([t.value, value.value]);
