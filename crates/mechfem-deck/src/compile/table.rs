@@ -21,6 +21,7 @@ use crate::ast::{diagnostic_at, Deck};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 use crate::lexer::lex_line;
+use crate::statements::dynamics::out_of_bounds;
 
 /// The largest table file read when the keyword has no smaller limit.
 pub(crate) const MAX_TABLE_BYTES: u64 = 64 << 20;
@@ -178,6 +179,12 @@ pub(crate) fn read_column(
                 ),
                 _ => d,
             })?;
+            // The objective squares the difference from the value and
+            // weighs it: a value within the numbers of the dynamics keeps
+            // that finite.
+            if let Some((message, hint)) = out_of_bounds("the target value", v.value) {
+                return Err(src.error(DiagnosticKind::NumberOutOfRange, word.span, message).with_hint(hint));
+            }
             values.push(Some(v.value));
         }
     }

@@ -10,6 +10,11 @@ use crate::keywords::{closest, Keyword};
 use crate::lexer::{Line, Word};
 use crate::optimise::{Reduce, Sense};
 use crate::parse::Parser;
+use crate::statements::dynamics::bounded;
+
+/// The largest OPTSTEPS: SciPy's SLSQP counts its iterations in a 32-bit
+/// integer, which a larger limit wraps round to a negative one.
+pub(crate) const MAX_OPTSTEPS: i64 = i32::MAX as i64;
 
 impl Parser<'_> {
     /// Reads one line of the OPTIMISE block (its argument count is checked).
@@ -39,12 +44,12 @@ impl Parser<'_> {
                     }
                     Keyword::TargetAt => {
                         let position = src.whole(arg(1)?, "the position k")?;
-                        let value = src.real(arg(2)?, "the target value")?;
+                        let value = bounded(src, arg(2)?, "the target value")?;
                         (TargetDefKind::At { position, value }, args.get(3))
                     }
                     _ => {
                         let reference = src.buffer(arg(1)?)?;
-                        let value = src.real(arg(2)?, "the target value")?;
+                        let value = bounded(src, arg(2)?, "the target value")?;
                         (TargetDefKind::Extremum { reference, value }, args.get(3))
                     }
                 };
@@ -85,11 +90,37 @@ impl Parser<'_> {
                         )
                         .with_hint("give the largest number of iterations of the optimiser (default 200)"));
                 }
+                if n.value > MAX_OPTSTEPS {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::NumberOutOfRange,
+                            n.span,
+                            format!("OPTSTEPS {} is more iterations than the optimiser can count", n.value),
+                        )
+                        .with_hint(
+                            "the optimiser counts its iterations in 32 bits: give at most 2147483647 (default 200); \
+                             a design that has not converged in a few hundred iterations rarely does later",
+                        ));
+                }
                 self.once(kw)?;
                 self.optimise.steps = Some(n);
             }
             _ => {
                 let tol = src.real(arg(0)?, "the tolerance")?;
+                if tol.value >= 1.0 {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::BadValue,
+                            tol.span,
+                            format!(
+                                "OPTTOL must be below 1, got {}: the optimiser would stop before its first step",
+                                real(tol.value)
+                            ),
+                        )
+                        .with_hint(
+                            "give the relative change of the objective below which the optimiser stops, e.g. 1E-8",
+                        ));
+                }
                 if tol.value <= 0.0 {
                     return Err(src
                         .error(
@@ -112,8 +143,11 @@ impl Parser<'_> {
 /// `lo hi` of VARY, VARYX or BOUND: two numbers, lo below hi; for a design
 /// variable also hi - lo finite (the optimiser scales its steps by it).
 fn range(src: &Source<'_>, kw: Keyword, lo: &Word, hi: &Word) -> Result<(Spanned<f64>, Spanned<f64>), Box<Diagnostic>> {
-    let lo = src.real(lo, "the lower end lo")?;
-    let hi = src.real(hi, "the upper end hi")?;
+    // A bound is compared with the buffer's values: within the numbers of
+    // the dynamics, the difference stays finite.
+    let read = |w: &Word, what: &str| if kw == Keyword::Bound { bounded(src, w, what) } else { src.real(w, what) };
+    let lo = read(lo, "the lower end lo")?;
+    let hi = read(hi, "the upper end hi")?;
     if lo.value < hi.value && (kw == Keyword::Bound || (hi.value - lo.value).is_finite()) {
         return Ok((lo, hi));
     }
@@ -149,7 +183,7 @@ fn range(src: &Source<'_>, kw: Keyword, lo: &Word, hi: &Word) -> Result<(Spanned
 
 /// The weight of a target: a positive number.
 fn positive_weight(src: &Source<'_>, kw: Keyword, w: &Word) -> Result<Spanned<f64>, Box<Diagnostic>> {
-    let v = src.real(w, "the weight")?;
+    let v = bounded(src, w, "the weight")?;
     if v.value > 0.0 {
         return Ok(v);
     }
