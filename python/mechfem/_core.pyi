@@ -132,8 +132,8 @@ class StopDict(TypedDict):
     inputs: list[float]
     last_inputs: list[float]
     kind: str
-    """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
-    ``not_computed``, ``interrupted`` or ``simulation`` (the integrator of a simulation gave up)."""
+    """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``non_finite_dynamics``,
+    ``unsupported``, ``not_computed``, ``interrupted`` or ``simulation`` (the integrator of a simulation gave up)."""
     message: str
     parts: list[_Part]
     limit: LimitDict | None

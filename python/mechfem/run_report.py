@@ -99,7 +99,8 @@ class Stop:
     """Input values at the last good position."""
     kind: str
     """What failed: ``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``unsupported``,
-    ``interrupted``, ``simulation`` (a simulation's integrator could not go on)."""
+    ``interrupted``, ``simulation`` (a simulation's integrator could not go on), ``non_finite_dynamics`` (a result
+    of the dynamics is not finite: the message names the mass or load)."""
     message: str
     """The solver's own words, as the deck says them."""
     limit: Limit | None
@@ -139,6 +140,8 @@ class Stop:
         )
         if self.kind == "interrupted":
             return f"The motion was interrupted after position {k} of {total}. {kept}"
+        if self.kind == "non_finite_dynamics":
+            return f"The motion stopped after position {k} of {total}: at the next position {message}. {kept}"
         if self.kind == "simulation":
             return (
                 f"The simulation stopped after position {k} of {total}: {message}. {kept} "

@@ -156,6 +156,10 @@ pub enum SolveError {
     /// A computed value became NaN or infinite.
     #[error("a computed value is not finite")]
     NonFinite,
+    /// A result of the dynamics became NaN or infinite: a mass, a load or
+    /// the motion is too large for the products the dynamics form of them.
+    #[error("{0}")]
+    Dynamics(DynamicsFault),
     /// A simulation's integrator could not go on.
     #[error("the simulation stopped at time {time}: {reason}")]
     Simulation {
@@ -288,5 +292,123 @@ impl Unsupported {
             Unsupported::UnknownDesignVariable => &[Text("a design variable is not in the model")],
             Unsupported::ExtremumNeedsOneDof => &[Text("an extremum needs a position quantity of a one-DOF mechanism")],
         }
+    }
+}
+
+/// A result of the dynamics that is not finite at a position, and the mass
+/// or load that made it so.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DynamicsFault {
+    /// What is not finite.
+    pub quantity: DynamicQuantity,
+    /// What it belongs to.
+    pub source: DynamicSource,
+}
+
+/// A result of the dynamics, in a [`DynamicsFault`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DynamicQuantity {
+    /// A mass times gravity.
+    Weight,
+    /// A mass times its acceleration, or an inertia times its angular one.
+    InertiaForce,
+    /// The generalised force of a load, or a point force, on the co-ordinates.
+    Force,
+    /// A share of the kinetic energy.
+    KineticEnergy,
+    /// A share of the potential energy.
+    PotentialEnergy,
+    /// A share of the mass matrix in the degrees of freedom.
+    MassMatrix,
+    /// A share of the power of the loads or the drives.
+    Power,
+    /// The generalised stress of a prescribed row.
+    Stress,
+    /// The reaction on a fixed co-ordinate.
+    Reaction,
+    /// The accelerations of the degrees of freedom moved by the forces.
+    Acceleration,
+}
+
+impl DynamicQuantity {
+    /// The quantity in words.
+    pub fn words(self) -> &'static str {
+        match self {
+            DynamicQuantity::Weight => "the weight",
+            DynamicQuantity::InertiaForce => "the inertia force",
+            DynamicQuantity::Force => "the force",
+            DynamicQuantity::KineticEnergy => "the kinetic energy",
+            DynamicQuantity::PotentialEnergy => "the potential energy",
+            DynamicQuantity::MassMatrix => "the share of the mass matrix",
+            DynamicQuantity::Power => "the power",
+            DynamicQuantity::Stress => "the stress",
+            DynamicQuantity::Reaction => "the reaction",
+            DynamicQuantity::Acceleration => "the accelerations",
+        }
+    }
+}
+
+/// What a result of the dynamics belongs to (0-based indices).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DynamicSource {
+    /// The body on an element (deck `MASS`).
+    Body {
+        /// Element index.
+        element: usize,
+    },
+    /// A point mass (deck `PMASS`).
+    PointMass {
+        /// Co-ordinate index of the point's x.
+        x: usize,
+        /// Co-ordinate index of the point's y.
+        y: usize,
+    },
+    /// A rotational inertia (deck `INERTIA`).
+    Inertia {
+        /// Co-ordinate index.
+        coord: usize,
+    },
+    /// A point force (deck `FORCE`).
+    Force {
+        /// Co-ordinate index of the point's x.
+        x: usize,
+        /// Co-ordinate index of the point's y.
+        y: usize,
+    },
+    /// A load on a form parameter.
+    Load {
+        /// The form parameter it acts on.
+        form: crate::model::FormRef,
+        /// Its deck keyword: `LOAD`, `LOADFUNC`, `SPRING` or `MOTOR`.
+        keyword: &'static str,
+    },
+    /// A prescribed row.
+    Row(usize),
+    /// A fixed co-ordinate.
+    Coordinate(usize),
+    /// The degrees of freedom that move under the forces (deck `MOV_DYN`).
+    FreeDofs,
+    /// The drives of the prescribed motion together.
+    Drives,
+}
+
+impl std::fmt::Display for DynamicsFault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::model::FormRef;
+        let of = match self.source {
+            DynamicSource::Body { element } => format!("of the MASS on element {element}"),
+            DynamicSource::PointMass { x, y } => format!("of the PMASS at co-ordinates {x}, {y}"),
+            DynamicSource::Inertia { coord } => format!("of the INERTIA on co-ordinate {coord}"),
+            DynamicSource::Force { x, y } => format!("of the FORCE at co-ordinates {x}, {y}"),
+            DynamicSource::Load { form: FormRef::Prescribed(r), keyword } => format!("of the {keyword} on row {r}"),
+            DynamicSource::Load { form: FormRef::Dependent(d), keyword } => {
+                format!("of the {keyword} on dependent form parameter {d}")
+            }
+            DynamicSource::Row(r) => format!("of row {r}"),
+            DynamicSource::Coordinate(i) => format!("on co-ordinate {i}"),
+            DynamicSource::FreeDofs => "of the degrees of freedom moved by the forces".to_string(),
+            DynamicSource::Drives => "of the drives".to_string(),
+        };
+        write!(f, "{} {of} is not finite", self.quantity.words())
     }
 }

@@ -37,7 +37,9 @@ pub mod run;
 pub mod solver;
 
 pub use elements::{Dimension, Element, ElementType, FormEval, Order, Slot};
-pub use error::{DeckTerm, ElementError, ModelError, Piece, SolveError, Unsupported};
+pub use error::{
+    DeckTerm, DynamicQuantity, DynamicSource, DynamicsFault, ElementError, ModelError, Piece, SolveError, Unsupported,
+};
 pub use model::{FormRef, Mechanism, MechanismBuilder, State, Term};
 pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};
 pub use run::{design, run, simulate, InverseDynamics, Observer, PositionView, RunReport, SimReport, Stop};

@@ -252,3 +252,28 @@ fn the_motion_hint_of_a_dyn_ana_deck_offers_no_free_motion() {
     let hint = e.0[0].hint.as_deref().unwrap_or("");
     assert!(hint.contains("MOV_FUNC 1 file") && !hint.contains("MOV_FREE"), "{hint}");
 }
+
+/// A result of inverse dynamics that overflows mid-run stops the run at the
+/// position before, with the quantity and the mass named; nothing non-finite
+/// is recorded.
+#[test]
+fn an_overflowing_dynamics_result_stops_the_run_and_names_the_mass() {
+    use mechfem_core::{DynamicQuantity, DynamicSource, DynamicsFault, InverseDynamics, Recorder, SolveError};
+    let text = std::fs::read_to_string("../../tests/decks/dynamics_overflow.mec").expect("deck");
+    let c = compiled(&text, Path::new(".")).expect("the deck compiles");
+    let model = c.dynamics.clone().expect("a DYN deck");
+    let quantities = vec![Quantity::Epot, Quantity::Ekin, Quantity::Drive(0)];
+    let mut rec = Recorder::new(quantities, false).with_dynamics(InverseDynamics::new(&c.mechanism, model));
+    let mut state = c.state.clone();
+    let report = mechfem_core::run(&c.mechanism, &mut state, c.motion.as_ref(), &c.params, &mut rec).expect("run");
+    assert_eq!(report.positions, 1);
+    let stop = report.stop.expect("a stop");
+    assert_eq!(stop.last_good, 0);
+    let fault =
+        DynamicsFault { quantity: DynamicQuantity::PotentialEnergy, source: DynamicSource::PointMass { x: 2, y: 3 } };
+    assert_eq!(stop.error, SolveError::Dynamics(fault));
+    assert_eq!(rec.positions(), 1);
+    assert!(rec.data().iter().all(|v| v.is_finite()), "{:?}", rec.data());
+    // The state is left at the position recorded.
+    assert_eq!(state.x[2], 1e100);
+}

@@ -6,7 +6,9 @@
 
 use std::path::Path;
 
-use mechfem_core::{diagnose, DeckTerm, ElementError, Mechanism, Piece, SolveError, State};
+use mechfem_core::{
+    diagnose, DeckTerm, DynamicSource, DynamicsFault, ElementError, FormRef, Mechanism, Piece, SolveError, State,
+};
 use mechfem_deck::{Diagnostic, Diagnostics};
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt};
 use pyo3::prelude::*;
@@ -161,6 +163,7 @@ pub fn kind(err: &SolveError) -> &'static str {
         SolveError::NonFinite => "non_finite",
         SolveError::Interrupted => "interrupted",
         SolveError::Simulation { .. } => "simulation",
+        SolveError::Dynamics(_) => "non_finite_dynamics",
     }
 }
 
@@ -302,6 +305,7 @@ pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
             "the correction ({corrected:.3e}) went farther than the prediction ({predicted:.3e}): the step may jump to \
              another assembly branch"
         ))],
+        SolveError::Dynamics(fault) => dynamics_parts(mech, fault),
         SolveError::Unsupported(u) => u
             .pieces()
             .iter()
@@ -312,6 +316,37 @@ pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
             .collect(),
         other => vec![text(other.to_string())],
     }
+}
+
+/// A result of the dynamics that is not finite, in parts with the deck's
+/// numbering: what it is, the DYNAMICS line's keyword and what that line
+/// names, and what to check.
+fn dynamics_parts(mech: &Mechanism, fault: &DynamicsFault) -> Vec<Part> {
+    let element = |k: usize| Part::Element { number: k + 1, ty: mech.elements().get(k).map_or("?", |e| e.ty.name()) };
+    let mut parts = vec![text(format!("{} ", fault.quantity.words()))];
+    parts.extend(match fault.source {
+        DynamicSource::Body { element: k } => vec![text("of the MASS on "), element(k)],
+        DynamicSource::PointMass { x, y } => vec![text("of the PMASS at "), Part::Coords(vec![x + 1, y + 1])],
+        DynamicSource::Inertia { coord } => vec![text("of the INERTIA on "), Part::Coordinate(coord + 1)],
+        DynamicSource::Force { x, y } => vec![text("of the FORCE at "), Part::Coords(vec![x + 1, y + 1])],
+        DynamicSource::Load { form: FormRef::Prescribed(r), keyword } => {
+            vec![text(format!("of the {keyword} on ")), Part::Row(r + 1)]
+        }
+        DynamicSource::Load { form: FormRef::Dependent(d), keyword } => {
+            vec![text(format!("of the {keyword} on dependent form parameter -{}", d + 1))]
+        }
+        DynamicSource::Row(r) => vec![text("of "), Part::Row(r + 1)],
+        DynamicSource::Coordinate(i) => vec![text("on "), Part::Coordinate(i + 1)],
+        DynamicSource::FreeDofs => {
+            vec![text("of the degrees of freedom moved by the forces ("), Part::Term(DeckTerm::Dynamic), text(")")]
+        }
+        DynamicSource::Drives => vec![text("of the drives")],
+    });
+    parts.push(text(
+        " is not finite: a mass, a load or a speed of the motion is too large for the products the dynamics form of \
+         them (a double holds about 1.8e308); check the units and the values of the DYNAMICS block and of the motion",
+    ));
+    parts
 }
 
 /// The error in words, with the deck's numbering.
@@ -391,7 +426,7 @@ fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, e
         | SolveError::BranchJump { .. }
         | SolveError::NonFinite
         | SolveError::Simulation { .. } => ConvergenceError::new_err(message(&parts)),
-        SolveError::NotComputed | SolveError::Unsupported(_) | SolveError::Interrupted => {
+        SolveError::NotComputed | SolveError::Unsupported(_) | SolveError::Interrupted | SolveError::Dynamics(_) => {
             MechfemError::new_err(message(&parts))
         }
     };

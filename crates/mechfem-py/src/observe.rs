@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
 use mechfem_core::run::{Columns, InverseDynamics, Selection};
-use mechfem_core::{Mechanism, Observer, PositionView, TransferOrder};
+use mechfem_core::{Mechanism, Observer, PositionView, SolveError, TransferOrder};
 use pyo3::prelude::*;
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
@@ -34,6 +34,9 @@ pub struct Recording {
     /// Inverse dynamics, evaluated at every position when a dynamic
     /// quantity is recorded.
     dynamics: Option<InverseDynamics>,
+    /// Whether inverse dynamics has been evaluated (and checked) at the
+    /// position about to be recorded.
+    checked: bool,
 }
 
 /// Progress reporting of a single run: attaches to Python about every 1%
@@ -160,6 +163,7 @@ impl Recording {
             progress: Progress::new(progress, total),
             order,
             dynamics: None,
+            checked: false,
         }
     }
 
@@ -179,10 +183,26 @@ impl Observer for Recording {
             self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
         }
         self.row.clear();
-        self.selection.record(view, self.dynamics.as_mut(), &mut self.row);
+        if std::mem::take(&mut self.checked) {
+            self.selection.record_evaluated(view, self.dynamics.as_ref(), &mut self.row);
+        } else {
+            self.selection.record(view, self.dynamics.as_mut(), &mut self.row);
+        }
         self.table.push(&self.row);
         self.coords.extend_from_slice(&view.state.x);
         self.progress.report(view.index + 1);
+    }
+
+    /// Inverse dynamics of a DYN deck, evaluated here: a position where
+    /// it is not finite is refused.
+    fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
+        match self.dynamics.as_mut() {
+            Some(d) if self.selection.is_dynamic() => {
+                self.checked = true;
+                d.evaluate_checked(view)
+            }
+            _ => Ok(()),
+        }
     }
 
     fn simulated(&mut self, time: f64, end: f64) {

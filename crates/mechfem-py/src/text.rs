@@ -83,11 +83,13 @@ impl Source {
 }
 
 impl Observer for Watch<'_> {
+    /// Inverse dynamics once per position, for the layout and the buffers
+    /// alike: a position where it is not finite is refused.
+    fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
+        self.dynamics.as_mut().map_or(Ok(()), |d| d.evaluate_checked(view))
+    }
+
     fn position(&mut self, view: &PositionView<'_>) {
-        // Inverse dynamics once per position, for the layout and the buffers alike.
-        if let Some(d) = self.dynamics.as_mut() {
-            d.evaluate(view);
-        }
         let dynamics = self.dynamics.as_ref();
         self.row.clear();
         self.layout.record(view, dynamics, &mut self.row);

@@ -20,6 +20,7 @@
 
 use super::observe::PositionView;
 use crate::dynamics::{Dynamics, Frame, LoadKind};
+use crate::error::SolveError;
 use crate::model::{FormRef, Mechanism, FIXED};
 use crate::solver::{Kinematics, TransferOrder};
 
@@ -27,29 +28,32 @@ use crate::solver::{Kinematics, TransferOrder};
 /// buffer is allocated once, for one mechanism.
 #[derive(Debug, Clone)]
 pub struct InverseDynamics {
-    model: Dynamics,
+    pub(super) model: Dynamics,
     /// The frame of every body, in the model's order.
-    frames: Vec<Frame>,
+    pub(super) frames: Vec<Frame>,
     /// Co-ordinate velocities and accelerations (all N).
-    xd: Vec<f64>,
-    xdd: Vec<f64>,
+    pub(super) xd: Vec<f64>,
+    pub(super) xdd: Vec<f64>,
     /// First-order transfer functions over all co-ordinates, DOF j at `x1[j*N..]`.
-    x1: Vec<f64>,
+    pub(super) x1: Vec<f64>,
     /// Applied generalised forces f (all N).
-    f: Vec<f64>,
+    pub(super) f: Vec<f64>,
     /// f_in - f (all N).
-    g: Vec<f64>,
+    pub(super) g: Vec<f64>,
     /// (D^T sigma) over all co-ordinates.
-    dt_sigma: Vec<f64>,
+    pub(super) dt_sigma: Vec<f64>,
     /// A column of F and the solver's scratch (n each).
     column: Vec<f64>,
     work: Vec<f64>,
-    sigma: Vec<f64>,
+    pub(super) sigma: Vec<f64>,
     ekin: f64,
     epot: f64,
     power: f64,
     load_power: f64,
     mred: Vec<f64>,
+    /// Whether the last evaluation had the second-order transfer functions
+    /// (without them only V is computed, the rest is NaN by design).
+    balanced: bool,
 }
 
 impl InverseDynamics {
@@ -83,6 +87,7 @@ impl InverseDynamics {
             power: f64::NAN,
             load_power: f64::NAN,
             mred: nan(nd * nd),
+            balanced: false,
         }
     }
 
@@ -97,7 +102,8 @@ impl InverseDynamics {
     /// NaN.
     pub fn evaluate(&mut self, v: &PositionView<'_>) {
         self.epot = self.potential(v.kin, &v.state.x);
-        if !self.balance(v) {
+        self.balanced = self.balance(v);
+        if !self.balanced {
             for b in [&mut self.sigma, &mut self.f, &mut self.g, &mut self.dt_sigma, &mut self.mred] {
                 b.fill(f64::NAN);
             }
@@ -108,6 +114,34 @@ impl InverseDynamics {
         self.stresses(mech, v.kin);
         self.ekin = self.kinetic(x);
         self.power = (0..mech.n_dof()).map(|j| self.sigma[mech.input_row(j)] * qd[j]).sum();
+    }
+
+    /// [`Self::evaluate`], then [`Self::check`].
+    pub fn evaluate_checked(&mut self, v: &PositionView<'_>) -> Result<(), SolveError> {
+        self.evaluate(v);
+        self.check(v)
+    }
+
+    /// Checks that every result of the last [`Self::evaluate`] at the
+    /// position `v` is finite (but those that are NaN by design where the
+    /// second-order transfer functions are not known): finite masses and
+    /// loads can still make products and sums that overflow, and no
+    /// infinity may be handed on as a result. The error names the result
+    /// and the mass or load it came from ([`SolveError::Dynamics`]).
+    pub fn check(&self, v: &PositionView<'_>) -> Result<(), SolveError> {
+        let finite = |s: &[f64]| s.iter().all(|x| x.is_finite());
+        let mech = v.mech;
+        let reactions = || (0..mech.n_coords()).all(|i| mech.column(i) != FIXED || self.reaction(mech, i).is_finite());
+        let ok = self.epot.is_finite()
+            && (!self.balanced
+                || (finite(&self.sigma[..mech.n_moving()])
+                    && finite(&self.mred)
+                    && finite(&[self.ekin, self.power, self.load_power])
+                    && reactions()));
+        if ok {
+            return Ok(());
+        }
+        Err(SolveError::Dynamics(self.fault(v)))
     }
 
     /// What the equations of motion need at the position `v`: the drive
@@ -152,7 +186,7 @@ impl InverseDynamics {
     }
 
     /// Value and rate of form parameter `form` at the position.
-    fn form_state(mech: &Mechanism, kin: &Kinematics, form: FormRef, qd: &[f64]) -> (f64, f64) {
+    pub(super) fn form_state(mech: &Mechanism, kin: &Kinematics, form: FormRef, qd: &[f64]) -> (f64, f64) {
         match form {
             FormRef::Prescribed(r) => {
                 let rate = mech.input_of(r).map_or(0.0, |j| qd[j]);
@@ -164,7 +198,7 @@ impl InverseDynamics {
 
     /// Adds `q` times the gradient of form parameter `form` over all
     /// co-ordinates to `out`: the generalised forces of a load `q` on it.
-    fn spread_load(mech: &Mechanism, kin: &Kinematics, form: FormRef, q: f64, out: &mut [f64]) {
+    pub(super) fn spread_load(mech: &Mechanism, kin: &Kinematics, form: FormRef, q: f64, out: &mut [f64]) {
         let (rows, cache, row) = match form {
             FormRef::Prescribed(r) => (&mech.prescribed, &kin.cache, r),
             FormRef::Dependent(d) => (&mech.dependent, &kin.dep_cache, d),

@@ -79,15 +79,9 @@ pub fn run(
         None => (0.0, &zeros[..], &zeros[..]),
     };
     timed_finite(mech, &kin, vel0, acc0)?;
-    observer.position(&PositionView {
-        index: 0,
-        time: time0,
-        mech,
-        state,
-        kin: &kin,
-        input_vel: vel0,
-        input_acc: acc0,
-    });
+    let view = PositionView { index: 0, time: time0, mech, state, kin: &kin, input_vel: vel0, input_acc: acc0 };
+    observer.check(&view)?;
+    observer.position(&view);
     if let (Some((dof, ds)), Some(m)) = (free, motion) {
         run_free(mech, state, &mut kin, m, dof, ds, params, observer, &mut report);
     } else if let (Some(mut s), Some(m)) = (schedule, motion) {
@@ -200,15 +194,17 @@ fn run_driven(
             });
         }
         (det_prev2, det_prev) = (det_prev, det);
-        observer.position(&PositionView {
-            index: k,
-            time: s.time(k),
-            mech,
-            state,
-            kin,
-            input_vel: s.vel(k),
-            input_acc: s.acc(k),
-        });
+        let view =
+            PositionView { index: k, time: s.time(k), mech, state, kin, input_vel: s.vel(k), input_acc: s.acc(k) };
+        // The observer's own results (inverse dynamics) may not be finite
+        // here: the motion stops at the position before.
+        if let Err(error) = observer.check(&view) {
+            state.clone_from(&previous);
+            let (inputs, last_inputs) = (s.values(k).to_vec(), s.values(k - 1).to_vec());
+            report.stop = Some(Stop { last_good: k - 1, inputs, last_inputs, error, limit: None });
+            return;
+        }
+        observer.position(&view);
         report.positions += 1;
         if observer.stop_requested() && k < m.steps {
             report.stop = Some(Stop {
@@ -297,7 +293,14 @@ fn run_free(
             }
         }
         let time = k as f64 * m.dt;
-        observer.position(&PositionView { index: k, time, mech, state, kin, input_vel: &zeros, input_acc: &zeros });
+        let view = PositionView { index: k, time, mech, state, kin, input_vel: &zeros, input_acc: &zeros };
+        if let Err(error) = observer.check(&view) {
+            let last = vec![before.target[mech.input_row(dof)]];
+            state.clone_from(&before);
+            report.stop = Some(Stop { last_good: k - 1, inputs: Vec::new(), last_inputs: last, error, limit: None });
+            return;
+        }
+        observer.position(&view);
         report.positions += 1;
         if observer.stop_requested() && k < m.steps {
             let last = vec![state.target[mech.input_row(dof)]];

@@ -16,6 +16,7 @@
 //! (`selection.rs`) those of a deck's own recording, in blocks the same way.
 
 pub mod design;
+mod fault;
 mod inverse;
 mod kinematic;
 mod layout;

@@ -38,6 +38,16 @@ pub trait Observer {
     /// Called once per position, in order.
     fn position(&mut self, view: &PositionView<'_>);
 
+    /// Called with each position just before [`Self::position`]: an error
+    /// refuses the position, which is then not observed. A run stops at the
+    /// position before with this error as the reason, or returns it when
+    /// position 1 is refused. An observer that computes results of its own
+    /// (inverse dynamics) refuses a position where they are not finite.
+    fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
+        let _ = view;
+        Ok(())
+    }
+
     /// Asked after every position: `true` ends the run there (for example
     /// on Ctrl-C), with [`SolveError::Interrupted`] as the stop reason.
     fn stop_requested(&self) -> bool {

@@ -3,6 +3,7 @@
 
 use super::inverse::InverseDynamics;
 use super::observe::{Observer, PositionView};
+use crate::error::SolveError;
 use crate::model::{FormRef, Mechanism};
 use crate::solver::{DesignVar, Sensitivity, TransferOrder};
 
@@ -308,6 +309,9 @@ pub struct Recorder {
     /// Inverse dynamics, evaluated at every position when a dynamic
     /// quantity is recorded.
     dynamics: Option<Box<InverseDynamics>>,
+    /// Whether inverse dynamics has been evaluated (and checked) at the
+    /// position about to be recorded.
+    checked: bool,
 }
 
 impl Recorder {
@@ -369,8 +373,24 @@ impl Observer for Recorder {
         self.quantities.iter().map(Quantity::transfer_order).max().flatten()
     }
 
+    /// Inverse dynamics evaluated here, when a dynamic quantity is
+    /// recorded: a position where it is not finite is refused.
+    fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
+        match self.dynamics.as_deref_mut() {
+            Some(d) if self.quantities.iter().any(Quantity::is_dynamic) => {
+                self.checked = true;
+                d.evaluate_checked(view)
+            }
+            _ => Ok(()),
+        }
+    }
+
     fn position(&mut self, view: &PositionView<'_>) {
-        record(&self.quantities, view, self.dynamics.as_deref_mut(), &mut self.data);
+        if std::mem::take(&mut self.checked) {
+            record_evaluated(&self.quantities, view, self.dynamics.as_deref(), &mut self.data);
+        } else {
+            record(&self.quantities, view, self.dynamics.as_deref_mut(), &mut self.data);
+        }
         if self.keep_coords {
             self.coords.extend_from_slice(&view.state.x);
         }

@@ -149,6 +149,18 @@ impl Selection {
             }
             _ => None,
         };
+        self.record_evaluated(v, dynamics, out);
+    }
+
+    /// Whether the columns hold results of inverse dynamics.
+    pub fn is_dynamic(&self) -> bool {
+        self.dynamic
+    }
+
+    /// As [`Self::record`], with inverse dynamics already evaluated at the
+    /// position `v` ([`InverseDynamics::evaluate`]).
+    pub fn record_evaluated(&self, v: &PositionView<'_>, dynamics: Option<&InverseDynamics>, out: &mut Vec<f64>) {
+        let dynamics = dynamics.filter(|_| self.dynamic);
         let kin = v.kin;
         // The direct reads are those of one input; without transfer
         // functions (a limit position) the quantities made of them are NaN.
