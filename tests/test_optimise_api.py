@@ -125,6 +125,9 @@ def test_mistakes_are_named() -> None:
         mechfem.optimize(m, {"row5": (-5.5, -5.0)})
     with pytest.raises(TypeError, match="is a point"):
         mechfem.optimize(m, {"P1": (0, 1)}, targets=[mechfem.TargetAt("out1", 0, 1.0)])
+    # SciPy counts iterations in 32 bits: 2**31 would wrap round and stop at once.
+    with pytest.raises(ValueError, match="steps must be from 1 to 2147483647"):
+        mechfem.optimize(m, {"row5": (-5.5, -5.0)}, targets=[mechfem.TargetAt("out1", 0, 1.0)], steps=2**31)
 
 
 def test_an_infeasible_start_is_an_error_and_an_infeasible_step_is_not() -> None:

@@ -96,6 +96,35 @@ class Iteration:
     x: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False)
 
 
+class NonFiniteObjective(MechfemError, ValueError):
+    """The objective or its gradient is not finite at a design: a target's buffer is so far from its value, or so
+    heavily weighted, that its squared difference overflows. ``term`` is the target's index in the problem's
+    terms, None for the MINIMISE/MAXIMISE term or a Python objective."""
+
+    def __init__(self, message: str, term: int | None) -> None:
+        super().__init__(message)
+        self.term = term
+
+
+_KEYWORDS = {"ValuesTerm": "TARGET", "AtTerm": "TARGETAT", "ExtremumTerm": "TARGETEXT"}
+
+
+def _finite_terms(problem: Problem, res: list[FloatArray], jac: list[FloatArray]) -> None:
+    """Raises :class:`NonFiniteObjective` for the first target whose residuals, Jacobian or share of the sum of
+    squares is not finite (the sum itself included), before anything squares them where numpy would warn."""
+    total = 0.0
+    with np.errstate(all="ignore"):
+        for k, (t, r, j) in enumerate(zip(problem.terms, res, jac, strict=True)):
+            total += float(r @ r)
+            if not (np.all(np.isfinite(r)) and np.all(np.isfinite(j)) and math.isfinite(total)):
+                raise NonFiniteObjective(
+                    f"the objective is not finite: the weighted squared difference of the "
+                    f"{_KEYWORDS[type(t).__name__]} on buffer {t.buffer} overflows (the buffer lies too far from "
+                    "the value asked for, or the weight is too large)",
+                    k,
+                )
+
+
 class Infeasible(MechfemError):
     """The start design of an optimisation cannot be assembled or moved through the whole motion."""
 
@@ -210,6 +239,7 @@ def residuals(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:
             jac.append(np.array([w * np.asarray(x["gradient"]) for x in found], dtype=np.float64).reshape(-1, n))
     if not res:
         return np.zeros(0), np.zeros((0, n))
+    _finite_terms(problem, res, jac)
     return np.concatenate(res), np.vstack(jac)
 
 
@@ -250,15 +280,24 @@ def reduced(reduce: Reduce, v: FloatArray, g: FloatArray) -> tuple[float, FloatA
 def objective(problem: Problem, e: Evaluation) -> tuple[float, FloatArray]:
     """Sum of squares of the targets, plus the MINIMISE/MAXIMISE term, plus a Python objective; with gradient."""
     r, j = residuals(problem, e)
-    f, g = float(r @ r), 2.0 * (r @ j)
-    if problem.objective is not None:
-        sense, reduce, b = problem.objective
-        fo, go = reduced(reduce, e.value(b), e.gradient(b))
-        f, g = f + sense * fo, g + sense * go
-    if problem.custom is not None:
-        fc, gc = problem.custom(e)
-        f, g = f + float(fc), g + np.asarray(gc, dtype=np.float64)
+    with np.errstate(all="ignore"):
+        f, g = float(r @ r), 2.0 * (r @ j)
+        if problem.objective is not None:
+            sense, reduce, b = problem.objective
+            fo, go = reduced(reduce, e.value(b), e.gradient(b))
+            f, g = f + sense * fo, g + sense * go
+            _finite_objective(f, g, "the MINIMISE or MAXIMISE term")
+        if problem.custom is not None:
+            fc, gc = problem.custom(e)
+            f, g = f + float(fc), g + np.asarray(gc, dtype=np.float64)
+            _finite_objective(f, g, "the objective function given")
+    _finite_objective(f, g, "the sum of the targets' squared differences")
     return f, np.asarray(g, dtype=np.float64)
+
+
+def _finite_objective(f: float, g: FloatArray, what: str) -> None:
+    if not (math.isfinite(f) and np.all(np.isfinite(g))):
+        raise NonFiniteObjective(f"the objective is not finite: {what} overflows (or its gradient does)", None)
 
 
 def constraints(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:

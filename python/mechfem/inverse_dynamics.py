@@ -7,6 +7,7 @@ Numbers that name things are the deck's own (1-based, destinations signed).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -98,10 +99,27 @@ class DynamicSeries:
 
 def drive_work(time: FloatArray, power: FloatArray) -> tuple[FloatArray, FloatArray]:
     """The times where the drive power is known and the drives' work from the first of them to each, by the
-    trapezoidal rule."""
+    trapezoidal rule (infinite where the work overflows a double, without a warning)."""
     ok = np.isfinite(power) & np.isfinite(time)
     t, p = time[ok], power[ok]
-    return t, np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])[: t.size]
+    # Halves added rather than the sum halved: the same number, and no overflow of the sum.
+    with np.errstate(over="ignore", invalid="ignore"):
+        work = np.cumsum((0.5 * p[1:] + 0.5 * p[:-1]) * np.diff(t))
+    return t, np.concatenate([[0.0], work])[: t.size]
+
+
+def root_mean_square(v: FloatArray) -> float:
+    """The root mean square of finite values, scaled by the largest so that no square overflows."""
+    scale = float(np.max(np.abs(v)))
+    if scale == 0.0:
+        return 0.0
+    return scale * float(np.sqrt(np.mean((v / scale) ** 2)))
+
+
+def number(v: float) -> str:
+    """A summary number with ten digits; one that overflows a double (a sum or a difference of finite results) is
+    said so instead of printed as an infinity."""
+    return f"{v:.10g}" if math.isfinite(v) else "too large for a double"
 
 
 def energy_fluctuation(time: FloatArray, power: FloatArray) -> float:
@@ -110,8 +128,9 @@ def energy_fluctuation(time: FloatArray, power: FloatArray) -> float:
     t, work = drive_work(time, power)
     if t.size < 2 or t[-1] <= t[0]:
         return float("nan")
-    excess = work - work[-1] * (t - t[0]) / (t[-1] - t[0])
-    return float(excess.max() - excess.min())
+    with np.errstate(over="ignore", invalid="ignore"):
+        excess = work - work[-1] * ((t - t[0]) / (t[-1] - t[0]))
+        return float(excess.max() - excess.min())
 
 
 def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
@@ -127,7 +146,7 @@ def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
             out.append(f"  drive of DOF {j + 1}: not known at any position (limit positions only)")
             continue
         k_max, k_min = int(np.nanargmax(d)), int(np.nanargmin(d))
-        rms = float(np.sqrt(np.mean(d[ok] ** 2)))
+        rms = root_mean_square(d[ok])
         out += [
             f"  drive of DOF {j + 1}: largest {d[k_max]:.10g} at position {k_max + 1} "
             f"(input {series.inputs[k_max, j]:.10g}),",
@@ -137,10 +156,12 @@ def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
     t, w = drive_work(time, series.power)
     if t.size > 1 and t[-1] > t[0]:
         work = float(w[-1])
-        out.append(f"  work of the drives: {work:.10g}, mean drive power {work / (t[-1] - t[0]):.10g}")
+        with np.errstate(over="ignore", invalid="ignore"):
+            mean = work / float(t[-1] - t[0])
+        out.append(f"  work of the drives: {number(work)}, mean drive power {number(mean)}")
         out.append(
             "  largest fluctuation of the drives' work about its mean (a flywheel's energy swing): "
-            f"{energy_fluctuation(time, series.power):.10g}"
+            f"{number(energy_fluctuation(time, series.power))}"
         )
     for name, values in (("kinetic", series.kinetic), ("potential", series.potential)):
         v = values[np.isfinite(values)]
@@ -189,15 +210,17 @@ class Simulation:
             f"  time reached: {self.reached:.10g}",
         ]
         if series is not None and time.size > 1:
-            e = series.kinetic + series.potential
-            w = drive_work(time, series.power)[1]
-            work = float(w[-1]) if w.size else 0.0
-            change = float(e[-1] - e[0])
+            with np.errstate(over="ignore", invalid="ignore"):
+                e = series.kinetic + series.potential
+                w = drive_work(time, series.power)[1]
+                work = float(w[-1]) if w.size else 0.0
+                change = float(e[-1] - e[0])
+                rest = change - work
             out += [
                 "  energy balance from the first position to the last:",
-                f"    T + V: {e[0]:.10g} -> {e[-1]:.10g} (change {change:.10g})",
-                f"    work of the driven inputs (trapezoidal rule over the positions): {work:.10g}",
-                f"    work of the other loads (motors, dampers, forces, tables), the remainder: {change - work:.10g}",
+                f"    T + V: {number(float(e[0]))} -> {number(float(e[-1]))} (change {number(change)})",
+                f"    work of the driven inputs (trapezoidal rule over the positions): {number(work)}",
+                f"    work of the other loads (motors, dampers, forces, tables), the remainder: {number(rest)}",
             ]
         out.append("")
         return out

@@ -268,6 +268,9 @@ def optimize(
         raise ValueError("nothing to vary: name at least one prescribed value or fixed co-ordinate")
     if minimize is not None and maximize is not None:
         raise ValueError("give minimize or maximize, not both")
+    if not 1 <= steps <= 2**31 - 1:
+        # SciPy's SLSQP counts iterations in 32 bits: a larger limit wraps round to a negative one.
+        raise ValueError(f"steps must be from 1 to 2147483647, not {steps}")
     deck = _Deck(mechanism)
     terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
     for t in targets:

@@ -132,6 +132,16 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
             f"is the deck's own (the PARA and XFIX values of the variables, {names_and_lines(opt)}): change it, or "
             "its XMOV estimates, so that position 1 can be assembled and the whole motion run."
         ) from None
+    except design.NonFiniteObjective as e:
+        objective = opt["objective"]
+        if e.term is not None:
+            line = opt["targets"][e.term]["line"]
+        else:
+            line = opt["line"] if objective is None else objective["line"]
+        raise OptimisationError(
+            f"error: {deck}: line {line}: {e}; bring the values asked for and the weights nearer to what the "
+            "mechanism's buffers can take, in consistent units"
+        ) from None
     except ValueError as e:
         raise OptimisationError(
             f"error: {deck}: the OPTIMISE block (line {opt['line']}) cannot be evaluated: {e}."
