@@ -4,7 +4,9 @@ hangs or fails internally."""
 
 from __future__ import annotations
 
+import re
 import time
+import warnings
 from pathlib import Path
 
 import pytest
@@ -136,3 +138,166 @@ def test_a_targetext_without_extrema_is_said_to_contribute_nothing(tmp_path: Pat
     prt = (out / "supply_opt.prt").read_text()
     assert "TARGETEXT 102 100: buffer 100 has no extremum along the motion" in prt
     assert "contributes nothing to the objective" in prt
+
+
+# --- numbers that overflow ------------------------------------------------------------------------------------------
+
+VALID = ROOT / "crates" / "mechfem-deck" / "tests" / "decks" / "valid"
+RUNTIME = ROOT / "tests" / "decks"
+OVERFLOWS = ("1e308", "-1e308", "1e-320", "nan", "inf")
+NON_FINITE = re.compile(r"(?<![\w.])[-+]?(inf|nan|infinity)(?![\w.])", re.IGNORECASE)
+
+
+def overflowing_variants(text: str) -> list[tuple[int, str]]:
+    """``(line, deck)`` for every number of every line of the DYNAMICS and OPTIMISE blocks, and of MOV_DYN and
+    INTTOL, replaced by each of :data:`OVERFLOWS`."""
+    lines = text.splitlines()
+    block = ""
+    out: list[tuple[int, str]] = []
+    for k, line in enumerate(lines):
+        words = line.split(";", 1)[0].split()
+        if not words:
+            continue
+        if words[0] in ("TOPOLOGY", "GEOMETRY", "DYNAMICS", "MOVEMENT", "OPTIMISE", "STORAGE"):
+            block = words[0]
+            continue
+        if block not in ("DYNAMICS", "OPTIMISE") and words[0] not in ("MOV_DYN", "INTTOL"):
+            continue
+        for w, word in enumerate(words):
+            if word[0].isdigit() or word[0] in "+-.":
+                for value in OVERFLOWS:
+                    changed = [*lines]
+                    changed[k] = " ".join([*words[:w], value, *words[w + 1 :]])
+                    out.append((k + 1, "\n".join(changed) + "\n"))
+    return out
+
+
+def run_here(deck: Path, out: Path, capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
+    """``mechfem run`` in this process, a RuntimeWarning (numpy's overflow warnings) made an error: it would end
+    as an internal error, exit status 4."""
+    from mechfem import cli
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        status = cli.main(["run", str(deck), "-o", str(out), "--max-frames", "2", "--quiet"])
+    return status, capsys.readouterr().err
+
+
+def assert_finite_outputs(out: Path) -> None:
+    for path in out.glob("*"):
+        if path.suffix in (".csv", ".prt", ".mec", ".txt"):
+            found = NON_FINITE.search(path.read_text())
+            assert found is None, f"{path.name}: {found.group(0) if found else ''}"
+
+
+@pytest.mark.parametrize("name", ["pendulum.mec", "fourbar_optimise.mec"])
+def test_overflowing_numbers_end_with_a_message_or_finite_results(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], name: str
+) -> None:
+    # Every number of the DYNAMICS or OPTIMISE block replaced by 1e308, -1e308, 1e-320, NaN and infinity: each
+    # run ends with a deck error (exit 1) or runs with finite results (exit 0, or 3 with the reason), never with an
+    # internal error (exit 4), a warning of numpy, or an infinity or NaN in an output file.
+    text = (VALID / name).read_text().replace("OPTSTEPS 30", "OPTSTEPS 3")
+    for data in VALID.glob("*.dat"):
+        (tmp_path / data.name).write_bytes(data.read_bytes())
+    variants = overflowing_variants(text)
+    assert len(variants) >= 30
+    statuses: dict[int, int] = {}
+    for k, (line, variant) in enumerate(variants):
+        deck = tmp_path / f"v{k}.mec"
+        deck.write_text(variant)
+        status, err = run_here(deck, tmp_path / f"out{k}", capsys)
+        where = f"line {line}: {variant.splitlines()[line - 1]}"
+        assert status in (0, 1, 3), f"{where}: exit {status}: {err}"
+        assert "Traceback" not in err and "Warning" not in err, f"{where}: {err}"
+        if status == 1:
+            assert f"v{k}.mec:{line}:" in err or f"v{k}.mec: line {line}:" in err, f"{where}: {err}"
+        else:
+            assert_finite_outputs(tmp_path / f"out{k}")
+        statuses[status] = statuses.get(status, 0) + 1
+    assert statuses.get(1, 0) > len(variants) // 2, statuses
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nLOAD 2 1e308\nLOAD 2 1e308"), "the load 1e308 is too large"),
+        (("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nLOAD 2 1e100\nLOAD 2 1e100"), "already has a LOAD, given at line 18"),
+        (("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nSPRING 2 1e308 -5"), "the spring's stiffness 1e308 is too large"),
+        (("MASS 1 2.0 1.0 0.0 0.01", "MASS 1 1e200 1.0 0.0 0.01"), "the mass 1e200 is too large"),
+        (("MASS 1 2.0 1.0 0.0 0.01", "MASS 1 1e300 1e300 0 1e308"), "the mass 1e300 is too large"),
+        (("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nFORCE 3 3 1 1"), "FORCE names co-ordinate 3 for both the x and the y"),
+        (("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nPMASS 3 3 1"), "PMASS names co-ordinate 3 for both the x and the y"),
+        (("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nLOADFUNC 2 big.dat"), "big.dat:1:3"),
+    ],
+    ids=["load-twice", "load-repeated", "spring", "mass-gravity", "mass-no-mass", "force", "pmass", "loadfunc"],
+)
+def test_overflowing_dynamics_are_refused_with_their_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], change: tuple[str, str], message: str
+) -> None:
+    (tmp_path / "big.dat").write_text("0 1e308\n1 -1e308\n")
+    deck = variant(tmp_path, VALID / "pendulum.mec", change)
+    status, err = run_here(deck, tmp_path / "out", capsys)
+    assert status == 1, err
+    assert message in err, err
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (("MOV_DYN 1 0 ", "MOV_DYN 1 1e300 "), "the initial velocity 1e300 is too large"),
+        (("PMASS 3 4 2.0", "MASS 1 1 0.5 0 1e308"), "the moment of inertia 1e308 is too large"),
+        (("ACCURACY 1E-10", "ACCURACY 1E-10\nINTTOL 1e300 1e300"), "relative error of 1 or more"),
+    ],
+    ids=["mov-dyn", "inertia", "inttol"],
+)
+def test_overflowing_simulations_are_refused_with_their_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], change: tuple[str, str], message: str
+) -> None:
+    deck = variant(tmp_path, VALID / "pendulum_released.mec", change)
+    status, err = run_here(deck, tmp_path / "out", capsys)
+    assert status == 1, err
+    assert "pendulum_released.mec:" in err and message in err, err
+    assert "XMOV" not in err and "MOV_FREE" not in err
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        (("TARGETEXT 102 100 0.0", "TARGETAT 100 10 1e300"), "supply_opt.mec:78:"),
+        (("TARGETEXT 102 100 0.0", "TARGET 100 huge.dat"), "huge.dat:1:1"),
+        (("TARGETEXT 102 100 0.0", "TARGETEXT 102 100 0.0\nOPTSTEPS 2147483648"), "supply_opt.mec:79:"),
+    ],
+    ids=["targetat", "target-file", "optsteps"],
+)
+def test_overflowing_optimisations_are_refused_with_their_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], change: tuple[str, str], message: str
+) -> None:
+    (tmp_path / "huge.dat").write_text("1e308\n" * 73)
+    status, err = run_here(variant(tmp_path, OPT, change), tmp_path / "out", capsys)
+    assert status == 1, err
+    assert message in err, err
+    assert "optimised in" not in err
+
+
+def test_a_dynamics_result_that_overflows_mid_run_stops_with_the_mass_named(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    status, err = run_here(RUNTIME / "dynamics_overflow.mec", tmp_path / "out", capsys)
+    assert status == 3, err
+    assert "The motion stopped after position 1 of 11" in err
+    assert "the potential energy of the PMASS at co-ordinates 3, 4 is not finite" in err
+    assert "XMOV" not in err and "smaller steps" not in err
+    rows = (tmp_path / "out" / "dynamics_overflow.csv").read_text().splitlines()
+    assert len(rows) == 2  # the header and position 1
+    assert_finite_outputs(tmp_path / "out")
+
+
+def test_an_objective_that_overflows_is_an_error_naming_the_target(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    status, err = run_here(RUNTIME / "objective_overflow.mec", tmp_path / "out", capsys)
+    assert status == 1, err
+    assert "objective_overflow.mec: line 36: the objective is not finite" in err
+    assert "converged" not in err and "infs or NaNs" not in err

@@ -320,3 +320,65 @@ fn replay() {
     }
     println!("{:?}", check_deck(&text, Path::new(DIR), FUZZ_MAX_STEPS));
 }
+
+/// The edges of what a number of the dynamics or of an optimisation can be.
+const OVERFLOWS: [&str; 5] = ["1e308", "-1e308", "1e-320", "nan", "inf"];
+
+/// Every deck with `(line, word)` of its numbers replaced by each value of
+/// [`OVERFLOWS`], for every number of every line of its DYNAMICS and
+/// OPTIMISE blocks and of its MOV_DYN and INTTOL lines.
+fn overflowing_variants(text: &str) -> Vec<(usize, String)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut block = "";
+    let mut out = Vec::new();
+    for (k, line) in lines.iter().enumerate() {
+        let words: Vec<&str> = line.split(';').next().unwrap_or("").split_whitespace().collect();
+        let Some(first) = words.first() else { continue };
+        if ["TOPOLOGY", "GEOMETRY", "DYNAMICS", "MOVEMENT", "OPTIMISE", "STORAGE"].contains(first) {
+            block = first;
+            continue;
+        }
+        if !(matches!(block, "DYNAMICS" | "OPTIMISE") || ["MOV_DYN", "INTTOL"].contains(first)) {
+            continue;
+        }
+        for (w, word) in words.iter().enumerate() {
+            if !word.starts_with(|c: char| c.is_ascii_digit() || "+-.".contains(c)) {
+                continue;
+            }
+            for value in OVERFLOWS {
+                let mut changed = words.clone();
+                changed[w] = value;
+                let mut variant: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+                variant[k] = changed.join(" ");
+                out.push((k + 1, variant.join("\n")));
+            }
+        }
+    }
+    out
+}
+
+/// Every number of every DYNAMICS and OPTIMISE line (and of MOV_DYN and
+/// INTTOL) of decks that use every keyword of those blocks, replaced by
+/// 1e308, -1e308, 1e-320, NaN and infinity: each variant is refused with a
+/// diagnostic, or it runs (inverse dynamics recorded, a simulation, a design
+/// evaluated) with finite results, stopping with its reason where they
+/// would not be.
+#[test]
+fn overflowing_numbers_of_the_dynamics_and_optimisation_are_refused_or_run_finite() {
+    let dir = Path::new("tests/decks/valid");
+    let mut counts = std::collections::BTreeMap::<String, usize>::new();
+    for name in ["slider_crank.mec", "load_function.mec", "motor_run_up.mec", "fourbar_optimise.mec"] {
+        let text = std::fs::read_to_string(dir.join(name)).expect("deck");
+        let variants = overflowing_variants(&text);
+        assert!(variants.len() >= 20, "{name}: only {} variants", variants.len());
+        for (line, variant) in variants {
+            // Shown with the failure, if there is one.
+            println!("{name}, line {line}: {}", variant.lines().nth(line - 1).unwrap_or(""));
+            let outcome = check_deck(&variant, dir, MAX_STEPS);
+            *counts.entry(format!("{outcome:?}")).or_insert(0) += 1;
+        }
+    }
+    // Most are refused by the deck reader; the rest ran to a finite end.
+    println!("{counts:?}");
+    assert!(counts.get("Rejected").copied().unwrap_or(0) > 100, "{counts:?}");
+}

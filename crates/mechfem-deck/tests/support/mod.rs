@@ -15,7 +15,8 @@ use std::path::Path;
 use mechfem_core::design::{evaluate, ExtremumSpec};
 use mechfem_core::run::simulate_within;
 use mechfem_core::{
-    run, DesignVar, FormRef, InputMotion, Motion, Observer, PositionView, Quantity, Recorder, SolveError,
+    run, DesignVar, FormRef, InputMotion, InverseDynamics, Motion, Observer, PositionView, Quantity, Recorder,
+    SolveError,
 };
 use mechfem_deck::{compile, parse_str, Compiled, Diagnostics, TargetKind};
 
@@ -102,7 +103,27 @@ pub fn every_quantity(c: &Compiled) -> Vec<Quantity> {
         q.extend(pairs.iter().map(|&(j, k)| Quantity::Ke2(f, j, k)));
     }
     q.truncate(20_000);
+    // The results of inverse dynamics of a DYN deck: every stress, drive,
+    // reaction on a fixed co-ordinate, the energies, the power and the mass
+    // matrix.
+    if c.dynamics.is_some() {
+        q.extend((0..m.n_prescribed()).map(Quantity::Sigma));
+        q.extend((0..nd).map(Quantity::Drive));
+        q.extend((0..n).filter(|&i| m.column(i) == mechfem_core::model::FIXED).map(Quantity::Reaction));
+        q.extend([Quantity::Ekin, Quantity::Epot, Quantity::Power]);
+        q.extend((0..nd.min(3)).flat_map(|j| (0..nd.min(3)).map(move |k| Quantity::Mred(j, k))));
+    }
     q
+}
+
+/// A recorder of `quantities` that evaluates the inverse dynamics of a DYN
+/// deck when they hold any of its results.
+pub fn recorder(c: &Compiled, quantities: Vec<Quantity>) -> Recorder {
+    let rec = Recorder::new(quantities, false);
+    match &c.dynamics {
+        Some(d) => rec.with_dynamics(InverseDynamics::new(&c.mechanism, d.clone())),
+        None => rec,
+    }
 }
 
 /// A [`Recorder`] that also checks, at every position, that the state is
@@ -113,6 +134,9 @@ struct Checked {
 }
 
 impl Observer for Checked {
+    fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
+        self.rec.check(view)
+    }
     fn position(&mut self, view: &PositionView<'_>) {
         if self.bad_state.is_none() && view.state.x.iter().any(|v| !v.is_finite()) {
             self.bad_state = Some(view.index);
@@ -154,7 +178,7 @@ pub fn run_checked(c: &Compiled, quantities: Vec<Quantity>, max_steps: usize) ->
         cap_steps(m, max_steps);
     }
     let mut state = c.state.clone();
-    let mut obs = Checked { rec: Recorder::new(quantities, false), bad_state: None };
+    let mut obs = Checked { rec: recorder(c, quantities), bad_state: None };
     let report = match run(&c.mechanism, &mut state, motion.as_ref(), &c.params, &mut obs) {
         Ok(r) => r,
         Err(e) => {
@@ -204,7 +228,7 @@ pub fn simulate_checked(c: &Compiled) {
     let mut motion = motion.clone();
     cap_steps(&mut motion, SIM_MAX_OUTPUTS);
     let mut state = c.state.clone();
-    let mut obs = Checked { rec: Recorder::new(every_quantity(c), false), bad_state: None };
+    let mut obs = Checked { rec: recorder(c, every_quantity(c)), bad_state: None };
     let result = simulate_within(
         &c.mechanism,
         &mut state,
@@ -315,8 +339,7 @@ pub fn check_deck(text: &str, dir: &Path, max_steps: usize) -> Outcome {
         simulate_checked(&c);
     }
     evaluate_checked(&c);
-    // The dynamics are the core's to check: a run here records kinematics only.
-    let own: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).filter(|q| !q.is_dynamic()).collect();
+    let own: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let order = own.iter().map(Quantity::transfer_order).max().flatten();
     if order < Some(mechfem_core::TransferOrder::Second) {
         run_checked(&c, own, max_steps);
