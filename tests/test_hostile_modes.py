@@ -301,3 +301,19 @@ def test_an_objective_that_overflows_is_an_error_naming_the_target(
     assert status == 1, err
     assert "objective_overflow.mec: line 36: the objective is not finite" in err
     assert "converged" not in err and "infs or NaNs" not in err
+
+
+def test_a_simulation_whose_forces_overflow_at_the_start_names_the_mass(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Each number within the bounds, but the bob's centripetal acceleration (1e100 rad/s)^2 * 1e100 m times its
+    # mass 1e100 overflows: refused before anything is integrated, without blaming the XMOV estimates or the mass.
+    change = (
+        ("PMASS 3 4 2.0", "MASS 1 1e100 1e100 0"),
+        ("MOV_DYN 1 0 ", "MOV_DYN 1 1e100 "),
+        ("TSTEPE 240", "TSTEPE 10"),
+    )
+    status, err = run_here(variant(tmp_path, VALID / "pendulum_released.mec", *change), tmp_path / "out", capsys)
+    assert status == 1, err
+    assert "the inertia force of the MASS on element 1 (BIN) is not finite" in err, err
+    assert "XMOV" not in err and "no mass" not in err
