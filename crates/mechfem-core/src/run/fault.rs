@@ -10,7 +10,7 @@
 use super::inverse::InverseDynamics;
 use super::observe::PositionView;
 use crate::dynamics::LoadKind;
-use crate::error::{DynamicQuantity as Q, DynamicSource as S, DynamicsFault};
+use crate::error::{DynamicQuantity as Q, DynamicSource as S, DynamicsFault, SolveError};
 use crate::model::FIXED;
 
 /// The deck keyword of a load.
@@ -28,6 +28,17 @@ fn finite(s: &[f64]) -> bool {
 }
 
 impl InverseDynamics {
+    /// The error for equations of motion that are not finite at the
+    /// position `v` (a simulation's): the result of inverse dynamics and
+    /// the mass or load it names, else the accelerations of the degrees of
+    /// freedom moved by the forces themselves.
+    pub(super) fn fault_at(&mut self, v: &PositionView<'_>) -> SolveError {
+        match self.evaluate_checked(v) {
+            Err(e) => e,
+            Ok(()) => SolveError::Dynamics(DynamicsFault { quantity: Q::Acceleration, source: S::FreeDofs }),
+        }
+    }
+
     /// The first result at the position `v` that is not finite, and what
     /// it came from (see the module's documentation).
     pub(super) fn fault(&self, v: &PositionView<'_>) -> DynamicsFault {

@@ -34,7 +34,7 @@ use super::inverse::InverseDynamics;
 use super::kinematic::run;
 use super::observe::{Observer, PositionView, RunReport, Stop};
 use crate::dynamics::{Dynamics, Integration};
-use crate::error::{DynamicQuantity, DynamicSource, DynamicsFault, SolveError, Unsupported};
+use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, correct, Kinematics, Params, TransferOrder};
@@ -198,12 +198,12 @@ impl Eom<'_> {
         // A mass or load too large for a double: named by inverse dynamics.
         let finite = |s: &[f64]| s.iter().all(|a| a.is_finite());
         if !(finite(&self.m_ff) && finite(&self.rhs)) {
-            return Err(self.dynamics_fault(t));
+            return Err(self.inverse.fault_at(&view));
         }
         solve_dense(nf, &mut self.m_ff, &mut self.rhs)
             .ok_or(SolveError::Unsupported(Unsupported::DynamicWithoutMass))?;
         if !finite(&self.rhs) {
-            return Err(self.dynamics_fault(t));
+            return Err(self.inverse.fault_at(&view));
         }
         out.copy_from_slice(&self.rhs);
         Ok(())
@@ -211,28 +211,6 @@ impl Eom<'_> {
 }
 
 impl Eom<'_> {
-    /// Why the equations of motion are not finite at time `t`, at the
-    /// position in `self.state`: the mass or load inverse dynamics names,
-    /// else the free DOFs' accelerations themselves.
-    fn dynamics_fault(&mut self, t: f64) -> SolveError {
-        let view = PositionView {
-            index: 0,
-            time: t,
-            mech: self.mech,
-            state: &self.state,
-            kin: &self.kin,
-            input_vel: &self.qd,
-            input_acc: &self.qdd,
-        };
-        match self.inverse.evaluate_checked(&view) {
-            Err(e) => e,
-            Ok(()) => SolveError::Dynamics(DynamicsFault {
-                quantity: DynamicQuantity::Acceleration,
-                source: DynamicSource::FreeDofs,
-            }),
-        }
-    }
-
     /// Back at position 1 (`state`, inputs `q`), as before the integration.
     fn restart(&mut self, state: &State, q: &[f64]) {
         self.state.clone_from(state);
