@@ -108,6 +108,60 @@ struct Outputs<'o> {
     inside: bool,
     /// The time the integration reached.
     reached: f64,
+    stiffness: Stiffness,
+}
+
+const STIFF_REASON: &str = "the motion became stiff (a very stiff spring or damper?): the integrator's steps are held \
+                            by its stability to less than 1/2000 of the output interval, and an explicit method would \
+                            need very many steps";
+
+/// The stiffness test of Hairer and Wanner (Solving ODEs II, section IV.2,
+/// as in their DOPRI5), which `Dopri5`'s own test is, with one condition
+/// more: stiffness is a problem only when it is expensive.
+///
+/// Dormand and Prince's last two stages are both at the step's end, so
+/// `rho = |k7 - k6| / |y7 - y6|` estimates the largest |eigenvalue| of the
+/// equations' Jacobian, and `h rho` near the method's stability bound
+/// (3.25) says that stability, not accuracy, holds the step. That is also
+/// true of every motion that has come to rest: nothing limits the step but
+/// stability, and it settles near the bound, one to two steps per period of
+/// the mechanism's own slowest oscillation. Such a step is not short and
+/// the motion not expensive; only a step held far below the output interval
+/// (a very stiff spring's oscillation, far faster than anything the
+/// outputs show) is. So a step counts as stiff when `h rho > 3.25` and it
+/// is shorter than 1/2000 of the output interval (the step budget's
+/// average); fifteen of them with fewer than six others in between stop
+/// the simulation, as in DOPRI5.
+#[derive(Default)]
+struct Stiffness {
+    /// Stiff steps counted, and other steps since the last stiff one.
+    stiff: u32,
+    calm: u32,
+}
+
+impl Stiffness {
+    /// Whether the step of length `h` just accepted, whose last two
+    /// evaluations are `evals`, makes the motion stiff.
+    fn stiff(&mut self, h: f64, dt: f64, evals: &[Evaluation; 2]) -> bool {
+        let [stage6, stage7] = evals;
+        // Both at the step's end, or the step is not what it is taken for.
+        if stage6.t != stage7.t {
+            return false;
+        }
+        let distance = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+        let (num, den) = (distance(&stage7.dy, &stage6.dy), distance(&stage7.y, &stage6.y));
+        let held = den > 0.0 && h * num > 3.25 * den;
+        if held && h * 2000.0 < dt {
+            self.calm = 0;
+            self.stiff += 1;
+            return self.stiff >= 15;
+        }
+        self.calm += 1;
+        if self.calm >= 6 {
+            self.stiff = 0;
+        }
+        false
+    }
 }
 
 /// The integrator's view of the equations of motion; interior mutability
@@ -229,6 +283,11 @@ impl Ode<'_, '_> {
             self.eom.get_mut().back();
             out.inside = false;
         }
+        let h = t - out.reached;
+        if out.stiffness.stiff(h, out.dt, self.evals.get_mut()) {
+            out.stop = Some(SolveError::Simulation { time: t, reason: STIFF_REASON });
+            return true;
+        }
         out.reached = t;
         out.observer.simulated(t, out.span);
         if out.observer.stop_requested() {
@@ -296,7 +355,8 @@ where
         span,
         0.0,
         budget.unwrap_or_else(|| max_steps(span, dt)),
-        1000,
+        // Its own stiffness test never: `Stiffness` takes its place.
+        u32::MAX,
         OutputType::Dense,
     );
     use ode_solvers::dop_shared::IntegrationError as E;
@@ -464,6 +524,7 @@ pub fn simulate_within(
             done: motion.steps == 0,
             inside: false,
             reached: 0.0,
+            stiffness: Stiffness::default(),
         },
     };
     if !ode.out.done && ode.out.observer.stop_requested() {
@@ -496,15 +557,14 @@ pub fn simulate_within(
         Err(e) => ((0, 0, 0), Some(e)),
     };
     if report.positions < motion.steps + 1 {
-        let error = match (out.stop, failed) {
-            (Some(e), _) => e,
+        let error = match out.stop.or(failed) {
             // Steps cut down again and again at a limit position end as a
             // collapse or as apparent stiffness: the limit is the reason.
-            (None, Some(SolveError::Simulation { time, .. })) if eom.limit_met => {
+            Some(SolveError::Simulation { time, .. }) if eom.limit_met => {
                 SolveError::Simulation { time, reason: LIMIT_REASON }
             }
-            (None, Some(e)) => e,
-            (None, None) => SolveError::Interrupted,
+            Some(e) => e,
+            None => SolveError::Interrupted,
         };
         report.stop = Some(Stop {
             last_good: report.positions - 1,
