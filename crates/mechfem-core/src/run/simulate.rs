@@ -32,6 +32,7 @@
 //! change the motion.
 
 mod eom;
+mod stiffness;
 
 use nalgebra::{allocator::Allocator, Const, DefaultAllocator, Dim, Dyn, OVector, U1};
 use ode_solvers::{Dopri5, OutputType, System};
@@ -47,6 +48,7 @@ use crate::motion::limits::{self, LimitKind, LimitPosition};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 use eom::{Driver, Eom, LIMIT_REASON};
+use stiffness::{Evaluation, Stiffness, STIFF_REASON};
 
 /// What a simulation did: the integrator's work, and the outputs it gave.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,14 +67,6 @@ pub struct SimReport {
     pub evaluations: usize,
     /// The time the integration reached.
     pub reached: f64,
-}
-
-/// One evaluation of the equations by the integrator: time, state and
-/// derivative.
-struct Evaluation {
-    t: f64,
-    y: Vec<f64>,
-    dy: Vec<f64>,
 }
 
 /// The outputs of a simulation as the integration produces them.
@@ -109,59 +103,6 @@ struct Outputs<'o> {
     /// The time the integration reached.
     reached: f64,
     stiffness: Stiffness,
-}
-
-const STIFF_REASON: &str = "the motion became stiff (a very stiff spring or damper?): the integrator's steps are held \
-                            by its stability to less than 1/2000 of the output interval, and an explicit method would \
-                            need very many steps";
-
-/// The stiffness test of Hairer and Wanner (Solving ODEs II, section IV.2,
-/// as in their DOPRI5), which `Dopri5`'s own test is, with one condition
-/// more: stiffness is a problem only when it is expensive.
-///
-/// Dormand and Prince's last two stages are both at the step's end, so
-/// `rho = |k7 - k6| / |y7 - y6|` estimates the largest |eigenvalue| of the
-/// equations' Jacobian, and `h rho` near the method's stability bound
-/// (3.25) says that stability, not accuracy, holds the step. That is also
-/// true of every motion that has come to rest: nothing limits the step but
-/// stability, and it settles near the bound, one to two steps per period of
-/// the mechanism's own slowest oscillation. Such a step is not short and
-/// the motion not expensive; only a step held far below the output interval
-/// (a very stiff spring's oscillation, far faster than anything the
-/// outputs show) is. So a step counts as stiff when `h rho > 3.25` and it
-/// is shorter than 1/2000 of the output interval (the step budget's
-/// average); fifteen of them with fewer than six others in between stop
-/// the simulation, as in DOPRI5.
-#[derive(Default)]
-struct Stiffness {
-    /// Stiff steps counted, and other steps since the last stiff one.
-    stiff: u32,
-    calm: u32,
-}
-
-impl Stiffness {
-    /// Whether the step of length `h` just accepted, whose last two
-    /// evaluations are `evals`, makes the motion stiff.
-    fn stiff(&mut self, h: f64, dt: f64, evals: &[Evaluation; 2]) -> bool {
-        let [stage6, stage7] = evals;
-        // Both at the step's end, or the step is not what it is taken for.
-        if stage6.t != stage7.t {
-            return false;
-        }
-        let distance = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-        let (num, den) = (distance(&stage7.dy, &stage6.dy), distance(&stage7.y, &stage6.y));
-        let held = den > 0.0 && h * num > 3.25 * den;
-        if held && h * 2000.0 < dt {
-            self.calm = 0;
-            self.stiff += 1;
-            return self.stiff >= 15;
-        }
-        self.calm += 1;
-        if self.calm >= 6 {
-            self.stiff = 0;
-        }
-        false
-    }
 }
 
 /// The integrator's view of the equations of motion; interior mutability
@@ -222,7 +163,12 @@ where
         let done = if ode.out.xd <= step_end {
             let at = ode.out.xd;
             ode.out.xd += ode.out.dt;
-            ode.output(at, y.as_slice())
+            let done = ode.output(at, y.as_slice());
+            // The integration ends with this step, accepted.
+            if done {
+                ode.out.reached = step_end;
+            }
+            done
         } else {
             ode.stepped(t)
         };
@@ -284,11 +230,11 @@ impl Ode<'_, '_> {
             out.inside = false;
         }
         let h = t - out.reached;
+        out.reached = t;
         if out.stiffness.stiff(h, out.dt, self.evals.get_mut()) {
             out.stop = Some(SolveError::Simulation { time: t, reason: STIFF_REASON });
             return true;
         }
-        out.reached = t;
         out.observer.simulated(t, out.span);
         if out.observer.stop_requested() {
             out.stop = Some(SolveError::Interrupted);
@@ -362,11 +308,7 @@ where
     use ode_solvers::dop_shared::IntegrationError as E;
     match solver.integrate() {
         Ok(s) => Ok((s.accepted_steps as usize, s.rejected_steps as usize, s.num_eval as usize)),
-        Err(E::StiffnessDetected { x }) => Err(SolveError::Simulation {
-            time: x,
-            reason:
-                "the motion became stiff (a stiff spring or damper?): an explicit method would need very many steps",
-        }),
+        Err(E::StiffnessDetected { x }) => Err(SolveError::Simulation { time: x, reason: STIFF_REASON }),
         Err(E::StepSizeUnderflow { x }) => Err(SolveError::Simulation {
             time: x,
             reason: "the step size collapsed: no position could be found beyond this time (a limit position?)",
