@@ -173,3 +173,95 @@ def test_cli_interrupt_while_writing_keeps_the_previous_files(tmp_path: Path) ->
     assert "Traceback" not in proc.stderr
     assert (out / "fourbar.csv").read_bytes() == before
     assert not [p for p in out.iterdir() if p.name.startswith(".")], "a temporary file was left behind"
+
+
+# A simulation in a child process, signalled by a timer `after` seconds into it; it says on stderr how long after the
+# signal the run returned (before the outputs are written).
+SIM_SCRIPT = textwrap.dedent(
+    """
+    import os, signal, sys, threading, time
+    from mechfem import cli
+
+    sent = []
+    run = cli.run_with_progress
+
+    def timed(*args, **kwargs):
+        def send():
+            sent.append(time.perf_counter())
+            os.kill(os.getpid(), signal.SIGINT)
+
+        threading.Timer(float(sys.argv[1]), send).start()
+        result = run(*args, **kwargs)
+        print(f"returned {time.perf_counter() - sent[0]:.3f} s after the signal", file=sys.stderr)
+        return result
+
+    cli.run_with_progress = timed
+    sys.exit(cli.main(sys.argv[2:]))
+    """
+)
+
+
+def simulation_deck(tmp_path: Path, tstepe: str) -> Path:
+    """The supply mechanism's run-up (examples/supply/supply_sim.mec) with the output times ``tstepe``."""
+    text = (ROOT / "examples" / "supply" / "supply_sim.mec").read_text()
+    assert "TSTEPE 800 2.5E-3" in text
+    deck = tmp_path / "sim.mec"
+    deck.write_text(text.replace("TSTEPE 800 2.5E-3", f"TSTEPE {tstepe}"))
+    return deck
+
+
+def interrupt_simulation(deck: Path, out: Path, after: float) -> tuple[subprocess.CompletedProcess[str], float]:
+    proc = subprocess.run(
+        [sys.executable, "-c", SIM_SCRIPT, str(after), "run", str(deck), "-o", str(out), "--no-media"],
+        stdin=subprocess.DEVNULL,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert proc.returncode == 130, proc.stderr
+    assert "Traceback" not in proc.stderr and "PanicException" not in proc.stderr, proc.stderr
+    assert "interrupted" in proc.stderr
+    returned = [line for line in proc.stderr.splitlines() if line.startswith("returned ")]
+    assert returned, proc.stderr
+    return proc, float(returned[0].split()[1])
+
+
+def csv_rows(path: Path) -> list[list[str]]:
+    """The data set's rows below its header, each checked to be whole: as many fields as the header, each a
+    finite number."""
+    rows = list(csv.reader(path.read_text().splitlines()))
+    header, body = rows[0], rows[1:]
+    assert all(len(r) == len(header) for r in body)
+    assert all(np.isfinite(float(v)) for r in body for v in r)
+    return body
+
+
+def test_ctrl_c_stops_a_simulation_between_two_outputs(tmp_path: Path) -> None:
+    # Outputs 2000 s apart: the first one past position 1 is many seconds of integration away. Ctrl-C half a
+    # second in stops the integration within about a tenth of a second (a second here, on a busy machine), and
+    # position 1, the only output reached, is written.
+    deck = simulation_deck(tmp_path, "2 2000.0")
+    out = tmp_path / "out"
+    proc, after = interrupt_simulation(deck, out, 0.5)
+    assert after < 1.0, proc.stderr
+    assert len(csv_rows(out / "sim.csv")) == 1
+    assert "interrupted after position 1 of 3" in (out / "sim.prt").read_text()
+
+
+def test_ctrl_c_during_a_simulation_writes_every_output_reached(tmp_path: Path) -> None:
+    # 2000 outputs over 200 s, a tenth of a second apart: every output reached is written, and they are the
+    # outputs an uninterrupted simulation gives at the same times, to the last digit written.
+    deck = simulation_deck(tmp_path, "2000 0.1")
+    out = tmp_path / "out"
+    proc, after = interrupt_simulation(deck, out, 1.0)
+    assert after < 1.0, proc.stderr
+    rows = csv_rows(out / "sim.csv")
+    assert 1 < len(rows) < 2001
+    assert f"Positions 1 to {len(rows)} were computed and are all written" in proc.stderr
+    full = subprocess.run(
+        [sys.executable, "-m", "mechfem.cli", "run", str(deck), "-o", str(tmp_path / "full"), "--no-media"],
+        capture_output=True,
+        text=True,
+    )
+    assert full.returncode == 0, full.stderr
+    assert rows == csv_rows(tmp_path / "full" / "sim.csv")[: len(rows)]

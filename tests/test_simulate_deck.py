@@ -134,14 +134,31 @@ def test_supply_mechanism_runs_up_to_its_steady_speed(tmp_path: Path, cli: Cli) 
 
 
 def test_a_very_stiff_spring_stops_the_simulation_with_its_reason(tmp_path: Path) -> None:
-    # A torsion spring of 1e15 N m on the pendulum: oscillations far faster than the outputs. The integrator gives
-    # up after its step budget (2000 steps per output interval on average) instead of running for hours.
+    # A torsion spring of 1e15 N m on the pendulum: oscillations far faster than the outputs. The integrator's
+    # steps are held by its stability to far less than the output interval, the motion is found stiff within a few
+    # thousand steps, and the simulation stops with that reason instead of running for hours.
     text = RELEASED.read_text().replace("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nSPRING 2 1E15 0 0.001")
     deck = tmp_path / "stiff.mec"
     deck.write_text(text)
-    with pytest.warns(mechfem.IncompleteRunWarning, match="2000 steps per output interval"):
+    with pytest.warns(mechfem.IncompleteRunWarning, match="became stiff"):
         r = mechfem.run_deck(deck)
     stop = r.report.stop
     assert stop is not None and stop.kind == "simulation"
-    assert "2000 steps per output interval" in stop.message
+    assert "1/2000 of the output interval" in stop.message
+    assert r.simulation is not None and r.simulation.steps < 10_000
     assert r.positions == stop.last_good >= 1
+
+
+@pytest.mark.parametrize(("n", "dt"), [(500, 10.0), (5, 1000.0)])
+def test_a_damped_pendulum_rests_to_the_end_of_a_long_simulation(tmp_path: Path, cli: Cli, n: int, dt: float) -> None:
+    # Released 1 rad from the bottom with a damper on its angle, the pendulum settles within a minute and then hangs
+    # at rest: a motion at rest is not stiff, and the 5000 s run to their end (exit 0) with outputs 10 s or 1000 s
+    # apart alike, the pendulum straight down at the end.
+    deck = pendulum(tmp_path / "damped.mec", "DYN SIM", "MOV_DYN 1 0", n, dt, -math.pi / 2 + 1.0, "SPRING 2 0 0 0.3")
+    proc = cli("run", deck, "-o", tmp_path / "out", "--no-media")
+    assert proc.returncode == 0, proc.stderr
+    r = mechfem.run_deck(deck)
+    assert r.report.complete and r.positions == n + 1
+    assert abs(r.buffers[2][-1] + math.pi / 2) < 1e-8
+    energy = r.buffers[5] + r.buffers[6]
+    assert np.all(np.diff(energy) <= 1e-10 * (energy[0] - energy[-1]))

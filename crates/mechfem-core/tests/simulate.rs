@@ -227,3 +227,65 @@ fn a_very_stiff_spring_stops_the_simulation_within_its_step_budget() {
     assert!(reason.contains("step budget") || reason.contains("stiff"), "{reason}");
     assert!(rec.positions() < motion.steps + 1 && rec.data().iter().all(|v| v.is_finite()));
 }
+
+/// A pendulum of mass `m` and length `l` from `theta0` with a torsion
+/// spring-damper `k`, `c` (free angle `e0`) on its angle, simulated for
+/// `steps` outputs `dt` apart at the default tolerances: the angle, T and V
+/// at every output, and the report's stop.
+fn settle(l: f64, m: f64, theta0: f64, (k, e0, c): (f64, f64, f64), steps: usize, dt: f64) -> Vec<[f64; 3]> {
+    let (mech, mut state, mut dynamics) = models::pendulum(l, theta0, m);
+    dynamics.loads.push(Load { form: FormRef::Prescribed(1), kind: LoadKind::Spring { k, e0, c } });
+    let motion = Motion { steps, dt, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
+    let q = vec![Quantity::Input(0), Quantity::Ekin, Quantity::Epot];
+    let mut rec = Recorder::new(q, false).with_dynamics(InverseDynamics::new(&mech, dynamics.clone()));
+    let report =
+        simulate(&mech, &mut state, &motion, &Params::default(), &Integration::default(), &dynamics, &mut rec).unwrap();
+    assert!(report.run.stop.is_none(), "{:?}", report.run.stop);
+    assert_eq!(rec.positions(), steps + 1);
+    rec.data().chunks(3).map(|r| [r[0], r[1], r[2]]).collect()
+}
+
+/// The energy T + V never grows from one output to the next by more than
+/// rounding (the damper only takes energy out), and the motion really
+/// settled: its last tenth holds T below `1e-12` of the energy it lost.
+fn check_settling(out: &[[f64; 3]]) {
+    let energy: Vec<f64> = out.iter().map(|r| r[1] + r[2]).collect();
+    let lost = energy[0] - energy.last().unwrap();
+    assert!(lost > 1.0, "the damper must take energy out: {lost}");
+    for (k, w) in energy.windows(2).enumerate() {
+        assert!(w[1] <= w[0] + 1e-10 * lost, "T + V grows after output {k}: {} to {}", w[0], w[1]);
+    }
+    let tail = &out[out.len() - out.len() / 10..];
+    assert!(tail.iter().all(|r| r[1] < 1e-12 * lost), "still moving: T = {:e}", tail[0][1]);
+}
+
+/// A damped pendulum released 1 rad from the bottom settles within a
+/// minute and then hangs at rest for over an hour: a motion at rest is not
+/// stiff, and the simulation runs to its end, the pendulum hanging straight
+/// down (theta = -pi/2) to 1e-8 rad.
+#[test]
+fn a_damped_pendulum_settles_and_rests_to_the_end() {
+    let out = settle(0.7, 1.5, -PI / 2.0 + 1.0, (0.0, 0.0, 0.3), 500, 10.0);
+    check_settling(&out);
+    let theta = out.last().unwrap()[0];
+    assert!((theta + PI / 2.0).abs() < 1e-8, "the pendulum rests at {theta}, not at -pi/2");
+}
+
+/// A pendulum on a torsion spring-damper settles where the spring holds the
+/// weight, `k (theta - e0) + m g l cos(theta) = 0`, and rests there to the
+/// end of 3000 s.
+#[test]
+fn a_damped_spring_settles_at_its_static_equilibrium() {
+    let (l, m, k, e0) = (0.7, 1.5, 20.0, 0.0);
+    let out = settle(l, m, 0.5, (k, e0, 0.8), 300, 10.0);
+    check_settling(&out);
+    // The static equilibrium by Newton from the resting angle found.
+    let mut theta = out.last().unwrap()[0];
+    let rest = theta;
+    for _ in 0..50 {
+        let f = k * (theta - e0) + m * G * l * theta.cos();
+        theta -= f / (k - m * G * l * theta.sin());
+    }
+    assert!((k * (theta - e0) + m * G * l * theta.cos()).abs() < 1e-12);
+    assert!((rest - theta).abs() < 1e-8, "rests at {rest}, the equilibrium is {theta}");
+}

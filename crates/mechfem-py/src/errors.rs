@@ -143,7 +143,12 @@ pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyE
 /// that `kept` its positions (or not): Ctrl-C after which they were kept is
 /// `Ok(true)`, the run was interrupted and its positions are returned (the
 /// report says so); no error is `Ok(false)`; any other error is raised.
+///
+/// A Ctrl-C made after the run last looked for one is taken here too,
+/// before anything is handed to Python: left pending, it would be raised
+/// inside the first call into numpy, which cannot report it.
 pub fn interrupted(py: Python<'_>, raised: Option<PyErr>, kept: bool) -> PyResult<bool> {
+    let raised = raised.or_else(|| py.check_signals().err());
     match raised {
         None => Ok(false),
         Some(err) if kept && err.is_instance_of::<PyKeyboardInterrupt>(py) => Ok(true),

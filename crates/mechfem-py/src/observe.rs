@@ -58,6 +58,8 @@ pub struct Progress {
     pub error: Option<PyErr>,
     /// When Python was last asked, for [`Progress::interrupts`].
     asked: Option<Instant>,
+    /// When Python was last attached to, for [`Progress::poll`].
+    attached: Instant,
 }
 
 /// How often [`Progress::interrupts`] asks Python for Ctrl-C.
@@ -72,7 +74,8 @@ impl Progress {
             Some(_) => ((total / 100).max(1), None),
             None => (64, Some(Instant::now())),
         };
-        let mut p = Progress { callback, total, stride, next: 0, reported: 0, error: None, asked };
+        let mut p =
+            Progress { callback, total, stride, next: 0, reported: 0, error: None, asked, attached: Instant::now() };
         p.next = p.after(0);
         p
     }
@@ -85,6 +88,19 @@ impl Progress {
     /// few microseconds more), and at the last of `total` positions.
     pub fn interrupts() -> Progress {
         Progress::new(None, usize::MAX)
+    }
+
+    /// Looks for Ctrl-C when Python has not been attached to for a tenth of
+    /// a second, whatever the progress: a simulation calls it after every
+    /// step of its integrator, which may take many steps between two
+    /// outputs (and a share of a percent of its time may take seconds). It
+    /// reads the clock only, unless the tenth of a second is over.
+    pub fn poll(&mut self) {
+        if self.error.is_some() || self.attached.elapsed() < INTERRUPT_CHECK {
+            return;
+        }
+        self.attached = Instant::now();
+        self.error = Python::attach(|py| py.check_signals()).err();
     }
 
     /// Reports that the share `share` (0 to 1) of the work is done, in
@@ -106,8 +122,8 @@ impl Progress {
     /// of the stride or the last one, unless an error has stopped the run.
     #[inline]
     pub fn report(&mut self, done: usize) {
-        // Never backwards: a simulation reports its integration first, then
-        // replays the positions it reached.
+        // Never backwards: a simulation reports both the share of its time
+        // integrated and the outputs found, which lag behind it.
         if done <= self.reported {
             return;
         }
@@ -124,6 +140,7 @@ impl Progress {
             }
             *asked = Instant::now();
         }
+        self.attached = Instant::now();
         let result = Python::attach(|py| -> PyResult<()> {
             py.check_signals()?;
             if let Some(callback) = &self.callback {
@@ -208,6 +225,7 @@ impl Observer for Recording {
     fn simulated(&mut self, time: f64, end: f64) {
         let share = if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 };
         self.progress.report_share(share);
+        self.progress.poll();
     }
 
     fn stop_requested(&self) -> bool {

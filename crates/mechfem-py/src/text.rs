@@ -124,6 +124,7 @@ impl Observer for Watch<'_> {
     fn simulated(&mut self, time: f64, end: f64) {
         if let Some(p) = self.progress.as_mut() {
             p.report_share(if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 });
+            p.poll();
         }
     }
 }

@@ -1,9 +1,9 @@
 //! The kinematic run (mode `KIN ANA`): position 1 adjusted, then the
 //! inputs stepped through every position of the motion program, driven or
 //! free, with the limit positions met on the way. The other run modes move
-//! the mechanism through it too: a simulation replays its output times, an
-//! optimiser's evaluation records sensitivities along it, and inverse
-//! dynamics is evaluated at its positions.
+//! the mechanism through it too: a simulation without a free DOF runs its
+//! prescribed motion, an optimiser's evaluation records sensitivities along
+//! it, and inverse dynamics is evaluated at its positions.
 
 use super::observe::{Observer, PositionView, RunReport, Stop};
 use crate::error::{SolveError, Unsupported};
@@ -96,7 +96,7 @@ pub fn run(
 /// finite transfer functions times finite input rates can still overflow,
 /// and an observer must never be handed an infinity as a result.
 /// Accelerations are checked only where the second order was computed.
-fn timed_finite(mech: &Mechanism, kin: &Kinematics, qd: &[f64], qdd: &[f64]) -> Result<(), SolveError> {
+pub(super) fn timed_finite(mech: &Mechanism, kin: &Kinematics, qd: &[f64], qdd: &[f64]) -> Result<(), SolveError> {
     let Some(order) = kin.order() else { return Ok(()) };
     let second = order == TransferOrder::Second;
     // A bound of every velocity and acceleration: when it lies well inside

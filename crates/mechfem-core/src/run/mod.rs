@@ -5,7 +5,7 @@
 //! * `inverse.rs`, [`InverseDynamics`]: inverse dynamics (mode `DYN ANA`)
 //!   at each position of a kinematic run.
 //! * `simulate.rs`, [`simulate`]: forward dynamics (mode `DYN SIM`), its
-//!   output times replayed through a kinematic run.
+//!   outputs taken from the integrator's solution.
 //! * [`design`]: one design of an optimiser (mode `KIN OPT`), a kinematic
 //!   run with the design sensitivities and the extrema of chosen quantities.
 //!

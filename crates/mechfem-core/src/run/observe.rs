@@ -66,9 +66,10 @@ pub trait Observer {
     }
 
     /// Called by a simulation ([`simulate`](super::simulate)) after every
-    /// step of its integrator, which has then reached `time` of `end`:
-    /// before any position is observed, for progress reports. A run asked
-    /// to stop ([`Self::stop_requested`]) stops integrating too.
+    /// step of its integrator, which has then reached `time` of `end`
+    /// (after the outputs inside the step are observed), for progress
+    /// reports and to look for Ctrl-C between outputs far apart. A run
+    /// asked to stop ([`Self::stop_requested`]) stops integrating too.
     fn simulated(&mut self, time: f64, end: f64) {
         let _ = (time, end);
     }
