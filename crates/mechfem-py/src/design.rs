@@ -264,32 +264,12 @@ impl DesignModel {
 
 /// The kind of a failure (see [`DesignModel::evaluate`]) and its words.
 fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
-    let coords = |coords: &[usize]| {
-        let numbers: Vec<String> = coords.iter().map(|i| (i + 1).to_string()).collect();
-        format!("co-ordinates {}", numbers.join(", "))
-    };
     match e {
         DesignFailure::Solve(e) => {
             ("position_one", format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, e)))
         }
-        DesignFailure::OtherBranch { coords: k } => (
-            "other_branch",
-            format!(
-                "position 1 assembles only on another assembly branch than the start design's: {} lie mirrored \
-                 (the determinant of their group in D^c has the other sign)",
-                coords(k)
-            ),
-        ),
-        DesignFailure::LeftBranch(change) => (
-            "left_branch",
-            format!(
-                "the motion changes assembly branch between positions {} and {}: {} flip to their mirrored \
-                 assembly (the determinant of their group in D^c changes sign: a limit position was jumped over)",
-                change.after + 1,
-                change.after + 2,
-                coords(&change.coords)
-            ),
-        ),
+        DesignFailure::OtherBranch { .. } => ("other_branch", e.to_string()),
+        DesignFailure::LeftBranch(_) => ("left_branch", e.to_string()),
     }
 }
 

@@ -60,7 +60,8 @@ pub struct BranchChange {
     pub coords: Vec<usize>,
 }
 
-/// Why a design could not be evaluated on the start design's branch.
+/// Why a design could not be evaluated on the start design's branch. The
+/// fields number co-ordinates from 0; the messages, as a deck does, from 1.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DesignFailure {
     /// Position 1, or a quantity along the motion, cannot be computed.
@@ -68,14 +69,29 @@ pub enum DesignFailure {
     Solve(#[from] SolveError),
     /// Position 1 assembles, but only with a group of co-ordinates mirrored
     /// against the start design's.
-    #[error("position 1 assembles only on another branch: co-ordinates {coords:?} are mirrored")]
+    #[error(
+        "position 1 assembles only on another assembly branch than the start design's: co-ordinates {} lie \
+         mirrored (the determinant of their group in D^c has the other sign)",
+        numbers(coords)
+    )]
     OtherBranch {
         /// The co-ordinates (0-based) of the group whose orientation differs.
         coords: Vec<usize>,
     },
     /// The motion changes branch between two positions.
-    #[error("the motion changes branch after position index {}", .0.after)]
+    #[error(
+        "the motion changes assembly branch between positions {} and {}: co-ordinates {} flip to their mirrored \
+         assembly (the determinant of their group in D^c changes sign: a limit position was jumped over)",
+        .0.after + 1,
+        .0.after + 2,
+        numbers(&.0.coords)
+    )]
     LeftBranch(BranchChange),
+}
+
+/// Co-ordinate indices as the deck numbers them.
+fn numbers(coords: &[usize]) -> String {
+    coords.iter().map(|i| (i + 1).to_string()).collect::<Vec<_>>().join(", ")
 }
 
 /// The start design of an optimisation: what every later evaluation keeps
