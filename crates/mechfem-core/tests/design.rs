@@ -185,10 +185,12 @@ fn every_design_is_evaluated_on_the_start_designs_branch_in_any_order() {
     // The start design evaluated again is the start design's run, bit for bit.
     let again = forward[3].as_ref().unwrap();
     assert_eq!((&again.values, &again.coords), (&first.values, &first.coords));
-    // A crank that cannot turn fully: 36 steps jump over its limit position onto the other branch.
+    // A crank that cannot turn fully: 36 steps jump over its limit position onto the other branch, unless the
+    // stepper stops at the limit position itself.
     let jumping = [1.7343402713614078, 3.7876737360951287, 2.1636385787969443];
     match design.evaluate(&anchor, &jumping) {
         Err(DesignFailure::LeftBranch(change)) => assert_eq!((change.after, change.coords), (24, vec![6, 7])),
+        Ok(run) => assert!(run.report.stop.is_some(), "the motion passed its limit position"),
         other => panic!("{other:?}"),
     }
 }
