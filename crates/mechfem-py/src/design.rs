@@ -154,7 +154,12 @@ impl DesignModel {
     fn evaluate<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
         self.check(&values)?;
         if self.anchor.is_none() {
-            self.start_at(py, self.start())?;
+            let start = self.start();
+            let d = self.start_at(py, start.clone())?;
+            // The deck's own design evaluated again would be the same run.
+            if start == values {
+                return Ok(d);
+            }
         }
         let Some(Ok(anchor)) = &self.anchor else {
             let why = match &self.anchor {
