@@ -123,7 +123,8 @@ def test_a_motion_that_jumps_to_the_other_branch_is_infeasible_and_said_so(deck:
     if d["reason_kind"] == "left_branch":
         assert d["reason"] == (
             "the motion changes assembly branch between positions 25 and 26: co-ordinates 7, 8 flip to their "
-            "mirrored assembly (the determinant of their group in D^c changes sign: a limit position was jumped over)"
+            "mirrored assembly (the determinant of their group in D^c changes sign: a limit position jumped over, or "
+            "a change point where two branches meet)"
         )
 
 

@@ -42,6 +42,13 @@ impl Orientation {
     pub fn reversed(&self, other: &Orientation) -> Option<usize> {
         self.positive.iter().zip(&other.positive).position(|(a, b)| a != b)
     }
+
+    /// The first block whose determinant in `dets` (see
+    /// [`Lu::block_dets`](crate::solver::lu::Lu::block_dets)) has another
+    /// sign than this orientation's.
+    pub(crate) fn reversed_in(&self, dets: &[f64]) -> Option<usize> {
+        self.positive.iter().zip(dets).position(|(p, d)| *p != (*d > 0.0))
+    }
 }
 
 /// The co-ordinates (0-based) of block `block` of D^c, ascending.
@@ -81,7 +88,8 @@ pub enum DesignFailure {
     /// The motion changes branch between two positions.
     #[error(
         "the motion changes assembly branch between positions {} and {}: co-ordinates {} flip to their mirrored \
-         assembly (the determinant of their group in D^c changes sign: a limit position was jumped over)",
+         assembly (the determinant of their group in D^c changes sign: a limit position jumped over, or a change \
+         point where two branches meet)",
         .0.after + 1,
         .0.after + 2,
         numbers(&.0.coords)

@@ -160,11 +160,11 @@ impl Recording<'_> {
         if free || self.left_branch.is_some() || v.kin.order().is_none() {
             return;
         }
-        let here = Orientation::of(v.kin, &mut self.dets);
         match &self.orientation {
-            None => self.orientation = Some(here),
+            None => self.orientation = Some(Orientation::of(v.kin, &mut self.dets)),
             Some(one) => {
-                if let Some(b) = here.reversed(one) {
+                v.kin.lu.block_dets(&mut self.dets);
+                if let Some(b) = one.reversed_in(&self.dets) {
                     let coords = block_coords(v.mech, v.kin, b);
                     self.left_branch = Some(BranchChange { after: v.index - 1, coords });
                 }
