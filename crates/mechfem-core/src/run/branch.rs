@@ -207,10 +207,10 @@ impl Design<'_> {
         if lambda == 1.0 {
             return self.run(at);
         }
+        // Every attempt either assembled on another branch or failed.
         Err(match (mirrored, first_error) {
             (Some(coords), _) => DesignFailure::OtherBranch { coords },
-            (None, Some(e)) => DesignFailure::Solve(e),
-            (None, None) => unreachable!("every attempt either converged or failed"),
+            (None, e) => DesignFailure::Solve(e.unwrap_or(SolveError::NotComputed)),
         })
     }
 
