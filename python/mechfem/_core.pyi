@@ -567,7 +567,8 @@ def run_deck_variants(
 
 @final
 class DesignModel:
-    """A compiled deck kept for an optimiser: designs evaluated in turn, each from the last one's position 1."""
+    """A compiled deck kept for an optimiser: designs evaluated in turn, each on the assembly branch of the start
+    design (the deck's own unless ``start_at`` chose another), whatever was evaluated before."""
 
     def __new__(
         cls,
@@ -581,6 +582,7 @@ class DesignModel:
     @property
     def runs(self) -> int: ...
     def start(self) -> list[float]: ...
+    def start_at(self, values: list[float]) -> dict[str, Any]: ...
     def evaluate(self, values: list[float]) -> dict[str, Any]: ...
 
 def optimised_deck_text(

@@ -7,10 +7,13 @@ the extrema of a reference), and solved with SciPy.
 * With bounds on buffers, a MINIMISE/MAXIMISE term or a Python objective: ``scipy.optimize.minimize`` with SLSQP,
   the bounds as inequality constraints at every position.
 
-A design that cannot be assembled, or whose motion stops (a limit position, a lost branch), is infeasible: the
-optimiser gets a value far worse than any it has seen, so its trust region or line search falls back towards the
-last good design. Every evaluation starts from position 1 of the last design that was assembled (the model handle
-keeps it), so the mechanism stays in the assembly branch it started in.
+Every design is evaluated on the assembly branch of the start design, whatever was evaluated before: its position 1
+is assembled from a prediction that depends on the design alone, and is accepted only with the start design's
+orientation (the sign of the determinant of every group of co-ordinates found together, see docs/optimisation.md).
+So a design's objective never depends on the order the optimiser evaluates designs in. A design that cannot be
+assembled on that branch, whose motion leaves it (a limit position jumped over) or whose motion stops is infeasible:
+the optimiser gets a value far worse than any it has seen, so its trust region or line search falls back towards the
+last good design, and the solution counts the infeasible designs by reason.
 """
 
 from __future__ import annotations
@@ -178,6 +181,8 @@ class Evaluator:
         self.extrema_count: list[int] | None = None
         self.infeasible = 0
         """How many designs evaluated were infeasible."""
+        self.reasons: dict[str, tuple[int, str]] = {}
+        """Infeasible designs by kind of reason (see ``DesignModel.evaluate``): how many, and the first one's reason."""
 
     @property
     def runs(self) -> int:
@@ -186,13 +191,26 @@ class Evaluator:
     def start(self) -> FloatArray:
         return np.asarray(self.model.start(), dtype=np.float64)
 
+    def start_at(self, x: FloatArray) -> Evaluation:
+        """Evaluates ``x`` as the start design: its assembly branch is that of every later evaluation, its number of
+        extrema that of every TARGETEXT. Raises :class:`Infeasible` with the reason."""
+        self._cache = None
+        d = self.model.start_at([float(v) for v in x])
+        if not d["feasible"]:
+            raise Infeasible(str(d["reason"]))
+        e = Evaluation(self._column, np.array(x), d)
+        self.extrema_count = _extremum_counts(self.problem, e)
+        return e
+
     def __call__(self, x: FloatArray) -> Evaluation:
         """The evaluation at ``x``; raises :class:`Infeasible` with the reason."""
         key = np.asarray(x, dtype=np.float64).tobytes()
         if self._cache is None or self._cache[0] != key:
             d = self.model.evaluate([float(v) for v in x])
-            result: Evaluation | str = Evaluation(self._column, np.array(x), d) if d["feasible"] else str(d["reason"])
-            if isinstance(result, Evaluation):
+            result: Evaluation | str = str(d["reason"])
+            kind = str(d["reason_kind"])
+            if d["feasible"]:
+                result, kind = Evaluation(self._column, np.array(x), d), "extrema"
                 counts = _extremum_counts(self.problem, result)
                 if self.extrema_count is None:
                     self.extrema_count = counts
@@ -200,7 +218,10 @@ class Evaluator:
                     result = (
                         f"the reference of a TARGETEXT has {counts} extrema here, {self.extrema_count} at the start"
                     )
-            self.infeasible += isinstance(result, str)
+            if isinstance(result, str):
+                self.infeasible += 1
+                n, first = self.reasons.get(kind, (0, result))
+                self.reasons[kind] = (n + 1, first)
             self._cache = (key, result)
         found = self._cache[1]
         if isinstance(found, str):
@@ -331,6 +352,11 @@ class Solution:
     runs: int
     infeasible: int
     """How many of the runs met an infeasible design (stepped back from)."""
+    reasons: dict[str, tuple[int, str]]
+    """The infeasible designs by kind of reason: ``"other_branch"`` (position 1 assembles only on another branch than
+    the start design's), ``"left_branch"`` (the motion changes branch), ``"stopped"`` (the motion stops at a limit
+    position), ``"position_one"`` (position 1 cannot be computed), ``"extrema"`` (a TARGETEXT's reference has another
+    number of extrema); for each, how many and the first one's reason."""
     success: bool
     message: str
     seconds: float
@@ -361,7 +387,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
     ev = Evaluator(problem)
     x0 = np.clip(ev.start(), problem.lo, problem.hi)
     try:
-        e0 = ev(x0)
+        e0 = ev.start_at(x0)
     except Infeasible as err:
         raise Infeasible(f"the start design is infeasible: {err}") from None
     f0, _ = objective(problem, e0)
@@ -481,6 +507,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         history=history,
         runs=ev.runs,
         infeasible=ev.infeasible,
+        reasons=dict(ev.reasons),
         success=success,
         message=message,
         seconds=time.perf_counter() - t0,

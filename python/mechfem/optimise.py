@@ -107,6 +107,9 @@ class Optimum:
     motion: Motion | None = field(default=None, repr=False)
     starts: list[Start] = field(default_factory=list, repr=False)
     """Every start's outcome (one for a single start); this optimum is the best of them."""
+    reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
+    """Those infeasible designs by kind of reason (see :attr:`mechfem.design.Solution.reasons`): how many, and the
+    first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
 
     def run(self) -> RunResult:
         """The optimised mechanism run through the motion the optimisation used."""
@@ -336,6 +339,7 @@ def optimize(
         history=sol.history,
         runs=sol.runs,
         infeasible=sol.infeasible,
+        reasons=sol.reasons,
         success=sol.success,
         message=sol.message,
         seconds=sol.seconds,

@@ -206,8 +206,9 @@ def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
         f"  objective: start {s.start_objective:.10g}, final {s.objective:.10g}",
         f"  {count(s.runs, 'mechanism run')} in {s.seconds:.3g} s"
         + (f" ({s.infeasible} of them met an infeasible design and were stepped back from)" if s.infeasible else ""),
-        f"  {'converged' if s.success else 'did not converge'}: {s.message}",
     ]
+    out += infeasible_lines(s)
+    out.append(f"  {'converged' if s.success else 'did not converge'}: {s.message}")
     if outcome.extrema:
         out += ["", "  targets at extrema, at the final design:"]
         out.append(f"  {'buffer':>8} {'reference':>10} {'input':>18} {'value':>18} {'target':>12}")
@@ -230,6 +231,24 @@ def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
     if written is not None:
         out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
     return [*out, ""]
+
+
+INFEASIBLE_KINDS = {
+    "other_branch": "position 1 only on another assembly branch than the start design's",
+    "left_branch": "the motion changes assembly branch",
+    "stopped": "the motion stops",
+    "position_one": "position 1 cannot be computed",
+    "extrema": "another number of extrema",
+}
+
+
+def infeasible_lines(s: design.Solution) -> list[str]:
+    """The infeasible designs met, by kind of reason, each with the first one's reason. Every design, the final one
+    included, is evaluated on the start design's assembly branch; one that cannot be is among these."""
+    out = []
+    for kind, (n, first) in s.reasons.items():
+        out.append(f"    {n} infeasible: {INFEASIBLE_KINDS.get(kind, kind)} (the first: {first})")
+    return out
 
 
 def history_lines(history: list[design.Iteration]) -> list[str]:

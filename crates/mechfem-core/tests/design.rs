@@ -106,3 +106,91 @@ fn an_angle_row_a_full_turn_from_its_value_needs_no_turn() {
     assert!(exact.iter().zip(&again.x).all(|(a, b)| (a - b).abs() < 1e-12));
     assert!((again.clone().prescribed_value(mech, 4).unwrap() - again.target[4]).abs() < 1e-12);
 }
+
+/// A crank-rocker four-bar turned once in 36 steps, B.y recorded; co-ordinates 1-2 A0, 3-4 B0, 5-6 A, 7-8 B.
+const FOURBAR: &str = "KIN ANA
+TOPOLOGY
+ELEM 1 BIN 1 2 5 6
+     2 BIN 5 6 7 8
+     3 BIN 3 4 7 8
+FORM 1 LENL 1 1
+     2 LENL 2 2
+     3 LENL 3 3
+     4 ANGB 1 4
+NRDOF 1
+GEOMETRY
+XFIX 1 0.0
+     2 0.0
+     3 3.2
+     4 0.0
+XMOV 5 1.0
+     6 0.0
+     7 3.0
+     8 2.4
+PARA 1 1.0
+     2 3.0
+     3 2.5
+     4 0.0
+MOVEMENT
+TSTEPE 36
+MOV_RELE 1 6.283185307179586
+END
+";
+
+fn fourbar() -> mechfem_deck::Compiled {
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("design_branch_fourbar.mec");
+    std::fs::write(&path, FOURBAR).unwrap();
+    mechfem_deck::load(&path).unwrap()
+}
+
+/// The sign of the triangle A, B, B0 at position 1 of a run: which of the dyad's two assemblies it is.
+fn dyad_sign(run: &mechfem_core::design::DesignRun) -> f64 {
+    let x = &run.coords;
+    ((x[6] - x[4]) * (x[3] - x[5]) - (x[7] - x[5]) * (x[2] - x[4])).signum()
+}
+
+#[test]
+fn every_design_is_evaluated_on_the_start_designs_branch_in_any_order() {
+    use mechfem_core::design::{Design, DesignFailure};
+    let c = fourbar();
+    // B0 and the rocker length.
+    let vars = [DesignVar::Fixed(2), DesignVar::Fixed(3), DesignVar::Row(2)];
+    let quantities = [Quantity::X0(7)];
+    let design = Design {
+        mech: &c.mechanism,
+        base: &c.state,
+        motion: c.motion.as_ref().unwrap(),
+        params: &c.params,
+        vars: &vars,
+        quantities: &quantities,
+        extrema: &[],
+    };
+    let start = [3.2, 0.0, 2.5];
+    let (first, anchor) = design.start(&start).unwrap();
+    // From the start design's position 1, Newton alone assembles this one with B mirrored about A-B0.
+    let mirroring = [1.5, 2.0, 3.5];
+    let designs = [mirroring, [2.5, -2.0, 3.5], [3.5, 3.0, 3.0], start, [1.7, -1.0, 2.0], [4.0, 1.0, 3.5]];
+    let forward: Vec<_> = designs.iter().map(|x| design.evaluate(&anchor, x)).collect();
+    for (k, x) in designs.iter().enumerate().rev() {
+        let again = design.evaluate(&anchor, x);
+        match (&forward[k], &again) {
+            (Ok(a), Ok(b)) => {
+                assert_eq!((&a.values, &a.gradient, &a.coords), (&b.values, &b.gradient, &b.coords), "{x:?}");
+                assert_eq!(dyad_sign(a), dyad_sign(&first), "{x:?} is on another branch");
+            }
+            (a, b) => assert_eq!(a.as_ref().err(), b.as_ref().err(), "{x:?}"),
+        }
+    }
+    assert!(forward.iter().filter(|r| r.is_ok()).count() >= 4);
+    // The start design evaluated again is the start design's run, bit for bit.
+    let again = forward[3].as_ref().unwrap();
+    assert_eq!((&again.values, &again.coords), (&first.values, &first.coords));
+    // A crank that cannot turn fully: 36 steps jump over its limit position onto the other branch, unless the
+    // stepper stops at the limit position itself.
+    let jumping = [1.7343402713614078, 3.7876737360951287, 2.1636385787969443];
+    match design.evaluate(&anchor, &jumping) {
+        Err(DesignFailure::LeftBranch(change)) => assert_eq!((change.after, change.coords), (24, vec![6, 7])),
+        Ok(run) => assert!(run.report.stop.is_some(), "the motion passed its limit position"),
+        other => panic!("{other:?}"),
+    }
+}

@@ -1,13 +1,14 @@
 //! A compiled deck kept for an optimiser: [`DesignModel`] evaluates one
-//! design after another ([`mechfem_core::design::evaluate`]), each from the
-//! position 1 of the last design that could be assembled, so that the
-//! mechanism stays in its assembly branch. A design that cannot be
-//! assembled, or whose motion stops (a limit position, a lost branch), is
-//! returned as infeasible with the reason, never raised.
+//! design after another ([`mechfem_core::design::Design`]), each on the
+//! assembly branch of the start design, whatever was evaluated before, so
+//! that a design's values never depend on the order of evaluation. A design
+//! that cannot be assembled on that branch, whose motion leaves it, or whose
+//! motion stops (a limit position) is returned as infeasible with the
+//! reason, never raised.
 
 use std::path::PathBuf;
 
-use mechfem_core::design::{evaluate, slopes, ExtremumSpec};
+use mechfem_core::design::{slopes, Anchor, Design, DesignFailure, DesignRun, ExtremumSpec};
 use mechfem_core::{DesignVar, Quantity, Sensitivity};
 use mechfem_deck::Compiled;
 use numpy::{PyArray1, PyArrayMethods};
@@ -26,8 +27,9 @@ pub struct DesignModel {
     vars: Vec<DesignVar>,
     quantities: Vec<Quantity>,
     extrema: Vec<ExtremumSpec>,
-    /// The co-ordinates at position 1 of the last design assembled.
-    position_one: Option<Vec<f64>>,
+    /// The start design: its branch and position 1, once evaluated, or why
+    /// it could not be.
+    anchor: Option<Result<Anchor, String>>,
     runs: usize,
 }
 
@@ -99,7 +101,7 @@ impl DesignModel {
                 Ok(ExtremumSpec { quantity: buffer(&c, b)?, reference })
             })
             .collect::<PyResult<Vec<_>>>()?;
-        Ok(DesignModel { compiled: c, vars, quantities, extrema, position_one: None, runs: 0 })
+        Ok(DesignModel { compiled: c, vars, quantities, extrema, anchor: None, runs: 0 })
     }
 
     /// The design's values as the deck gives them.
@@ -120,12 +122,61 @@ impl DesignModel {
         self.runs
     }
 
-    /// Evaluates the design `values`: a dict with `feasible`, `reason`
-    /// (None when feasible), `positions`, `position_one` (its co-ordinates
-    /// at position 1, None when it has none), `values` (positions x buffers),
+    /// Evaluates `values` as the start design, from the deck's co-ordinates
+    /// (its XMOV estimates): the assembly branch of its position 1 is the
+    /// branch of every later evaluation. A dict as of [`Self::evaluate`].
+    fn start_at<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+        self.check(&values)?;
+        let design = self.design();
+        let result = py.detach(|| design.start(&values));
+        self.runs += 1;
+        let result = match result {
+            Ok((run, anchor)) => {
+                self.anchor = Some(Ok(anchor));
+                Ok(run)
+            }
+            Err(e) => {
+                self.anchor = Some(Err(reason(&self.compiled, &e).1));
+                Err(e)
+            }
+        };
+        self.dict(py, result)
+    }
+
+    /// Evaluates the design `values` on the start design's branch (the
+    /// deck's own design unless [`Self::start_at`] chose another): a dict
+    /// with `feasible`, `reason` (None when feasible) and `reason_kind`
+    /// (None, `"position_one"`, `"other_branch"`, `"left_branch"` or
+    /// `"stopped"`), `positions`, `position_one` (its co-ordinates at
+    /// position 1, None when it has none), `values` (positions x buffers),
     /// `gradient` (positions x buffers x variables) and `extrema` (dicts
     /// with `spec`, `after`, `input`, `reference`, `value`, `gradient`).
     fn evaluate<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+        self.check(&values)?;
+        if self.anchor.is_none() {
+            let start = self.start();
+            let d = self.start_at(py, start.clone())?;
+            // The deck's own design evaluated again would be the same run.
+            if start == values {
+                return Ok(d);
+            }
+        }
+        let Some(Ok(anchor)) = &self.anchor else {
+            let why = match &self.anchor {
+                Some(Err(why)) => why.clone(),
+                _ => unreachable!("set by start_at"),
+            };
+            return self.failed(py, "start", format!("the start design is infeasible: {why}"));
+        };
+        let design = self.design();
+        let result = py.detach(|| design.evaluate(anchor, &values));
+        self.runs += 1;
+        self.dict(py, result)
+    }
+}
+
+impl DesignModel {
+    fn check(&self, values: &[f64]) -> PyResult<()> {
         if values.len() != self.vars.len() {
             return Err(PyValueError::new_err(format!(
                 "{} values for {} design variables",
@@ -136,22 +187,27 @@ impl DesignModel {
         if let Some(k) = values.iter().position(|v| !v.is_finite()) {
             return Err(PyValueError::new_err(format!("design value {k} is {}", values[k])));
         }
+        Ok(())
+    }
+
+    fn design(&self) -> Design<'_> {
         let c = &self.compiled;
-        let mut state = c.state.clone();
-        if let Some(x) = &self.position_one {
-            state.x.clone_from(x);
+        Design {
+            mech: &c.mechanism,
+            base: &c.state,
+            motion: c.motion.as_ref().expect("checked in new"),
+            params: &c.params,
+            vars: &self.vars,
+            quantities: &self.quantities,
+            extrema: &self.extrema,
         }
-        for (v, &x) in self.vars.iter().zip(&values) {
-            match *v {
-                DesignVar::Row(r) => state.target[r] = x,
-                DesignVar::Fixed(i) => state.x[i] = x,
-            }
-        }
+    }
+
+    /// The dict of [`DesignModel::evaluate`] for an evaluation.
+    fn dict<'py>(&self, py: Python<'py>, result: Result<DesignRun, DesignFailure>) -> PyResult<Bound<'py, PyDict>> {
+        let c = &self.compiled;
         let motion = c.motion.as_ref().expect("checked in new");
-        let (vars, quantities, extrema) = (&self.vars, &self.quantities, &self.extrema);
-        let result = py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, vars, quantities, extrema));
-        self.runs += 1;
-        let (nq, nv) = (quantities.len(), vars.len());
+        let (nq, nv) = (self.quantities.len(), self.vars.len());
         let d = PyDict::new(py);
         match result {
             Ok(run) => {
@@ -161,11 +217,9 @@ impl DesignModel {
                     format!("the motion stopped before position {at}: {}", errors::describe(&c.mechanism, &s.error))
                 });
                 let at_1 = run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec);
-                if reason.is_none() {
-                    self.position_one.clone_from(&at_1);
-                }
                 d.set_item("position_one", at_1)?;
                 d.set_item("feasible", reason.is_none())?;
+                d.set_item("reason_kind", reason.as_ref().map(|_| "stopped"))?;
                 d.set_item("reason", reason)?;
                 d.set_item("positions", run.positions)?;
                 d.set_item("report", convert::report(py, &c.mechanism, &run.report, motion.steps)?)?;
@@ -189,17 +243,38 @@ impl DesignModel {
                 d.set_item("extrema", found)?;
             }
             Err(e) => {
-                d.set_item("feasible", false)?;
-                d.set_item("reason", format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, &e)))?;
-                d.set_item("positions", 0)?;
-                d.set_item("position_one", py.None())?;
-                d.set_item("report", py.None())?;
-                d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
-                d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;
-                d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
+                let (kind, why) = reason(c, &e);
+                return self.failed(py, kind, why);
             }
         }
         Ok(d)
+    }
+
+    /// The dict of an infeasible design without positions.
+    fn failed<'py>(&self, py: Python<'py>, kind: &str, why: String) -> PyResult<Bound<'py, PyDict>> {
+        let (nq, nv) = (self.quantities.len(), self.vars.len());
+        let d = PyDict::new(py);
+        d.set_item("feasible", false)?;
+        d.set_item("reason", why)?;
+        d.set_item("reason_kind", kind)?;
+        d.set_item("positions", 0)?;
+        d.set_item("position_one", py.None())?;
+        d.set_item("report", py.None())?;
+        d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
+        d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;
+        d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
+        Ok(d)
+    }
+}
+
+/// The kind of a failure (see [`DesignModel::evaluate`]) and its words.
+fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
+    match e {
+        DesignFailure::Solve(e) => {
+            ("position_one", format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, e)))
+        }
+        DesignFailure::OtherBranch { .. } => ("other_branch", e.to_string()),
+        DesignFailure::LeftBranch(_) => ("left_branch", e.to_string()),
     }
 }
 

@@ -11,13 +11,20 @@
 //! the extremum: d b(q*, p)/dp = b_p + b_q dq*/dp with dq*/dp = -r'_p / r''.
 //! b_q is b's sensitivity to the input row's prescribed value, at fixed
 //! everything else, which [`Sensitivity`] computes like any other.
+//!
+//! A driven motion that changes the orientation of a group of co-ordinates
+//! (see [`Orientation`]) has left the branch of its position 1: the run
+//! stops there and says so ([`DesignRun::left_branch`]). [`Design`]
+//! evaluates an optimiser's designs on the branch of its start design.
 
+use super::branch::block_coords;
+pub use super::branch::{Anchor, BranchChange, Design, DesignFailure, Orientation};
 use super::kinematic::run;
 use super::observe::{Observer, PositionView, RunReport};
 use super::record::Quantity;
 use crate::error::{SolveError, Unsupported};
 use crate::model::{FormRef, Mechanism, State};
-use crate::motion::Motion;
+use crate::motion::{InputMotion, Motion};
 use crate::solver::{correct, DesignVar, Kinematics, Params, Sensitivity, TransferOrder};
 
 /// A quantity wanted where a reference quantity has its extrema.
@@ -62,6 +69,12 @@ pub struct DesignRun {
     pub coords: Vec<f64>,
     /// Every extremum of every spec, in order of spec and position.
     pub extrema: Vec<Extremum>,
+    /// Where a driven motion left the branch of its position 1 (the run
+    /// stopped at the last position on it).
+    pub left_branch: Option<BranchChange>,
+    /// dx/dp of every co-ordinate at position 1: variable v's column at
+    /// `slope_one[v * N..]`, N the number of co-ordinates.
+    pub slope_one: Vec<f64>,
 }
 
 /// The first- and second-order transfer functions of a reference quantity
@@ -93,6 +106,11 @@ struct Recording<'a> {
     acc: Vec<f64>,
     slopes: Vec<f64>,
     failed: Option<SolveError>,
+    /// Position 1's orientation, when the motion is to keep it (driven).
+    orientation: Option<Orientation>,
+    dets: Vec<f64>,
+    left_branch: Option<BranchChange>,
+    slope_one: Vec<f64>,
 }
 
 impl Observer for Recording<'_> {
@@ -104,6 +122,12 @@ impl Observer for Recording<'_> {
             self.failed.get_or_insert(e.clone());
         }
         scale_starts(&mut self.sens, mech, self.motion, v.index, false);
+        if v.index == 0 && computed.is_ok() {
+            for var in 0..nv {
+                self.slope_one.extend((0..mech.n_coords()).map(|i| self.sens.dx(i, var)));
+            }
+        }
+        self.keeps_branch(v);
         for q in self.quantities {
             self.values.push(q.value(v));
             for var in 0..nv {
@@ -120,6 +144,32 @@ impl Observer for Recording<'_> {
 
     fn transfer_order(&self) -> Option<TransferOrder> {
         Some(TransferOrder::Second)
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.left_branch.is_some()
+    }
+}
+
+impl Recording<'_> {
+    /// Takes position 1's orientation, or checks a later position's against
+    /// it. Free motion passes the limit positions of its input, where the
+    /// orientation changes, so it is not checked.
+    fn keeps_branch(&mut self, v: &PositionView<'_>) {
+        let free = self.motion.inputs.iter().any(|m| matches!(m, InputMotion::Free { .. }));
+        if free || self.left_branch.is_some() || v.kin.order().is_none() {
+            return;
+        }
+        match &self.orientation {
+            None => self.orientation = Some(Orientation::of(v.kin, &mut self.dets)),
+            Some(one) => {
+                v.kin.lu.block_dets(&mut self.dets);
+                if let Some(b) = one.reversed_in(&self.dets) {
+                    let coords = block_coords(v.mech, v.kin, b);
+                    self.left_branch = Some(BranchChange { after: v.index - 1, coords });
+                }
+            }
+        }
     }
 }
 
@@ -177,11 +227,19 @@ pub fn evaluate(
         acc: Vec::with_capacity(n),
         slopes: Vec::with_capacity(n * extrema.len()),
         failed: None,
+        orientation: None,
+        dets: Vec::new(),
+        left_branch: None,
+        slope_one: Vec::with_capacity(nv * nc),
     };
     let base = state.clone();
-    let report = run(mech, state, Some(motion), params, &mut rec)?;
+    let mut report = run(mech, state, Some(motion), params, &mut rec)?;
     if let Some(e) = rec.failed {
         return Err(e);
+    }
+    if rec.left_branch.is_some() {
+        // Stopped by the recording itself, not interrupted.
+        report.stop = None;
     }
     let positions = report.positions;
     let mut found = Vec::new();
@@ -236,7 +294,16 @@ pub fn evaluate(
             });
         }
     }
-    Ok(DesignRun { report, positions, values: rec.values, gradient: rec.gradient, coords: rec.coords, extrema: found })
+    Ok(DesignRun {
+        report,
+        positions,
+        values: rec.values,
+        gradient: rec.gradient,
+        coords: rec.coords,
+        extrema: found,
+        left_branch: rec.left_branch,
+        slope_one: rec.slope_one,
+    })
 }
 
 /// Newton on the reference's slope between two positions (inputs q0, q1,

@@ -7,7 +7,8 @@
 //! * `simulate.rs`, [`simulate`]: forward dynamics (mode `DYN SIM`), its
 //!   outputs taken from the integrator's solution.
 //! * [`design`]: one design of an optimiser (mode `KIN OPT`), a kinematic
-//!   run with the design sensitivities and the extrema of chosen quantities.
+//!   run with the design sensitivities and the extrema of chosen quantities,
+//!   on the assembly branch of the start design (`branch.rs`).
 //!
 //! Every mode hands its positions to an [`Observer`] and ends with a
 //! [`RunReport`] (`observe.rs`); a [`Recorder`] (`record.rs`) keeps the
@@ -15,6 +16,7 @@
 //! names the columns of a recording of all of them, and a [`Selection`]
 //! (`selection.rs`) those of a deck's own recording, in blocks the same way.
 
+mod branch;
 pub mod design;
 mod fault;
 mod inverse;

@@ -397,6 +397,21 @@ impl Blocks {
         true
     }
 
+    /// Every block's determinant in turn (see [`Lu::block_dets`]); a block
+    /// left as assembled for Cramer's rule keeps its reciprocal.
+    pub(super) fn block_dets(&self, out: &mut Vec<f64>) {
+        out.extend(self.blocks.iter().map(|blk| match &blk.band {
+            Some(lu) => lu.det(),
+            None if self.cramer => 1.0 / self.inv_diag[blk.start],
+            None => dense::det(blk.n(), &self.a[blk.base..], blk.sign),
+        }));
+    }
+
+    /// Every block's columns in the original numbering.
+    pub(super) fn block_columns(&self) -> Vec<Vec<usize>> {
+        self.blocks.iter().map(|blk| (blk.start..blk.end).map(|c| self.col_old[c]).collect()).collect()
+    }
+
     pub(super) fn det(&self) -> f64 {
         if self.cramer {
             return self.cramer_det;

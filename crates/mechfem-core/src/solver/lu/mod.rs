@@ -219,6 +219,26 @@ impl Lu {
         }
     }
 
+    /// The determinant of every diagonal block from the last factorisation,
+    /// in the order the blocks are solved (one, det itself, when the
+    /// matrix does not split): their signs tell the assembly branch of each
+    /// group of co-ordinates found together (see [`Self::block_columns`]).
+    pub fn block_dets(&self, out: &mut Vec<f64>) {
+        out.clear();
+        match &self.store {
+            Store::Blocks(b) => b.block_dets(out),
+            _ => out.push(self.det()),
+        }
+    }
+
+    /// The columns of every diagonal block, in the order of [`Self::block_dets`].
+    pub fn block_columns(&self) -> Vec<Vec<usize>> {
+        match &self.store {
+            Store::Blocks(b) => b.block_columns(),
+            _ => vec![(0..self.n()).collect()],
+        }
+    }
+
     /// Determinant from the factors.
     pub fn det(&self) -> f64 {
         match &self.store {
@@ -280,6 +300,40 @@ mod tests {
         for i in 0..3 {
             let r: f64 = (0..3).map(|j| m[i][j] * b[j]).sum();
             assert!((r - [3.0, 2.0, 7.0][i]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn block_determinants_tell_each_block_mirrored() {
+        // Lower block triangular after scrambling: {0, 1}, then {2, 3} (2 x 2:
+        // Cramer's rule), then with a block of three the dense factors.
+        for third in [false, true] {
+            let n = if third { 5 } else { 4 };
+            let entries = |flip: f64| {
+                let mut e = vec![(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 3.0), (2, 0, 0.5)];
+                e.extend([(2, 2, 1.0), (2, 3, 2.0 * flip), (3, 2, 3.0), (3, 3, 1.0 * flip), (3, 1, 0.25)]);
+                if third {
+                    e.extend([(2, 4, 1.0), (4, 2, 0.5), (4, 3, 1.0), (4, 4, 2.0)]);
+                }
+                e
+            };
+            let dets = |flip: f64| {
+                let rows: Vec<Vec<usize>> =
+                    (0..n).map(|i| entries(flip).iter().filter(|e| e.0 == i).map(|e| e.1).collect()).collect();
+                let mut lu = Lu::for_pattern(n, &rows);
+                for (i, j, v) in entries(flip) {
+                    lu.add(i, j, v);
+                }
+                lu.factor().unwrap();
+                let mut out = Vec::new();
+                lu.block_dets(&mut out);
+                assert!((out.iter().product::<f64>().abs() - lu.det().abs()).abs() < 1e-12 * lu.det().abs());
+                assert_eq!(lu.block_columns().len(), out.len());
+                out
+            };
+            let (a, b) = (dets(1.0), dets(-1.0));
+            assert_eq!(a.len(), 2);
+            assert!(a[0] * b[0] > 0.0 && a[1] * b[1] < 0.0, "{a:?} {b:?}");
         }
     }
 
