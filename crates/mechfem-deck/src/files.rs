@@ -13,7 +13,7 @@ use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics};
 
 /// The largest deck read (up to its END line): some 200 000 lines, far
 /// more than any mechanism needs, and few enough that reading any deck
-/// this size takes well under a gigabyte of memory.
+/// this size takes less than a gigabyte of memory.
 pub const MAX_DECK_BYTES: u64 = 16 << 20;
 
 /// Why a file was not read.
