@@ -69,7 +69,7 @@ def test_an_animate_name_that_leaves_the_output_folder_is_a_deck_error(cli: Cli,
         ("f" * 201, "is 201 bytes long"),
         ("my film", "holds a blank"),
         ("film\u202egif.exe", "holds the character U\\+202E, which does not show as itself"),
-        ("film\u2028x", "holds the character U\\+2028"),
+        ("film\u2028x", "holds a blank"),  # a line separator is white space to Python
         ("film\u200bx", "holds the character U\\+200B"),
     ],
 )
