@@ -40,6 +40,20 @@ def test_a_deck_that_is_a_pipe_or_a_device_is_refused_at_once(cli: Cli, tmp_path
     assert sorted(p.name for p in tmp_path.iterdir()) == ["deck.mec"]
 
 
+def test_the_model_api_reads_a_deck_as_the_command_does(tmp_path: Path) -> None:
+    fifo = tmp_path / "deck.mec"
+    os.mkfifo(fifo)
+    for deck in (fifo, Path("/dev/zero")):
+        with pytest.raises(mechfem.DeckError, match="cannot read the deck: it is not a regular file"):
+            mechfem.Mechanism.from_deck(deck)
+    after = tmp_path / "after.mec"
+    after.write_bytes(FOURBAR.read_bytes() + b"\xff\x00 not a deck\n")
+    plain = tmp_path / "plain" / "after.mec"
+    plain.parent.mkdir()
+    plain.write_bytes(FOURBAR.read_bytes())
+    assert mechfem.Mechanism.from_deck(after).to_deck() == mechfem.Mechanism.from_deck(plain).to_deck()
+
+
 def test_text_after_end_is_not_read(cli: Cli, tmp_path: Path) -> None:
     text = FOURBAR.read_text()
     assert text.endswith("\nEND\n")
