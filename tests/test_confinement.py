@@ -68,6 +68,9 @@ def test_an_animate_name_that_leaves_the_output_folder_is_a_deck_error(cli: Cli,
         ("  ", "is empty"),
         ("f" * 201, "is 201 bytes long"),
         ("my film", "holds a blank"),
+        ("film\u202egif.exe", "holds the character U\\+202E, which does not show as itself"),
+        ("film\u2028x", "holds a blank"),  # a line separator is white space to Python
+        ("film\u200bx", "holds the character U\\+200B"),
     ],
 )
 def test_the_api_refuses_an_animate_name_that_is_not_a_plain_file_name(tmp_path: Path, name: str, problem: str) -> None:
@@ -206,9 +209,14 @@ def test_two_runs_into_one_folder_leave_only_whole_files(tmp_path: Path) -> None
         subprocess.Popen(args, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
         for _ in range(2)
     ]
+    # Each run either writes everything, or is refused at once because the other holds the folder's lock on the
+    # outputs of fourbar; at least one writes.
+    statuses = []
     for p in runs:
         _, err = p.communicate(timeout=300)
-        assert p.returncode == 0, err.decode()
+        assert p.returncode == 0 or (p.returncode == 1 and b"another mechfem run is writing" in err), err.decode()
+        statuses.append(p.returncode)
+    assert 0 in statuses
     files = sorted(out.iterdir())
     assert not [p for p in files if ".tmp" in p.name], files
     names = {p.name for p in files}

@@ -140,17 +140,12 @@ def test_cli_writes_complete_files_up_to_the_last_good_position(tmp_path: Path) 
     assert not [p for p in out.iterdir() if p.name.startswith(".")], "a temporary file was left behind"
 
 
-def test_cli_interrupt_while_writing_keeps_the_previous_files(tmp_path: Path) -> None:
-    out = tmp_path / "out"
-    first = subprocess.run(
-        [sys.executable, "-m", "mechfem.cli", "run", FOURBAR, "-o", out], capture_output=True, text=True
-    )
-    assert first.returncode == 0, first.stderr
-    before = (out / "fourbar.csv").read_bytes()
-    # Ctrl-C in the middle of writing the data set: the old file stays as it was, whole.
+def run_cli_signalled_at_rows(out: Path, rows: list[int]) -> subprocess.CompletedProcess[str]:
+    """``mechfem run`` of the four-bar into ``out``, sending itself a real SIGINT as it formats each row of the data
+    set numbered in ``rows``."""
     script = textwrap.dedent(
-        """
-        import sys
+        f"""
+        import os, signal, sys
         from mechfem import cli, output
 
         write_row = output.format_row
@@ -158,20 +153,55 @@ def test_cli_interrupt_while_writing_keeps_the_previous_files(tmp_path: Path) ->
 
         def format_row(*a):
             count[0] += 1
-            if count[0] == 20:
-                raise KeyboardInterrupt
+            if count[0] in {rows!r}:
+                os.kill(os.getpid(), signal.SIGINT)
             return write_row(*a)
 
         output.format_row = format_row
         sys.exit(cli.main(sys.argv[1:]))
         """
     )
-    proc = subprocess.run(
+    return subprocess.run(
         [sys.executable, "-c", script, "run", str(FOURBAR), "-o", str(out)], capture_output=True, text=True
     )
+
+
+def test_cli_ctrl_c_while_writing_still_writes_the_data_set(tmp_path: Path) -> None:
+    whole = tmp_path / "whole"
+    first = subprocess.run(
+        [sys.executable, "-m", "mechfem.cli", "run", FOURBAR, "-o", whole, "--no-media"], capture_output=True, text=True
+    )
+    assert first.returncode == 0, first.stderr
+    out = tmp_path / "out"
+    proc = run_cli_signalled_at_rows(out, [20])
     assert proc.returncode == 130, proc.stderr
     assert "Traceback" not in proc.stderr
-    assert (out / "fourbar.csv").read_bytes() == before
+    assert "press Ctrl-C again to abandon them" in proc.stderr
+    assert f"All {STEPS + 1} positions had been computed and are written" in proc.stderr
+    # The data set and the print file are whole: the same as an uninterrupted run's.
+    assert (out / "fourbar.csv").read_bytes() == (whole / "fourbar.csv").read_bytes()
+    assert (out / "fourbar.prt").read_text().startswith("mechfem ")
+    # Then the run stops: no pictures, no animation, and the print file lists none.
+    assert "the pictures, animation and report are not written (Ctrl-C)" in proc.stderr
+    assert sorted(p.name for p in out.iterdir()) == ["fourbar.csv", "fourbar.prt"]
+    assert "PICTURES AND ANIMATION" not in (out / "fourbar.prt").read_text()
+    assert f"wrote {out / 'fourbar.csv'}" in proc.stdout
+
+
+def test_cli_second_ctrl_c_while_writing_abandons_the_data_set(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    first = subprocess.run(
+        [sys.executable, "-m", "mechfem.cli", "run", FOURBAR, "-o", out], capture_output=True, text=True
+    )
+    assert first.returncode == 0, first.stderr
+    before = (out / "fourbar.csv").read_bytes()
+    (out / "fourbar.csv").write_bytes(b"an older data set\n")
+    proc = run_cli_signalled_at_rows(out, [20, 40])
+    assert proc.returncode == 130, proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert "interrupted twice while the outputs were written: the file being written was abandoned" in proc.stderr
+    # The data set being written is abandoned: the file there before stays as it was, whole.
+    assert (out / "fourbar.csv").read_bytes() == b"an older data set\n" != before
     assert not [p for p in out.iterdir() if p.name.startswith(".")], "a temporary file was left behind"
 
 

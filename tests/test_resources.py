@@ -82,3 +82,39 @@ def test_cli_memory_limit_option(cli: Cli, tmp_path: Path) -> None:
     assert proc.returncode == 0, proc.stderr
     proc = cli("run", FOURBAR, "-o", tmp_path, "--memory-limit", "much")
     assert proc.returncode == 2 and "not a size" in proc.stderr
+
+
+@pytest.mark.parametrize("text", ["18446744073709551616", "16777216T", "1e30", "99999999999999999999999G"])
+def test_a_limit_beyond_64_bits_is_a_usage_error(cli: Cli, tmp_path: Path, text: str) -> None:
+    proc = cli("run", FOURBAR, "-o", tmp_path, "--memory-limit", text)
+    assert proc.returncode == 2, proc.stderr
+    assert "--memory-limit" in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_the_largest_limit_is_taken_exactly() -> None:
+    assert parse_size("18446744073709551615") == 2**64 - 1
+    with pytest.raises(ValueError, match="at most 18446744073709551615 bytes"):
+        parse_size("18446744073709551616")
+
+
+def test_a_limit_beyond_64_bits_from_the_environment_is_a_usage_error(
+    cli: Cli, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("MECHFEM_MEMORY_LIMIT", "18446744073709551616")
+    proc = cli("run", FOURBAR, "-o", tmp_path)
+    assert proc.returncode == 2 and "MECHFEM_MEMORY_LIMIT" in proc.stderr, proc.stderr
+
+
+@pytest.mark.parametrize("limit", [10**30, 2**64, 0, -1, 1.5e9, "1e30"])
+def test_a_wrong_memory_limit_of_the_api_is_a_value_error(limit: object) -> None:
+    with pytest.raises(ValueError, match="memory limit|size"):
+        mechfem.run_deck(FOURBAR, memory_limit=limit)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("workers", [-1, 0, 10**30, 2.5, True])
+def test_a_wrong_number_of_workers_is_a_value_error(workers: object) -> None:
+    m = mechfem.Mechanism.from_deck(FOURBAR)
+    with pytest.raises(ValueError, match="workers is the number of threads"):
+        mechfem.sweep(m, {"r2": [1.0, 2.0]}, workers=workers, progress=False)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="workers is the number of threads"):
+        mechfem.run_many([m], workers=workers, progress=False)  # type: ignore[arg-type]

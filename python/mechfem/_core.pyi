@@ -19,6 +19,8 @@ __all__ = [
     "catalogue",
     "check_deck",
     "run_deck",
+    "read_deck_text",
+    "deck_files",
     "run_deck_text",
     "describe_deck_text",
     "run_deck_variants",
@@ -362,6 +364,24 @@ DEFAULTS: DefaultsDict
 
 def catalogue() -> list[CatalogueDict]: ...
 def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
+
+@type_check_only
+class DeckFilesDict(TypedDict):
+    mode: str
+    """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
+    tables: list[str]
+    """The files of MOV_FUNC, LOADFUNC and TARGET tables as the deck names them (relative to its folder)."""
+    savedata: bool
+    pictures: int
+    animate: str | None
+
+def deck_files(path: str | os.PathLike[str]) -> DeckFilesDict:
+    """What the deck reads and writes, from its text alone (nothing compiled, no table read)."""
+
+def read_deck_text(path: str | os.PathLike[str]) -> str:
+    """The deck's text up to its END line; a DeckError for a file that is no regular file or is larger than 16 MiB
+    before END."""
+
 def run_deck(
     path: str | os.PathLike[str],
     progress: Callable[[int, int], object] | None = None,

@@ -17,11 +17,18 @@ from pathlib import Path
 from typing import BinaryIO, TextIO
 
 
+def temporary(path: Path) -> Path:
+    """A temporary name beside ``path``, new at each call and of the same length for one process: a dot, the stem,
+    the process id, eight random hex digits, ``.tmp`` and the suffix (the same, so writers that go by the suffix
+    pick the format)."""
+    return path.with_name(f".{path.stem}.{os.getpid()}.{secrets.token_hex(4)}.tmp{path.suffix}")
+
+
 @contextmanager
 def atomic_path(path: Path) -> Iterator[Path]:
-    """A temporary name beside ``path`` (same suffix, so writers that go by the suffix pick the format) to
-    write to; renamed to ``path`` when the block succeeds, removed when it fails."""
-    tmp = path.with_name(f".{path.stem}.{os.getpid()}.{secrets.token_hex(4)}.tmp{path.suffix}")
+    """A temporary name beside ``path`` (:func:`temporary`) to write to; renamed to ``path`` when the block
+    succeeds, removed when it fails."""
+    tmp = temporary(path)
     try:
         yield tmp
         os.replace(tmp, path)

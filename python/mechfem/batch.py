@@ -103,11 +103,29 @@ def run_many(
     ``stop_reason()`` says why), and the call warns once with :class:`~mechfem.IncompleteRunWarning`; with
     ``raise_on_stop`` such a run gives a :class:`~mechfem.RunStoppedError` carrying its :class:`RunResult` instead.
     """
+    workers = check_workers(workers)
     if executor is not None:
         out = _run_many_on(executor, list(mechanisms), motion, storage, workers, progress, order, chunk_size, retries)
     else:
         out = _run_many_here(mechanisms, motion, storage, workers, progress, order)
     return _stopped_runs(out, raise_on_stop)
+
+
+#: The most threads a study or :func:`run_many` runs on: more are never faster on any machine.
+MAX_WORKERS = 1024
+
+
+def check_workers(workers: int | None) -> int | None:
+    """``workers`` when it is None (one thread per core) or a whole number from 1 to :data:`MAX_WORKERS`; else a
+    ValueError that says so."""
+    if workers is None:
+        return None
+    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= MAX_WORKERS:
+        raise ValueError(
+            f"workers is the number of threads to run on: a whole number from 1 to {MAX_WORKERS}, or None for one "
+            f"per core, not {workers!r}"
+        )
+    return workers
 
 
 def _stopped_runs(results: list[RunResult | MechfemError], raise_on_stop: bool) -> list[RunResult | MechfemError]:
@@ -464,6 +482,7 @@ def sweep(
     """
     from mechfem import deckio
 
+    workers = check_workers(workers)
     sets = _variants(parameters)
     if not sets:
         raise ValueError("a study needs at least one variant")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import unicodedata
 
 
 def finite(value: float, what: str) -> float:
@@ -48,6 +49,14 @@ def name_problem(name: str) -> str | None:
         return "holds a NUL character"
     if any(c < " " or "\x7f" <= c <= "\x9f" for c in name):
         return "holds a control character"
+    # Format characters (a direction override, a zero-width space) and line or paragraph separators: invisible, or
+    # shown as a break, so that the name reads as another.
+    invisible = [c for c in name if unicodedata.category(c) in ("Cf", "Zl", "Zp")]
+    if invisible:
+        return (
+            f"holds the character U+{ord(invisible[0]):04X}, which does not show as itself (a format character or "
+            "separator)"
+        )
     size = len(name.encode("utf-8", errors="surrogatepass"))
     if size > MAX_OUTPUT_NAME:
         return f"is {size} bytes long, more than {MAX_OUTPUT_NAME}"

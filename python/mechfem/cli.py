@@ -41,6 +41,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import mechfem
+import mechfem._core as _core
 from mechfem import design, optimise_deck
 from mechfem.animation import MAX_FRAMES
 from mechfem.datasets import FORMATS, pyarrow
@@ -54,7 +55,8 @@ from mechfem.errors import (
 )
 from mechfem.limits import DEFAULT_MEMORY_LIMIT, ENV, memory_limit, parse_size
 from mechfem.media import Media
-from mechfem.output import count, write_outputs
+from mechfem.output import FinishOnInterrupt, count, write_outputs
+from mechfem.output_folder import locked, plan
 from mechfem.progress import Console, ProgressBar
 from mechfem.report import write_report
 
@@ -192,19 +194,21 @@ def cmd_run(args: argparse.Namespace) -> int:
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
     if args.format == "parquet":
         pyarrow()  # before anything is computed: a missing pyarrow is said at once
-    opt = optimisation(deck)
-    if opt is not None:
-        return run_optimisation(args, deck, outdir, opt)
-    result, interrupted = run_with_progress(deck, args.memory_limit, args.console.bar)
-    return finish_run(args, deck, outdir, result, interrupted)
+    plan(deck, outdir, data_format=args.format, media=not args.no_media, report=args.report).check()
+    with locked(outdir, deck.stem):
+        opt = optimisation(deck)
+        if opt is not None:
+            return run_optimisation(args, deck, outdir, opt)
+        result, interrupted = run_with_progress(deck, args.memory_limit, args.console.bar)
+        return finish_run(args, deck, outdir, result, interrupted)
 
 
 def optimisation(deck: Path) -> OptimiseDict | None:
     """The OPTIMISE block of a KIN OPT deck; None for any other mode, or a deck that cannot be read (the run then
     says why)."""
     try:
-        text = deck.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
+        text = _core.read_deck_text(deck)
+    except DeckError:
         return None
     if optimise_deck.deck_mode(text) != "KIN OPT":
         return None
@@ -281,9 +285,29 @@ def finish_run(
     def wrote(path: Path, what: str = "") -> None:
         console.say(f"wrote {path}" + (f" ({what})" if what else ""))
 
-    media_lines = media.print_lines() if media is not None else []
-    write_outputs(result, outdir, [*(lines or []), *media_lines], args.format, console.bar, wrote)
-    if media is not None:
+    # Ctrl-C while the data set and the print file are written finishes them (a second one abandons the file being
+    # written), then leaves out the pictures, the animation and the report.
+    with FinishOnInterrupt() as ctrl_c:
+        try:
+            write_outputs(
+                result,
+                outdir,
+                lambda: [*(lines or []), *(media.print_lines() if media is not None and not ctrl_c.pressed else [])],
+                args.format,
+                console.bar,
+                wrote,
+            )
+        except KeyboardInterrupt:
+            console.error(
+                f"mechfem: {deck}: interrupted twice while the outputs were written: the file being written was "
+                "abandoned (any earlier version of it is left as it was); the files said above are complete."
+            )
+            return EXIT_INTERRUPTED
+    if ctrl_c.pressed:
+        interrupted = True
+        if media is not None:
+            console.note(f"note: {deck}: the pictures, animation and report are not written (Ctrl-C)")
+    elif media is not None:
         media.write(console.bar, wrote)
         for note in media.notes:
             console.say(f"note: {note}")
@@ -311,15 +335,17 @@ def cmd_report(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
     console: Console = args.console
+    plan(deck, outdir, data_format=None, media=False, report=True).check()
     if optimisation(deck) is not None:
         console.note(
             f"note: {deck} is a KIN OPT deck: this report shows its start design; `mechfem run --report` optimises "
             "it and reports the final design"
         )
-    result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
-    console.say(f"{deck}: {count(result.report.positions, 'position')} computed")
-    console.bar.phase("report")
-    path = write_report(result, outdir)
+    with locked(outdir, deck.stem):
+        result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
+        console.say(f"{deck}: {count(result.report.positions, 'position')} computed")
+        console.bar.phase("report")
+        path = write_report(result, outdir)
     console.bar.close()
     console.say(f"wrote {path} (open it in a web browser)")
     return exit_status(deck, result, interrupted, console)
@@ -428,20 +454,23 @@ def cmd_draw(args: argparse.Namespace) -> int:
             "ezdxf), or ask for SVG only with --format svg"
         )
         return EXIT_FAILED
+    names = [f"{deck.stem}_pos{args.position}.{fmt}" for fmt in args.format]
+    plan(deck, outdir, drawings=names).check()
     if optimisation(deck) is not None:
         console.note(
             f"note: {deck} is a KIN OPT deck: this drawing shows its start design; `mechfem run` optimises it and "
             "writes the final design as a deck, which `mechfem draw` draws"
         )
-    result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
-    console.bar.close()
-    if args.position > result.positions:
-        console.error(
-            f"error: {deck}: --position {args.position}: the run has {count(result.positions, 'position')}, so "
-            f"--position must be from 1 to {result.positions}"
-        )
-        return EXIT_FAILED
-    files = export.draw_files(result, outdir, args.position, args.format, not args.no_paths, args.units)
+    with locked(outdir, deck.stem):
+        result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
+        console.bar.close()
+        if args.position > result.positions:
+            console.error(
+                f"error: {deck}: --position {args.position}: the run has {count(result.positions, 'position')}, "
+                f"so --position must be from 1 to {result.positions}"
+            )
+            return EXIT_FAILED
+        files = export.draw_files(result, outdir, args.position, args.format, not args.no_paths, args.units)
     console.say(f"{deck}: {count(result.positions, 'position')} computed")
     for path in files:
         console.say(f"wrote {path}")

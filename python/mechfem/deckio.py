@@ -29,8 +29,7 @@ from mechfem import loads
 from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
-from mechfem.errors import DeckError
-from mechfem.explain import translate, with_attributes
+from mechfem.explain import translate
 from mechfem.model import (
     BUFFER_ARGS,
     FORMS,
@@ -323,13 +322,9 @@ def progress_callback(progress: Progress, what: str) -> Callable[[int, int], obj
 
 
 def read(path: Path) -> Mechanism:
-    """Reads the deck at ``path`` into a mechanism (see :meth:`Mechanism.from_deck` for the names)."""
-    try:
-        text = path.read_bytes().decode("utf-8", errors="replace")
-    except OSError as e:
-        raise with_attributes(
-            DeckError(f"error: cannot read the deck: {e}\n --> {path}"), path=os.fspath(path), line=0
-        ) from None
+    """Reads the deck at ``path`` into a mechanism (see :meth:`Mechanism.from_deck` for the names): its text up to
+    END, read as every deck is (a regular file of at most 16 MiB before END)."""
+    text = _core.read_deck_text(path)
     return read_text(text, path.stem, path.parent if str(path.parent) else Path("."), os.fspath(path))
 
 

@@ -8,10 +8,14 @@ never sees half a file and an interrupted run leaves no stray temporary file beh
 from __future__ import annotations
 
 import csv
+import os
+import signal
 import textwrap
+import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from types import FrameType
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -37,7 +41,7 @@ def count(n: int, singular: str, plural: str | None = None) -> str:
 def write_outputs(
     result: RunResult,
     outdir: Path,
-    media: Sequence[str] = (),
+    media: Sequence[str] | Callable[[], Sequence[str]] = (),
     fmt: str = "csv",
     progress: ProgressBar | None = None,
     on_file: Callable[[Path], object] | None = None,
@@ -45,7 +49,8 @@ def write_outputs(
     """Writes the data set in format ``fmt`` (csv, npz or parquet) when the deck has SAVEDATA, with its notes when
     it holds NaN, then the print file; returns the files written.
 
-    ``media`` are the print file's lines on pictures, animation and report (:meth:`mechfem.media.Media.print_lines`).
+    ``media`` are the print file's lines on pictures, animation and report (:meth:`mechfem.media.Media.print_lines`),
+    or a function that gives them when the print file is written (after the data set).
     ``progress`` is told each phase and how far it is; ``on_file(path)`` is called as soon as each file is complete.
     """
     outdir.mkdir(parents=True, exist_ok=True)
@@ -71,8 +76,43 @@ def write_outputs(
             done(write_data_set_notes(result, outdir / f"{stem}.notes.txt", data))
     if progress is not None:
         progress.phase("print file")
-    done(write_print_file(result, outdir / f"{stem}.prt", media))
+    done(write_print_file(result, outdir / f"{stem}.prt", media() if callable(media) else media))
     return written
+
+
+class FinishOnInterrupt:
+    """A block (in the main thread) during which the first Ctrl-C does not stop the file being written: it is noted
+    in :attr:`pressed` and said on standard error at once, and the block goes on; a second Ctrl-C raises
+    KeyboardInterrupt as usual. Outside the main thread, where no signal handler can be set, Ctrl-C is not
+    deferred."""
+
+    def __init__(self) -> None:
+        self.pressed = False
+        self._previous: Callable[[int, FrameType | None], Any] | int | None = None
+        self._installed = False
+
+    def _handler(self, signum: int, frame: FrameType | None) -> None:
+        if self.pressed:
+            raise KeyboardInterrupt
+        self.pressed = True
+        # os.write, not print: a handler may run in the middle of a write to sys.stderr (the progress bar), and
+        # a buffered stream written again from within itself raises.
+        lead = "\r\x1b[K" if os.isatty(2) else ""
+        os.write(
+            2,
+            f"{lead}mechfem: Ctrl-C: the data set and the print file of what was computed are being finished; press "
+            "Ctrl-C again to abandon them\n".encode(),
+        )
+
+    def __enter__(self) -> FinishOnInterrupt:
+        if threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGINT, self._handler)
+            self._installed = True
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._installed:
+            signal.signal(signal.SIGINT, self._previous)
 
 
 def write_data_set(result: RunResult, path: Path, on_rows: Callable[[int, int], object] | None = None) -> Path:

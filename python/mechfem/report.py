@@ -145,12 +145,24 @@ def render_report(result: RunResult) -> str:
     """The report page as text: the template with the scripts, the style and the data inlined."""
     template = resources.files("mechfem").joinpath("report_template.html").read_text(encoding="utf-8")
     data = json.dumps(report_data(result), separators=(",", ":"), allow_nan=False)
-    # Inside <script> the only sequence to avoid is "</"; JSON allows "<\/" for it.
     parts = {key: _part(name) for key, name in PAGE_PARTS.items()}
-    parts["DATA"] = data.replace("</", "<\\/")
+    parts["DATA"] = script_safe(data)
     parts["TITLE"] = html.escape(f"{result.deck.stem} - mechfem report")
     # One pass, so that nothing inlined is searched for placeholders again.
     return re.sub(r"\{\{([A-Z_]+)\}\}", lambda m: parts[m.group(1)], template)
+
+
+#: What a JSON text inlined in a <script> element must not hold as it is: ``<`` (it could close the element, ``</``,
+#: or open a comment, ``<!--``, which changes how the browser finds the element's end), ``>`` and ``&`` with it, and
+#: the line and paragraph separators. Each may stand only inside a JSON string, where its ``\\uXXXX`` escape reads
+#: back as the same character.
+_SCRIPT_UNSAFE: dict[int, str | int | None] = {ord(c): f"\\u{ord(c):04x}" for c in "<>&\u2028\u2029"}
+
+
+def script_safe(data: str) -> str:
+    """The JSON text ``data`` with every character of :data:`_SCRIPT_UNSAFE` escaped: it parses back equal, and
+    inlined in a <script> element it holds no markup."""
+    return data.translate(_SCRIPT_UNSAFE)
 
 
 def report_file(result: RunResult, outdir: Path) -> Path:

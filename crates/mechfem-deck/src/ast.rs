@@ -48,6 +48,26 @@ impl Deck {
         line.checked_sub(1).and_then(|k| self.source.get(k)).map_or("", String::as_str)
     }
 
+    /// The files of tables the deck names (MOV_FUNC, LOADFUNC, TARGET), as
+    /// written: relative to the deck's folder, in the order of the lines.
+    pub fn table_files(&self) -> Vec<&Spanned<String>> {
+        let motions = self.movement.iter().flat_map(|m| &m.motions).filter_map(|m| match &m.kind {
+            MotionKind::Function(file) => Some(file),
+            _ => None,
+        });
+        let loads = self.dynamics.iter().flat_map(|d| &d.loads).filter_map(|l| match &l.kind {
+            LoadDefKind::Function(file) => Some(file),
+            _ => None,
+        });
+        let targets = self.optimise.iter().flat_map(|o| &o.targets).filter_map(|t| match &t.kind {
+            TargetDefKind::Values(file) => Some(file),
+            _ => None,
+        });
+        let mut files: Vec<&Spanned<String>> = motions.chain(loads).chain(targets).collect();
+        files.sort_by_key(|f| f.span.line);
+        files
+    }
+
     /// A diagnostic pointing at `span` of this deck.
     pub(crate) fn error(&self, kind: DiagnosticKind, span: Span, message: impl Into<String>) -> Box<Diagnostic> {
         diagnostic_at(&self.path, &self.source, kind, span, message)

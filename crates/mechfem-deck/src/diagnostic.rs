@@ -263,11 +263,46 @@ pub fn output_name_problem(name: &str) -> Option<String> {
         Some("holds a NUL character".into())
     } else if name.chars().any(char::is_control) {
         Some("holds a control character".into())
+    } else if let Some(c) = name.chars().find(|&c| is_format(c)) {
+        Some(format!(
+            "holds the character U+{:04X}, which does not show as itself (a format character or separator)",
+            u32::from(c)
+        ))
     } else if name.len() > MAX_OUTPUT_NAME {
         Some(format!("is {} bytes long, more than {MAX_OUTPUT_NAME}", name.len()))
     } else {
         None
     }
+}
+
+/// Whether `c` is a format character (Unicode category Cf: a direction
+/// override such as U+202E, a zero-width space, a soft hyphen) or a line or
+/// paragraph separator (U+2028, U+2029): invisible, or shown as a break,
+/// so that a name holding one reads as another name.
+pub(crate) fn is_format(c: char) -> bool {
+    matches!(
+        u32::from(c),
+        0xAD | 0x600..=0x605
+            | 0x61C
+            | 0x6DD
+            | 0x70F
+            | 0x890..=0x891
+            | 0x8E2
+            | 0x180E
+            | 0x200B..=0x200F
+            | 0x2028..=0x202E
+            | 0x2060..=0x2064
+            | 0x2066..=0x206F
+            | 0xFEFF
+            | 0xFFF9..=0xFFFB
+            | 0x110BD
+            | 0x110CD
+            | 0x13430..=0x1343F
+            | 0x1BCA0..=0x1BCA3
+            | 0x1D173..=0x1D17A
+            | 0xE0001
+            | 0xE0020..=0xE007F
+    )
 }
 
 /// One mistake in a deck, with the place it was found and a hint.
@@ -388,14 +423,15 @@ impl fmt::Display for Diagnostic {
         let pad = " ".repeat(number.len());
         writeln!(f, "{pad}--> {}:{}:{}", self.path.display(), self.line, self.columns.start + 1)?;
         writeln!(f, "{pad} |")?;
-        // Tabs as four blanks; other control characters (a NUL) as the
-        // replacement character, so that the message stays plain text.
+        // Tabs as four blanks; other control characters (a NUL) and format
+        // characters (a direction override) as the replacement character,
+        // so that the message stays plain text that reads as it is.
         let shown: String = self
             .text
             .chars()
             .map(|c| match c {
                 '\t' => "    ".to_string(),
-                c if c.is_control() => '\u{fffd}'.to_string(),
+                c if c.is_control() || is_format(c) => '\u{fffd}'.to_string(),
                 c => c.to_string(),
             })
             .collect();

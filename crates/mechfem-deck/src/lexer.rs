@@ -7,6 +7,7 @@
 //! case-insensitively by the parser. Numbers follow Fortran's free format.
 
 use crate::diagnostic::Span;
+use crate::files::is_end_line;
 
 /// One word of a line and where it stands.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,12 +51,24 @@ fn is_separator(c: char) -> bool {
     matches!(c, ' ' | '\t' | '\r' | '\x0c' | '\x0b')
 }
 
-/// Splits a deck into its raw lines (for diagnostics) and its lines with words.
-pub(crate) fn lex(text: &str) -> (Vec<String>, Vec<Line>) {
+/// The raw lines of a deck (for diagnostics) up to and including its END
+/// line: what follows END is no part of the deck, and is not kept.
+pub(crate) fn source_lines(text: &str) -> Vec<String> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let raw: Vec<String> = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
-    let lines = raw.iter().enumerate().filter_map(|(k, l)| lex_line(k + 1, l)).collect();
-    (raw, lines)
+    let mut raw = Vec::new();
+    for line in text.lines() {
+        raw.push(line.trim_end_matches('\r').to_string());
+        if is_end_line(line) {
+            break;
+        }
+    }
+    raw
+}
+
+/// The lines with words of the raw lines `raw`, lexed one at a time as
+/// they are asked for (a line's words are dropped once it is read).
+pub(crate) fn lex(raw: &[String]) -> impl Iterator<Item = Line> + '_ {
+    raw.iter().enumerate().filter_map(|(k, l)| lex_line(k + 1, l))
 }
 
 /// The words of one line, or `None` for a line that is blank or only a comment.
@@ -235,9 +248,9 @@ mod tests {
 
     #[test]
     fn lex_keeps_raw_lines_and_skips_blank_ones() {
-        let (raw, lines) = lex("\u{feff}KIN ANA\r\n\r\n; note\r\nTOPOLOGY\r\n");
-        assert_eq!(raw, ["KIN ANA", "", "; note", "TOPOLOGY"]);
-        let numbers: Vec<_> = lines.iter().map(|l| l.number).collect();
-        assert_eq!(numbers, [1, 4]);
+        let raw = source_lines("\u{feff}KIN ANA\r\n\r\n; note\r\nTOPOLOGY\r\nEnd ; of the deck\r\nnotes\r\n");
+        assert_eq!(raw, ["KIN ANA", "", "; note", "TOPOLOGY", "End ; of the deck"]);
+        let numbers: Vec<_> = lex(&raw).map(|l| l.number).collect();
+        assert_eq!(numbers, [1, 4, 5]);
     }
 }

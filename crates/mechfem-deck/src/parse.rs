@@ -14,27 +14,29 @@ use crate::ast::{
     Movement, Optimise, PictureDef, Storage, Topology, Tstepe,
 };
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Hint, Span, Spanned};
+use crate::files::read_deck;
 use crate::keywords::{all_words, closest, Block, Keyword};
-use crate::lexer::{lex, looks_numeric, Line, Word};
+use crate::lexer::{lex, looks_numeric, source_lines, Line, Word};
 
 /// The parser stops collecting after this many diagnostics.
 const MAX_ERRORS: usize = 20;
 
-/// Reads a deck from a file. The path is kept as given and shown in
-/// diagnostics; MOV_FUNC files are later looked up beside it.
+/// Reads a deck from a file, up to its END line: a regular file of at most
+/// [`MAX_DECK_BYTES`](crate::MAX_DECK_BYTES) before END ([`read_deck`]). The
+/// path is kept as given and shown in diagnostics; MOV_FUNC files are later
+/// looked up beside it.
 pub fn parse_file(path: impl AsRef<Path>) -> Result<Deck, Diagnostics> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path)
-        .map_err(|e| Diagnostic::file(DiagnosticKind::Io, path, format!("cannot read the deck: {e}")))?;
-    parse_str(&String::from_utf8_lossy(&bytes), path)
+    parse_str(&read_deck(path)?, path)
 }
 
-/// Reads a deck from text; `path` is only used in diagnostics.
+/// Reads a deck from text, up to its END line; `path` is only used in
+/// diagnostics.
 pub fn parse_str(text: &str, path: impl Into<PathBuf>) -> Result<Deck, Diagnostics> {
     let path = path.into();
-    let (raw, lines) = lex(text);
+    let raw = source_lines(text);
     let mut parser = Parser::new(Source { path: &path, lines: &raw });
-    parser.run(&lines);
+    parser.run(lex(&raw));
     parser.finish().map(|mut deck| {
         deck.source = raw;
         deck
@@ -107,14 +109,13 @@ impl<'a> Parser<'a> {
         self.errors.push(*d);
     }
 
-    fn run(&mut self, lines: &[Line]) {
-        let mut lines = lines.iter();
+    fn run(&mut self, mut lines: impl Iterator<Item = Line>) {
         let Some(first) = lines.next() else { return };
-        if !self.mode_line(first) {
-            self.line(first);
+        if !self.mode_line(&first) {
+            self.line(&first);
         }
         for line in lines {
-            if self.errors.len() >= MAX_ERRORS || !self.line(line) {
+            if self.errors.len() >= MAX_ERRORS || !self.line(&line) {
                 break;
             }
         }

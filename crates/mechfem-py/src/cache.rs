@@ -21,7 +21,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use mechfem_deck::ast::{Deck, LoadDefKind, MotionKind};
-use mechfem_deck::{Compiled, Diagnostic, DiagnosticKind, Diagnostics};
+use mechfem_deck::{Compiled, Diagnostics};
 
 /// How many compiled decks are kept (the least recently used goes first).
 const CAPACITY: usize = 16;
@@ -128,10 +128,7 @@ fn reads_files(deck: &Deck) -> bool {
 /// compile it), with the echo slot of that text (a slot of its own for a
 /// deck that is not kept).
 pub fn load(path: &Path) -> Result<(Compiled, Arc<EchoSlot>), Diagnostics> {
-    let io = |e: std::io::Error| -> Diagnostics {
-        Diagnostic::file(DiagnosticKind::Io, path, format!("cannot read the deck: {e}")).into()
-    };
-    let key = Key { path: path.to_path_buf(), text: std::fs::read(path).map_err(io)? };
+    let key = Key { path: path.to_path_buf(), text: mechfem_deck::read_deck(path)?.into_bytes() };
     {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(k) = kept.iter().position(|(k, ..)| *k == key) {

@@ -155,6 +155,32 @@ fn execute(
 ///
 /// Returns the sizes of the model, det(D^c) and the co-ordinates at
 /// position 1, the adjustment that led there, and the model echo.
+/// The text of the deck at `path` up to its END line, read within the
+/// bounds every deck is read in ([`mechfem_deck::read_deck`]); a deck that
+/// cannot be read is a `DeckError`.
+#[pyfunction]
+fn read_deck_text(py: Python<'_>, path: PathBuf) -> PyResult<String> {
+    py.detach(|| mechfem_deck::read_deck(&path)).map_err(|d| errors::deck_error(py, &path, &d))
+}
+
+/// What the deck at `path` reads and writes, from its text alone (nothing
+/// compiled, no table read): `mode`, `tables` (the file names of MOV_FUNC,
+/// LOADFUNC and TARGET, relative to the deck's folder), `savedata` (whether
+/// it saves a data set), `pictures` (how many) and `animate` (the ANIMATE
+/// name or None). A deck that cannot be read is a `DeckError`.
+#[pyfunction]
+fn deck_files(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+    let deck = py.detach(|| mechfem_deck::parse_file(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
+    let d = PyDict::new(py);
+    d.set_item("mode", deck.mode.value.name())?;
+    d.set_item("tables", deck.table_files().iter().map(|f| f.value.as_str()).collect::<Vec<_>>())?;
+    let storage = deck.storage.as_ref();
+    d.set_item("savedata", storage.is_some_and(|s| !s.savedata.is_empty()))?;
+    d.set_item("pictures", storage.map_or(0, |s| s.pictures.len()))?;
+    d.set_item("animate", storage.and_then(|s| s.animate.as_ref()).map(|a| a.value.as_str()))?;
+    Ok(d)
+}
+
 #[pyfunction]
 fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let (compiled, slot) = load(py, &path)?;
@@ -262,6 +288,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(catalogue::catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;
     m.add_function(wrap_pyfunction!(run_deck, m)?)?;
+    m.add_function(wrap_pyfunction!(read_deck_text, m)?)?;
+    m.add_function(wrap_pyfunction!(deck_files, m)?)?;
     m.add_function(wrap_pyfunction!(text::run_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;

@@ -6,7 +6,7 @@ use std::path::Path;
 use mechfem_core::dynamics::Integration;
 use mechfem_core::{InputMotion, Mechanism, Motion, Params, State};
 
-use super::table::{self, Layout};
+use super::table::{self, Layout, Table};
 use crate::ast::{missing_movement, Deck, Mode, MotionDef, MotionKind};
 use crate::diagnostic::{dof_hint, real, Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
@@ -84,7 +84,9 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
             MotionKind::Absolute(e) => InputMotion::Absolute { end: e.value },
             MotionKind::Free(ds) => InputMotion::Free { ds: ds.value },
             MotionKind::Dynamic(v0) => InputMotion::Dynamic { v0: v0.value },
-            MotionKind::Function(file) => InputMotion::Table { rows: table(deck, file, deck_dir, steps + 1)? },
+            MotionKind::Function(file) => {
+                InputMotion::Table { rows: table(deck, file, deck_dir, steps + 1, steps as f64 * dt)? }
+            }
         });
     }
     Ok((Some(Motion { steps, dt, inputs }), params))
@@ -138,12 +140,15 @@ pub(crate) fn check_rates(
 }
 
 /// Reads a MOV_FUNC file: one row `t value [velocity [acceleration]]` per
-/// position (missing velocity and acceleration: 0).
+/// position (missing velocity and acceleration: 0). In a simulation, whose
+/// driven input is interpolated in time from `0` to `span`, the times must
+/// increase from row to row and cover that span.
 fn table(
     deck: &Deck,
     file: &Spanned<String>,
     deck_dir: &Path,
     expected: usize,
+    span: f64,
 ) -> Result<Vec<[f64; 4]>, Box<Diagnostic>> {
     let layout = Layout {
         keyword: Keyword::MovFunc,
@@ -166,6 +171,9 @@ fn table(
                 "TSTEPE {steps} makes {expected} positions: give one row `t value [velocity [acceleration]]` for each"
             )));
     }
+    if deck.mode.value == Mode::DynSim {
+        check_times(&table, span)?;
+    }
     Ok(table
         .rows
         .iter()
@@ -177,4 +185,50 @@ fn table(
             row
         })
         .collect())
+}
+
+/// The times of a MOV_FUNC table that drives a simulation from `0` to
+/// `span`: increasing from row to row (the input is interpolated between
+/// rows, which two rows at one time, or rows out of order, leave undefined)
+/// and covering the span (outside it the input would stand still). The ends
+/// are compared within 1e-9 of the span, the rounding of times written in
+/// decimal.
+fn check_times(table: &Table, span: f64) -> Result<(), Box<Diagnostic>> {
+    let order_hint = "list the rows of a MOV_FUNC file in order of increasing time, one row per output time of the \
+                      simulation: the input is interpolated between them";
+    let mut previous: Option<(usize, f64)> = None;
+    for (line, values) in &table.rows {
+        let t = &values[0];
+        if let Some((before, t0)) = previous.filter(|(_, t0)| t.value <= *t0) {
+            let message = if t.value == t0 {
+                format!("the time {} is the time of the row above (line {before}) too", t.value)
+            } else {
+                format!("the time {} comes before the time {t0} of the row above (line {before})", t.value)
+            };
+            return Err(table.error(DiagnosticKind::MotionFile, t.span, message).with_hint(order_hint));
+        }
+        previous = Some((*line, t.value));
+    }
+    let slack = 1e-9 * span.abs();
+    let (Some((_, first)), Some((_, last))) = (table.rows.first(), table.rows.last()) else { return Ok(()) };
+    let (t_first, t_last) = (&first[0], &last[0]);
+    let cover = format!(
+        "the simulation runs from t = 0 to t = {} (TSTEPE n dt: n * dt): give the input's rows from t = 0 to that \
+         end",
+        real(span)
+    );
+    if t_first.value > slack {
+        let message =
+            format!("the MOV_FUNC table starts at t = {}, after the simulation's start at t = 0", t_first.value);
+        return Err(table.error(DiagnosticKind::MotionFile, t_first.span, message).with_hint(cover));
+    }
+    if t_last.value < span - slack {
+        let message = format!(
+            "the MOV_FUNC table ends at t = {}, before the simulation's end at t = {}",
+            t_last.value,
+            real(span)
+        );
+        return Err(table.error(DiagnosticKind::MotionFile, t_last.span, message).with_hint(cover));
+    }
+    Ok(())
 }

@@ -8,7 +8,7 @@ use mechfem_core::{FormRef, Quantity};
 use super::refs::{coordinate, dof, form, Sizes};
 use crate::ast::{BufDef, BufList, Deck};
 use crate::compiled::{Buffer, Picture, PlotItem};
-use crate::diagnostic::{count, numbered, output_name_problem, Diagnostic, DiagnosticKind, Hint, Spanned};
+use crate::diagnostic::{count, is_format, numbered, output_name_problem, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::Keyword;
 
 /// The compiled STORAGE block.
@@ -77,9 +77,16 @@ fn animate_name(deck: &Deck, name: &Spanned<String>) -> Result<String, Box<Diagn
         ))
 }
 
-/// A name as a message shows it: control characters escaped (`\0`).
+/// A name as a message shows it: control and format characters escaped
+/// (`\0`, `\u{202e}`).
 fn shown(name: &str) -> String {
-    name.chars().map(|c| if c.is_control() { c.escape_debug().to_string() } else { c.to_string() }).collect()
+    name.chars()
+        .map(|c| match c {
+            c if c.is_control() => c.escape_debug().to_string(),
+            c if is_format(c) => c.escape_unicode().to_string(),
+            c => c.to_string(),
+        })
+        .collect()
 }
 
 /// The buffers defined in OPTIMISE and STORAGE, in the order of their

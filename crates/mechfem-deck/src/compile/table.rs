@@ -12,13 +12,13 @@
 //! bytes (a binary file). The size is checked before reading, and the read
 //! itself is capped, so no file is read without bound.
 
-use std::io::{ErrorKind, Read};
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 use crate::args::Source;
 use crate::ast::{diagnostic_at, Deck};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
+use crate::files::{bytes, Refused};
 use crate::keywords::Keyword;
 use crate::lexer::lex_line;
 use crate::statements::dynamics::out_of_bounds;
@@ -61,7 +61,7 @@ pub(crate) struct Table {
 impl Table {
     /// A diagnostic pointing at `span` of the table's file.
     pub fn error(&self, kind: DiagnosticKind, span: Span, message: impl Into<String>) -> Box<Diagnostic> {
-        diagnostic_at(&self.path, &self.lines, kind, span, message)
+        token_only(diagnostic_at(&self.path, &self.lines, kind, span, message))
     }
 }
 
@@ -86,10 +86,15 @@ pub(crate) fn read(
             let surplus = (n > max).then_some(max);
             let holds = if min == max { min.to_string() } else { format!("{min} to {max}") };
             let message = format!("a row of a {kw} file holds {holds} numbers, this one has {n}");
-            return Err(src.count_error(&words, &words.words, surplus, message).with_hint(layout.row));
+            return Err(token_only(src.count_error(&words, &words.words, surplus, message).with_hint(layout.row)));
         }
-        let row =
-            words.words.iter().zip(layout.names).map(|(w, what)| src.real(w, what)).collect::<Result<Vec<_>, _>>()?;
+        let row = words
+            .words
+            .iter()
+            .zip(layout.names)
+            .map(|(w, what)| src.real(w, what))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(token_only)?;
         rows.push((k + 1, row));
     }
     Ok(Table { path, lines, rows })
@@ -134,6 +139,8 @@ fn read_lines(
         );
     }
     let text = String::from_utf8_lossy(&bytes);
+    // A byte-order mark, as some editors write, is no part of the first row (a deck may have one too).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     let lines = text.lines().map(|l| l.trim_end_matches('\r').to_string()).collect();
     Ok((path, lines))
 }
@@ -166,13 +173,13 @@ pub(crate) fn read_column(
         blank_tail = 0;
         if words.words.len() > 1 {
             let message = format!("a row of a {kw} file holds one value, this one has {}", words.words.len());
-            return Err(src.count_error(&words, &words.words, Some(1), message).with_hint(COLUMN_ROW));
+            return Err(token_only(src.count_error(&words, &words.words, Some(1), message).with_hint(COLUMN_ROW)));
         }
         let word = &words.words[0];
         if word.text == "*" {
             values.push(None);
         } else {
-            let v = src.real(word, "the target value").map_err(|d| match d.kind {
+            let v = src.real(word, "the target value").map_err(token_only).map_err(|d| match d.kind {
                 DiagnosticKind::NotANumber => d.with_hint(
                     "write a number (like 12, -3.6, .5, 4E5 or 1.5D0) in each row, or `*` (or nothing) where the \
                      position is not compared",
@@ -196,43 +203,19 @@ pub(crate) fn read_column(
 const COLUMN_ROW: &str = "write one row per position: the value the buffer should take there, or `*` (or nothing) \
                           where it is not compared";
 
-/// Why a file was not read.
-enum Refused {
-    Io(String),
-    TooLarge,
-}
-
-/// The bytes of a regular file, at most `max` of them.
-fn bytes(path: &Path, max: u64) -> Result<Vec<u8>, Refused> {
-    let why = |e: std::io::Error| {
-        Refused::Io(match e.kind() {
-            ErrorKind::NotFound => "it does not exist".to_string(),
-            ErrorKind::PermissionDenied => "permission denied".to_string(),
-            _ => e.to_string(),
-        })
-    };
-    let regular = |meta: &std::fs::Metadata| {
-        if meta.is_dir() {
-            Err(Refused::Io("it is a folder".to_string()))
-        } else if !meta.is_file() {
-            Err(Refused::Io("it is not a regular file".to_string()))
-        } else if meta.len() > max {
-            Err(Refused::TooLarge)
-        } else {
-            Ok(())
-        }
-    };
-    // A regular file only, asked before opening: a device such as /dev/zero,
-    // or a pipe, would be read without end (and opening a pipe waits for a
-    // writer). Asked again of the open file, in case the name changed hands.
-    regular(&std::fs::metadata(path).map_err(why)?)?;
-    let file = std::fs::File::open(path).map_err(why)?;
-    regular(&file.metadata().map_err(why)?)?;
-    // The file may have grown since: read one byte more than allowed to see.
-    let mut out = Vec::new();
-    file.take(max + 1).read_to_end(&mut out).map_err(why)?;
-    if out.len() as u64 > max {
-        return Err(Refused::TooLarge);
-    }
-    Ok(out)
+/// A diagnostic about a line of a table file, showing of that line only
+/// the word at fault: the file is not the deck, and may be one the deck
+/// should not have named (`MOV_FUNC 1 ~/.netrc`), so no more of it is
+/// quoted than the mistake needs. Every other character but blanks shows
+/// as `·`, so that the row keeps its shape and the columns stay true; a
+/// wrong count of numbers needs none of them (the message gives the count).
+fn token_only(mut d: Box<Diagnostic>) -> Box<Diagnostic> {
+    let shown = if d.kind == DiagnosticKind::ArgumentCount { 0..0 } else { d.columns.clone() };
+    d.text = d
+        .text
+        .chars()
+        .enumerate()
+        .map(|(k, c)| if shown.contains(&k) || c.is_whitespace() { c } else { '·' })
+        .collect();
+    d
 }
