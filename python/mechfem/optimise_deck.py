@@ -43,7 +43,7 @@ def deck_mode(text: str) -> str:
 
 def describe(deck: Path) -> DescribedDeckDict:
     """The deck's description (its OPTIMISE block under ``optimise``)."""
-    return _core.describe_deck_text(deck.read_text(encoding="utf-8"), os.fspath(deck), os.fspath(deck_dir(deck)))
+    return _core.describe_deck_text(_core.read_deck_text(deck), os.fspath(deck), os.fspath(deck_dir(deck)))
 
 
 def deck_dir(deck: Path) -> Path:
@@ -122,7 +122,7 @@ class Outcome:
 def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Outcome:
     """Solves the deck's OPTIMISE block from its own design; raises :class:`OptimisationError` when it cannot
     start."""
-    text = deck.read_text(encoding="utf-8")
+    text = _core.read_deck_text(deck)
     p = problem(deck, text, opt)
     try:
         solution = design.solve(p, report=report)
@@ -186,7 +186,7 @@ def write_design(
     outdir.mkdir(parents=True, exist_ok=True)
     source = deck_dir(deck).resolve()
     file_dir = None if source == outdir.resolve() else Path(os.path.relpath(source, outdir.resolve()))
-    text = _core.optimised_deck_text(deck.read_text(encoding="utf-8"), os.fspath(deck), rows, coords, file_dir)
+    text = _core.optimised_deck_text(_core.read_deck_text(deck), os.fspath(deck), rows, coords, file_dir)
     path = outdir / f"{deck.stem}_opt.mec"
     with atomic_text(path) as f:
         f.write(text)
