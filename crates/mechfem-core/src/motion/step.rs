@@ -192,6 +192,8 @@ impl Stepper {
     ) -> Result<bool, SolveError> {
         let (mut s, mut h) = (0.0f64, 1.0f64);
         let mut halved = false;
+        // det(D^c) where the sub-step starts, where it is known (NaN where not).
+        let mut det_from = kin.det();
         while s < 1.0 {
             let s1 = if s + h >= 1.0 - 1e-12 { 1.0 } else { s + h };
             // Where to go back to if this sub-step fails: `start`, or a copy.
@@ -200,9 +202,8 @@ impl Stepper {
                 self.saved_branch.copy_from_slice(&state.branch);
                 self.saved_target.copy_from_slice(&state.target);
             }
-            match self.try_step(mech, state, kin, from, to, s1) {
+            let stepped = match self.try_step(mech, state, kin, from, to, s1) {
                 Ok(info) => {
-                    s = s1;
                     // What is needed at the new point, from the evaluation
                     // Newton converged with; it also drives the next prediction.
                     let keeps = self.keeps();
@@ -211,10 +212,28 @@ impl Stepper {
                     let extra = (refine && self.order.is_some()).then_some(&mut self.residual[..]);
                     let t = kin.finish(mech, state, self.order, extra);
                     if let Err(e) = t {
-                        if s >= 1.0 {
+                        if s1 >= 1.0 {
                             return Err(e);
                         }
                     }
+                    // det(D^c) keeps its sign along a driven motion that
+                    // stays on its branch: a sign change means the sub-step
+                    // crossed a limit position (or jumped over a locked zone).
+                    let det = if kin.order().is_some() { kin.det() } else { f64::NAN };
+                    if det * det_from < 0.0 {
+                        Err(SolveError::DetSignChange { before: det_from, after: det })
+                    } else {
+                        if !det.is_nan() {
+                            det_from = det;
+                        }
+                        Ok((info, keeps, refine))
+                    }
+                }
+                Err(e) => Err(e),
+            };
+            match stepped {
+                Ok((info, keeps, refine)) => {
+                    s = s1;
                     if keeps.is_some() {
                         self.remember(mech, state, kin, info, refine);
                     }
@@ -232,12 +251,23 @@ impl Stepper {
                     }
                     h *= 0.5;
                     halved = true;
+                    // The polynomial through positions a whole step apart
+                    // misses the slope at the last one by an amount that
+                    // does not shrink with the sub-step: the sub-steps are
+                    // predicted from the transfer functions at the saved
+                    // point, then from the positions they reach.
+                    if let Some(hist) = &mut self.history {
+                        hist.clear();
+                        self.refined.iter_mut().zip(mech.moving_coords()).for_each(|(r, &i)| *r = state.x[i]);
+                        hist.push(state.target[mech.input_row(0)], &self.refined);
+                    }
                     if h < self.min_h {
                         return Err(e);
                     }
                     // The full transfer functions at the saved point drive
                     // the shorter steps.
                     kin.transfer(mech, state, TransferOrder::Second)?;
+                    det_from = kin.det();
                 }
             }
         }
@@ -283,8 +313,15 @@ impl Stepper {
         // Newton leaves the deformations at the accepted position in
         // `kin.rhs`, which every later use overwrites first: take them.
         std::mem::swap(&mut self.residual, &mut kin.rhs);
-        // A corrector that goes farther than the predictor did has probably
-        // jumped to another assembly branch.
+        // The prediction is accurate to O(h^3) along a smooth path (eqs.
+        // 5.18, 5.22; the polynomial through the last positions, better),
+        // so the correction shrinks against the predicted move as h^2 when
+        // the step is subdivided. A correction of more than [`KAPPA`] of the
+        // predicted move therefore means the step was too long to trust:
+        // it may have crossed a limit position or jumped over a locked zone
+        // to another assembly branch. Halving it then either converges
+        // (a smooth path) or closes in on the limit position (where the
+        // path turns back and the prediction gets worse, not better).
         if info.iterations == 0 {
             return Ok(info);
         }
@@ -296,7 +333,7 @@ impl Stepper {
             .map(|(&i, &p)| (state.x[i] - p) * (state.x[i] - p))
             .sum::<f64>()
             .sqrt();
-        if predicted > 0.0 && corrected > predicted + 1e3 * self.params.tol {
+        if corrected > KAPPA * predicted + 1e3 * self.params.tol {
             return Err(SolveError::BranchJump { predicted, corrected });
         }
         Ok(info)
@@ -354,6 +391,11 @@ impl Stepper {
         moved
     }
 }
+
+/// The largest correction of a step, as a fraction of the predicted move,
+/// that is taken as a step along the same branch (see
+/// [`Stepper::try_step`]).
+const KAPPA: f64 = 0.01;
 
 /// Deformations above this fraction of the tolerance are refined before a
 /// position goes into the history: amplified by the extrapolation they
