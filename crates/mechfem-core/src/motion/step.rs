@@ -66,6 +66,11 @@ pub(crate) struct Stepper {
     renewal_due: bool,
     /// Positions only: whether the last position was refined.
     last_refined: bool,
+    /// Whether the last prediction was the first-order Taylor expansion.
+    first_order_only: bool,
+    /// Whether the step under way has been subdivided (its sub-steps are
+    /// predicted by the Taylor expansion).
+    subdividing: bool,
 }
 
 impl Stepper {
@@ -94,6 +99,8 @@ impl Stepper {
             renewal: Renewal { age: 0, max_age: 1, clean: 0 },
             renewal_due: false,
             last_refined: false,
+            subdividing: false,
+            first_order_only: false,
         }
     }
 
@@ -192,6 +199,7 @@ impl Stepper {
     ) -> Result<bool, SolveError> {
         let (mut s, mut h) = (0.0f64, 1.0f64);
         let mut halved = false;
+        self.subdividing = false;
         // det(D^c) where the sub-step starts, where it is known (NaN where not).
         let mut det_from = kin.det();
         while s < 1.0 {
@@ -253,14 +261,10 @@ impl Stepper {
                     halved = true;
                     // The polynomial through positions a whole step apart
                     // misses the slope at the last one by an amount that
-                    // does not shrink with the sub-step: the sub-steps are
-                    // predicted from the transfer functions at the saved
-                    // point, then from the positions they reach.
-                    if let Some(hist) = &mut self.history {
-                        hist.clear();
-                        self.refined.iter_mut().zip(mech.moving_coords()).for_each(|(r, &i)| *r = state.x[i]);
-                        hist.push(state.target[mech.input_row(0)], &self.refined);
-                    }
+                    // does not shrink with the sub-step: the rest of the
+                    // step is predicted by the Taylor expansion, whose
+                    // error does.
+                    self.subdividing = true;
                     if h < self.min_h {
                         return Err(e);
                     }
@@ -333,7 +337,8 @@ impl Stepper {
             .map(|(&i, &p)| (state.x[i] - p) * (state.x[i] - p))
             .sum::<f64>()
             .sqrt();
-        if corrected > KAPPA * predicted + 1e3 * self.params.tol {
+        let kappa = if self.first_order_only { KAPPA_FIRST } else { KAPPA };
+        if corrected > kappa * predicted + 1e3 * self.params.tol {
             return Err(SolveError::BranchJump { predicted, corrected });
         }
         Ok(info)
@@ -348,19 +353,31 @@ impl Stepper {
         let nd = mech.n_dof();
         let moving = mech.moving_coords();
         let extrapolated = self.use_history
+            && !self.subdividing
             && self.delta.iter().any(|&d| d != 0.0)
             && self
                 .history
                 .as_mut()
                 .is_some_and(|h| h.extrapolate(state.target[mech.input_row(0)], &mut self.predicted_x));
         self.extrapolated = extrapolated;
+        self.first_order_only = false;
         if !extrapolated {
-            if kin.order().is_none() && self.delta.iter().any(|&d| d != 0.0) {
-                // Nothing known at this point: get the transfer functions
-                // (a limit position leaves none, and no prediction).
+            // Nothing known at this point, or (one input) only the first
+            // order, whose prediction is too coarse to check a step by:
+            // get the transfer functions (a limit position leaves none, and
+            // no prediction). Several inputs never extrapolate, and a run
+            // of first order predicts them from the first order it has.
+            let known = kin.order();
+            let wanted = if self.history.is_some() {
+                Some(TransferOrder::Second)
+            } else {
+                known.or(Some(TransferOrder::Second))
+            };
+            if known < wanted && self.delta.iter().any(|&d| d != 0.0) {
                 let _ = kin.transfer(mech, state, TransferOrder::Second);
             }
             let order = kin.order();
+            self.first_order_only = order == Some(TransferOrder::First);
             for (p, &i) in self.predicted_x.iter_mut().zip(moving) {
                 *p = state.x[i];
             }
@@ -396,6 +413,12 @@ impl Stepper {
 /// that is taken as a step along the same branch (see
 /// [`Stepper::try_step`]).
 const KAPPA: f64 = 0.01;
+
+/// The same for a prediction of the first order only (several inputs in
+/// a run of first order), whose error shrinks against the move as h, not
+/// h^2. Such a run computes det(D^c) at every position, whose sign is
+/// checked as well.
+const KAPPA_FIRST: f64 = 0.1;
 
 /// Deformations above this fraction of the tolerance are refined before a
 /// position goes into the history: amplified by the extrapolation they
