@@ -43,8 +43,8 @@ class Limit:
     """A limit position met during the motion (theory, section 5.5), located between two positions."""
 
     kind: str
-    """``near_zero``: |det(D^c)| has a local minimum near zero; ``input_limit``: a driven input reached its extreme value, and the motion stopped
-    there; ``passed``: free motion passed an extreme value of the input."""
+    """``near_zero``: |det(D^c)| has a local minimum near zero; ``input_limit``: a driven input reached its extreme
+    value, and the motion stopped there; ``passed``: free motion passed an extreme value of the input."""
     after: int
     """The position before it (the position itself for ``near_zero``)."""
     inputs: list[float]

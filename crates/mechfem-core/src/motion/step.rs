@@ -1,5 +1,9 @@
 //! One step of driven motion: prediction, Newton correction, and halving of
-//! a step that fails or jumps.
+//! a step that fails or may have left its assembly branch.
+//!
+//! A step keeps the branch when its correction is small against its
+//! predicted move ([`KAPPA`]) and det(D^c), where it is computed, keeps its
+//! sign; otherwise it is halved (docs/analysis.md, *Keeping the branch*).
 //!
 //! Two predictors. The second-order Taylor expansion of eqs. 5.18 and 5.22
 //! needs the transfer functions at the position the step starts from; the
