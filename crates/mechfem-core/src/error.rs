@@ -146,8 +146,9 @@ pub enum SolveError {
         corrected: f64,
     },
     /// det(D^c) changed sign within the smallest sub-step of a driven
-    /// step: the step crosses a limit position of the input.
-    #[error("det(D^c) changed sign within the step (from {before:e} to {after:e}): the step crosses a limit position")]
+    /// step: the step crosses a limit position of the input, or a point
+    /// where two assembly branches meet.
+    #[error("det(D^c) changed sign within the step (from {before:e} to {after:e}): the step crosses a limit position or a point where two assembly branches meet")]
     DetSignChange {
         /// det(D^c) where the sub-step started.
         before: f64,

@@ -304,7 +304,7 @@ pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
         ))],
         SolveError::DetSignChange { before, after } => vec![text(format!(
             "det(D^c) changed sign within the step (from {before:.3e} to {after:.3e}): the step crosses a limit \
-             position"
+             position or a point where two assembly branches meet"
         ))],
         SolveError::Unsupported(u) => u
             .pieces()
