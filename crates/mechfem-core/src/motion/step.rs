@@ -269,7 +269,13 @@ impl Stepper {
                     // step is predicted by the Taylor expansion, whose
                     // error does.
                     self.subdividing = true;
-                    if h < self.min_h {
+                    // Close to a limit position the path bends so sharply that
+                    // only sub-steps short against the distance to it pass
+                    // the test of the correction: those may be shorter than
+                    // the shortest for a failed correction.
+                    let floor =
+                        if matches!(e, SolveError::BranchJump { .. }) { self.min_h * self.min_h } else { self.min_h };
+                    if h < floor {
                         return Err(e);
                     }
                     // The full transfer functions at the saved point drive
@@ -342,7 +348,12 @@ impl Stepper {
             .sum::<f64>()
             .sqrt();
         let kappa = if self.first_order_only { KAPPA_FIRST } else { KAPPA };
-        if corrected > kappa * predicted + 1e3 * self.params.tol {
+        // A converged position is known to about the tolerance times the
+        // transfer ratio (|move| / |input change|), which grows without
+        // bound towards a limit position.
+        let dq = self.delta.iter().map(|d| d * d).sum::<f64>().sqrt();
+        let ratio = if dq > 0.0 { predicted / dq } else { 0.0 };
+        if corrected > kappa * predicted + 1e3 * self.params.tol * (1.0 + ratio) {
             return Err(SolveError::BranchJump { predicted, corrected });
         }
         Ok(info)
