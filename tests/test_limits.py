@@ -446,3 +446,115 @@ def test_stop_message_of_free_motion_suggests_a_smaller_step() -> None:
 def test_stop_message_suggests_free_motion_in_the_driven_direction() -> None:
     stop = mechfem.Stop(5, [1.0], [1.1], "branch_jump", "the correction went farther", None)
     assert "`MOV_FREE 1 -0.12`" in stop.describe(11, ["row 5: ANGB(1)"], 0.1234)
+
+
+# A four-bar that just fails to turn: the motion stops at its limit whatever the step ----------------
+
+# examples/limits/locked_fourbar.mec: frame, crank, coupler, rocker; the crank starts at LK_START.
+LK_DIMS = (70.0, 20.0, 50.0, 39.996)
+LK_START = math.radians(2.5)
+
+
+def lock_angle(r1: float, r2: float, r3: float, r4: float) -> float:
+    """The crank angle at which coupler and rocker lie stretched in line: |A B0| = r3 + r4."""
+    return math.acos((r1**2 + r2**2 - (r3 + r4) ** 2) / (2 * r1 * r2))
+
+
+def fourbar_closed_form(dims: tuple[float, ...], theta: Array) -> Array:
+    """A and B (columns ax, ay, bx, by) at crank angles ``theta``, B to the left of A -> B0."""
+    r1, r2, r3, r4 = dims
+    a = np.stack([r2 * np.cos(theta), r2 * np.sin(theta)], axis=1)
+    e = np.array([r1, 0.0]) - a
+    le = np.hypot(*e.T)
+    u = e / le[:, None]
+    along = (r3**2 - r4**2 + le**2) / (2 * le)
+    across = np.sqrt(r3**2 - along**2)
+    b = a + along[:, None] * u + across[:, None] * np.stack([-u[:, 1], u[:, 0]], axis=1)
+    return np.asarray(np.hstack([a, b]))
+
+
+def assembly_mode(coords: Array, r1: float) -> Array:
+    """The sign of (B - A) x (B0 - A) at every position: which of the two assembly branches B is on."""
+    a, b = point(coords, 5), point(coords, 7)
+    ab, ab0 = b - a, np.array([r1, 0.0]) - a
+    return np.asarray(np.sign(ab[:, 0] * ab0[:, 1] - ab[:, 1] * ab0[:, 0]))
+
+
+def fourbar_deck(tmp_path: Path, dims: tuple[float, ...], steps: int, start: float) -> Path:
+    """The locked four-bar's deck with other dimensions, step count and start angle."""
+    r1, r2, r3, r4 = dims
+    b = [float(v) for v in fourbar_closed_form(dims, np.array([start]))[0]]
+    text = (LIMITS / "locked_fourbar.mec").read_text()
+    for old, new in [
+        ("TSTEPE 36", f"TSTEPE {steps}"),
+        ("     3 70.0 ", f"     3 {r1!r} "),
+        (
+            "PARA 1 20.0\n     2 50.0\n     3 39.996\n     4 0.04363323129985824",
+            f"PARA 1 {r2!r}\n     2 {r3!r}\n     3 {r4!r}\n     4 {start!r}",
+        ),
+        ("XMOV 5 20.0 ", f"XMOV 5 {b[0] + 0.01!r} "),
+        ("     6 0.9\n", f"     6 {b[1]!r}\n"),
+        ("     7 54.0 ", f"     7 {b[2] + 0.01!r} "),
+        ("     8 36.7\n", f"     8 {b[3]!r}\n"),
+    ]:
+        assert old in text, old
+        text = text.replace(old, new)
+    deck = tmp_path / f"fourbar_{steps}.mec"
+    deck.write_text(text)
+    return deck
+
+
+def test_locked_fourbar_limit_is_where_coupler_and_rocker_align() -> None:
+    limit = lock_angle(*LK_DIMS)
+    assert limit == pytest.approx(3.118914551, abs=1e-9)
+    r1, r2, r3, r4 = LK_DIMS
+    assert r1 + r2 - r3 - r4 == pytest.approx(0.004)
+    # A step of 10 degrees from 172.5 would land beyond the locked zone (178.70 to 181.30 degrees).
+    assert math.degrees(limit) < 182.5 and math.degrees(2 * math.pi - limit) < 182.5
+
+
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
+def test_locked_fourbar_stops_at_its_limit_on_its_branch_at_any_step_count(tmp_path: Path) -> None:
+    limit = lock_angle(*LK_DIMS)
+    for steps in (18, 36, 72, 360):
+        deck = fourbar_deck(tmp_path, LK_DIMS, steps, LK_START)
+        for det in (True, False):
+            r = mechfem.run_deck(deck, det=det)
+            what = f"{steps} steps, det={det}"
+            stop = r.report.stop
+            assert stop is not None and stop.limit is not None and stop.limit.kind == "input_limit", what
+            assert stop.limit.inputs[0] == pytest.approx(limit, abs=LOCATED), what
+            theta = r.buffers[1]
+            assert len(theta) == stop.last_good and np.all(theta < limit), what
+            # Every position reported is on the branch of position 1, where the closed form puts it.
+            mode = assembly_mode(r.coords, LK_DIMS[0])
+            assert np.all(mode == mode[0]), what
+            got = np.column_stack([r.buffers[b] for b in (2, 3, 4, 5)])
+            np.testing.assert_allclose(got, fourbar_closed_form(LK_DIMS, theta), atol=1e-7, err_msg=what)
+
+
+@pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")  # the motion stops on purpose
+def test_locked_fourbar_cli_exits_3_at_the_limit(cli: Cli, tmp_path: Path) -> None:
+    proc = cli("run", LIMITS / "locked_fourbar.mec", "-o", tmp_path)
+    assert proc.returncode == 3, proc.stderr
+    message = flat(proc.stderr)
+    assert "The motion stopped after position 18 of 37" in message
+    match = re.search(r"reached its limit position at input 1 = (\S+), located between positions 18 and 19", message)
+    assert match, message
+    assert float(match.group(1)) == pytest.approx(lock_angle(*LK_DIMS), abs=LOCATED)
+    with (tmp_path / "locked_fourbar.csv").open() as f:
+        assert len(list(csv.reader(f))) == 1 + 18
+
+
+@pytest.mark.parametrize("dims", [(4.0, 1.0, 3.5, 3.0), (1.0, 3.0, 3.5, 3.2)], ids=["crank_rocker", "double_crank"])
+def test_grashof_fourbars_turn_in_ten_steps_without_a_stop(tmp_path: Path, dims: tuple[float, ...]) -> None:
+    # Grashof, with the crank (crank-rocker) or the frame (double crank) the shortest link.
+    lengths = sorted(dims)
+    assert lengths[0] + lengths[3] < lengths[1] + lengths[2] and min(dims[:2]) == lengths[0]
+    for det in (True, False):
+        r = mechfem.run_deck(fourbar_deck(tmp_path, dims, 10, 0.0), det=det)
+        assert r.report.complete and r.positions == 11, r.report.stop_reason()
+        theta = r.buffers[1]
+        np.testing.assert_allclose(theta, np.linspace(0.0, 2 * math.pi, 11), atol=1e-12)
+        got = np.column_stack([r.buffers[b] for b in (2, 3, 4, 5)])
+        np.testing.assert_allclose(got, fourbar_closed_form(dims, theta), atol=1e-8)

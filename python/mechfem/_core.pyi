@@ -121,7 +121,7 @@ class AdjustDict(TypedDict):
 @type_check_only
 class LimitDict(TypedDict):
     kind: str
-    """``sign_change``, ``near_zero``, ``input_limit`` or ``passed``."""
+    """``near_zero``, ``input_limit`` or ``passed``."""
     after: int
     """The position before it."""
     inputs: list[float]

@@ -43,9 +43,8 @@ class Limit:
     """A limit position met during the motion (theory, section 5.5), located between two positions."""
 
     kind: str
-    """``sign_change``: det(D^c) changed sign between two positions of a driven motion; ``near_zero``: |det(D^c)|
-    has a local minimum near zero; ``input_limit``: a driven input reached its extreme value, and the motion stopped
-    there; ``passed``: free motion passed an extreme value of the input."""
+    """``near_zero``: |det(D^c)| has a local minimum near zero; ``input_limit``: a driven input reached its extreme
+    value, and the motion stopped there; ``passed``: free motion passed an extreme value of the input."""
     after: int
     """The position before it (the position itself for ``near_zero``)."""
     inputs: list[float]
@@ -71,7 +70,6 @@ class Limit:
         to name things with."""
         inp = words_of(names).input(1) if len(self.inputs) == 1 else "an input"
         return {
-            "sign_change": "det(D^c) changes sign: the driven motion passed a singular position",
             "near_zero": "det(D^c) has a minimum near zero: close to a limit position, the transfer quality is poor",
             "input_limit": f"{inp} reaches its limit position: the driven motion cannot go on",
             "passed": f"free motion passes a limit position of {inp}, which turns back there",
@@ -247,14 +245,14 @@ class RunReport:
 
     @property
     def warnings(self) -> list[str]:
-        """What deserves a second look, one sentence each: sign changes and near-zero minima of det(D^c) in a
-        driven motion, and positions where no transfer functions exist."""
+        """What deserves a second look, one sentence each: near-zero minima of det(D^c) in a driven motion, and
+        positions where no transfer functions exist."""
         return self.describe_warnings()
 
     def describe_warnings(self, words: Words | None = None) -> list[str]:
         """:attr:`warnings`, said with ``words`` (default: the deck's)."""
         w = words or Words(self.input_names)
-        out = [x.describe(w) for x in self.limits if x.kind in ("sign_change", "near_zero")]
+        out = [x.describe(w) for x in self.limits if x.kind == "near_zero"]
         if self.singular_positions:
             at = ", ".join(map(str, self.singular_positions))
             out.append(

@@ -135,14 +135,25 @@ pub enum SolveError {
         /// Largest deformation at the end.
         residual: f64,
     },
-    /// The corrector moved the mechanism farther than the predictor: it
-    /// probably jumped to another assembly branch.
-    #[error("the correction ({corrected:e}) went farther than the prediction ({predicted:e}): the step may jump to another branch")]
+    /// The corrector moved the mechanism too far from the prediction for a
+    /// step along one branch: the step may cross a limit position or jump
+    /// to another assembly branch.
+    #[error("the correction ({corrected:e}) went too far from the prediction (a move of {predicted:e}): the step may jump to another branch")]
     BranchJump {
         /// Length of the predicted step in co-ordinate space.
         predicted: f64,
         /// Length of the Newton correction.
         corrected: f64,
+    },
+    /// det(D^c) changed sign within the smallest sub-step of a driven
+    /// step: the step crosses a limit position of the input, or a point
+    /// where two assembly branches meet.
+    #[error("det(D^c) changed sign within the step (from {before:e} to {after:e}): the step crosses a limit position or a point where two assembly branches meet")]
+    DetSignChange {
+        /// det(D^c) where the sub-step started.
+        before: f64,
+        /// det(D^c) where it ended.
+        after: f64,
     },
     /// A result was asked for before the transfer functions it needs were computed.
     #[error("the transfer functions were not computed at this position")]

@@ -54,7 +54,6 @@ pub fn adjust<'py>(py: Python<'py>, a: &AdjustInfo) -> PyResult<Bound<'py, PyDic
 
 fn limit_kind(kind: LimitKind) -> &'static str {
     match kind {
-        LimitKind::SignChange => "sign_change",
         LimitKind::NearZero => "near_zero",
         LimitKind::InputLimit => "input_limit",
         LimitKind::Passed => "passed",

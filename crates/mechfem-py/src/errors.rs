@@ -162,7 +162,7 @@ pub fn kind(err: &SolveError) -> &'static str {
         SolveError::Element { .. } => "element",
         SolveError::Singular { .. } => "singular",
         SolveError::NoConvergence { .. } => "no_convergence",
-        SolveError::BranchJump { .. } => "branch_jump",
+        SolveError::BranchJump { .. } | SolveError::DetSignChange { .. } => "branch_jump",
         SolveError::NotComputed => "not_computed",
         SolveError::Unsupported(_) => "unsupported",
         SolveError::NonFinite => "non_finite",
@@ -307,8 +307,12 @@ pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
             "Newton iteration did not converge in {iterations} iterations (largest deformation {residual:.3e})"
         ))],
         SolveError::BranchJump { predicted, corrected } => vec![text(format!(
-            "the correction ({corrected:.3e}) went farther than the prediction ({predicted:.3e}): the step may jump to \
-             another assembly branch"
+            "the correction ({corrected:.3e}) went too far from the prediction (a move of {predicted:.3e}): the step \
+             may jump to another assembly branch"
+        ))],
+        SolveError::DetSignChange { before, after } => vec![text(format!(
+            "det(D^c) changed sign within the step (from {before:.3e} to {after:.3e}): the step crosses a limit \
+             position or a point where two assembly branches meet"
         ))],
         SolveError::Dynamics(fault) => dynamics_parts(mech, fault),
         SolveError::Unsupported(u) => u
@@ -429,6 +433,7 @@ fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, e
         }
         SolveError::NoConvergence { .. }
         | SolveError::BranchJump { .. }
+        | SolveError::DetSignChange { .. }
         | SolveError::NonFinite
         | SolveError::Simulation { .. } => ConvergenceError::new_err(message(&parts)),
         SolveError::NotComputed | SolveError::Unsupported(_) | SolveError::Interrupted | SolveError::Dynamics(_) => {

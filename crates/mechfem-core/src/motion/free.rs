@@ -132,10 +132,18 @@ impl FreeStepper {
             }
             let temp = TempInput { row: self.row, col: self.col, value: state.x[mech.moving_coords()[self.col]] };
             let moved = correct_with(mech, state, kin, &self.params, Some(temp)).and_then(|_| {
-                // The corrector works across the tangent; going farther than
-                // the step itself means another branch was found.
-                let off: f64 = mech.moving_coords().iter().map(|&i| (state.x[i] - self.saved_x[i]).powi(2)).sum();
-                if off.sqrt() > 2.0 * h + 1e3 * self.params.tol {
+                // The corrector works across the tangent and, along a
+                // smooth path, moves the point by about (curvature) h^2 / 2:
+                // a correction of more than a tenth of the step means the
+                // step cut across to another part of the path (over a
+                // locked zone, to another assembly branch) and is halved.
+                let off: f64 = mech
+                    .moving_coords()
+                    .iter()
+                    .zip(&self.tangent)
+                    .map(|(&i, t)| (state.x[i] - self.saved_x[i] - h * t).powi(2))
+                    .sum();
+                if off.sqrt() > KAPPA_FREE * h + 1e3 * self.params.tol {
                     Err(SolveError::BranchJump { predicted: h, corrected: off.sqrt() })
                 } else {
                     Ok(())
@@ -167,6 +175,10 @@ impl FreeStepper {
         self.has_previous = true;
     }
 }
+
+/// The largest correction of a free-motion step, as a fraction of the
+/// step length, taken as a step along the same path.
+const KAPPA_FREE: f64 = 0.1;
 
 fn argmax_abs(v: &[f64]) -> usize {
     (0..v.len()).max_by(|&a, &b| v[a].abs().total_cmp(&v[b].abs())).unwrap_or(0)

@@ -1,18 +1,15 @@
 //! Limit positions found during a motion (theory section 5.5): where
-//! det(D^c) changes sign or comes close to zero, and where a driven input
-//! cannot go on. Each is located between the positions that enclose it.
+//! det(D^c) comes close to zero, where a driven input cannot go on, and
+//! where free motion passes an extreme of its input. Each is located
+//! between the positions that enclose it.
 
 use super::free::FreeStepper;
-use super::step::Stepper;
-use crate::error::SolveError;
 use crate::model::{Mechanism, State};
 use crate::solver::{Kinematics, Params, TransferOrder};
 
 /// What kind of limit position was found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LimitKind {
-    /// det(D^c) changed sign between two positions of a driven motion.
-    SignChange,
     /// |det(D^c)| has a local minimum below 1e-3 of its largest value so far.
     NearZero,
     /// A driven input cannot go on: it reached its extreme value.
@@ -39,45 +36,6 @@ pub struct LimitPosition {
 
 fn inputs_of(mech: &Mechanism, state: &State) -> Vec<f64> {
     (0..mech.n_dof()).map(|j| state.target[mech.input_row(j)]).collect()
-}
-
-/// Bisects the fraction of a driven step from `start` (inputs `from`) to
-/// inputs `to` for the point where det(D^c) changes sign.
-pub(crate) fn locate_sign_change(
-    mech: &Mechanism,
-    start: &State,
-    from: &[f64],
-    to: &[f64],
-    det0: f64,
-    params: &Params,
-    after: usize,
-) -> Option<LimitPosition> {
-    let mut kin = Kinematics::new(mech);
-    let mut stepper = Stepper::new(mech, params, Some(TransferOrder::Second));
-    let (mut lo, mut hi) = (0.0f64, 1.0f64);
-    let mut best: Option<(State, f64)> = None;
-    let at = |s: f64| -> Vec<f64> { from.iter().zip(to).map(|(a, b)| a + s * (b - a)).collect() };
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        let mut state = start.clone();
-        kin.transfer(mech, &mut state, TransferOrder::Second).ok()?;
-        let det = match stepper.step(mech, &mut state, start, &mut kin, from, &at(mid)) {
-            Ok(_) => kin.det(),
-            Err(SolveError::Singular { .. }) => 0.0,
-            Err(_) => return None,
-        };
-        if det == 0.0 || (det > 0.0) == (det0 > 0.0) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-        best = Some((state, det));
-        if det == 0.0 || hi - lo < 1e-14 {
-            break;
-        }
-    }
-    let (state, det) = best?;
-    Some(LimitPosition { kind: LimitKind::SignChange, after, inputs: inputs_of(mech, &state), coords: state.x, det })
 }
 
 /// From the last good position of a driven motion that could not go on,

@@ -1,5 +1,9 @@
 //! One step of driven motion: prediction, Newton correction, and halving of
-//! a step that fails or jumps.
+//! a step that fails or may have left its assembly branch.
+//!
+//! A step keeps the branch when its correction is small against its
+//! predicted move ([`KAPPA`]) and det(D^c), where it is computed, keeps its
+//! sign; otherwise it is halved (docs/analysis.md, *Keeping the branch*).
 //!
 //! Two predictors. The second-order Taylor expansion of eqs. 5.18 and 5.22
 //! needs the transfer functions at the position the step starts from; the
@@ -66,6 +70,11 @@ pub(crate) struct Stepper {
     renewal_due: bool,
     /// Positions only: whether the last position was refined.
     last_refined: bool,
+    /// Whether the last prediction was the first-order Taylor expansion.
+    first_order_only: bool,
+    /// Whether the step under way has been subdivided (its sub-steps are
+    /// predicted by the Taylor expansion).
+    subdividing: bool,
 }
 
 impl Stepper {
@@ -94,6 +103,8 @@ impl Stepper {
             renewal: Renewal { age: 0, max_age: 1, clean: 0 },
             renewal_due: false,
             last_refined: false,
+            subdividing: false,
+            first_order_only: false,
         }
     }
 
@@ -192,6 +203,9 @@ impl Stepper {
     ) -> Result<bool, SolveError> {
         let (mut s, mut h) = (0.0f64, 1.0f64);
         let mut halved = false;
+        self.subdividing = false;
+        // det(D^c) where the sub-step starts, where it is known (NaN where not).
+        let mut det_from = kin.det();
         while s < 1.0 {
             let s1 = if s + h >= 1.0 - 1e-12 { 1.0 } else { s + h };
             // Where to go back to if this sub-step fails: `start`, or a copy.
@@ -200,9 +214,8 @@ impl Stepper {
                 self.saved_branch.copy_from_slice(&state.branch);
                 self.saved_target.copy_from_slice(&state.target);
             }
-            match self.try_step(mech, state, kin, from, to, s1) {
+            let stepped = match self.try_step(mech, state, kin, from, to, s1) {
                 Ok(info) => {
-                    s = s1;
                     // What is needed at the new point, from the evaluation
                     // Newton converged with; it also drives the next prediction.
                     let keeps = self.keeps();
@@ -211,10 +224,28 @@ impl Stepper {
                     let extra = (refine && self.order.is_some()).then_some(&mut self.residual[..]);
                     let t = kin.finish(mech, state, self.order, extra);
                     if let Err(e) = t {
-                        if s >= 1.0 {
+                        if s1 >= 1.0 {
                             return Err(e);
                         }
                     }
+                    // det(D^c) keeps its sign along a driven motion that
+                    // stays on its branch: a sign change means the sub-step
+                    // crossed a limit position (or jumped over a locked zone).
+                    let det = if kin.order().is_some() { kin.det() } else { f64::NAN };
+                    if det * det_from < 0.0 {
+                        Err(SolveError::DetSignChange { before: det_from, after: det })
+                    } else {
+                        if !det.is_nan() {
+                            det_from = det;
+                        }
+                        Ok((info, keeps, refine))
+                    }
+                }
+                Err(e) => Err(e),
+            };
+            match stepped {
+                Ok((info, keeps, refine)) => {
+                    s = s1;
                     if keeps.is_some() {
                         self.remember(mech, state, kin, info, refine);
                     }
@@ -232,12 +263,25 @@ impl Stepper {
                     }
                     h *= 0.5;
                     halved = true;
-                    if h < self.min_h {
+                    // The polynomial through positions a whole step apart
+                    // misses the slope at the last one by an amount that
+                    // does not shrink with the sub-step: the rest of the
+                    // step is predicted by the Taylor expansion, whose
+                    // error does.
+                    self.subdividing = true;
+                    // Close to a limit position the path bends so sharply that
+                    // only sub-steps short against the distance to it pass
+                    // the test of the correction: those may be shorter than
+                    // the shortest for a failed correction.
+                    let floor =
+                        if matches!(e, SolveError::BranchJump { .. }) { self.min_h * self.min_h } else { self.min_h };
+                    if h < floor {
                         return Err(e);
                     }
                     // The full transfer functions at the saved point drive
                     // the shorter steps.
                     kin.transfer(mech, state, TransferOrder::Second)?;
+                    det_from = kin.det();
                 }
             }
         }
@@ -283,8 +327,15 @@ impl Stepper {
         // Newton leaves the deformations at the accepted position in
         // `kin.rhs`, which every later use overwrites first: take them.
         std::mem::swap(&mut self.residual, &mut kin.rhs);
-        // A corrector that goes farther than the predictor did has probably
-        // jumped to another assembly branch.
+        // The prediction is accurate to O(h^3) along a smooth path (eqs.
+        // 5.18, 5.22; the polynomial through the last positions, better),
+        // so the correction shrinks against the predicted move as h^2 when
+        // the step is subdivided. A correction of more than [`KAPPA`] of the
+        // predicted move therefore means the step was too long to trust:
+        // it may have crossed a limit position or jumped over a locked zone
+        // to another assembly branch. Halving it then either converges
+        // (a smooth path) or closes in on the limit position (where the
+        // path turns back and the prediction gets worse, not better).
         if info.iterations == 0 {
             return Ok(info);
         }
@@ -296,7 +347,13 @@ impl Stepper {
             .map(|(&i, &p)| (state.x[i] - p) * (state.x[i] - p))
             .sum::<f64>()
             .sqrt();
-        if predicted > 0.0 && corrected > predicted + 1e3 * self.params.tol {
+        let kappa = if self.first_order_only { KAPPA_FIRST } else { KAPPA };
+        // A converged position is known to about the tolerance times the
+        // transfer ratio (|move| / |input change|), which grows without
+        // bound towards a limit position.
+        let dq = self.delta.iter().map(|d| d * d).sum::<f64>().sqrt();
+        let ratio = if dq > 0.0 { predicted / dq } else { 0.0 };
+        if corrected > kappa * predicted + 1e3 * self.params.tol * (1.0 + ratio) {
             return Err(SolveError::BranchJump { predicted, corrected });
         }
         Ok(info)
@@ -311,19 +368,31 @@ impl Stepper {
         let nd = mech.n_dof();
         let moving = mech.moving_coords();
         let extrapolated = self.use_history
+            && !self.subdividing
             && self.delta.iter().any(|&d| d != 0.0)
             && self
                 .history
                 .as_mut()
                 .is_some_and(|h| h.extrapolate(state.target[mech.input_row(0)], &mut self.predicted_x));
         self.extrapolated = extrapolated;
+        self.first_order_only = false;
         if !extrapolated {
-            if kin.order().is_none() && self.delta.iter().any(|&d| d != 0.0) {
-                // Nothing known at this point: get the transfer functions
-                // (a limit position leaves none, and no prediction).
+            // Nothing known at this point, or (one input) only the first
+            // order, whose prediction is too coarse to check a step by:
+            // get the transfer functions (a limit position leaves none, and
+            // no prediction). Several inputs never extrapolate, and a run
+            // of first order predicts them from the first order it has.
+            let known = kin.order();
+            let wanted = if self.history.is_some() {
+                Some(TransferOrder::Second)
+            } else {
+                known.or(Some(TransferOrder::Second))
+            };
+            if known < wanted && self.delta.iter().any(|&d| d != 0.0) {
                 let _ = kin.transfer(mech, state, TransferOrder::Second);
             }
             let order = kin.order();
+            self.first_order_only = order == Some(TransferOrder::First);
             for (p, &i) in self.predicted_x.iter_mut().zip(moving) {
                 *p = state.x[i];
             }
@@ -354,6 +423,17 @@ impl Stepper {
         moved
     }
 }
+
+/// The largest correction of a step, as a fraction of the predicted move,
+/// that is taken as a step along the same branch (see
+/// [`Stepper::try_step`]).
+const KAPPA: f64 = 0.01;
+
+/// The same for a prediction of the first order only (several inputs in
+/// a run of first order), whose error shrinks against the move as h, not
+/// h^2. Such a run computes det(D^c) at every position, whose sign is
+/// checked as well.
+const KAPPA_FIRST: f64 = 0.1;
 
 /// Deformations above this fraction of the tolerance are refined before a
 /// position goes into the history: amplified by the extrapolation they

@@ -19,12 +19,15 @@ use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 /// position, calling `observer` at each. Without a motion only position 1
 /// is computed.
 ///
-/// Driven motion predicts each position from the first- and second-order
-/// transfer functions and corrects it by Newton. A step whose correction
-/// fails, or moves the mechanism farther than the prediction did (a jump to
-/// another assembly branch), is halved, up to `params.max_halvings` times.
-/// When even the smallest step fails the run stops; the report says where
-/// and why, and locates the limit position the input ran into. Every
+/// Driven motion predicts each position (from the transfer functions or
+/// the last positions) and corrects it by Newton. A step whose correction
+/// fails, moves the mechanism more than 1 % of the predicted move away from
+/// the prediction, or changes the sign of det(D^c), may have crossed a
+/// limit position or jumped to another assembly branch: it is halved, up
+/// to `params.max_halvings` times. When even the smallest step fails the
+/// run stops; the report says where and why, and locates the limit
+/// position the input ran into. So a driven motion never leaves the
+/// assembly branch it started on. Every
 /// position computed so far has been observed, and the state is left at the
 /// last of them.
 ///
@@ -173,14 +176,9 @@ fn run_driven(
                 return;
             }
         }
+        // (det(D^c) keeps its sign from position to position: the stepper
+        // refuses a step that changes it.)
         let det = kin.det();
-        if det_prev * det < 0.0 {
-            if let Some(l) =
-                limits::locate_sign_change(mech, &previous, s.values(k - 1), s.values(k), det_prev, params, k - 1)
-            {
-                report.limits.push(l);
-            }
-        }
         det_max = det_max.max(det.abs());
         // A local minimum of |det| far below its scale: a near-limit position.
         if det_prev.abs() < det_prev2.abs() && det_prev.abs() <= det.abs() && det_prev.abs() < 1e-3 * det_max {

@@ -44,7 +44,7 @@ use super::observe::{Observer, RunReport, Stop};
 use crate::dynamics::{Dynamics, Integration};
 use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
-use crate::motion::limits::{self, LimitKind, LimitPosition};
+use crate::motion::limits::{LimitKind, LimitPosition};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 use eom::{Driver, Eom, LIMIT_REASON};
@@ -197,7 +197,6 @@ impl Ode<'_, '_> {
             self.out.stop = Some(e);
             return true;
         }
-        let params = eom.params;
         let view = eom.view(k, acc);
         if let Err(e) = timed_finite(view.mech, view.kin, view.input_vel, view.input_acc) {
             self.out.stop = Some(e);
@@ -207,7 +206,10 @@ impl Ode<'_, '_> {
         let mech = view.mech;
         out.inputs.clear();
         out.inputs.extend((0..mech.n_dof()).map(|j| view.input(j)));
-        out.limits(mech, view.kin.det(), &params, k);
+        if let Err(e) = out.limits(view.kin.det(), k) {
+            out.stop = Some(e);
+            return true;
+        }
         if let Err(e) = out.observer.check(&view) {
             out.stop = Some(e);
             return true;
@@ -250,17 +252,15 @@ impl Ode<'_, '_> {
 
 impl Outputs<'_> {
     /// The limit positions between the last output and output `k`, where
-    /// det(D^c) is `det`, found as a kinematic run finds them: a sign change
-    /// located from the last output, or a local minimum of |det| far below
-    /// its largest value.
-    fn limits(&mut self, mech: &Mechanism, det: f64, params: &Params, k: usize) {
+    /// det(D^c) is `det`, found as a kinematic run finds them: a local
+    /// minimum of |det| far below its largest value. A sign change of
+    /// det(D^c) between two outputs means the integration passed a limit
+    /// position or a point where two assembly branches meet without
+    /// meeting the limit test of its evaluations: output `k` would be on
+    /// another branch, so it is refused.
+    fn limits(&mut self, det: f64, k: usize) -> Result<(), SolveError> {
         if self.det_prev * det < 0.0 {
-            let from = (&self.previous, &self.prev_inputs[..]);
-            if let Some(l) =
-                limits::locate_sign_change(mech, from.0, from.1, &self.inputs, self.det_prev, params, k - 1)
-            {
-                self.report.limits.push(l);
-            }
+            return Err(SolveError::DetSignChange { before: self.det_prev, after: det });
         }
         self.det_max = self.det_max.max(det.abs());
         let prev = self.det_prev.abs();
@@ -274,6 +274,7 @@ impl Outputs<'_> {
             });
         }
         (self.det_prev2, self.det_prev) = (self.det_prev, det);
+        Ok(())
     }
 }
 
