@@ -130,11 +130,23 @@ def test_a_motion_that_jumps_to_the_other_branch_is_infeasible_and_said_so(deck:
 
 def test_an_infeasible_start_design_makes_every_design_infeasible(deck: Path) -> None:
     m = model(deck)
-    start = m.start_at(JUMPING)
-    assert not start["feasible"] and start["reason_kind"] in ("left_branch", "stopped")
+    # B0 at (6, 4) is 6.4 from A, farther than coupler and rocker (3 + 1.5) reach: no position 1, so no branch.
+    start = m.start_at([6.0, 4.0, 1.5])
+    assert not start["feasible"] and start["reason_kind"] != "stopped"
     d = m.evaluate(START)
     assert not d["feasible"] and d["reason_kind"] == "start"
     assert d["reason"] == f"the start design is infeasible: {start['reason']}"
+
+
+def test_a_start_design_whose_motion_stops_still_sets_the_branch_of_its_position_one(deck: Path) -> None:
+    m = model(deck)
+    start = m.start_at(JUMPING)
+    # The stepper stops at the crank's limit position instead of stepping over it.
+    assert not start["feasible"] and start["reason_kind"] == "stopped"
+    # Its position 1 has B on the other side of A-B0 than the deck's own design has: every design now assembles so.
+    assert orientation(start, JUMPING) != orientation(model(deck).evaluate(START), START)
+    d = m.evaluate(START)
+    assert d["feasible"] and orientation(d, START) == orientation(start, JUMPING)
 
 
 def test_the_start_design_chosen_sets_the_branch(deck: Path) -> None:
