@@ -268,12 +268,13 @@ def csv_rows(path: Path) -> list[list[str]]:
 
 def test_ctrl_c_stops_a_simulation_between_two_outputs(tmp_path: Path) -> None:
     # Outputs 2000 s apart: the first one past position 1 is many seconds of integration away. Ctrl-C half a
-    # second in stops the integration within about a tenth of a second (a second here, on a busy machine), and
+    # second in stops the integration within about a tenth of a second (the bound here is loose, for a busy
+    # machine: what it catches is a simulation that does not stop until its next output, many seconds on), and
     # position 1, the only output reached, is written.
     deck = simulation_deck(tmp_path, "2 2000.0")
     out = tmp_path / "out"
     proc, after = interrupt_simulation(deck, out, 0.5)
-    assert after < 1.0, proc.stderr
+    assert after < 5.0, proc.stderr
     assert len(csv_rows(out / "sim.csv")) == 1
     assert "interrupted after position 1 of 3" in (out / "sim.prt").read_text()
 
@@ -284,7 +285,7 @@ def test_ctrl_c_during_a_simulation_writes_every_output_reached(tmp_path: Path) 
     deck = simulation_deck(tmp_path, "2000 0.1")
     out = tmp_path / "out"
     proc, after = interrupt_simulation(deck, out, 1.0)
-    assert after < 1.0, proc.stderr
+    assert after < 5.0, proc.stderr
     rows = csv_rows(out / "sim.csv")
     assert 1 < len(rows) < 2001
     assert f"Positions 1 to {len(rows)} were computed and are all written" in proc.stderr

@@ -216,3 +216,15 @@ def test_a_run_killed_while_it_holds_the_lock_does_not_block_the_next(tmp_path: 
     )
     assert done.returncode == 0
     assert not (out / ".fourbar.lock").exists()
+
+
+def test_a_table_name_with_a_nul_byte_is_left_to_the_deck_reader(tmp_path: Path, cli: Cli) -> None:
+    # An earlier run's print file is in the folder, so the check that no output replaces an input compares the
+    # deck's table names with it: a NUL byte in one must reach the reader's error (exit 1), not end as exit 4.
+    deck = tmp_path / "slider.mec"
+    text = (ROOT / "tests" / "decks" / "rocker.mec").read_text()
+    deck.write_text(text.replace("MOVEMENT", "MOVEMENT\nMOV_FUNC 1 cr\0ank.dat", 1))
+    (tmp_path / "slider.prt").write_text("an earlier print file\n")
+    proc = cli("run", str(deck), "--no-media")
+    assert proc.returncode == 1, proc.stderr
+    assert "This is a bug" not in proc.stderr and "slider.mec" in proc.stderr

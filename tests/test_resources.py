@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import mechfem
@@ -118,3 +119,9 @@ def test_a_wrong_number_of_workers_is_a_value_error(workers: object) -> None:
         mechfem.sweep(m, {"r2": [1.0, 2.0]}, workers=workers, progress=False)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="workers is the number of threads"):
         mechfem.run_many([m], workers=workers, progress=False)  # type: ignore[arg-type]
+
+
+def test_workers_may_be_any_whole_number_type() -> None:
+    m = mechfem.Mechanism.from_deck(FOURBAR)
+    runs = mechfem.run_many([m, m], workers=np.int64(2), progress=False)
+    assert len(runs) == 2 and all(isinstance(r, mechfem.RunResult) for r in runs)

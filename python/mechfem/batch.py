@@ -21,6 +21,7 @@ from __future__ import annotations
 import inspect
 import itertools
 import math
+import operator
 import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
@@ -120,12 +121,16 @@ def check_workers(workers: int | None) -> int | None:
     ValueError that says so."""
     if workers is None:
         return None
-    if isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= MAX_WORKERS:
+    try:
+        whole = None if isinstance(workers, bool) else operator.index(workers)
+    except TypeError:
+        whole = None
+    if whole is None or not 1 <= whole <= MAX_WORKERS:
         raise ValueError(
             f"workers is the number of threads to run on: a whole number from 1 to {MAX_WORKERS}, or None for one "
             f"per core, not {workers!r}"
         )
-    return workers
+    return whole
 
 
 def _stopped_runs(results: list[RunResult | MechfemError], raise_on_stop: bool) -> list[RunResult | MechfemError]:

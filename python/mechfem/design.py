@@ -242,6 +242,18 @@ def residuals(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:
     res: list[FloatArray] = []
     jac: list[FloatArray] = []
     n = len(problem.variables)
+    # An overflow is found and named by _finite_terms below, not warned of by numpy on the way.
+    with np.errstate(over="ignore", invalid="ignore"):
+        _residual_terms(problem, e, res, jac)
+    if not res:
+        return np.zeros(0), np.zeros((0, n))
+    _finite_terms(problem, res, jac)
+    return np.concatenate(res), np.vstack(jac)
+
+
+def _residual_terms(problem: Problem, e: Evaluation, res: list[FloatArray], jac: list[FloatArray]) -> None:
+    """The residuals and Jacobian rows of every term of ``problem`` at ``e``, appended to ``res`` and ``jac``."""
+    n = len(problem.variables)
     k_ext = 0
     for t in problem.terms:
         w = math.sqrt(t.weight)
@@ -258,10 +270,6 @@ def residuals(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray]:
             k_ext += 1
             res.append(np.array([w * (x["value"] - t.value) for x in found], dtype=np.float64))
             jac.append(np.array([w * np.asarray(x["gradient"]) for x in found], dtype=np.float64).reshape(-1, n))
-    if not res:
-        return np.zeros(0), np.zeros((0, n))
-    _finite_terms(problem, res, jac)
-    return np.concatenate(res), np.vstack(jac)
 
 
 def misses(problem: Problem, e: Evaluation) -> list[tuple[float, int | None]]:
@@ -453,7 +461,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
                 # gradient agree, so the line search steps back along the way it came, and by interpolation
                 # rather than by a fixed fraction, towards where the designs stop being feasible.
                 d = (np.asarray(x, dtype=np.float64) - best.x) / scale
-                w = 1e3 * (1.0 + abs(best.f))
+                w = 1e3 * (1.0 + min(abs(best.f), 1e300))
                 return best.f + w * (1e-6 + float(d @ d)), 2.0 * w * d / scale
             f, g = objective(problem, e)
             # The best feasible design met, not only the optimiser's iterates: the last of them may be infeasible.

@@ -93,16 +93,21 @@ class FinishOnInterrupt:
 
     def _handler(self, signum: int, frame: FrameType | None) -> None:
         if self.pressed:
+            # A third Ctrl-C must not interrupt the clean-up of the file the second one abandons.
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
             raise KeyboardInterrupt
         self.pressed = True
         # os.write, not print: a handler may run in the middle of a write to sys.stderr (the progress bar), and
-        # a buffered stream written again from within itself raises.
+        # a buffered stream written again from within itself raises. A closed stderr must not cost the files.
         lead = "\r\x1b[K" if os.isatty(2) else ""
-        os.write(
-            2,
-            f"{lead}mechfem: Ctrl-C: the data set and the print file of what was computed are being finished; press "
-            "Ctrl-C again to abandon them\n".encode(),
-        )
+        try:
+            os.write(
+                2,
+                f"{lead}mechfem: Ctrl-C: the data set and the print file of what was computed are being finished; "
+                "press Ctrl-C again to abandon them\n".encode(),
+            )
+        except OSError:
+            pass
 
     def __enter__(self) -> FinishOnInterrupt:
         if threading.current_thread() is threading.main_thread():

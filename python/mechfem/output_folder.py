@@ -116,13 +116,14 @@ def replaces(out: Path, source: Path) -> bool:
     """Whether writing ``out`` (renamed into place) would replace ``source``: the same name in the same folder
     (folders compared with their links resolved), or the same file through a link (a symbolic link is followed,
     a hard link is the same file)."""
-    if not os.path.lexists(out):
-        return False
-    if out.name == source.name and os.path.realpath(out.parent) == os.path.realpath(source.parent):
-        return True
+    # A broken link, an input that does not exist or a name with a NUL byte: the deck reader says what is wrong.
     try:
+        if not os.path.lexists(out):
+            return False
+        if out.name == source.name and os.path.realpath(out.parent) == os.path.realpath(source.parent):
+            return True
         return os.path.samefile(out, source)
-    except OSError:  # a broken link, or an input that does not exist (the run says so)
+    except (OSError, ValueError):
         return False
 
 

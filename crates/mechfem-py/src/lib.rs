@@ -151,10 +151,6 @@ fn execute(
     }
 }
 
-/// Reads the deck at `path`, compiles it and computes position 1 only.
-///
-/// Returns the sizes of the model, det(D^c) and the co-ordinates at
-/// position 1, the adjustment that led there, and the model echo.
 /// The text of the deck at `path` up to its END line, read within the
 /// bounds every deck is read in ([`mechfem_deck::read_deck`]); a deck that
 /// cannot be read is a `DeckError`.
@@ -181,6 +177,10 @@ fn deck_files(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     Ok(d)
 }
 
+/// Reads the deck at `path`, compiles it and computes position 1 only.
+///
+/// Returns the sizes of the model, det(D^c) and the co-ordinates at
+/// position 1, the adjustment that led there, and the model echo.
 #[pyfunction]
 fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     let (compiled, slot) = load(py, &path)?;

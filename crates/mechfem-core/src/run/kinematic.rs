@@ -26,8 +26,10 @@ use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 /// limit position or jumped to another assembly branch: it is halved, up
 /// to `params.max_halvings` times. When even the smallest step fails the
 /// run stops; the report says where and why, and locates the limit
-/// position the input ran into. So a driven motion never leaves the
-/// assembly branch it started on. Every
+/// position the input ran into. So a driven motion does not jump over a
+/// limit position to another assembly branch (a run of positions only,
+/// which has no det(D^c), may still pass a point where two branches meet,
+/// such as a parallelogram's collinear position). Every
 /// position computed so far has been observed, and the state is left at the
 /// last of them.
 ///

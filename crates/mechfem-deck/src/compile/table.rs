@@ -190,7 +190,9 @@ pub(crate) fn read_column(
             // weighs it: a value within the numbers of the dynamics keeps
             // that finite.
             if let Some((message, hint)) = out_of_bounds("the target value", v.value) {
-                return Err(src.error(DiagnosticKind::NumberOutOfRange, word.span, message).with_hint(hint));
+                return Err(token_only(
+                    src.error(DiagnosticKind::NumberOutOfRange, word.span, message).with_hint(hint),
+                ));
             }
             values.push(Some(v.value));
         }
