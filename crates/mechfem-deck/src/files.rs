@@ -99,7 +99,7 @@ pub(crate) fn is_end_line(line: &str) -> bool {
 }
 
 /// The text of the deck at `path` up to its END line, read as
-/// [`bytes_to_end`] reads it (invalid UTF-8 replaced, a byte-order mark
+/// `bytes_to_end` reads it (invalid UTF-8 replaced, a byte-order mark
 /// kept for the lexer to drop).
 pub fn read_deck(path: &Path) -> Result<String, Diagnostics> {
     let refused = |message: String, hint: String| -> Diagnostics {
