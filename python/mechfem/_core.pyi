@@ -486,6 +486,10 @@ class VaryDict(TypedDict):
     lo: float
     hi: float
     line: int
+    unit: NotRequired[str]
+    """The unit of its numbers in the deck ("" without UNITS)."""
+    scale: NotRequired[float]
+    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class TargetDict(TypedDict):
@@ -501,6 +505,10 @@ class TargetDict(TypedDict):
     value: float | None
     weight: float
     line: int
+    unit: NotRequired[str]
+    """The unit of its numbers in the deck ("" without UNITS)."""
+    scale: NotRequired[float]
+    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class BoundDict(TypedDict):
@@ -508,6 +516,10 @@ class BoundDict(TypedDict):
     lo: float
     hi: float
     line: int
+    unit: NotRequired[str]
+    """The unit of its numbers in the deck ("" without UNITS)."""
+    scale: NotRequired[float]
+    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class ObjectiveDict(TypedDict):
@@ -544,6 +556,8 @@ class DescribedDeckDict(TypedDict):
     """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None
     """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
+    units: NotRequired[dict[str, str | None]]
+    """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
     inttol: NotRequired[list[float] | None]
     """``[rtol, atol]`` of INTTOL; None (or absent) for a deck without INTTOL."""
     optimise: NotRequired[OptimiseDict | None]
@@ -624,5 +638,6 @@ def optimised_deck_text(
     coords: list[tuple[int, float]],
     file_dir: str | os.PathLike[str] | None = None,
 ) -> str:
-    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value) replaced, in
-    mode KIN ANA without OPTIMISE; MOV_FUNC files named from ``file_dir`` (the old deck's folder) when given."""
+    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value; the core's
+    numbers, written in the deck's UNITS where it has them) replaced, in mode KIN ANA without OPTIMISE; MOV_FUNC
+    files named from ``file_dir`` (the old deck's folder) when given."""

@@ -62,7 +62,9 @@ use crate::observe::Recording;
 
 /// Reads and compiles a deck (or takes it from [`cache`]), without the GIL.
 fn load(py: Python<'_>, path: &Path) -> PyResult<(Compiled, Arc<EchoSlot>)> {
-    py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))
+    let loaded = py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))?;
+    names::warn(py, &loaded.0)?;
+    Ok(loaded)
 }
 
 /// The model echo and storage requests of a run of `c` (see [`EchoSlot`]).

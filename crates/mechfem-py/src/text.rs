@@ -375,6 +375,7 @@ pub fn run_deck_text<'py>(
     memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+    crate::names::warn(py, &c)?;
     let numbers = Numbers::with(&c, &[]).map_err(PyValueError::new_err)?;
     let shared = Shared::new(py, &c)?;
     run_compiled(py, (&c, &shared), numbers, &path, motion, progress, order, memory_limit)
@@ -507,6 +508,11 @@ pub fn describe_deck_text<'py>(
     d.set_item("inttol", inttol)?;
     d.set_item("mode", c.mode.name())?;
     d.set_item("dynamics", c.dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
-    d.set_item("optimise", c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?)?;
+    let optimise = c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?;
+    if let (Some(o), Some(dict)) = (&c.optimise, &optimise) {
+        crate::names::optimise_units(&c, o, dict)?;
+    }
+    d.set_item("optimise", optimise)?;
+    d.set_item("units", crate::names::units(py, &c)?)?;
     Ok(d)
 }
