@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 
@@ -276,3 +277,40 @@ def test_a_bad_names_or_units_line_is_a_deck_error(tmp_path: Path, line: str, wo
     )
     with pytest.raises(DeckError, match=words):
         run(tmp_path, "bad.mec", text)
+
+
+# -- every example: SI units change no bit --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("deck", sorted(EXAMPLES.glob("**/*.mec")), ids=lambda p: p.stem)
+def test_an_example_in_si_units_gives_its_results_bit_for_bit(deck: Path, tmp_path: Path) -> None:
+    import shutil
+
+    from mechfem import _core
+
+    text = deck.read_text()
+    if re.search(r"^\s*UNITS\b", text, re.M):
+        pytest.skip("the example declares its units")
+    folder = tmp_path / deck.parent.name
+    shutil.copytree(deck.parent, folder)
+    mode = re.search(r"^\s*(KIN|DYN)\s+\w+.*$", text, re.M)
+    assert mode is not None
+    si = folder / deck.name
+    si.write_text(text[: mode.end()] + "\nUNITS LENGTH m ANGLE rad MASS kg FORCE N TIME s" + text[mode.end() :])
+    a, b = _core.run_deck(deck), _core.run_deck(si)
+    for key in ("table", "coords"):
+        assert np.array_equal(np.asarray(a[key]).view(np.uint64), np.asarray(b[key]).view(np.uint64)), key
+
+
+def test_an_angle_that_looks_like_degrees_is_warned_about(tmp_path: Path) -> None:
+    from mechfem import _core
+
+    text = (EXAMPLES / "fourbar" / "fourbar.mec").read_text().replace("MOV_RELE 1 12.566370614359172", "MOV_RELE 1 720")
+    with pytest.warns(_core.UnitWarning, match=r"720 is an angle in radians, but looks like degrees") as caught:
+        run(tmp_path, "degrees.mec", text)
+    assert "UNITS ANGLE deg" in str(caught[0].message)
+    # The same deck saying so is taken in degrees, without a warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = run(tmp_path, "said.mec", text.replace("KIN ANA", "KIN ANA\nUNITS ANGLE deg", 1))
+    assert result.buffers[1][-1] == pytest.approx(720.0)

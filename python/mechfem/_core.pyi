@@ -94,6 +94,10 @@ class ConvergenceError(MechfemError):
 class ResourceError(MechfemError):
     """The results would take more memory than the limit; the run was refused before it started."""
 
+class UnitWarning(UserWarning):
+    """A number of a deck that looks as if it were written in another unit than the deck's (an angle of 720 where
+    angles are radians); the run goes on with the number as written."""
+
 class LimitPositionError(MechfemError):
     """D^c is singular at position 1."""
 

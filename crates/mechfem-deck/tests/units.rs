@@ -128,3 +128,27 @@ fn a_final_design_is_written_in_the_decks_units() {
     assert_eq!(o.targets[0].kind, mechfem_deck::TargetKind::At { position: 4, value: 0.5 });
     assert!((o.vary[0].lo - 0.5).abs() < 1e-15 && (o.vary[0].hi - 2.0).abs() < 1e-15);
 }
+
+#[test]
+fn the_numbers_as_written_come_back_in_the_decks_units() {
+    let deg = 180.0 / PI;
+    let (l, t) = (1000.0, 1000.0);
+    let mm = compile(&slider_crank("UNITS LENGTH mm ANGLE deg TIME ms MASS kg FORCE N", l, deg, t));
+    let plain = compile(&slider_crank("", l, deg, t));
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+    // The plain deck's compiled numbers are the numbers as written.
+    for (a, b) in mm.coords_as_written().iter().zip(&plain.state.x) {
+        assert!(near(*a, *b), "{a} {b}");
+    }
+    let (m, p) = (mm.motion_as_written().unwrap(), plain.motion.clone().unwrap());
+    assert!(near(m.dt, p.dt));
+    assert_eq!(format!("{:.9?}", m.inputs), format!("{:.9?}", p.inputs));
+    let (d, p) = (mm.dynamics_as_written().unwrap(), plain.dynamics.clone().unwrap());
+    assert_eq!(format!("{:.6?}", d), format!("{:.6?}", p));
+    let [rows, _] = mm.rows_as_written();
+    for (a, b) in rows.iter().zip(&plain.prescribed) {
+        assert!(near(a.para.unwrap(), b.para.unwrap()));
+    }
+    // Without UNITS they are the compiled numbers, bit for bit.
+    assert_eq!(plain.coords_as_written(), plain.state.x);
+}

@@ -301,6 +301,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
     m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
     m.add("ResourceError", py.get_type::<ResourceError>())?;
+    m.add("UnitWarning", py.get_type::<names::UnitWarning>())?;
     m.add("DEFAULTS", catalogue::defaults(py)?)?;
     m.add_function(wrap_pyfunction!(catalogue::catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;

@@ -89,12 +89,20 @@ pub fn table(c: &Compiled, quantities: &[Quantity], table: &mut [f64], positions
     coords(c, coords_);
 }
 
-/// Warns (a Python `UserWarning`) of every number of the deck that looks
+pyo3::create_exception!(
+    _core,
+    UnitWarning,
+    PyUserWarning,
+    "A number of a deck that looks as if it were written in another unit than the deck's (an angle of 720 where \
+     angles are radians); the run goes on with the number as written."
+);
+
+/// Warns (a [`UnitWarning`], a Python `UserWarning`) of every number of the deck that looks
 /// like the wrong unit ([`Compiled::warnings`]).
 pub fn warn(py: Python<'_>, c: &Compiled) -> PyResult<()> {
     for w in &c.warnings {
         let text = CString::new(w.warning_text().replace('\0', " "))?;
-        PyErr::warn(py, &py.get_type::<PyUserWarning>(), &text, 1)?;
+        PyErr::warn(py, &py.get_type::<UnitWarning>(), &text, 1)?;
     }
     Ok(())
 }
@@ -102,8 +110,12 @@ pub fn warn(py: Python<'_>, c: &Compiled) -> PyResult<()> {
 /// Adds to the optimise dict of a deck ([`crate::convert::optimise`],
 /// whose numbers are the core's) the `unit` of every design variable,
 /// target and bound and the `scale` that gives a core number in it (the
-/// engine computes in the core's units; a report multiplies by `scale`).
+/// engine computes in the core's units; a report multiplies by `scale`),
+/// for a deck with UNITS.
 pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> PyResult<()> {
+    if !c.units.declared {
+        return Ok(());
+    }
     let set = |key: &str, dims: Vec<Dim>| -> PyResult<()> {
         let Some(list) = dict.get_item(key)? else { return Ok(()) };
         for (item, dim) in list.try_iter()?.zip(dims) {

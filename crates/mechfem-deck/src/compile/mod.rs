@@ -15,6 +15,7 @@ mod storage;
 mod table;
 mod tables;
 mod warn;
+mod written;
 
 use std::path::Path;
 
