@@ -182,6 +182,11 @@ def supply_rules(time: float) -> dict[str, Rule]:
         # a torque on an angle, in N mm
         "LOAD": lambda v: [v[0], v[1] * L],
         "TSTEPE": lambda v: [v[0], *(x * time for x in v[1:])],
+        # a torsion spring in N mm/deg about a free angle in deg, its damper in N mm time/deg
+        "SPRING": lambda v: [v[0], v[1] * L / DEG, v[2] * DEG, v[3] * L / DEG * time],
+        # a motor's stall torque in N mm, its no-load speed in deg/time
+        "MOTOR": lambda v: [v[0], v[1] * L, v[2] * DEG / time],
+        "MOV_DYN": lambda v: [v[0], v[1] * DEG / time],
     }
 
 
@@ -224,6 +229,22 @@ def test_supply_inverse_dynamics_in_mm_degrees_and_milliseconds(tmp_path: Path) 
     assert labels[113] == ("power", "N·mm/ms")
     assert labels[117] == ("M(phi,phi)", "kg·mm²")
     assert labels[114][1] == "N"
+
+
+def test_supply_simulation_in_mm_degrees_and_milliseconds(tmp_path: Path) -> None:
+    ms = 1000.0
+    source = (EXAMPLES / "supply" / "supply_sim.mec").read_text().replace("TSTEPE 800 2.5E-3", "TSTEPE 100 2E-2")
+    source = "".join(
+        s for s in source.splitlines(keepends=True) if not re.match(r"\s*(ANIMATE|BEGINPIC|ENDPIC|PLOT)", s)
+    )
+    si = run(tmp_path, "supply_sim_si.mec", source)
+    text = converted(source, supply_rules(ms), "UNITS LENGTH mm ANGLE deg MASS kg FORCE N TIME ms", SUPPLY_NAMES)
+    mm = run(tmp_path, "supply_sim_mm.mec", text)
+    assert mm.positions == si.positions == 101
+    factors = {98: ms, 99: DEG, 100: DEG, 101: DEG / ms, 111: L, 112: L, 114: 1.0, 115: 1.0, 116: 1.0}
+    for number, factor in factors.items():
+        close(mm.buffers[number], si.buffers[number] * factor, rtol=1e-7)
+    assert by_number(mm)[101] == ("vphi", "deg/ms")
 
 
 def test_kin_opt_with_vary_and_targets_in_degrees(tmp_path: Path) -> None:
