@@ -30,7 +30,10 @@ use crate::diagnostic::Diagnostics;
 pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let m = model::model(deck)?;
     let sizes = refs::Sizes::of(&m.mechanism);
-    let dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
+    let (dynamics, dynamics_lines) = match dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)? {
+        Some((d, lines)) => (Some(d), lines),
+        None => (None, Vec::new()),
+    };
     let (motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
     let integration = motion::integration(deck, &params);
     if let Some(mo) = &motion {
@@ -55,6 +58,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         dependent: m.dependent,
         names: m.names,
         dynamics,
+        dynamics_lines,
         optimise,
     })
 }
