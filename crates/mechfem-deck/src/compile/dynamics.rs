@@ -17,6 +17,9 @@ use crate::statements::dynamics::out_of_bounds;
 /// most, and a larger file is more likely the wrong file.
 const MAX_LOAD_FILE: u64 = 8 << 20;
 
+/// Each mass and load with the line of its statement.
+pub(crate) type StatementLines = Vec<(DynamicSource, usize)>;
+
 /// The mass and load model of a `DYN ANA` or `DYN SIM` deck (`None` for
 /// other modes), with the line of the statement each mass and load comes
 /// from (a fault found during the run names it).
@@ -25,7 +28,7 @@ pub(crate) fn dynamics(
     mech: &Mechanism,
     sizes: &Sizes,
     deck_dir: &Path,
-) -> Result<Option<(Dynamics, Vec<(DynamicSource, usize)>)>, Box<Diagnostic>> {
+) -> Result<Option<(Dynamics, StatementLines)>, Box<Diagnostic>> {
     let mode = deck.mode.value;
     if !mode.has_dynamics() {
         return Ok(None);
