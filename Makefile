@@ -67,7 +67,7 @@ test: install browser
 	cargo fmt --all --check
 	$(BIN)/ruff check python tests
 	$(BIN)/mypy --strict python/mechfem
-	$(PY) -m pytest -q tests
+	$(PY) -m pytest -q -n auto tests
 
 # The documentation site: docs/*.md with mkdocs (a dev dependency) into site/; --strict fails on any warning,
 # a broken link among them (mkdocs.yml, scripts/mkdocs_hooks.py).

@@ -287,7 +287,9 @@ def test_a_dynamics_result_that_overflows_mid_run_stops_with_the_mass_named(
     status, err = run_here(RUNTIME / "dynamics_overflow.mec", tmp_path / "out", capsys)
     assert status == 3, err
     assert "The motion stopped after position 1 of 11" in err
-    assert "the potential energy of the PMASS at co-ordinates 3, 4 is not finite" in err
+    # The statement is named with its deck line (line 18 holds `PMASS 3 4 1e100`).
+    assert "PMASS 3 4 1e100" in (RUNTIME / "dynamics_overflow.mec").read_text().splitlines()[17]
+    assert "the potential energy of the PMASS at co-ordinates 3, 4 given at line 18 is not finite" in err
     assert "XMOV" not in err and "smaller steps" not in err
     rows = (tmp_path / "out" / "dynamics_overflow.csv").read_text().splitlines()
     assert len(rows) == 2  # the header and position 1
@@ -315,5 +317,22 @@ def test_a_simulation_whose_forces_overflow_at_the_start_names_the_mass(
     )
     status, err = run_here(variant(tmp_path, VALID / "pendulum_released.mec", *change), tmp_path / "out", capsys)
     assert status == 1, err
-    assert "the inertia force of the MASS on element 1 (BIN) is not finite" in err, err
+    assert "the inertia force of the MASS on element 1 (BIN) given at line 18 is not finite" in err, err
     assert "XMOV" not in err and "no mass" not in err
+
+
+def test_a_dynamics_fault_of_a_python_model_is_named_by_its_points_without_deck_lines() -> None:
+    # The same overflowing slider as dynamics_overflow.mec, built in Python: the message names the point by the
+    # model's names; the line of the deck text the model was written to means nothing to its author.
+    from mechfem import Driven, Mechanism, MechfemError, Motion
+
+    m = Mechanism("slider")
+    guide_start, slider = m.fixed("O", 0.0, 0.0), m.point("S", 1e100, 0.0)
+    m.bar("guide", guide_start, slider, length=Driven(name="travel"), angle=0.0)
+    m.point_mass(slider, 1e100)
+    m.gravity(-1e100, 0.0)
+    with pytest.raises(MechfemError) as caught:
+        m.run(Motion.to(10, {"travel": 1e110}))
+    message = str(caught.value)
+    assert "of the PMASS at co-ordinates S.x, S.y is not finite" in message, message
+    assert "line" not in message, message

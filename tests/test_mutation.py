@@ -19,6 +19,8 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
+import pytest
+
 from conftest import ROOT, mechfem_command
 
 N_MUTANTS = int(os.environ.get("MECHFEM_MUTANTS", "60"))
@@ -194,8 +196,13 @@ def check_mutant(m: Mutant) -> str | None:
     )
 
 
-def test_mutated_example_decks_never_make_the_command_fail_internally(tmp_path: Path) -> None:
-    mutants = [make_mutant(k, tmp_path) for k in range(N_MUTANTS)]
-    with ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 2)) as pool:
+# The mutants in a few batches, so that parallel test workers (pytest -n) share them out.
+BATCHES = 4
+
+
+@pytest.mark.parametrize("batch", range(BATCHES))
+def test_mutated_example_decks_never_make_the_command_fail_internally(tmp_path: Path, batch: int) -> None:
+    mutants = [make_mutant(k, tmp_path) for k in range(batch, N_MUTANTS, BATCHES)]
+    with ThreadPoolExecutor(max_workers=2) as pool:
         failures = [f for f in pool.map(check_mutant, mutants) if f]
-    assert not failures, f"{len(failures)} of {N_MUTANTS} mutants failed:\n\n" + "\n\n".join(failures[:10])
+    assert not failures, f"{len(failures)} of {len(mutants)} mutants failed:\n\n" + "\n\n".join(failures[:10])

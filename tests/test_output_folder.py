@@ -9,7 +9,6 @@ import signal
 import subprocess
 import sys
 import textwrap
-import time
 from pathlib import Path
 
 import pytest
@@ -120,25 +119,25 @@ def test_a_deck_name_too_long_for_its_outputs_is_refused_before_the_run(cli: Cli
 
 
 def test_a_second_run_of_the_same_stem_into_one_folder_is_refused_at_once(tmp_path: Path) -> None:
-    first = fourbar_in(tmp_path / "a", steps=2000)
     second = fourbar_in(tmp_path / "b", steps=6)
     out = tmp_path / "out"
     out.mkdir()
-    # The first run holds the lock while it computes and writes.
-    holder = subprocess.Popen(
-        [*mechfem_command(), "run", str(first), "-o", str(out)],
-        stdin=subprocess.DEVNULL,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
+    (out / "fourbar.prt").write_text("the first run's print file\n")
+    # Another process holds the lock of `fourbar` in the folder, as a run does while it computes and writes, until
+    # it is told to let go: no race with how long a real run takes.
+    script = textwrap.dedent(
+        f"""
+        import sys
+        from pathlib import Path
+        from mechfem.output_folder import locked
+        with locked(Path({str(out)!r}), "fourbar"):
+            print("locked", flush=True)
+            sys.stdin.read()
+        """
     )
+    holder = subprocess.Popen([sys.executable, "-c", script], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
-        lock = out / ".fourbar.lock"
-        deadline = time.monotonic() + 60
-        while not lock.exists() and holder.poll() is None and time.monotonic() < deadline:
-            time.sleep(0.01)
-        assert lock.exists(), "the first run took no lock"
-        started = time.monotonic()
+        assert holder.stdout is not None and holder.stdout.readline() == "locked\n"
         refused = subprocess.run(
             [*mechfem_command(), "run", str(second), "-o", str(out)],
             stdin=subprocess.DEVNULL,
@@ -146,23 +145,22 @@ def test_a_second_run_of_the_same_stem_into_one_folder_is_refused_at_once(tmp_pa
             text=True,
             timeout=120,
         )
-        assert holder.poll() is None, "the first run ended before the second was refused: make it longer"
         assert refused.returncode == 1, refused.stderr
         assert "another mechfem run is writing the outputs of `fourbar`" in refused.stderr
         assert "-o OUTDIR" in refused.stderr and "Traceback" not in refused.stderr
-        assert time.monotonic() - started < 60
+        # The refused run wrote nothing: the holder's files are as they were.
+        assert (out / "fourbar.prt").read_text() == "the first run's print file\n"
+        assert sorted(p.name for p in out.iterdir()) == [".fourbar.lock", "fourbar.prt"]
     finally:
-        _, err = holder.communicate(timeout=600)
-    assert holder.returncode == 0, err
-    # The folder holds the first run's files only, and no lock file.
-    prt = (out / "fourbar.prt").read_text()
-    assert f"deck: {first}" in prt and "positions computed: 2001" in prt
-    assert not [p.name for p in out.iterdir() if p.name.startswith(".")]
-    # Once the first has ended, the second runs.
+        holder.communicate("", timeout=60)
+    assert holder.returncode == 0
+    assert not (out / ".fourbar.lock").exists()
+    # Once the holder has let go, the second runs.
     again = subprocess.run(
         [*mechfem_command(), "run", str(second), "-o", str(out)], stdin=subprocess.DEVNULL, capture_output=True
     )
     assert again.returncode == 0, again.stderr
+    assert f"deck: {second}" in (out / "fourbar.prt").read_text()
 
 
 def test_the_lock_is_released_and_removed_whatever_ends_the_run(tmp_path: Path) -> None:

@@ -122,6 +122,9 @@ class PythonWords(Words):
         """A thing a message of the core names, by the model's names (the deck's words for a number the model
         does not have)."""
         nb = self.numbering
+        if kind == "line":
+            # The line of a deck this model was written to: the model's own names already say which statement.
+            return ""
         if kind == "term" and isinstance(value, str):
             return _TERMS.get(value, deck)
         if kind == "detail" and isinstance(value, Mapping):

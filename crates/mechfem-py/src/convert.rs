@@ -70,21 +70,28 @@ fn limit<'py>(py: Python<'py>, l: &LimitPosition) -> PyResult<Bound<'py, PyDict>
     Ok(d)
 }
 
-fn stop<'py>(py: Python<'py>, mech: &Mechanism, s: &Stop) -> PyResult<Bound<'py, PyDict>> {
+fn stop<'py>(py: Python<'py>, mech: &Mechanism, lines: errors::Lines<'_>, s: &Stop) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("last_good", s.last_good + 1)?;
     d.set_item("inputs", s.inputs.clone())?;
     d.set_item("last_inputs", s.last_inputs.clone())?;
     d.set_item("kind", errors::kind(&s.error))?;
-    let parts = errors::parts(mech, &s.error);
+    let parts = errors::parts(mech, lines, &s.error);
     d.set_item("message", errors::message(&parts))?;
     d.set_item("parts", errors::parts_object(py, &parts)?)?;
     d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
     Ok(d)
 }
 
-/// `RunReport` as a dict; `steps` is the number of steps the motion asked for.
-pub fn report<'py>(py: Python<'py>, mech: &Mechanism, r: &RunReport, steps: usize) -> PyResult<Bound<'py, PyDict>> {
+/// `RunReport` as a dict; `steps` is the number of steps the motion asked
+/// for, `lines` the DYNAMICS lines a stop's fault may name.
+pub fn report<'py>(
+    py: Python<'py>,
+    mech: &Mechanism,
+    lines: errors::Lines<'_>,
+    r: &RunReport,
+    steps: usize,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("adjust", adjust(py, &r.adjust)?)?;
     d.set_item("positions", r.positions)?;
@@ -93,7 +100,7 @@ pub fn report<'py>(py: Python<'py>, mech: &Mechanism, r: &RunReport, steps: usiz
     let limits = r.limits.iter().map(|l| limit(py, l)).collect::<PyResult<Vec<_>>>()?;
     d.set_item("limits", limits)?;
     d.set_item("singular_positions", r.singular_positions.iter().map(|k| k + 1).collect::<Vec<_>>())?;
-    d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, s)).transpose()?)?;
+    d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, lines, s)).transpose()?)?;
     Ok(d)
 }
 

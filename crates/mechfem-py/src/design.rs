@@ -214,7 +214,10 @@ impl DesignModel {
                 let stop = run.report.stop.as_ref();
                 let reason = stop.map(|s| {
                     let at = s.last_good + 2;
-                    format!("the motion stopped before position {at}: {}", errors::describe(&c.mechanism, &s.error))
+                    format!(
+                        "the motion stopped before position {at}: {}",
+                        errors::describe(&c.mechanism, &c.dynamics_lines, &s.error)
+                    )
                 });
                 let at_1 = run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec);
                 d.set_item("position_one", at_1)?;
@@ -222,7 +225,7 @@ impl DesignModel {
                 d.set_item("reason_kind", reason.as_ref().map(|_| "stopped"))?;
                 d.set_item("reason", reason)?;
                 d.set_item("positions", run.positions)?;
-                d.set_item("report", convert::report(py, &c.mechanism, &run.report, motion.steps)?)?;
+                d.set_item("report", convert::report(py, &c.mechanism, &c.dynamics_lines, &run.report, motion.steps)?)?;
                 d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
                 let g = PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?;
                 d.set_item("gradient", g)?;
@@ -270,9 +273,10 @@ impl DesignModel {
 /// The kind of a failure (see [`DesignModel::evaluate`]) and its words.
 fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
     match e {
-        DesignFailure::Solve(e) => {
-            ("position_one", format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, e)))
-        }
+        DesignFailure::Solve(e) => (
+            "position_one",
+            format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, &c.dynamics_lines, e)),
+        ),
         DesignFailure::OtherBranch { .. } => ("other_branch", e.to_string()),
         DesignFailure::LeftBranch(_) => ("left_branch", e.to_string()),
     }

@@ -197,6 +197,9 @@ pub enum Part {
     Rows(Vec<usize>),
     /// A term the deck spells its own way.
     Term(DeckTerm),
+    /// The deck line of the statement just named (` given at line 23`); a front
+    /// end whose model has no deck leaves it out.
+    Line(usize),
     /// Why element `element` cannot be evaluated.
     Detail {
         /// Deck number.
@@ -216,6 +219,7 @@ impl Part {
             Part::Row(_) => "row",
             Part::Rows(_) => "rows",
             Part::Term(_) => "term",
+            Part::Line(_) => "line",
             Part::Detail { .. } => "detail",
         }
     }
@@ -230,6 +234,7 @@ impl Part {
             Part::Row(r) => format!("row {r}"),
             Part::Rows(r) => format!("rows {}", list(r)),
             Part::Term(t) => t.deck().to_string(),
+            Part::Line(n) => format!(" given at line {n}"),
             Part::Detail { error, .. } => error.to_string(),
         }
     }
@@ -240,7 +245,9 @@ impl Part {
     fn object<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let value = match self {
             Part::Text(t) => return Ok(PyString::new(py, t).into_any()),
-            Part::Element { number: n, .. } | Part::Coordinate(n) | Part::Row(n) => n.into_pyobject(py)?.into_any(),
+            Part::Element { number: n, .. } | Part::Coordinate(n) | Part::Row(n) | Part::Line(n) => {
+                n.into_pyobject(py)?.into_any()
+            }
             Part::Coords(n) | Part::Rows(n) => PyList::new(py, n)?.into_any(),
             Part::Term(t) => PyString::new(py, t.code()).into_any(),
             Part::Detail { element, error } => detail_fields(py, *element, error)?.into_any(),
@@ -287,8 +294,13 @@ pub fn detail_fields<'py>(py: Python<'py>, element: usize, error: &ElementError)
     Ok(d)
 }
 
-/// The error in parts, with the deck's numbering.
-pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
+/// The DYNAMICS line of each mass and load, as the compiled deck gives
+/// them ([`mechfem_deck::Compiled::dynamics_lines`]).
+pub type Lines<'a> = &'a [(DynamicSource, usize)];
+
+/// The error in parts, with the deck's numbering; a fault of the dynamics
+/// names the line of its statement from `lines`.
+pub fn parts(mech: &Mechanism, lines: Lines<'_>, err: &SolveError) -> Vec<Part> {
     match err {
         SolveError::Element { element, source } => {
             let ty = mech.elements().get(*element).map_or("?", |e| e.ty.name());
@@ -314,7 +326,7 @@ pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
             "det(D^c) changed sign within the step (from {before:.3e} to {after:.3e}): the step crosses a limit \
              position or a point where two assembly branches meet"
         ))],
-        SolveError::Dynamics(fault) => dynamics_parts(mech, fault),
+        SolveError::Dynamics(fault) => dynamics_parts(mech, lines, fault),
         SolveError::Unsupported(u) => u
             .pieces()
             .iter()
@@ -330,7 +342,7 @@ pub fn parts(mech: &Mechanism, err: &SolveError) -> Vec<Part> {
 /// A result of the dynamics that is not finite, in parts with the deck's
 /// numbering: what it is, the DYNAMICS line's keyword and what that line
 /// names, and what to check.
-fn dynamics_parts(mech: &Mechanism, fault: &DynamicsFault) -> Vec<Part> {
+fn dynamics_parts(mech: &Mechanism, lines: Lines<'_>, fault: &DynamicsFault) -> Vec<Part> {
     let element = |k: usize| Part::Element { number: k + 1, ty: mech.elements().get(k).map_or("?", |e| e.ty.name()) };
     let mut parts = vec![text(format!("{} ", fault.quantity.words()))];
     parts.extend(match fault.source {
@@ -351,6 +363,9 @@ fn dynamics_parts(mech: &Mechanism, fault: &DynamicsFault) -> Vec<Part> {
         }
         DynamicSource::Drives => vec![text("of the drives")],
     });
+    if let Some(&(_, line)) = lines.iter().find(|(s, _)| *s == fault.source) {
+        parts.push(Part::Line(line));
+    }
     parts.push(text(
         " is not finite: a mass, a load or a speed of the motion is too large for the products the dynamics form of \
          them (a double holds about 1.8e308); check the units and the values of the DYNAMICS block and of the motion",
@@ -359,15 +374,21 @@ fn dynamics_parts(mech: &Mechanism, fault: &DynamicsFault) -> Vec<Part> {
 }
 
 /// The error in words, with the deck's numbering.
-pub fn describe(mech: &Mechanism, err: &SolveError) -> String {
-    message(&parts(mech, err))
+pub fn describe(mech: &Mechanism, lines: Lines<'_>, err: &SolveError) -> String {
+    message(&parts(mech, lines, err))
 }
 
 /// The exception for a failure at position 1. A singular D^c is analysed
 /// at the co-ordinates where it was met, to name the rows and co-ordinates
 /// at fault.
-pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> PyErr {
-    let (e, parts) = position_one_exception(py, mech, state, err);
+pub fn position_one_error(
+    py: Python<'_>,
+    mech: &Mechanism,
+    lines: Lines<'_>,
+    state: &mut State,
+    err: &SolveError,
+) -> PyErr {
+    let (e, parts) = position_one_exception(py, mech, lines, state, err);
     let value = e.value(py);
     // Every failure here is at position 1; a front end words it from this
     // and the fields below instead of from the message.
@@ -400,8 +421,14 @@ pub fn position_one_error(py: Python<'_>, mech: &Mechanism, state: &mut State, e
 /// The exception of [`position_one_error`] and the parts of its message,
 /// with the fields only its analysis finds (the rows and co-ordinates of a
 /// singular D^c).
-fn position_one_exception(py: Python<'_>, mech: &Mechanism, state: &mut State, err: &SolveError) -> (PyErr, Vec<Part>) {
-    let mut parts = parts(mech, err);
+fn position_one_exception(
+    py: Python<'_>,
+    mech: &Mechanism,
+    lines: Lines<'_>,
+    state: &mut State,
+    err: &SolveError,
+) -> (PyErr, Vec<Part>) {
+    let mut parts = parts(mech, lines, err);
     let e = match err {
         SolveError::Element { .. } => AssemblyError::new_err(message(&parts)),
         SolveError::Singular { .. } => {

@@ -161,7 +161,7 @@ fn execute(
     let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
     match result {
         Ok((report, sim)) => Ok(Ran { compiled: c, given, rec, report, sim, interrupted }),
-        Err(e) => Err(errors::position_one_error(py, &c.mechanism, &mut c.state, &e)),
+        Err(e) => Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut c.state, &e)),
     }
 }
 
@@ -279,7 +279,7 @@ fn run_deck(
     d.set_item(intern!(py, "hodograph_coords"), hodograph_coords)?;
     d.set_item(intern!(py, "simulation"), sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
-    let report_dict = || convert::report(py, mech, &report, steps);
+    let report_dict = || convert::report(py, mech, &c.dynamics_lines, &report, steps);
     let report_dict = match convert::plain_report_key(&report, steps).filter(|_| sim.is_none()) {
         Some(key) => slot.report(py, key, report_dict)?,
         None => report_dict()?,

@@ -102,7 +102,7 @@ fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, mut r: FullRun) -> P
     let d = PyDict::new(py);
     d.set_item("model", model)?;
     d.set_item("storage", s.storage.bind(py))?;
-    d.set_item("report", convert::report(py, mech, &r.report, r.steps)?)?;
+    d.set_item("report", convert::report(py, mech, &c.dynamics_lines, &r.report, r.steps)?)?;
     d.set_item("buffer_numbers", s.buffer_numbers.bind(py))?;
     d.set_item("n_coords", n)?;
     d.set_item("n_dof", nd)?;
@@ -137,7 +137,7 @@ pub fn outcome_dict<'py>(
         Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
         Outcome::Failed(mut state, e) => {
             let (c, _) = text.ok_or_else(lost)?;
-            Err(errors::position_one_error(py, &c.mechanism, &mut state, &e))
+            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut state, &e))
         }
     }
 }

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use mechfem_core::dynamics::{has_frame, Body, Dynamics, Force, Inertia, Load, LoadKind, PointMass};
-use mechfem_core::Mechanism;
+use mechfem_core::{DynamicSource, Mechanism};
 
 use super::refs::{coordinate, form, Sizes};
 use super::table::{self, Layout};
@@ -17,18 +17,23 @@ use crate::statements::dynamics::out_of_bounds;
 /// most, and a larger file is more likely the wrong file.
 const MAX_LOAD_FILE: u64 = 8 << 20;
 
+/// Each mass and load with the line of its statement.
+pub(crate) type StatementLines = Vec<(DynamicSource, usize)>;
+
 /// The mass and load model of a `DYN ANA` or `DYN SIM` deck (`None` for
-/// other modes).
+/// other modes), with the line of the statement each mass and load comes
+/// from (a fault found during the run names it).
 pub(crate) fn dynamics(
     deck: &Deck,
     mech: &Mechanism,
     sizes: &Sizes,
     deck_dir: &Path,
-) -> Result<Option<Dynamics>, Box<Diagnostic>> {
+) -> Result<Option<(Dynamics, StatementLines)>, Box<Diagnostic>> {
     let mode = deck.mode.value;
     if !mode.has_dynamics() {
         return Ok(None);
     }
+    let mut lines: Vec<(DynamicSource, usize)> = Vec::new();
     let Some(block) = &deck.dynamics else {
         return Err(missing_dynamics(&deck.path, &deck.source, mode, deck.mode.span));
     };
@@ -52,8 +57,10 @@ pub(crate) fn dynamics(
     };
     for m in &block.masses {
         once(Keyword::Mass, Carrier::Element(m.element.value), m.line, m.element.span)?;
+        let k = element(deck, m)?;
+        lines.push((DynamicSource::Body { element: k }, m.line));
         d.bodies.push(Body {
-            element: element(deck, m)?,
+            element: k,
             mass: m.mass.value,
             u: m.u.value,
             v: m.v.value,
@@ -63,6 +70,7 @@ pub(crate) fn dynamics(
     for p in &block.point_masses {
         let (x, y) = (coordinate(deck, sizes, Keyword::Pmass, &p.x)?, coordinate(deck, sizes, Keyword::Pmass, &p.y)?);
         once(Keyword::Pmass, Carrier::Point(p.x.value, p.y.value), p.line, p.x.span.to(p.y.span))?;
+        lines.push((DynamicSource::PointMass { x, y }, p.line));
         d.point_masses.push(PointMass { x, y, mass: p.mass.value });
     }
     for i in &block.inertias {
@@ -71,6 +79,7 @@ pub(crate) fn dynamics(
         // coupled by a combined row, say).
         let coord = coordinate(deck, sizes, Keyword::Inertia, &i.coord)?;
         once(Keyword::Inertia, Carrier::Coordinate(i.coord.value), i.line, i.coord.span)?;
+        lines.push((DynamicSource::Inertia { coord }, i.line));
         d.inertias.push(Inertia { coord, inertia: i.inertia.value });
     }
     if let Some(g) = &block.gravity {
@@ -79,6 +88,7 @@ pub(crate) fn dynamics(
     for f in &block.forces {
         let (x, y) = (coordinate(deck, sizes, Keyword::Force, &f.x)?, coordinate(deck, sizes, Keyword::Force, &f.y)?);
         once(Keyword::Force, Carrier::Point(f.x.value, f.y.value), f.line, f.x.span.to(f.y.span))?;
+        lines.push((DynamicSource::Force { x, y }, f.line));
         d.forces.push(Force { x, y, f: [f.fx.value, f.fy.value] });
     }
     for l in &block.loads {
@@ -92,6 +102,7 @@ pub(crate) fn dynamics(
             }
             LoadDefKind::Motor { t0, w0 } => LoadKind::Motor { t0: t0.value, w0: w0.value },
         };
+        lines.push((DynamicSource::Load { form, keyword: l.keyword.value.name() }, l.line));
         d.loads.push(Load { form, kind });
     }
     // Every line has been checked above; this is the core's own check, in
@@ -104,7 +115,7 @@ pub(crate) fn dynamics(
             format!("the masses and loads are refused: {e}"),
         )
     })?;
-    Ok(Some(d))
+    Ok(Some((d, lines)))
 }
 
 /// What a line of the DYNAMICS block puts its mass or load on, in the

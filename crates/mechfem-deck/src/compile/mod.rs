@@ -42,7 +42,10 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let deck = core.as_ref().unwrap_or(deck);
     let m = model::model(deck)?;
     let sizes = refs::Sizes::of(&m.mechanism);
-    let mut dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
+    let (mut dynamics, dynamics_lines) = match dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)? {
+        Some((d, lines)) => (Some(d), lines),
+        None => (None, Vec::new()),
+    };
     let (mut motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
     let integration = motion::integration(deck, &params);
     if let Some(mo) = &motion {
@@ -80,6 +83,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         dims,
         warnings,
         dynamics,
+        dynamics_lines,
         optimise,
     })
 }
