@@ -22,7 +22,9 @@ from mechfem.labels import (
     buffer_labels,
     coordinate_name,
     input_name,
+    over,
     point_name,
+    row_dest_unit,
     row_unit,
     stress_unit,
     with_unit,
@@ -266,6 +268,26 @@ def default_card(result: RunResult, labels: dict[int, Label], cols: Columns, xke
     }
 
 
+def model_card(result: RunResult, cols: Columns) -> tuple[str, dict[str, Any]] | None:
+    """For the run of a named model that records no buffers: its outputs and their first-order transfer functions
+    against its first input, by the model's names and in its units; with the input's column key."""
+    nb = result.numbering
+    if not result.named or not nb.inputs:
+        return None
+    phi = nb.inputs[0]
+    phi_unit = row_dest_unit(result, nb.row_dest[phi])
+    x = cols.add(f"n:{phi.name}", phi.name, phi_unit, "input", result.input(phi))
+    ys = []
+    for r in nb.dependent:
+        unit = row_dest_unit(result, nb.row_dest[r])
+        ys.append(cols.add(f"n:{r.name}", r.name, unit, "position", result.value(r)))
+        per = over(unit, phi_unit)
+        ys.append(cols.add(f"n:{r.name}'", f"d{r.name}/d{phi.name}", per, "first order", result.value(r, 1, phi)))
+    if not ys:
+        return None
+    return x, {"title": f"outputs against {phi.name}", "picture": None, "charts": _function_charts(x, ys, cols)}
+
+
 def limit_markers(result: RunResult, xkey: str) -> list[dict[str, Any]]:
     """Every located limit position: where the page's slider goes (0-based position) and where on the det chart."""
     report = result.report
@@ -308,6 +330,8 @@ def _full(result: RunResult, key: str) -> np.ndarray:
         return result.time
     if key == "pos":
         return np.arange(1, result.positions + 1, dtype=np.float64)
+    if key.startswith("n:"):
+        return result.input(key[2:])
     return result.buffers[int(key[1:])]
 
 

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Mapping, Sequence
+import os
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any, NamedTuple, Protocol
 
 import numpy as np
@@ -20,6 +22,7 @@ import numpy.typing as npt
 
 from mechfem import optional
 from mechfem.echo import BUFFER_ARGS, Model, ModelNames, Storage
+from mechfem.hooks import Hook
 from mechfem.run_report import RunReport
 from mechfem.units import Unit, check_unit, factor
 from mechfem.words import Words
@@ -470,6 +473,19 @@ class ResultTables:
             add(c.name, c)
         return out
 
+    # -- the report
+
+    def to_html(self) -> str:
+        """The interactive report of the run as one self-contained HTML page (the text of the file ``mechfem run
+        --report`` writes): the mechanism animated, det(D^c) and the limit positions, every picture and a table of
+        the buffers, named and in the model's units."""
+        return REPORT.call(self)
+
+    def save_report(self, path: str | os.PathLike[str]) -> Path:
+        """Writes :meth:`to_html` to ``path`` (a file; its folder is made if needed), whole or not at all; returns
+        the path."""
+        return SAVE_REPORT.call(self, Path(path))
+
     def to_pandas(self, coordinates: bool = True) -> Any:
         """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...). Needs pandas
         (``pip install 'mechfem[pandas]'``)."""
@@ -477,3 +493,8 @@ class ResultTables:
         frame = pd.DataFrame(self.table(coordinates))
         frame.index = pd.RangeIndex(1, self.coords.shape[0] + 1, name="position")
         return frame
+
+
+# The report is written by mechfem.report, above this module (docs/architecture.md).
+REPORT: Hook[Callable[[Any], str]] = Hook("RunResult.to_html", "mechfem.report")
+SAVE_REPORT: Hook[Callable[[Any, Path], Path]] = Hook("RunResult.save_report", "mechfem.report")
