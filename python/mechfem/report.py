@@ -39,7 +39,7 @@ from mechfem.report_charts import (
     picture_cards,
 )
 from mechfem.result import RunResult
-from mechfem.result_tables import REPORT, SAVE_REPORT
+from mechfem.result_tables import REPORT, SAVE_REPORT, run_units
 
 #: Most positions the report shows (slider, charts and table); longer runs are subsampled evenly.
 MAX_REPORT_POSITIONS = 2000
@@ -78,7 +78,7 @@ def report_data(result: RunResult) -> dict[str, Any]:
     frames = report_positions(result.positions)
     drawing = MechanismDrawing(result.model, result.coords)
     labels = all_labels(result)
-    cols = Columns(frames)
+    cols = Columns(frames, run_units(result))
     table = [cols.buffer(result, labels[b.number]) for b in result.storage.buffers if b.number in labels]
     xkey = main_axis(result, labels, cols)
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")

@@ -26,11 +26,13 @@ from mechfem.labels import (
     point_name,
     row_dest_unit,
     row_unit,
+    shown,
     stress_unit,
     with_unit,
 )
 from mechfem.plots import hodograph, picture_title
 from mechfem.result import RunResult
+from mechfem.units import Units
 
 
 def num(v: float) -> float | None:
@@ -50,11 +52,18 @@ class Columns:
     """The columns of a report, by key, each sampled at the report's frames."""
 
     frames: np.ndarray
+    units: Units = field(default_factory=Units)
+    """The run's units, in which every column's unit is said."""
     table: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def shown(self, unit: str) -> str:
+        """``unit`` (in the words of the unit algebra, or already said in the run's units) in the run's units."""
+        return shown(unit, self.units)
 
     def add(
         self, key: str, name: str, unit: str, kind: str, values: Any, header: str | None = None, text: str = ""
     ) -> str:
+        unit = self.shown(unit)
         if key not in self.table:
             self.table[key] = {
                 "name": name,
@@ -223,7 +232,7 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
         for p in pic.plots:
             if p.keyword == "PLOTCURV" and p.a in labels and p.b in labels:
                 la, lb = labels[p.a], labels[p.b]
-                curves.setdefault((la.unit, lb.unit), []).append(
+                curves.setdefault((la.base, lb.base), []).append(
                     {"x": cols.buffer(result, la), "y": cols.buffer(result, lb), "name": f"{lb.name} against {la.name}"}
                 )
         if hodos:
@@ -234,8 +243,8 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
                     "type": "xy",
                     "equal": True,
                     "mechanism": True,
-                    "xlabel": with_unit("x", "length"),
-                    "ylabel": with_unit("y", "length"),
+                    "xlabel": with_unit("x", cols.shown("length")),
+                    "ylabel": with_unit("y", cols.shown("length")),
                     "series": series,
                     "hodographs": hodos,
                 }
@@ -247,8 +256,8 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
                 {
                     "type": "xy",
                     "equal": ux == uy,
-                    "xlabel": with_unit(", ".join(xs), ux),
-                    "ylabel": with_unit(", ".join(ys), uy),
+                    "xlabel": with_unit(", ".join(xs), cols.shown(ux)),
+                    "ylabel": with_unit(", ".join(ys), cols.shown(uy)),
                     "series": series,
                 }
             )
