@@ -95,3 +95,27 @@ def test_scale_converts_within_one_kind_only() -> None:
     assert scale("rad", "deg") == 180.0 / math.pi and scale(None, "mm") == 1.0
     with pytest.raises(ValueError, match="not units of one kind"):
         scale("mm", "deg")
+
+
+def test_the_names_block_names_points_elements_rows_and_outputs_by_deck_number() -> None:
+    from mechfem.deck_names import names_block
+    from mechfem.deckio import number_model
+
+    m = fourbar()
+    m.scalar("ratio", 2.0)
+    m.point("my point", 1.0, 1.0)  # a name the deck language cannot hold stays out
+    block = [text for text, _ in names_block(m, number_model(m))]
+    # Fixed co-ordinates first, in the order given (A0, B0, ratio), then the moving ones (A, B, my point).
+    assert block == [
+        "NAMES",
+        "POINT 1 2 A0",
+        "POINT 3 4 B0",
+        "POINT 6 7 A",
+        "POINT 8 9 B",
+        "COORD 5 ratio",
+        "ELEM 1 crank",
+        "ELEM 2 coupler",
+        "ELEM 3 rocker",
+        "ROW 4 phi",
+        "DEP 1 psi",
+    ]
