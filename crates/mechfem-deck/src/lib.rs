@@ -105,10 +105,11 @@ use std::path::Path;
 
 pub use ast::{Deck, Mode};
 pub use compile::compile;
-pub use compiled::{Buffer, Compiled, ElementInfo, Names, Picture, PlotItem, RowInfo, TermInfo};
+pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
 pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned, MAX_OUTPUT_NAME};
 pub use files::{read_deck, MAX_DECK_BYTES};
 pub use keywords::{Block, Keyword};
+pub use mechfem_core::{Names, Units};
 pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};
 pub use parse::{parse_file, parse_str};
 pub use statements::{MAX_ITER, MAX_STEPS};
