@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from mechfem.echo import Model
 from mechfem.model import By, Dynamic, InputMotion, Mechanism, Row, Table, To
 from mechfem.numbering import Numbering
 from mechfem.units import angle_in
@@ -96,6 +97,17 @@ class DeckNames:
     coordinates: dict[int, str] = field(default_factory=dict)
     elements: dict[int, str] = field(default_factory=dict)
     rows: dict[int, str] = field(default_factory=dict)
+
+    @classmethod
+    def of_model(cls, model: Model) -> DeckNames:
+        """The names a run's model echo carries (its deck's NAMES block)."""
+        out = cls()
+        out.points = {(p.x, p.y): p.name for p in model.points}
+        named = {c for p in model.points for c in (p.x, p.y)}
+        out.coordinates = {c.number: c.name for c in model.coordinates if c.name and c.number not in named}
+        out.elements = {e.number: e.name for e in model.elements if e.name}
+        out.rows = {r.dest: r.name for r in [*model.prescribed, *model.dependent] if r.name}
+        return out
 
     @classmethod
     def of(cls, names: Mapping[str, Any] | None) -> DeckNames:

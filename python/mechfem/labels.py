@@ -294,9 +294,12 @@ class _Namer:
         return self.row_unit(r) if r is not None else RATIO
 
     def label(self, b: Buffer) -> Label:
-        """The label of ``b``, its unit in the model's units."""
+        """The label of ``b``: the name and unit the core gives it (the deck's ``BUF`` label or NAMES, its
+        UNITS); a named model's own names (which may hold dots no deck name can); a unit in the words of the
+        algebra said in the run's units where the core gives none (an angle in ``rad`` without UNITS)."""
         lab = self._label(b)
-        return dataclasses.replace(lab, unit=shown(lab.unit, self.units), base=lab.unit)
+        name = lab.name if self.names is not None or not b.name else b.name
+        return dataclasses.replace(lab, name=name, unit=b.unit or shown(lab.unit, self.units), base=lab.unit)
 
     def _label(self, b: Buffer) -> Label:
         a = [*b.args, 0, 0, 0]
