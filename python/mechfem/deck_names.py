@@ -4,7 +4,8 @@ names a deck declares, by deck number, for the deck reader's mechanism (:class:`
 
 A deck name is ``[A-Za-z_][A-Za-z0-9_]*`` of at most :data:`MAX_NAME` characters (docs/deck.md, NAMES). A point's
 co-ordinates ``A.x`` and ``A.y`` are named by its ``POINT`` line, an element's own row (``crank.angle``) by its
-element's ``ELEM`` line; a name the deck language cannot hold (a blank in it) stays out of the block.
+element's ``ELEM`` line; a name the deck language cannot hold (a blank or a dot in it) stays out of the block, and
+so does a name the deck reader gives a thing by its number anyway (``P5``, ``x7``, ``E1``, ``row6``, ``out1``).
 """
 
 from __future__ import annotations
@@ -40,20 +41,22 @@ def names_block(mech: Mechanism, nb: Numbering) -> Iterator[tuple[str, tuple[str
     numbered = nb.coord_number
     in_point: set[object] = set()
     for p in mech.points:
-        if p.x in numbered and p.y in numbered and deck_name(p.name):
+        if p.x in numbered and p.y in numbered and deck_name(p.name) and p.name != f"P{numbered[p.x]}":
             lines.append((f"POINT {numbered[p.x]} {numbered[p.y]} {p.name}", ("point", p.name)))
             in_point.update((p.x, p.y))
     for i, c in enumerate(nb.coords, 1):
-        if c not in in_point and deck_name(c.name):
+        if c not in in_point and deck_name(c.name) and c.name != f"x{i}":
             lines.append((f"COORD {i} {c.name}", ("co-ordinate", c.name)))
     for k, e in enumerate(nb.elements, 1):
-        if deck_name(e.name):
+        if deck_name(e.name) and e.name != f"E{k}":
             lines.append((f"ELEM {k} {e.name}", ("element", e.name)))
     for r in nb.rows:
         if _own_row(r) or not deck_name(r.name):
             continue
         dest = nb.row_dest[r]
         keyword, number = ("ROW", dest) if dest > 0 else ("DEP", -dest)
+        if r.name == f"{'row' if dest > 0 else 'out'}{number}":
+            continue
         lines.append((f"{keyword} {number} {r.name}", (r.kind, r.name)))
     if lines:
         yield "NAMES", ("names", mech.name)

@@ -5,7 +5,8 @@ every result of a model is, by construction, the result of a deck (:mod:`mechfem
 model per topology). This module
 
 * writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line, its units on
-  the ``UNITS`` line and its names in comments, keeping a note of what each line declares;
+  the ``UNITS`` line and its names in the ``NAMES`` block (:mod:`mechfem.deck_names`), keeping a note of what each
+  line declares;
 * numbers a mechanism as its deck does (:func:`number_model`), and the arguments of its buffers and plots
   (:func:`buffer_numbers`, :func:`plot_numbers`);
 * reads a deck into a mechanism with the names and units it declares, and generated names for the rest
@@ -30,7 +31,7 @@ from mechfem import loads
 from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
-from mechfem.deck_names import DeckNames, model_unit
+from mechfem.deck_names import DeckNames, model_unit, names_block
 from mechfem.explain import translate
 from mechfem.model import (
     BUFFER_ARGS,
@@ -60,14 +61,6 @@ from mechfem.storage import check_file_names, from_described
 from mechfem.units import Units
 
 Progress = bool | Callable[[int, int], object] | None
-
-
-def _slot_names(e: Element) -> str:
-    return " ".join(s.name for s in e.slots)
-
-
-def _ref_name(ref: Ref) -> str:
-    return str(ref) if isinstance(ref, int | str) else ref.label if isinstance(ref, FormParameter) else ref.name
 
 
 def number_model(mech: Mechanism) -> Numbering:
@@ -177,7 +170,7 @@ def write(
     out.add("TOPOLOGY")
     for k, e in enumerate(nb.elements, 1):
         nums = " ".join(str(nb.coord_number[c]) for c in e.coordinates)
-        out.add(f"ELEM {k} {e.type} {nums}", ("element", e.name), f"{e.name}: {_slot_names(e)}")
+        out.add(f"ELEM {k} {e.type} {nums}", ("element", e.name))
     element_number = {e: k for k, e in enumerate(nb.elements, 1)}
     seq = 0
     for r in nb.rows:
@@ -187,25 +180,25 @@ def write(
             if p.element not in element_number:
                 raise ValueError(f"row {r.name!r}: {p!r} belongs to another mechanism")
             k = element_number[p.element]
-            formula = r.formula()
-            comment = r.name if formula == r.name else f"{r.name}: {formula}"
-            out.add(f"FORM {seq} {p.form} {k} {dest} {number(f)}", (r.kind, r.name), comment)
+            out.add(f"FORM {seq} {p.form} {k} {dest} {number(f)}", (r.kind, r.name))
     n_dof = len(nb.inputs)
     out.add(f"NRDOF {n_dof}", ("inputs", ", ".join(r.name for r in nb.inputs)))
     out.add("GEOMETRY")
     for i, c in enumerate(nb.coords, 1):
         kw = "XFIX" if c.fixed else "XMOV"
-        out.add(f"{kw} {i} {number(over.get(c, c.value))}", ("co-ordinate", c.name), c.name)
+        out.add(f"{kw} {i} {number(over.get(c, c.value))}", ("co-ordinate", c.name))
     for r in nb.prescribed:
         value = over.get(r, r.value)
         if value is not None:
-            out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name), r.name)
+            out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name))
+    for text, note in names_block(mech, nb):
+        out.add(text, note)
 
     tables: dict[str, str] = {}
     if mech.loads is not None:
         out.add("DYNAMICS")
-        for text, note, comment in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
-            out.add(text, note, comment)
+        for text, note, _ in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
+            out.add(text, note)
     if motion is not None:
         if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
             raise ValueError(
@@ -230,19 +223,19 @@ def write(
             name = nb.inputs[j - 1].name
             note = ("motion of input", name)
             if isinstance(im, By):
-                out.add(f"MOV_RELE {j} {number(im.value)}", note, name)
+                out.add(f"MOV_RELE {j} {number(im.value)}", note)
             elif isinstance(im, To):
-                out.add(f"MOV_ABSE {j} {number(im.value)}", note, name)
+                out.add(f"MOV_ABSE {j} {number(im.value)}", note)
             elif isinstance(im, Free):
-                out.add(f"MOV_FREE {j} {number(im.ds)}", note, name)
+                out.add(f"MOV_FREE {j} {number(im.ds)}", note)
             elif isinstance(im, Dynamic):
-                out.add(f"MOV_DYN {j} {number(im.value)}", note, name)
+                out.add(f"MOV_DYN {j} {number(im.value)}", note)
             elif isinstance(im, Table):
                 file = im.file or f"{_file_stem(mech.name)}_input{j}.dat"
                 if any(ch.isspace() or ch == ";" for ch in file):
                     raise ValueError(f"a table motion's file name (Table.file) cannot hold blanks or ';': {file!r}")
                 loads.add_table(tables, file, _table_text(im.rows(motion.dt), name))
-                out.add(f"MOV_FUNC {j} {file}", note, name)
+                out.add(f"MOV_FUNC {j} {file}", note)
             else:
                 raise TypeError(f"not an input motion: {im!r}")
         if motion.accuracy is not None:
@@ -259,8 +252,7 @@ def write(
         out.add("STORAGE")
         for b, kw, args in storage.buffers:
             resolved = buffer_numbers(mech, nb, b, kw, args)
-            names = ", ".join(_ref_name(a) for a in args)
-            out.add(" ".join([kw, *map(str, resolved), str(b)]), ("buffer", str(b)), names or None)
+            out.add(" ".join([kw, *map(str, resolved), str(b)]), ("buffer", str(b)))
         if storage.printbuf is not None:
             out.add(" ".join(["PRINTBUF", *map(str, storage.printbuf)]), ("storage", "PRINTBUF"))
         if storage.savedata:
