@@ -244,7 +244,10 @@ class _Namer:
 
     def coordinate(self, i: int) -> str:
         n = self.names
-        return n.coordinates[i - 1] if n is not None and 0 < i <= len(n.coordinates) else f"x{i}"
+        if n is not None and 0 < i <= len(n.coordinates):
+            return n.coordinates[i - 1]
+        declared = self.model.coordinates[i - 1].name if 0 < i <= len(self.model.coordinates) else None
+        return declared or f"x{i}"
 
     def coordinate_unit(self, i: int) -> str:
         return self.coords.get(i, LENGTH)
@@ -256,6 +259,8 @@ class _Namer:
             if 0 < abs(r) <= len(names):
                 return names[abs(r) - 1]
         row = self.rows.get(r)
+        if row is not None and row.name:
+            return row.name
         return compact(row.formula()) if row is not None else f"eps({r})"
 
     def row_words(self, r: int) -> str:
@@ -275,7 +280,11 @@ class _Namer:
     def input(self, j: int) -> str:
         """The input in a derivative: ``input1``, or the model's name for it."""
         n = self.names
-        return n.inputs[j - 1] if n is not None and 0 < j <= len(n.inputs) else f"input{j}"
+        if n is not None and 0 < j <= len(n.inputs):
+            return n.inputs[j - 1]
+        r = self.input_row(j)
+        declared = self.rows[r].name if r is not None and r in self.rows else None
+        return declared or f"input{j}"
 
     def input_value(self, j: int) -> str:
         """The input as a quantity: its row's form parameter (``ANGB(1)``), or the model's name for it."""
@@ -287,7 +296,10 @@ class _Namer:
 
     def input_words(self, j: int) -> str:
         n = self.names
-        return n.inputs[j - 1] if n is not None and 0 < j <= len(n.inputs) else f"input {j}"
+        if n is not None and 0 < j <= len(n.inputs):
+            return n.inputs[j - 1]
+        declared = self.input(j)
+        return f"input {j} ({declared})" if declared != f"input{j}" else f"input {j}"
 
     def input_unit(self, j: int) -> str:
         r = self.input_row(j)
@@ -306,7 +318,7 @@ class _Namer:
         kw = b.keyword
         if kw in ("BUFX0", "BUFKX1", "BUFKX2", "BUFVX", "BUFAX"):
             q, unit, words = self.coordinate(a[0]), self.coordinate_unit(a[0]), f"co-ordinate {a[0]}"
-            if self.names is not None:
+            if q != f"x{a[0]}":
                 words = f"{words} ({q})"
             return self._quantity(b, kw[3:], q, unit, words, a)
         if kw in ("BUFE0", "BUFKE1", "BUFKE2", "BUFVE", "BUFAE"):
