@@ -166,19 +166,19 @@ def test_chunks_are_about_a_second_and_every_slot_gets_two() -> None:
 
 
 def test_multi_start_returns_the_best_and_every_start(client: Any) -> None:
-    supply_deck = Mechanism.from_deck(ROOT / "examples" / "supply" / "supply.mec").variant(row5=-5.25)
-    vary = {"row5": (-5.5, -5.0), "E1.length": (0.3, 1.2)}
-    target = [mechfem.TargetExtremum(Q("out1", 2), "out1", 0.0)]
+    supply_deck = Mechanism.from_deck(ROOT / "examples" / "supply" / "supply.mec").variant(kappa=-5.25)
+    vary = {"kappa": (-5.5, -5.0), "crank.length": (0.3, 1.2)}
+    target = [mechfem.TargetExtremum(Q("delta", 2), "delta", 0.0)]
     local = mechfem.optimize(supply_deck, vary, targets=target, steps=30, starts=4, seed=3)
     remote = mechfem.optimize(supply_deck, vary, targets=target, steps=30, starts=4, seed=3, executor=client)
     assert len(local.starts) == len(remote.starts) == 4
-    assert local.starts[0].start == {"row5": -5.25, "E1.length": 0.4}
+    assert local.starts[0].start == {"kappa": -5.25, "crank.length": 0.4}
     for a, b in zip(local.starts, remote.starts, strict=True):
         assert a.start == b.start and a.values == b.values and a.message == b.message
         assert a.objective == b.objective or (math.isnan(a.objective) and math.isnan(b.objective))
     # Starts with a long crank cannot be assembled: they are outcomes too, with the reason.
     failed = [s for s in remote.starts if s.values is None]
-    assert failed and all(s.start["E1.length"] > 0.6 and "infeasible" in s.message for s in failed)
+    assert failed and all(s.start["crank.length"] > 0.6 and "infeasible" in s.message for s in failed)
     found = [s.objective for s in remote.starts if s.values is not None]
     assert remote.objective == min(found) and remote.values == local.values
     assert remote.run().complete

@@ -1,12 +1,10 @@
-"""The names a deck declares in its NAMES block reach the model echo of its run (docs/deck.md, "NAMES"); comments
-name nothing. A deck written from a :class:`~mechfem.Mechanism` is to name every co-ordinate, element and row as
-the model does: the tests of that are marked until the deck writer writes a NAMES block (it still writes the
-model's names as comments)."""
+"""The names a deck's NAMES block declares reach the model echo of its run (docs/deck.md, NAMES): a deck written
+from a :class:`~mechfem.Mechanism` names its points, elements, rows and outputs as the model does, and comments
+name nothing."""
 
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -14,7 +12,6 @@ import numpy as np
 import pytest
 
 import mechfem
-from conftest import ROOT
 from mechfem import Driven, Mechanism, Motion, Output
 from mechfem.deckio import number_model
 from test_model_api import supply
@@ -31,12 +28,6 @@ def fourbar() -> Mechanism:
     return m
 
 
-WRITER = pytest.mark.xfail(
-    strict=True, reason="the deck writer (mechfem.deckio) writes names as comments, which name nothing; a NAMES block"
-)
-
-
-@WRITER
 @pytest.mark.parametrize("build", [fourbar, supply])
 def test_a_saved_deck_names_what_the_model_names(build: Callable[[], Mechanism], tmp_path: Path) -> None:
     m = build()
@@ -44,46 +35,45 @@ def test_a_saved_deck_names_what_the_model_names(build: Callable[[], Mechanism],
     m.save_deck(deck, Motion.by(12, 2 * math.pi))
     model = mechfem.run_deck(deck).model
     nb = number_model(m)
+    # A point's co-ordinates are named after it; an element's own row (crank.length) is named by its element.
     assert [c.name for c in model.coordinates] == [c.name for c in nb.coords]
     assert [e.name for e in model.elements] == [e.name for e in nb.elements]
-    assert [r.name for r in model.prescribed] == [r.name for r in nb.prescribed]
-    assert [r.name for r in model.dependent] == [r.name for r in nb.dependent]
+    own = [len(r.terms) == 1 and r.name == r.terms[0][1].label for r in nb.prescribed + nb.dependent]
+    expected = [None if o else r.name for o, r in zip(own, nb.prescribed + nb.dependent, strict=True)]
+    assert [r.name for r in model.prescribed + model.dependent] == expected
 
 
-def test_a_combined_row_is_named_before_its_formula(tmp_path: Path) -> None:
-    text = (ROOT / "examples" / "supply" / "supply.mec").read_text()
+def test_a_combined_row_is_named_by_its_row_line(tmp_path: Path) -> None:
     deck = tmp_path / "supply.mec"
-    deck.write_text(re.sub(r"^MOVEMENT", "NAMES\nROW 5 kappa\nDEP 1 psi\nMOVEMENT", text, count=1, flags=re.M))
-    r = mechfem.run_deck(deck)
-    assert [x.name for x in r.model.prescribed][4] == "kappa"
-    assert r.model.dependent[0].name == "psi"
-    labels = {b.number: b.name for b in r.storage.buffers}
-    assert labels[100] == "psi" and labels[101] == "dpsi/dinput1"
+    deck.write_text(supply().to_deck(Motion.by(12, 2 * math.pi)))
+    assert "ROW 5 kappa" in deck.read_text().splitlines()
+    names = [r.name for r in mechfem.run_deck(deck).model.prescribed]
+    assert "kappa" in names and "alpha" == names[-1]
 
 
-def test_a_hand_written_decks_comments_name_nothing() -> None:
-    model = mechfem.run_deck(ROOT / "examples" / "fourbar" / "fourbar.mec").model
-    # `; A0`, `; crank A0-A` and `; row 1: crank length` are notes, single words included.
-    assert [c.name for c in model.coordinates] == [None] * 10
-    assert [e.name for e in model.elements] == [None, None, None]
-    assert [r.name for r in model.prescribed + model.dependent] == [None] * 7
+def test_comments_name_nothing(tmp_path: Path) -> None:
+    lines = fourbar().to_deck().splitlines()
+    lines = lines[: lines.index("NAMES")] + ["END"]
+    # A comment after a co-ordinate, an element and a row, as decks had them to name things: notes only.
+    noted = [f"{line} ; A0.x" if line.startswith(("XFIX 1 ", "ELEM 1 ", "FORM 1 ")) else line for line in lines]
+    deck = tmp_path / "noted.mec"
+    deck.write_text("\n".join(noted) + "\n")
+    model = mechfem.check_deck(deck).model
+    assert model.coordinates[0].name is None and model.elements[0].name is None
+    assert all(r.name is None for r in model.prescribed)
 
 
 def test_names_change_no_number(tmp_path: Path) -> None:
-    text = (ROOT / "examples" / "fourbar" / "fourbar.mec").read_text()
+    text = fourbar().to_deck(Motion.by(12, 2 * math.pi))
     named, bare = tmp_path / "named.mec", tmp_path / "bare.mec"
-    names = "NAMES\nPOINT 1 2 A0\nPOINT 9 10 C\nELEM 1 crank\nDEP 1 psi\nMOVEMENT"
-    named.write_text(re.sub(r"^MOVEMENT", names, text, count=1, flags=re.M))
-    bare.write_text("\n".join(line.split(";")[0].rstrip() for line in text.splitlines()) + "\n")
+    named.write_text(text)
+    lines = text.splitlines()
+    bare.write_text("\n".join(lines[: lines.index("NAMES")] + lines[lines.index("MOVEMENT") :]) + "\n")
     a, b = mechfem.run_deck(named), mechfem.run_deck(bare)
     assert np.array_equal(a.coords, b.coords) and np.array_equal(a.det, b.det)
-    for number, column in b.buffers.items():
-        assert np.array_equal(a.buffers[number], column)
     assert all(c.name is None for c in b.model.coordinates) and a.model.coordinates[0].name == "A0.x"
-    assert a.model.coordinates[9].name == "C.y" and a.model.elements[0].name == "crank"
 
 
-@WRITER
 def test_a_saved_deck_run_is_addressed_by_the_model_names(tmp_path: Path) -> None:
     from mechfem.model import Storage
 
@@ -94,7 +84,7 @@ def test_a_saved_deck_run_is_addressed_by_the_model_names(tmp_path: Path) -> Non
     deck = tmp_path / "fourbar.mec"
     m.save_deck(deck, motion, storage)
     r, named = mechfem.run_deck(deck), m.run(motion, storage, order=None)  # the same orders: the same bits
-    assert not r.named and r.names is None  # the print file and pictures keep the deck's numbers
+    assert not r.named and r.names is None
     assert np.array_equal(r.value("C"), named.value("C")) and np.array_equal(r.x("C"), named.x("C"))
     assert np.array_equal(r.output("psi", 1, "phi"), named.output("psi", 1, "phi"))
     assert np.array_equal(r.input("phi"), named.input("phi")) and np.array_equal(
@@ -102,4 +92,8 @@ def test_a_saved_deck_run_is_addressed_by_the_model_names(tmp_path: Path) -> Non
     )
     assert np.array_equal(r.value("coupler.length"), named.value("coupler.length"))
     # The deck's own names still work beside the declared ones.
-    assert np.array_equal(r.value("out1", 1), r.value("psi", 1)) and np.array_equal(r.value("P9"), r.value("C"))
+    assert np.array_equal(r.value("out1", 1), r.value("psi", 1)) and np.array_equal(r.value("x9"), r.x("C"))
+    # Its buffers are labelled by the names.
+    from mechfem.labels import buffer_labels
+
+    assert [lab.name for lab in buffer_labels(r).values()] == ["phi", "C.x", "C.y", "dpsi/dphi", "vC.x", "LENL(2)"]

@@ -18,11 +18,12 @@ from matplotlib.figure import Figure
 import mechfem
 from conftest import ROOT, SUPPLY
 from mechfem.echo import ModelNames
-from mechfem.labels import Label, buffer_labels, label, over, point_name, squared
+from mechfem.labels import Label, buffer_labels, label, over, point_name, shown, squared
 from mechfem.model import Driven, Mechanism, Motion, Output, Storage
 from mechfem.output import print_file_lines, write_data_set
 from mechfem.plots import picture_figure
 from mechfem.result import RunResult
+from mechfem.units import Units
 
 EVERY_ELEMENT = ROOT / "tests" / "decks" / "every_element.mec"
 SUPPLY_DYN = ROOT / "examples" / "supply" / "supply_dyn.mec"
@@ -101,32 +102,52 @@ def kinematic(tmp_path_factory: pytest.TempPathFactory) -> RunResult:
     return mechfem.run_deck(deck)
 
 
+def unnamed(deck: Path) -> str:
+    """The text of ``deck`` without its NAMES block: the labels of the deck's numbers."""
+    lines = deck.read_text().splitlines()
+    if "NAMES" not in lines:
+        return "\n".join(lines) + "\n"
+    start = lines.index("NAMES")
+    end = next(
+        k
+        for k in range(start + 1, len(lines))
+        if lines[k][:1].isalpha()
+        and lines[k].split()[0].isupper()
+        and lines[k].split()[0] not in ("POINT", "COORD", "ELEM", "ROW", "DEP", "BUF")
+    )
+    return "\n".join(lines[:start] + lines[end:]) + "\n"
+
+
 @pytest.fixture(scope="module")
-def supply() -> RunResult:
-    return mechfem.run_deck(SUPPLY)
+def supply(tmp_path_factory: pytest.TempPathFactory) -> RunResult:
+    deck = tmp_path_factory.mktemp("labels") / "supply.mec"
+    deck.write_text(unnamed(SUPPLY))
+    return mechfem.run_deck(deck)
 
 
 def test_every_kinematic_buffer_keyword_has_its_name_unit_and_kind(kinematic: RunResult) -> None:
     labels = buffer_labels(kinematic)
-    assert {n: (x.name, x.unit, x.kind) for n, x in labels.items()} == EXPECTED_KINEMATIC
+    assert {n: (x.name, x.base, x.kind) for n, x in labels.items()} == EXPECTED_KINEMATIC
+    # Without UNITS a label shows an angle in rad and no unit where a length, force or mass takes part.
+    assert all(x.unit == shown(x.base, Units()) for x in labels.values())
 
 
 def test_a_label_gives_the_header_cell_the_axis_and_the_words(supply: RunResult) -> None:
     x = label(supply, 101)
     assert x.header() == "101 dANGB(8)/dinput1"
-    assert x.axis() == "dANGB(8)/dinput1 [rad/rad]"
+    assert x.axis() == "dANGB(8)/dinput1 [-]"
     assert x.text == "first-order transfer function of ANGB(8) (dependent form parameter 1) with respect to input 1"
-    assert label(supply, 99) == Label(99, "ANGB(1)", "rad", "input", "value of input 1 (ANGB(1))")
-    assert label(supply, 102).axis() == "d2ANGB(8)/dinput1^2 [rad/rad^2]"
+    assert label(supply, 99) == Label(99, "ANGB(1)", "rad", "input", "value of input 1 (ANGB(1))", base="rad")
+    assert label(supply, 102).axis() == "d2ANGB(8)/dinput1^2 [1/rad]"
     assert Label(1, "det(D^c)", "", "det", "").axis() == "det(D^c)"
 
 
 def test_a_combined_row_is_named_by_its_formula_without_spaces(tmp_path: Path) -> None:
     # Row 5 of the supply deck is ANGB(2) - ANGB(4), the angle in the coupler plane.
     deck = tmp_path / "combined.mec"
-    deck.write_text(SUPPLY.read_text().replace("  BUFINP  1  99\n", "  BUFINP  1  99\n  BUFE0 5 98\n  BUFKE1 5 1 97\n"))
+    deck.write_text(unnamed(SUPPLY).replace("  BUFINP  1  99\n", "  BUFINP  1  99\n  BUFE0 5 98\n  BUFKE1 5 1 97\n"))
     result = mechfem.run_deck(deck)
-    assert (label(result, 98).name, label(result, 98).unit) == ("ANGB(2)-ANGB(4)", "rad")
+    assert (label(result, 98).name, label(result, 98).base) == ("ANGB(2)-ANGB(4)", "rad")
     # The derivative brackets the combination so that the name reads unambiguously.
     assert label(result, 97).name == "d(ANGB(2)-ANGB(4))/dinput1"
 
@@ -134,9 +155,9 @@ def test_a_combined_row_is_named_by_its_formula_without_spaces(tmp_path: Path) -
 def test_dynamics_buffers_carry_force_torque_energy_power_and_mass(tmp_path: Path) -> None:
     deck = tmp_path / "dyn.mec"
     extra = "  BUFSIG 5 120\n  BUFSIG 12 121\n  BUFREA 3 122\n"
-    deck.write_text(SUPPLY_DYN.read_text().replace("  PRINTBUF\n", extra + "  PRINTBUF\n"))
+    deck.write_text(unnamed(SUPPLY_DYN).replace("  PRINTBUF\n", extra + "  PRINTBUF\n"))
     labels = buffer_labels(mechfem.run_deck(deck))
-    got = {n: (x.name, x.unit, x.kind) for n, x in labels.items() if n >= 110}
+    got = {n: (x.name, x.base, x.kind) for n, x in labels.items() if n >= 110}
     assert got == {
         110: ("drive(ANGB(1))", "torque", "force"),  # the input is an angle: its drive is a torque
         111: ("Ekin", "energy", "energy"),
@@ -161,10 +182,12 @@ def test_units_of_derivatives_divide_by_each_input() -> None:
     assert squared("", "rad") == "rad"
 
 
-def test_a_mixed_second_order_derivative_names_both_inputs() -> None:
-    result = mechfem.run_deck(ROOT / "examples" / "manipulator" / "manipulator.mec")
+def test_a_mixed_second_order_derivative_names_both_inputs(tmp_path: Path) -> None:
+    deck = tmp_path / "manipulator.mec"
+    deck.write_text(unnamed(ROOT / "examples" / "manipulator" / "manipulator.mec"))
+    result = mechfem.run_deck(deck)
     # BUFKX2 5 1 2 23: d2 xM / d l1 d l2, both inputs actuator lengths.
-    assert (label(result, 23).name, label(result, 23).unit) == ("d2x5/dinput1dinput2", "length/length^2")
+    assert (label(result, 23).name, label(result, 23).base) == ("d2x5/dinput1dinput2", "length/length^2")
     assert label(result, 23).text.endswith("with respect to input 1 and input 2")
 
 
@@ -193,7 +216,7 @@ def test_a_named_model_is_labelled_with_its_own_names() -> None:
     storage.picture("coupler", ("PLOTHODO", "C"))
     a = fourbar().run(Motion.by(12, 2 * math.pi), storage)
     result = a.run_result()
-    got = {n: (x.name, x.unit) for n, x in buffer_labels(result).items()}
+    got = {n: (x.name, x.base) for n, x in buffer_labels(result).items()}
     assert got == {
         1: ("phi", "rad"),
         2: ("dpsi/dphi", "rad/rad"),
@@ -206,7 +229,8 @@ def test_a_named_model_is_labelled_with_its_own_names() -> None:
     fig = picture_figure(result, 0)
     assert isinstance(fig, Figure)
     ax = fig.axes[0]
-    assert (ax.get_xlabel(), ax.get_ylabel()) == ("C.x [length]", "C.y [length]")
+    # The model gives no unit of length: none is shown.
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("C.x", "C.y")
     assert any(line.get_label() == "path of C" for line in ax.lines)
     assert point_name(result, ix, iy) == "C"
 
@@ -222,7 +246,7 @@ def test_analysis_plot_puts_outputs_of_different_units_in_panels_of_their_own() 
     assert isinstance(fig, Figure)
     mechanism, angles, lengths = fig.axes
     assert angles.get_ylabel() == "psi, transmission [rad]"
-    assert lengths.get_ylabel() == "reach [length]"
+    assert lengths.get_ylabel() == "reach"
     assert (angles.get_xlabel(), lengths.get_xlabel()) == ("", "phi [rad]")
     assert angles.get_shared_x_axes().joined(angles, lengths)
 
@@ -258,14 +282,14 @@ def test_the_print_file_has_a_legend_and_named_column_heads(supply: RunResult) -
         [
             "101",
             "dANGB(8)/dinput1",
-            "rad/rad",
+            "-",
             "BUFKE1 -1 1",
             "first-order transfer function of ANGB(8) (dependent form parameter 1) with respect to input 1",
         ],
         [
             "102",
             "d2ANGB(8)/dinput1^2",
-            "rad/rad^2",
+            "1/rad",
             "BUFKE2 -1 1 1",
             "second-order transfer function of ANGB(8) (dependent form parameter 1) with respect to input 1 (twice)",
         ],

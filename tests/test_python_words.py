@@ -504,7 +504,7 @@ def test_results_in_degrees() -> None:
     assert np.array_equal(r.velocity("psi", unit="deg"), np.degrees(r.velocity("psi")))
     with pytest.raises(ValueError, match="'B.x' is not an angle"):
         r.value("B.x", unit="deg")
-    with pytest.raises(ValueError, match="unit must be 'rad' or 'deg'"):
+    with pytest.raises(ValueError, match="unit must be one of 'm', 'mm', 'cm', 'in', 'rad', 'deg'"):
         r.input(unit="grad")  # type: ignore[arg-type]
 
 

@@ -129,15 +129,15 @@ def test_report_is_one_self_contained_file(supply: RunResult, tmp_path: Path) ->
     assert data["table"] == ["b99", "b100", "b101", "b102"]
     cols = data["columns"]
     assert all(len(cols[k]["values"]) == 73 for k in data["table"])
-    assert cols["b101"]["header"] == "101 dANGB(8)/dinput1 [rad/rad]"
+    assert cols["b101"]["header"] == "101 dANGB(8)/dinput1 [-]"
     # Picture 1 is the hodograph; picture 2's three PLOTFUNC lines of three units are three charts.
     assert [[c["type"] for c in card["charts"]] for card in data["cards"]] == [["xy"], ["function"] * 3]
     hodo = data["cards"][0]["charts"][0]["hodographs"][0]
     assert (hodo["x"], hodo["y"], hodo["vx"]) == ("c13", "c14", "k13") and len(cols["k13"]["values"]) == 73
     assert [c["ylabel"] for c in data["cards"][1]["charts"]] == [
         "ANGB(8) [rad]",
-        "dANGB(8)/dinput1 [rad/rad]",
-        "d2ANGB(8)/dinput1^2 [rad/rad^2]",
+        "dANGB(8)/dinput1 [-]",
+        "d2ANGB(8)/dinput1^2 [1/rad]",
     ]
     assert [p["x"] for p in data["paths"]] == ["c13"]
     assert len(data["scene"]["frames"]) == 73 and data["scene"]["moving"]

@@ -124,16 +124,24 @@ def test_first_order_only_leaves_the_second_order_undefined() -> None:
 
 
 def test_names_given_to_a_deck() -> None:
-    m = Mechanism.from_deck(ROOT / "examples" / "gears" / "planetary_gr1.mec")
+    # The example without its NAMES block: what the deck reader names after the deck's numbers.
+    path = ROOT / "examples" / "gears" / "planetary_gr1.mec"
+    lines = path.read_text().splitlines()
+    start = lines.index("NAMES")
+    end = lines.index("MOVEMENT", start)
+    m = Mechanism.from_deck_text("\n".join(lines[:start] + lines[end:]), "planetary_gr1", path.parent)
     assert [p.name for p in m.points] == ["P1", "P3"]
     assert m["x6"].kind == "angle" and m["x9"].kind == "scalar" and m["x9"].fixed
     assert [e.name for e in m.elements] == [f"E{k}" for k in range(1, 7)]
     assert [r.name for r in m.inputs] == ["E2.angle", "E1.angle"]
     assert [r.name for r in m.outputs] == ["out1", "out2"]
     assert m.motion is not None and m.motion.steps == 36 and m.motion.dt == 0.01
+    # A deck with a NAMES block: its names, and its elements' names for their own rows.
     supply_deck = Mechanism.from_deck(ROOT / "examples" / "supply" / "supply.mec")
-    assert supply_deck["row5"].formula() == "E2.angle - E4.angle"
-    assert supply_deck.storage is not None and supply_deck.storage.buffers[2] == (101, "BUFKE1", ("out1", "E1.angle"))
+    assert [p.name for p in supply_deck.points][:3] == ["A0", "A", "B"]
+    assert supply_deck["kappa"].formula() == "coupler.angle - arm.angle"
+    assert supply_deck.storage is not None and supply_deck.storage.buffers[2] == (101, "BUFKE1", ("delta", "alpha"))
+    assert "crank.length" in supply_deck and "rod.length" in supply_deck
 
 
 def test_a_deck_with_a_mistake_raises_the_deck_error(tmp_path: Path) -> None:

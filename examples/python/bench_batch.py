@@ -29,7 +29,7 @@ SUPPLY = os.path.join(os.path.dirname(__file__), "..", "supply", "supply.mec")
 
 
 def stroke(r: mechfem.Analysis) -> float:
-    return float(np.ptp(r.output("out1")))
+    return float(np.ptp(r.output("delta")))
 
 
 def best_of(repeat: int, fn: Callable[[], object]) -> tuple[float, float]:
@@ -59,7 +59,7 @@ def main() -> None:
     print(f"{args.variants} variants of the supply mechanism, {args.steps} steps each, {cores} cores")
 
     def study(workers: int) -> mechfem.Study:
-        return mechfem.sweep(base, {"row5": kappas}, {"stroke": stroke}, motion=motion, workers=workers, progress=False)
+        return mechfem.sweep(base, {"kappa": kappas}, {"stroke": stroke}, motion=motion, workers=workers, progress=False)
 
     reference = study(1)
     assert reference["complete"].all()
@@ -71,7 +71,7 @@ def main() -> None:
         rows.append((workers, best_of(args.repeat, functools.partial(study, workers))))
 
     loop_n = max(1, args.variants // 10)
-    loop = best_of(1, lambda: [base.variant(row5=float(k)).run(motion) for k in kappas[:loop_n]])
+    loop = best_of(1, lambda: [base.variant(kappa=float(k)).run(motion) for k in kappas[:loop_n]])
     loop = (loop[0] * args.variants / loop_n, loop[1])
 
     one = rows[0][1][0]

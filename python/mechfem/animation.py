@@ -26,7 +26,7 @@ import numpy.typing as npt
 
 from mechfem.atomic import atomic_path
 from mechfem.drawing import MechanismDrawing
-from mechfem.labels import buffer_labels
+from mechfem.labels import buffer_labels, display_unit
 from mechfem.mpl_drawing import MplMechanism
 from mechfem.plots import ARROW_COLOUR, PATH_COLOUR, fit_equal, hodograph
 from mechfem.result import RunResult
@@ -185,7 +185,7 @@ def _title(result: RunResult, name: str, k: int) -> str:
         lab = labels[b.number]
         shown.append(f"{lab.name} = {value:.6g} {lab.unit}".rstrip())
     if not shown and result.time.size:
-        shown.append(f"time = {float(result.time[k]):.6g} s")
+        shown.append(f"time = {float(result.time[k]):.6g} {display_unit(result, 's')}")
     return text + ("  (" + ", ".join(shown) + ")" if shown else "")
 
 

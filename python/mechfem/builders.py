@@ -20,6 +20,7 @@ from mechfem.parts import (
     role_row,
     unknown_form,
 )
+from mechfem.units import Units
 
 PointArg: TypeAlias = Point | str
 """A point given to an element method: the point, or its name."""
@@ -35,6 +36,7 @@ class ElementMethods:
     _names: dict[str, object]
     elements: list[Element]
     rows: list[Row]
+    units: Units
 
     if TYPE_CHECKING:
 
@@ -80,7 +82,8 @@ class ElementMethods:
     def _element(self, name: str, type: str, slots: Sequence[Slot], roles: Mapping[str, Role]) -> Element:
         self._check_free(name)
         e = Element(name, type, slots)
-        rows = [role_row(FormParameter(e, f), roles.get(f)) for f in FORMS[type]]
+        angle = self.units.angle
+        rows = [role_row(FormParameter(e, f), roles.get(f), angle) for f in FORMS[type]]
         new = [r for r in rows if r is not None]
         seen: set[str] = set()
         for r in new:

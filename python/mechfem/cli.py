@@ -240,17 +240,16 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
         console.error(f"mechfem: {deck}: interrupted during the optimisation after {done}.")
         return EXIT_INTERRUPTED
     s = outcome.solution
-    values = ", ".join(f"{n} = {x:.10g}" for n, x in zip(outcome.problem.names, s.x, strict=True))
+    written_deck = optimise_deck.write_design_deck(outcome, outdir)
+    result, interrupted = run_with_progress(written_deck, args.memory_limit, console.bar)
+    result = result.replace(deck=deck)
+    values = optimise_deck.values_line(outcome.problem, s.x, result.model, opt)
     console.say(
         f"{deck}: {'optimised' if s.success else 'optimiser stopped'} in {count(s.runs, 'mechanism run')}: "
         f"objective {s.start_objective:.4g} -> {s.objective:.4g}; {values}"
     )
-    written_deck = optimise_deck.write_design_deck(outcome, outdir)
-    result, interrupted = run_with_progress(written_deck, args.memory_limit, console.bar)
-    result = result.replace(deck=deck)
-    status = finish_run(
-        args, deck, outdir, result, interrupted, optimise_deck.print_lines(outcome, written_deck), [written_deck]
-    )
+    lines = optimise_deck.print_lines(outcome, written_deck, result.model)
+    status = finish_run(args, deck, outdir, result, interrupted, lines, [written_deck])
     if not s.success:
         console.note(f"warning: {deck}: the optimiser did not converge: {s.message}")
     missed = outcome.unreached()

@@ -4,11 +4,13 @@ A mechanism is compiled from the deck written for it, by the same deck reader an
 every result of a model is, by construction, the result of a deck (:mod:`mechfem.compiled` keeps the compiled
 model per topology). This module
 
-* writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line
-  with the model's names in comments, keeping a note of what each line declares;
+* writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line, its units on
+  the ``UNITS`` line and its names in the ``NAMES`` block (:mod:`mechfem.deck_names`), keeping a note of what each
+  line declares;
 * numbers a mechanism as its deck does (:func:`number_model`), and the arguments of its buffers and plots
   (:func:`buffer_numbers`, :func:`plot_numbers`);
-* reads a deck into a mechanism with generated names (:func:`read`).
+* reads a deck into a mechanism with the names and units it declares, and generated names for the rest
+  (:func:`read`).
 """
 
 from __future__ import annotations
@@ -20,7 +22,7 @@ import tempfile
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Literal, NamedTuple
+from typing import Any, Literal, NamedTuple
 
 import numpy as np
 
@@ -29,6 +31,7 @@ from mechfem import loads
 from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
+from mechfem.deck_names import DeckNames, model_unit, names_block
 from mechfem.explain import translate
 from mechfem.model import (
     BUFFER_ARGS,
@@ -55,6 +58,7 @@ from mechfem.model import (
 from mechfem.motion import check_units
 from mechfem.numbering import DeckText, Numbering, number
 from mechfem.storage import check_file_names, from_described
+from mechfem.units import Units
 
 Progress = bool | Callable[[int, int], object] | None
 
@@ -86,10 +90,6 @@ class _Lines:
         self.lines.append(text)
         if note is not None:
             self.notes[len(self.lines)] = note
-
-
-def _slot_names(e: Element) -> str:
-    return " ".join(s.name for s in e.slots)
 
 
 def _resolve(mech: Mechanism, numbering: Numbering, ref: Ref, kind: str, where: str) -> list[int]:
@@ -141,10 +141,6 @@ def plot_numbers(mech: Mechanism, numbering: Numbering, kw: str, first: Ref, sec
     return ab[0], ab[1]
 
 
-def _ref_name(ref: Ref) -> str:
-    return str(ref) if isinstance(ref, int | str) else ref.label if isinstance(ref, FormParameter) else ref.name
-
-
 def _table_text(rows: np.ndarray, name: str) -> str:
     head = f"# input motion of {name}: t value velocity acceleration, one row per position\n"
     return head + "".join(" ".join(number(v) for v in row) + "\n" for row in rows)
@@ -168,10 +164,13 @@ def write(
     dynamic = [] if motion is None else [k for k, im in motion.inputs.items() if isinstance(im, Dynamic)]
     simulated = [nb.inputs[nb.dof(k) - 1].name for k in dynamic]
     out.add(loads.mode(mech, simulated))
+    units = mech.units.deck_line()
+    if units is not None:
+        out.add(units, ("units", str(mech.units)))
     out.add("TOPOLOGY")
     for k, e in enumerate(nb.elements, 1):
         nums = " ".join(str(nb.coord_number[c]) for c in e.coordinates)
-        out.add(f"ELEM {k} {e.type} {nums}", ("element", e.name), f"{e.name}: {_slot_names(e)}")
+        out.add(f"ELEM {k} {e.type} {nums}", ("element", e.name))
     element_number = {e: k for k, e in enumerate(nb.elements, 1)}
     seq = 0
     for r in nb.rows:
@@ -181,25 +180,25 @@ def write(
             if p.element not in element_number:
                 raise ValueError(f"row {r.name!r}: {p!r} belongs to another mechanism")
             k = element_number[p.element]
-            formula = r.formula()
-            comment = r.name if formula == r.name else f"{r.name}: {formula}"
-            out.add(f"FORM {seq} {p.form} {k} {dest} {number(f)}", (r.kind, r.name), comment)
+            out.add(f"FORM {seq} {p.form} {k} {dest} {number(f)}", (r.kind, r.name))
     n_dof = len(nb.inputs)
     out.add(f"NRDOF {n_dof}", ("inputs", ", ".join(r.name for r in nb.inputs)))
     out.add("GEOMETRY")
     for i, c in enumerate(nb.coords, 1):
         kw = "XFIX" if c.fixed else "XMOV"
-        out.add(f"{kw} {i} {number(over.get(c, c.value))}", ("co-ordinate", c.name), c.name)
+        out.add(f"{kw} {i} {number(over.get(c, c.value))}", ("co-ordinate", c.name))
     for r in nb.prescribed:
         value = over.get(r, r.value)
         if value is not None:
-            out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name), r.name)
+            out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name))
+    for text, note in names_block(mech, nb):
+        out.add(text, note)
 
     tables: dict[str, str] = {}
     if mech.loads is not None:
         out.add("DYNAMICS")
-        for text, note, comment in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
-            out.add(text, note, comment)
+        for text, note, _ in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
+            out.add(text, note)
     if motion is not None:
         if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
             raise ValueError(
@@ -207,7 +206,7 @@ def write(
                 f"({', '.join(r.name for r in nb.inputs) or 'none'}): drive them with Motion.by, Motion.to or "
                 "Motion.table"
             )
-        check_units(motion, nb.inputs)
+        check_units(motion, nb.inputs, mech.units.angle)
         per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
         for key, im in motion.inputs.items():
             j = nb.dof(key)
@@ -220,23 +219,23 @@ def write(
         out.add("MOVEMENT")
         out.add(f"TSTEPE {motion.steps} {number(motion.dt)}", ("motion", "steps"))
         for j in range(1, n_dof + 1):
-            im = per_dof[j][1]
+            im = model_unit(per_dof[j][1], nb.inputs[j - 1], mech.units.angle)
             name = nb.inputs[j - 1].name
             note = ("motion of input", name)
             if isinstance(im, By):
-                out.add(f"MOV_RELE {j} {number(im.value)}", note, name)
+                out.add(f"MOV_RELE {j} {number(im.value)}", note)
             elif isinstance(im, To):
-                out.add(f"MOV_ABSE {j} {number(im.value)}", note, name)
+                out.add(f"MOV_ABSE {j} {number(im.value)}", note)
             elif isinstance(im, Free):
-                out.add(f"MOV_FREE {j} {number(im.ds)}", note, name)
+                out.add(f"MOV_FREE {j} {number(im.ds)}", note)
             elif isinstance(im, Dynamic):
-                out.add(f"MOV_DYN {j} {number(im.value)}", note, name)
+                out.add(f"MOV_DYN {j} {number(im.value)}", note)
             elif isinstance(im, Table):
                 file = im.file or f"{_file_stem(mech.name)}_input{j}.dat"
                 if any(ch.isspace() or ch == ";" for ch in file):
                     raise ValueError(f"a table motion's file name (Table.file) cannot hold blanks or ';': {file!r}")
                 loads.add_table(tables, file, _table_text(im.rows(motion.dt), name))
-                out.add(f"MOV_FUNC {j} {file}", note, name)
+                out.add(f"MOV_FUNC {j} {file}", note)
             else:
                 raise TypeError(f"not an input motion: {im!r}")
         if motion.accuracy is not None:
@@ -253,8 +252,7 @@ def write(
         out.add("STORAGE")
         for b, kw, args in storage.buffers:
             resolved = buffer_numbers(mech, nb, b, kw, args)
-            names = ", ".join(_ref_name(a) for a in args)
-            out.add(" ".join([kw, *map(str, resolved), str(b)]), ("buffer", str(b)), names or None)
+            out.add(" ".join([kw, *map(str, resolved), str(b)]), ("buffer", str(b)))
         if storage.printbuf is not None:
             out.add(" ".join(["PRINTBUF", *map(str, storage.printbuf)]), ("storage", "PRINTBUF"))
         if storage.savedata:
@@ -351,14 +349,28 @@ def topology(
     elements: list[tuple[int, str, list[int]]],
     prescribed: list[DeclaredRow],
     dependent: list[DeclaredRow],
+    names: DeckNames | None = None,
+    units: Units | None = None,
 ) -> Mechanism:
     """The mechanism a deck's topology and geometry make (elements ``(number, type, co-ordinate numbers)`` in
-    element order, rows in destination order): points named after their x co-ordinate (``P5``), other co-ordinates
-    ``x13``, elements ``E1``..., a row of one form parameter its element's own (``E8.angle``), others ``row6`` and
-    ``out1``. The deck's numbers are kept."""
-    m = Mechanism(name)
+    element order, rows in destination order), in ``units``: its parts named as ``names`` (the deck's NAMES block)
+    says, the others after their numbers: points after their x co-ordinate (``P5``), other co-ordinates ``x13``,
+    elements ``E1``..., a row of one form parameter its element's own (``E8.angle``), others ``row6`` and ``out1``.
+    The deck's numbers are kept."""
+    m = Mechanism(name, units=units)
+    declared = names or DeckNames()
     by_number = {c.number: c for c in coords}
     objects: dict[int, Coordinate] = {}
+    taken = {*declared.points.values(), *declared.coordinates.values(), *declared.elements.values()}
+    taken.update(declared.rows.values())
+
+    def generated(base: str) -> str:
+        """``base``, or with a suffix when the deck declares it for another part."""
+        out, k = base, 1
+        while out in taken or out in m:
+            k += 1
+            out = f"{base}_{k}"
+        return out
 
     def new_coordinate(i: int, cname: str, kind: Literal["x", "y", "angle", "scalar"]) -> Coordinate:
         spec = by_number[i]
@@ -379,7 +391,7 @@ def topology(
                 nums = nums[2:]
                 if (ix, iy) in pairs:
                     continue
-                pname = f"P{ix}" if f"P{ix}" not in m else f"P{ix}_{iy}"
+                pname = declared.points.get((ix, iy)) or generated(f"P{ix}" if f"P{ix}" not in m else f"P{ix}_{iy}")
                 cx = objects.get(ix) or new_coordinate(ix, f"{pname}.x", "x")
                 cy = objects.get(iy) or new_coordinate(iy, f"{pname}.y", "y")
                 p = Point(pname, cx, cy)
@@ -394,7 +406,8 @@ def topology(
                 nums = nums[1:]
     for i in sorted(by_number):
         if i not in objects:
-            new_coordinate(i, f"x{i}", "angle" if i in angle_use else "scalar")
+            cname = declared.coordinates.get(i) or generated(f"x{i}")
+            new_coordinate(i, cname, "angle" if i in angle_use else "scalar")
 
     made: list[Element] = []
     for k, etype, numbers in elements:
@@ -407,7 +420,7 @@ def topology(
             else:
                 slots.append(objects[nums[0]])
                 nums = nums[1:]
-        el = Element(f"E{k}", etype, slots)
+        el = Element(declared.elements.get(k) or generated(f"E{k}"), etype, slots)
         m._claim(el.name, el)
         m.elements.append(el)
         made.append(el)
@@ -419,11 +432,12 @@ def topology(
         terms = tuple((f, FormParameter(made[e - 1], form)) for e, form, f in spec.terms)
         fp = terms[0][1]
         single = len(terms) == 1 and terms[0][0] == 1.0 and fp not in own and kind != "output"
-        if single and fp.label not in m:
+        given = declared.rows.get(spec.dest)
+        if single and (given is not None or fp.label not in m):
             own.add(fp)
-            row = Row(fp.label, kind, terms, spec.para, element=True)
+            row = Row(given or fp.label, kind, terms, spec.para, element=True)
         else:
-            row = Row(fallback, kind, terms, spec.para)
+            row = Row(given or generated(fallback), kind, terms, spec.para)
         m._claim(row.name, row)
         m.rows.append(row)
         return row
@@ -447,7 +461,16 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             for r in specs
         ]
 
-    m = topology(name, coords, elements, declared_rows(d["prescribed"]), declared_rows(d["dependent"]))
+    described: Mapping[str, Any] = d
+    m = topology(
+        name,
+        coords,
+        elements,
+        declared_rows(d["prescribed"]),
+        declared_rows(d["dependent"]),
+        DeckNames.of(described.get("names")),
+        Units.of(described.get("units")),
+    )
     nb = number_model(m)
     if d["motion"] is not None:
         mv = d["motion"]

@@ -37,6 +37,7 @@ from mechfem.atomic import atomic_path
 from mechfem.drawing import STYLES, MechanismDrawing, Shape, arc_points
 from mechfem.figures import PATH_COLOURS
 from mechfem.result import RunResult
+from mechfem.result_tables import run_units
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -450,8 +451,9 @@ def draw_files(
 def analysis_dxf(
     a: RunResult, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str], units: str | None
 ) -> Path:
-    """:meth:`RunResult.to_dxf`: the mechanism at ``position`` with the paths of its moving points as a DXF file."""
-    return write_dxf(analysis_drawing(a, position, paths), path, units)
+    """:meth:`RunResult.to_dxf`: the mechanism at ``position`` with the paths of its moving points as a DXF file,
+    its length unit ``units`` or the run's (its deck's UNITS LENGTH)."""
+    return write_dxf(analysis_drawing(a, position, paths), path, units or run_units(a).length)
 
 
 @_result.TO_SVG.register

@@ -80,9 +80,11 @@ def result_figure(
     picture: int | None = None,
     points: Sequence[str] | None = None,
     against: str | None = None,
+    unit: str | None = None,
 ) -> Figure:
     """The mechanism at position 1 with the paths of its moving points (``points``: which), beside the
-    ``outputs`` (default: every output) against the first input (``against``: an input name, or ``time``).
+    ``outputs`` (default: every output) against the first input (``against``: an input name, or ``time``), with
+    every angle (``unit="deg"``) or length (``unit="m"``) of the outputs and the input in ``unit`` when given.
 
     ``picture=k`` draws picture k (0-based) of the run's storage as the deck's pictures do instead.
     """
@@ -118,24 +120,26 @@ def result_figure(
         ax.legend(fontsize="small", loc="best")
     ax.set_title(f"{a.mechanism.name}: position 1 and paths", fontsize="medium")
     if names:
-        from mechfem.labels import input_unit, with_unit
+        from mechfem.labels import display_unit, input_unit, with_unit
 
         if against == "time" or not a.numbering.inputs:
-            xs, xname, xlabel = a.time, "time", with_unit("time", "s")
+            xs, xname, xlabel = a.time, "time", with_unit("time", display_unit(a, "s"))
         else:
             key = against if against is not None else a.numbering.inputs[0].name
             j = a.numbering.dof(key)
             xname = a.numbering.inputs[j - 1].name
-            xs, xlabel = a.input(key), with_unit(xname, input_unit(a, j))
+            xs, xlabel = a.input(key, unit=unit), with_unit(xname, _in(a, input_unit(a, j), unit))
         first = None
         k = 0
-        for row, (unit, group) in enumerate(units.items()):
+        for row, (base, group) in enumerate(units.items()):
+            shown = _in(a, base, unit)
             ax2 = fig.add_subplot(grid[row, 1], sharex=first)
             first = first or ax2
             for name in group:
-                ax2.plot(xs, a.value(name), color=PATH_COLOURS[k % len(PATH_COLOURS)], label=with_unit(name, unit))
+                colour = PATH_COLOURS[k % len(PATH_COLOURS)]
+                ax2.plot(xs, a.value(name, unit=unit), color=colour, label=with_unit(name, shown))
                 k += 1
-            ax2.set_ylabel(with_unit(", ".join(group), unit))
+            ax2.set_ylabel(with_unit(", ".join(group), shown))
             ax2.grid(True, alpha=0.3)
             if len(group) > 1:
                 ax2.legend(fontsize="small", loc="best")
@@ -149,16 +153,32 @@ def result_figure(
     return fig
 
 
+def _in(a: RunResult, base: str, unit: str | None) -> str:
+    """The unit ``base`` (in the words of the unit algebra) in the run's units, its angles or lengths in ``unit``
+    when given."""
+    from mechfem.labels import display_unit, shown
+    from mechfem.result_tables import run_units
+    from mechfem.units import Units, kind_of
+
+    if unit is None:
+        return display_unit(a, base)
+    kind = kind_of(unit)
+    units = run_units(a).as_dict()
+    if kind is not None:
+        units[kind] = unit
+    return shown(base, Units.of(units))
+
+
 def _unit(a: RunResult, name: str) -> str:
     """The unit of what ``a.value(name)`` gives: an output's or row's, a co-ordinate's, a point's (a length)."""
-    from mechfem.labels import LENGTH, coordinate_unit, row_dest_unit
+    from mechfem.labels import coordinate_unit, row_dest_unit
 
     t = a._any(name)
     if t.kind == "row":
         return row_dest_unit(a, t.numbers[0])
     if t.kind == "coordinate":
         return coordinate_unit(a, t.numbers[0])
-    return LENGTH
+    return "length"
 
 
 def _png(fig: Figure) -> bytes:

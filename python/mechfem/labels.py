@@ -6,22 +6,28 @@ unit, its kind and a sentence in words. A deck's run is named by deck numbers an
 named model (:class:`mechfem.Mechanism`, whose names travel in :attr:`RunResult.names`) by the model's own names
 (``P.x``, ``dcoupler_angle/dcrank``).
 
-Units. Decks have no unit of length, so a length is ``length``; angles are ``rad``; ratios (a gear ratio) have
-no unit (``""``). A derivative's unit is the quantity's over the input's (``rad/rad``, ``length/rad``), a velocity
-adds ``/s`` and an acceleration ``/s^2``. Dynamics buffers carry the word of their kind, since the deck's units
-are the user's: a stress or reaction is a ``force`` on a length, a ``torque`` on an angle and an ``energy`` on a
-ratio; energies are ``energy``, power ``power``, and the mass matrix ``mass`` times one ``length`` for every
-input that is an angle or a ratio (``mass·length^2`` for a crank's reduced inertia).
+Units. A unit is worked out in the words of its kind: ``length``, ``rad`` for an angle, ``s`` for time, and
+ratios (a gear ratio) have none (``""``). A derivative's unit is the quantity's over the input's (``rad/rad``,
+``length/rad``), a velocity adds ``/s`` and an acceleration ``/s^2``. A stress or reaction is a ``force`` on a
+length, a ``torque`` on an angle and an ``energy`` on a ratio; energies are ``energy``, power ``power``, and the
+mass matrix ``mass`` times one ``length`` for every input that is an angle or a ratio. A label then says it in the
+model's units (:func:`shown`: the deck's ``UNITS``, or a :class:`~mechfem.Mechanism`'s): ``mm/deg``, ``N·mm`` for a
+torque (FORCE x LENGTH), ``kg·mm^2``, a quantity over one of its own unit as ``-``; a unit whose kind the model does
+not give (a length without ``UNITS LENGTH``) is not shown at all.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from mechfem.catalogue import CATALOGUE, FORMS, Dimension, coordinate_dimensions, form_dimension
 from mechfem.echo import Buffer, Model, Row
 from mechfem.result import RunResult
+from mechfem.result_tables import run_units
+from mechfem.units import Units
 
 ANGLE = "rad"
 LENGTH = "length"
@@ -70,6 +76,9 @@ class Label:
     """One of :data:`KINDS`."""
     text: str
     """The words, e.g. ``first-order transfer function of ANGB(8) with respect to input 1``."""
+    base: str = ""
+    """The unit in the words of the unit algebra (``length/rad``), whatever the model's units: what decides
+    whether two quantities share an axis."""
 
     def header(self) -> str:
         """The data-set header cell: the number, then the name (``101 dANGB(8)/dinput1``)."""
@@ -86,7 +95,7 @@ class Label:
     @property
     def group(self) -> tuple[str, str]:
         """Which quantities may share one axis (:func:`axis_group`)."""
-        return axis_group(self.kind, self.unit)
+        return axis_group(self.kind, self.base or self.unit)
 
 
 def axis_group(kind: str, unit: str) -> tuple[str, str]:
@@ -161,6 +170,54 @@ def inertia_unit(a: str, b: str) -> str:
     return "mass" + ("·length" if lengths == 1 else "·length^2" if lengths == 2 else "")
 
 
+def _words(units: Units) -> dict[str, str | None]:
+    """Each word of the unit algebra in ``units`` (None: the model does not give it)."""
+    length, force = units.length, units.force
+    moment = None if length is None or force is None else f"{force}·{length}"
+    return {
+        "length": length,
+        "rad": units.angle,
+        "s": units.time,
+        "force": force,
+        "torque": moment,
+        "energy": moment,
+        "power": None if moment is None else f"{moment}/{units.time}",
+        "mass": units.mass,
+    }
+
+
+_WORD = re.compile(r"[A-Za-z]+")
+_RATIO = re.compile(r"^\(?([^()/]+)\)?/\(?([^()/]+)\)?$")
+
+
+def shown(unit: str, units: Units) -> str:
+    """``unit`` (in the words of the unit algebra) in ``units``: ``length/rad`` is ``mm/deg``; a quantity over
+    one of its own unit is ``-``; "" when a word of it has no unit in ``units``."""
+    words = _words(units)
+    missing = False
+
+    def word(m: re.Match[str]) -> str:
+        nonlocal missing
+        w = m.group(0)
+        if w not in words:
+            return w
+        value = words[w]
+        if value is None:
+            missing = True
+            return w
+        return value
+
+    out = _WORD.sub(word, unit)
+    if missing:
+        return ""
+    ratio = _RATIO.match(out)
+    if ratio is not None and ratio.group(1) == ratio.group(2):
+        return "-"
+    if ratio is not None and ratio.group(2) == f"{ratio.group(1)}^2":
+        return f"1/{ratio.group(1)}"
+    return out
+
+
 # -- names --------------------------------------------------------------------------------------------------------
 
 
@@ -179,6 +236,7 @@ class _Namer:
 
     def __init__(self, result: RunResult) -> None:
         self.result = result
+        self.units = run_units(result)
         self.model = result.model
         self.names = result.names
         self.coords = coordinate_units(self.model)
@@ -186,7 +244,10 @@ class _Namer:
 
     def coordinate(self, i: int) -> str:
         n = self.names
-        return n.coordinates[i - 1] if n is not None and 0 < i <= len(n.coordinates) else f"x{i}"
+        if n is not None and 0 < i <= len(n.coordinates):
+            return n.coordinates[i - 1]
+        declared = self.model.coordinates[i - 1].name if 0 < i <= len(self.model.coordinates) else None
+        return declared or f"x{i}"
 
     def coordinate_unit(self, i: int) -> str:
         return self.coords.get(i, LENGTH)
@@ -198,6 +259,8 @@ class _Namer:
             if 0 < abs(r) <= len(names):
                 return names[abs(r) - 1]
         row = self.rows.get(r)
+        if row is not None and row.name:
+            return row.name
         return compact(row.formula()) if row is not None else f"eps({r})"
 
     def row_words(self, r: int) -> str:
@@ -217,7 +280,11 @@ class _Namer:
     def input(self, j: int) -> str:
         """The input in a derivative: ``input1``, or the model's name for it."""
         n = self.names
-        return n.inputs[j - 1] if n is not None and 0 < j <= len(n.inputs) else f"input{j}"
+        if n is not None and 0 < j <= len(n.inputs):
+            return n.inputs[j - 1]
+        r = self.input_row(j)
+        declared = self.rows[r].name if r is not None and r in self.rows else None
+        return declared or f"input{j}"
 
     def input_value(self, j: int) -> str:
         """The input as a quantity: its row's form parameter (``ANGB(1)``), or the model's name for it."""
@@ -229,18 +296,29 @@ class _Namer:
 
     def input_words(self, j: int) -> str:
         n = self.names
-        return n.inputs[j - 1] if n is not None and 0 < j <= len(n.inputs) else f"input {j}"
+        if n is not None and 0 < j <= len(n.inputs):
+            return n.inputs[j - 1]
+        declared = self.input(j)
+        return f"input {j} ({declared})" if declared != f"input{j}" else f"input {j}"
 
     def input_unit(self, j: int) -> str:
         r = self.input_row(j)
         return self.row_unit(r) if r is not None else RATIO
 
     def label(self, b: Buffer) -> Label:
+        """The label of ``b``: the name and unit the core gives it (the deck's ``BUF`` label or NAMES, its
+        UNITS); a named model's own names (which may hold dots no deck name can); a unit in the words of the
+        algebra said in the run's units where the core gives none (an angle in ``rad`` without UNITS)."""
+        lab = self._label(b)
+        name = lab.name if self.names is not None or not b.name else b.name
+        return dataclasses.replace(lab, name=name, unit=b.unit or shown(lab.unit, self.units), base=lab.unit)
+
+    def _label(self, b: Buffer) -> Label:
         a = [*b.args, 0, 0, 0]
         kw = b.keyword
         if kw in ("BUFX0", "BUFKX1", "BUFKX2", "BUFVX", "BUFAX"):
             q, unit, words = self.coordinate(a[0]), self.coordinate_unit(a[0]), f"co-ordinate {a[0]}"
-            if self.names is not None:
+            if q != f"x{a[0]}":
                 words = f"{words} ({q})"
             return self._quantity(b, kw[3:], q, unit, words, a)
         if kw in ("BUFE0", "BUFKE1", "BUFKE2", "BUFVE", "BUFAE"):
@@ -349,9 +427,9 @@ def coordinate_name(result: RunResult, i: int) -> str:
 
 
 def coordinate_axis(result: RunResult, i: int) -> str:
-    """An axis label for co-ordinate i: ``x13 [length]``."""
+    """An axis label for co-ordinate i: ``x13 [mm]`` (``x13`` without a unit of length)."""
     namer = _Namer(result)
-    return with_unit(namer.coordinate(i), namer.coordinate_unit(i))
+    return with_unit(namer.coordinate(i), shown(namer.coordinate_unit(i), namer.units))
 
 
 def point_name(result: RunResult, ix: int, iy: int) -> str:
@@ -368,18 +446,24 @@ def input_name(result: RunResult, j: int) -> str:
 
 
 def row_dest_unit(result: RunResult, dest: int) -> str:
-    """The unit of prescribed row ``dest`` (> 0) or dependent form parameter ``-dest``."""
+    """The unit of prescribed row ``dest`` (> 0) or dependent form parameter ``-dest``, in the words of the unit
+    algebra (:func:`display_unit` says it in the run's units)."""
     return _Namer(result).row_unit(dest)
 
 
 def coordinate_unit(result: RunResult, i: int) -> str:
-    """The unit of co-ordinate i."""
+    """The unit of co-ordinate i, in the words of the unit algebra."""
     return _Namer(result).coordinate_unit(i)
 
 
 def input_unit(result: RunResult, j: int) -> str:
-    """The unit of input j (its row's)."""
+    """The unit of input j (its row's), in the words of the unit algebra."""
     return _Namer(result).input_unit(j)
+
+
+def display_unit(result: RunResult, unit: str) -> str:
+    """``unit`` (in the words of the unit algebra) in the run's units (:func:`shown`)."""
+    return shown(unit, run_units(result))
 
 
 def with_unit(name: str, unit: str) -> str:

@@ -58,7 +58,7 @@ from mechfem.parts import (
 )
 from mechfem.result import RunResult
 from mechfem.storage import Picture, Ref, Storage
-from mechfem.units import Unit, check_unit, to_radians
+from mechfem.units import Unit, Units, angle_in, check_unit
 
 if TYPE_CHECKING:
     from mechfem.loads import (
@@ -85,10 +85,29 @@ class Mechanism(ElementMethods):
     :meth:`from_deck` to the deck's own). ``loads`` holds the masses and loads (None without any: a
     kinematic model, mode ``KIN ANA``; with them its deck is a ``DYN ANA`` one, or ``DYN SIM`` for
     :meth:`simulate`).
+
+    ``units`` are the units of every number given to it and of every number its runs give back (a
+    :class:`~mechfem.units.Units`, or a mapping by kind); ``length``, ``angle``, ``mass``, ``force`` and ``time``
+    set one kind each: ``Mechanism("fourbar", angle="deg")`` reads and gives every angle in degrees,
+    ``length="mm"`` every length in millimetres. Its deck says them on its ``UNITS`` line.
     """
 
-    def __init__(self, name: str = "mechanism") -> None:
+    def __init__(
+        self,
+        name: str = "mechanism",
+        *,
+        units: Units | Mapping[str, str | None] | None = None,
+        length: str | None = None,
+        angle: str | None = None,
+        mass: str | None = None,
+        force: str | None = None,
+        time: str | None = None,
+    ) -> None:
         self.name = check_name(name)
+        given = {k: v for k, v in Units.of(units).as_dict().items() if v is not None}
+        one = {"length": length, "angle": angle, "mass": mass, "force": force, "time": time}
+        self.units: Units = Units(**{**given, **{k: v for k, v in one.items() if v is not None}})
+        """The units of the model's numbers (:class:`~mechfem.units.Units`)."""
         self.coordinates: list[Coordinate] = []
         self.points: list[Point] = []
         self.elements: list[Element] = []
@@ -232,12 +251,12 @@ class Mechanism(ElementMethods):
         return self.prescribe(name, a.angle - b.angle, value)
 
     def drive(self, name: str, expr: Expression, start: float | None = None, unit: Unit | None = None) -> Row:
-        """Makes a form parameter or a combination an input; ``start`` is its value at position 1 (an angle's in
-        ``unit``, ``"rad"`` or ``"deg"``)."""
-        if start is not None and check_unit(unit) == "deg":
+        """Makes a form parameter or a combination an input; ``start`` is its value at position 1 (in the model's
+        units; an angle's in ``unit``, ``"rad"`` or ``"deg"``, when given)."""
+        if start is not None and check_unit(unit) not in (None, self.units.angle):
             if not all(p.is_angle for _, p in self._terms(expr)):
-                raise ValueError(f"the input {name!r} is not an angle: give its start without unit='deg'")
-            start = to_radians(finite(start, f"the start of {name!r}"), "deg")
+                raise ValueError(f"the input {name!r} is not an angle: give its start without unit={unit!r}")
+            start = angle_in(finite(start, f"the start of {name!r}"), unit, self.units.angle)
         return self._row(name, "input", expr, start)
 
     def output(self, name: str, expr: Expression) -> Row:
@@ -309,8 +328,8 @@ class Mechanism(ElementMethods):
     # -- values
 
     def set(self, name: str, value: float | tuple[float, float]) -> None:
-        """Changes a value in place: a row's prescribed value (an input's start), a co-ordinate's initial value,
-        or a point's ``(x, y)``."""
+        """Changes a value in place, in the model's units (:attr:`units`): a row's prescribed value (an input's
+        start), a co-ordinate's initial value, or a point's ``(x, y)``."""
         for target, v in self._targets({name: value}).items():
             if isinstance(target, Row):
                 target.value = v

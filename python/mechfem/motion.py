@@ -384,10 +384,10 @@ def input_dof(key: InputKey, inputs: Sequence[Row]) -> int:
     raise unknown_name("input", name, [r.name for r in inputs])
 
 
-def check_units(motion: Motion, inputs: Sequence[Row]) -> None:
+def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> None:
     """Refuses degrees for an input that is not an angle, and warns with :class:`~mechfem.errors.UnitWarning` when
-    a motion given without a unit changes an angle input by more than :data:`~mechfem.units.LARGE_ANGLE` radians
-    (``inputs``: the input rows in DOF order)."""
+    a motion given without a unit changes an angle input of a model in radians (``angle``: the model's angle unit)
+    by more than :data:`~mechfem.units.LARGE_ANGLE` radians (``inputs``: the input rows in DOF order)."""
     for key, im in motion.inputs.items():
         row = inputs[input_dof(key, inputs) - 1]
         unit = getattr(im, "unit", None)
@@ -396,7 +396,7 @@ def check_units(motion: Motion, inputs: Sequence[Row]) -> None:
                 f"the motion gives the input {row.name!r} in degrees (unit='deg'), but it is not an angle "
                 f"({row.formula()}): give its motion in its own unit, without unit='deg'"
             )
-        change = 0.0 if unit is not None or not row.is_angle else _change(im, row.value)
+        change = 0.0 if unit is not None or not row.is_angle or angle != "rad" else _change(im, row.value)
         if change > LARGE_ANGLE:
             warnings.warn(
                 f"the motion changes the angle input {row.name!r} by {change:.6g} rad ({change / (2 * np.pi):.3g} "

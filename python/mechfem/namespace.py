@@ -22,6 +22,7 @@ from typing import Any
 
 from mechfem import deckio, echo
 from mechfem import result as _result
+from mechfem.deck_names import DeckNames
 from mechfem.echo import Model, ModelNames
 from mechfem.explain import PythonWords
 from mechfem.model import Coordinate, FormParameter, Mechanism, Point, Row
@@ -155,6 +156,7 @@ def deck_namespace(result: RunResult) -> Namespace:
         [(e.number, e.type, list(e.coords)) for e in model.elements],
         [_declared_row(r) for r in model.prescribed],
         [_declared_row(r) for r in model.dependent],
+        DeckNames.of_model(model),
     )
     # The deck's own numbers, as for a deck read into a mechanism (its inputs are its last prescribed rows).
     numbering = deckio.number_model(mech)

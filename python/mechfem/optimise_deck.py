@@ -9,18 +9,21 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 import mechfem._core as _core
 from mechfem import design
 from mechfem.atomic import atomic_text
+from mechfem.echo import Model
 from mechfem.errors import MechfemError
+from mechfem.labels import coordinate_units, row_unit, shown
 from mechfem.output import count
+from mechfem.units import Units
 
 if TYPE_CHECKING:
     from mechfem._core import DescribedDeckDict, OptimiseDict
@@ -85,6 +88,43 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
 def variable_name(kind: int, number: int) -> str:
     """``PARA 5`` for a prescribed row, ``XFIX 3`` for a fixed co-ordinate."""
     return f"{'PARA' if kind == 1 else 'XFIX'} {number}"
+
+
+def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, str]]:
+    """The name and unit of each design variable as the deck names them (``kappa``, ``deg``): a row's or
+    co-ordinate's NAMES name, else :func:`variable_name`; the unit from its kind and the deck's UNITS ("" where
+    the deck gives none). Without the model echo, the deck numbers."""
+    if model is None:
+        return [(name, "") for name in p.names]
+    units = Units.of(model.units)
+    coords = coordinate_units(model)
+    out = []
+    for (kind, number), fallback in zip(p.variables, p.names, strict=True):
+        if kind == 1 and 0 < number <= len(model.prescribed):
+            row = model.prescribed[number - 1]
+            out.append((row.name or fallback, shown(row_unit(model, row, coords), units)))
+        elif 0 < number <= len(model.coordinates):
+            out.append((model.coordinates[number - 1].name or fallback, shown(coords.get(number, "length"), units)))
+        else:
+            out.append((fallback, ""))
+    return out
+
+
+def deck_scales(opt: OptimiseDict | None, n: int) -> list[float]:
+    """What each design variable's number in the optimiser (the core's units) is multiplied by to give it in the
+    deck's units (1 for a deck without UNITS)."""
+    vary: list[Mapping[str, Any]] = [] if opt is None else list(opt["vary"])
+    return [float(v.get("scale", 1.0)) for v in vary] if len(vary) == n else [1.0] * n
+
+
+def values_line(p: design.Problem, x: Iterable[float], model: Model | None, opt: OptimiseDict | None = None) -> str:
+    """``kappa = -296.5 deg, B0.x = 0.3``: the variables' values (``x``, the optimiser's numbers) by name, in the
+    deck's units."""
+    labels = variable_labels(p, model)
+    return ", ".join(
+        f"{name} = {v * f:.10g}" + (f" {unit}" if unit and unit != "-" else "")
+        for (name, unit), v, f in zip(labels, x, deck_scales(opt, len(labels)), strict=True)
+    )
 
 
 def iteration_line(it: design.Iteration) -> str:
@@ -193,14 +233,21 @@ def write_design(
     return path
 
 
-def print_lines(outcome: Outcome, written: Path | None) -> list[str]:
-    """The print file's OPTIMISATION section."""
+def print_lines(outcome: Outcome, written: Path | None, model: Model | None = None) -> list[str]:
+    """The print file's OPTIMISATION section; the variables named as ``model`` (the final design's echo) names
+    them."""
     p, s = outcome.problem, outcome.solution
     out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {outcome.opt['line']}"]
     out += history_lines(s.history)
-    out += ["", "  design variables:", f"  {'variable':>10} {'start':>18} {'final':>18} {'lower':>14} {'upper':>14}"]
-    for name, x0, x, lo, hi in zip(p.names, s.start, s.x, p.lo, p.hi, strict=True):
-        out.append(f"  {name:>10} {x0:>18.12g} {x:>18.12g} {lo:>14.8g} {hi:>14.8g}")
+    out += [
+        "",
+        "  design variables:",
+        f"  {'variable':>10} {'unit':>6} {'start':>18} {'final':>18} {'lower':>14} {'upper':>14}",
+    ]
+    labels = variable_labels(p, model)
+    scales = deck_scales(outcome.opt, len(labels))
+    for (name, unit), x0, x, lo, hi, f in zip(labels, s.start, s.x, p.lo, p.hi, scales, strict=True):
+        out.append(f"  {name:>10} {unit:>6} {x0 * f:>18.12g} {x * f:>18.12g} {lo * f:>14.8g} {hi * f:>14.8g}")
     out += [
         "",
         f"  objective: start {s.start_objective:.10g}, final {s.objective:.10g}",

@@ -194,24 +194,29 @@ def model_lines(model: Model) -> list[str]:
     ]
     for e in model.elements:
         coords = "  ".join(f"{n}={c}" for n, c in zip(e.coord_names, e.coords, strict=True))
-        out.append(f"    {e.number:4d}  {e.type:<4}  {coords}")
+        out.append(f"    {e.number:4d}  {e.type:<4}  {coords}{_named(e.name)}")
     out += ["", "  prescribed form parameters (rows of D^c)", "     row  value at position 1  form parameters"]
     for r in model.prescribed:
-        out.append(f"    {r.dest:4d}  {r.value:17.10g}  {r.formula()}")
+        out.append(f"    {r.dest:4d}  {r.value:17.10g}  {r.formula()}{_named(r.name)}")
     if model.dependent:
         out += ["", "  dependent form parameters", "    dest  value at position 1  form parameters"]
         for r in model.dependent:
-            out.append(f"    {r.dest:4d}  {r.value:17.10g}  {r.formula()}")
+            out.append(f"    {r.dest:4d}  {r.value:17.10g}  {r.formula()}{_named(r.name)}")
     out += ["", "  degrees of freedom (inputs)"]
-    out += [f"    DOF {j}: row {row}" for j, row in enumerate(model.dofs, 1)]
+    out += [f"    DOF {j}: row {row}{_named(model.prescribed[row - 1].name)}" for j, row in enumerate(model.dofs, 1)]
     out += ["", "  co-ordinates", "      no  kind              given         position 1"]
     for c in model.coordinates:
         kind = "XMOV" if c.moving else "XFIX"
-        out.append(f"    {c.number:4d}  {kind}  {c.given:17.10g}  {c.adjusted:17.10g}")
+        out.append(f"    {c.number:4d}  {kind}  {c.given:17.10g}  {c.adjusted:17.10g}{_named(c.name)}")
     if model.dynamics is not None:
         out += model.dynamics.lines()
     out.append("")
     return out
+
+
+def _named(name: str | None) -> str:
+    """What the print file's echo of the model adds to a line for a thing the deck's NAMES block names."""
+    return f"  = {name}" if name else ""
 
 
 def adjustment_lines(result: RunResult) -> list[str]:

@@ -14,7 +14,7 @@ from typing import Literal, TypeAlias
 from mechfem.catalogue import FORMS, form_dimension
 from mechfem.checks import finite
 from mechfem.names import suggestion
-from mechfem.units import Unit, check_unit, to_radians
+from mechfem.units import Unit, angle_in, check_unit
 
 ATTRIBUTES: dict[str, str] = {
     "LENL": "length",
@@ -318,20 +318,22 @@ class Element:
 # --- the mechanism -------------------------------------------------------------------------------------------------
 
 
-def role_row(fp: FormParameter, role: Role) -> Row | None:
+def role_row(fp: FormParameter, role: Role, angle: str = "rad") -> Row | None:
+    """The row ``role`` makes of ``fp`` in a model whose angles are in ``angle`` (None for no role)."""
     if role is None:
         return None
     if isinstance(role, Keep):
         return Row(fp.label, "prescribed", fp.terms(), None, True)
     if isinstance(role, Driven):
         start = None if role.start is None else finite(role.start, f"the start value of {fp.label}")
-        if start is not None and check_unit(role.unit, f"the unit of {fp.label}'s start") == "deg":
+        unit = check_unit(role.unit, f"the unit of {fp.label}'s start")
+        if start is not None and unit not in (None, angle):
             if not fp.is_angle:
                 raise ValueError(
-                    f"Driven(start={role.start!r}, unit='deg') on {fp.label}, which is not an angle: give its start "
-                    "in its own unit, without unit='deg'"
+                    f"Driven(start={role.start!r}, unit={unit!r}) on {fp.label}, which is not an angle: give its "
+                    f"start in its own unit, without unit={unit!r}"
                 )
-            start = to_radians(start, "deg")
+            start = angle_in(start, unit, angle)
         return Row(role.name or fp.label, "input", fp.terms(), start, True)
     if isinstance(role, Output):
         return Row(role.name, "output", fp.terms(), None, True)

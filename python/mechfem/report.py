@@ -33,11 +33,13 @@ from mechfem.report_charts import (
     dynamics_cards,
     limit_markers,
     main_axis,
+    model_card,
     nums,
     paths,
     picture_cards,
 )
 from mechfem.result import RunResult
+from mechfem.result_tables import REPORT, SAVE_REPORT, run_units
 
 #: Most positions the report shows (slider, charts and table); longer runs are subsampled evenly.
 MAX_REPORT_POSITIONS = 2000
@@ -76,12 +78,16 @@ def report_data(result: RunResult) -> dict[str, Any]:
     frames = report_positions(result.positions)
     drawing = MechanismDrawing(result.model, result.coords)
     labels = all_labels(result)
-    cols = Columns(frames)
+    cols = Columns(frames, run_units(result))
     table = [cols.buffer(result, labels[b.number]) for b in result.storage.buffers if b.number in labels]
     xkey = main_axis(result, labels, cols)
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
     cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols)
-    if not result.storage.pictures:
+    named = model_card(result, cols) if not result.storage.buffers else None
+    if named is not None:
+        xkey, card = named
+        cards = [card, *cards]
+    elif not result.storage.pictures:
         default = default_card(result, labels, cols, xkey)
         cards = ([default] if default else []) + cards
     subsampled = len(frames) < result.positions
@@ -172,9 +178,17 @@ def report_file(result: RunResult, outdir: Path) -> Path:
 
 def write_report(result: RunResult, outdir: Path) -> Path:
     """Writes ``<stem>.html`` into ``outdir`` (created if needed); returns its path."""
-    outdir.mkdir(parents=True, exist_ok=True)
-    path = report_file(result, outdir)
+    return save_report(result, report_file(result, outdir))
+
+
+def save_report(result: RunResult, path: Path) -> Path:
+    """Writes the report of ``result`` to the file ``path`` (its folder made if needed); returns the path."""
+    path.parent.mkdir(parents=True, exist_ok=True)
     text = render_report(result)
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path
+
+
+REPORT.register(render_report)
+SAVE_REPORT.register(save_report)

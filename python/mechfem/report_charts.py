@@ -22,13 +22,17 @@ from mechfem.labels import (
     buffer_labels,
     coordinate_name,
     input_name,
+    over,
     point_name,
+    row_dest_unit,
     row_unit,
+    shown,
     stress_unit,
     with_unit,
 )
 from mechfem.plots import hodograph, picture_title
 from mechfem.result import RunResult
+from mechfem.units import Units
 
 
 def num(v: float) -> float | None:
@@ -48,11 +52,18 @@ class Columns:
     """The columns of a report, by key, each sampled at the report's frames."""
 
     frames: np.ndarray
+    units: Units = field(default_factory=Units)
+    """The run's units, in which every column's unit is said."""
     table: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def shown(self, unit: str) -> str:
+        """``unit`` (in the words of the unit algebra, or already said in the run's units) in the run's units."""
+        return shown(unit, self.units)
 
     def add(
         self, key: str, name: str, unit: str, kind: str, values: Any, header: str | None = None, text: str = ""
     ) -> str:
+        unit = self.shown(unit)
         if key not in self.table:
             self.table[key] = {
                 "name": name,
@@ -221,7 +232,7 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
         for p in pic.plots:
             if p.keyword == "PLOTCURV" and p.a in labels and p.b in labels:
                 la, lb = labels[p.a], labels[p.b]
-                curves.setdefault((la.unit, lb.unit), []).append(
+                curves.setdefault((la.base, lb.base), []).append(
                     {"x": cols.buffer(result, la), "y": cols.buffer(result, lb), "name": f"{lb.name} against {la.name}"}
                 )
         if hodos:
@@ -232,8 +243,8 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
                     "type": "xy",
                     "equal": True,
                     "mechanism": True,
-                    "xlabel": with_unit("x", "length"),
-                    "ylabel": with_unit("y", "length"),
+                    "xlabel": with_unit("x", cols.shown("length")),
+                    "ylabel": with_unit("y", cols.shown("length")),
                     "series": series,
                     "hodographs": hodos,
                 }
@@ -245,8 +256,8 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
                 {
                     "type": "xy",
                     "equal": ux == uy,
-                    "xlabel": with_unit(", ".join(xs), ux),
-                    "ylabel": with_unit(", ".join(ys), uy),
+                    "xlabel": with_unit(", ".join(xs), cols.shown(ux)),
+                    "ylabel": with_unit(", ".join(ys), cols.shown(uy)),
                     "series": series,
                 }
             )
@@ -264,6 +275,26 @@ def default_card(result: RunResult, labels: dict[int, Label], cols: Columns, xke
         "picture": None,
         "charts": _function_charts(xkey, ys, cols),
     }
+
+
+def model_card(result: RunResult, cols: Columns) -> tuple[str, dict[str, Any]] | None:
+    """For the run of a named model that records no buffers: its outputs and their first-order transfer functions
+    against its first input, by the model's names and in its units; with the input's column key."""
+    nb = result.numbering
+    if not result.named or not nb.inputs:
+        return None
+    phi = nb.inputs[0]
+    phi_unit = row_dest_unit(result, nb.row_dest[phi])
+    x = cols.add(f"n:{phi.name}", phi.name, phi_unit, "input", result.input(phi))
+    ys = []
+    for r in nb.dependent:
+        unit = row_dest_unit(result, nb.row_dest[r])
+        ys.append(cols.add(f"n:{r.name}", r.name, unit, "position", result.value(r)))
+        per = over(unit, phi_unit)
+        ys.append(cols.add(f"n:{r.name}'", f"d{r.name}/d{phi.name}", per, "first order", result.value(r, 1, phi)))
+    if not ys:
+        return None
+    return x, {"title": f"outputs against {phi.name}", "picture": None, "charts": _function_charts(x, ys, cols)}
 
 
 def limit_markers(result: RunResult, xkey: str) -> list[dict[str, Any]]:
@@ -308,6 +339,8 @@ def _full(result: RunResult, key: str) -> np.ndarray:
         return result.time
     if key == "pos":
         return np.arange(1, result.positions + 1, dtype=np.float64)
+    if key.startswith("n:"):
+        return result.input(key[2:])
     return result.buffers[int(key[1:])]
 
 

@@ -12,16 +12,20 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Mapping, Sequence
+import os
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
 from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 from mechfem import optional
+from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import BUFFER_ARGS, Model, ModelNames, Storage
+from mechfem.hooks import Hook
 from mechfem.run_report import RunReport
-from mechfem.units import Unit, check_unit, factor
+from mechfem.units import Units, check_output_unit, kind_of, scale
 from mechfem.words import Words
 
 FloatArray = npt.NDArray[np.float64]
@@ -45,6 +49,10 @@ class NotRecordedError(KeyError):
 
     def __str__(self) -> str:
         return str(self.args[0]) if self.args else ""
+
+
+class NotOfKindError(ValueError):
+    """``unit=`` of a kind (an angle, a length) that neither a quantity nor an input it is differentiated by is."""
 
 
 class Energy(NamedTuple):
@@ -301,24 +309,28 @@ class ResultTables:
     def _any(self, ref: object) -> Target:
         return self._target(ref, "point, co-ordinate, row or output", ("point", "coordinate", "row"))
 
-    def x(self, point: object) -> FloatArray:
-        """x of a point at every position."""
-        return self.coords[:, self._target(point, "point", ("point",)).numbers[0] - 1].copy()
+    def x(self, point: object, unit: str | None = None) -> FloatArray:
+        """x of a point at every position (in the length unit ``unit`` when given: ``"mm"``, ``"m"``, ...)."""
+        t = self._target(point, "point", ("point",))
+        return self._in_unit(self.coords[:, t.numbers[0] - 1].copy(), t, (), unit)
 
-    def y(self, point: object) -> FloatArray:
-        """y of a point at every position."""
-        return self.coords[:, self._target(point, "point", ("point",)).numbers[1] - 1].copy()
+    def y(self, point: object, unit: str | None = None) -> FloatArray:
+        """y of a point at every position (in the length unit ``unit`` when given)."""
+        t = self._target(point, "point", ("point",))
+        return self._in_unit(self.coords[:, t.numbers[1] - 1].copy(), t, (), unit)
 
     def value(
-        self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: Unit | None = None
+        self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: str | None = None
     ) -> FloatArray:
         """A point (positions x 2), co-ordinate, row or output at every position (``order`` 0), or its transfer
         function of first (d/d ``wrt``) or second order (d2/d ``wrt`` d ``wrt2``; ``wrt2`` defaults to ``wrt``).
-        ``unit="deg"`` gives every angle in degrees: an angle's value, and a transfer function per degree of an
-        angle input (d psi / d alpha of two angles is the same in either unit)."""
+        Numbers are in the model's units (its deck's UNITS, or the :class:`~mechfem.Mechanism`'s); ``unit`` gives
+        every angle (``"deg"``, ``"rad"``) or every length (``"mm"``, ``"m"``, ``"cm"``, ``"in"``) in that unit
+        instead: an angle's value, and a transfer function per degree of an angle input (d psi / d alpha of two
+        angles is the same in either unit)."""
         return self._value(self._any(name), order, wrt, wrt2, unit)
 
-    def _value(self, t: Target, order: int, wrt: object, wrt2: object, unit: Unit | None) -> FloatArray:
+    def _value(self, t: Target, order: int, wrt: object, wrt2: object, unit: str | None) -> FloatArray:
         if order == 0:
             return self._in_unit(self._of(t, "x0", "e0"), t, (), unit)
         j = self._dof(wrt)
@@ -329,51 +341,85 @@ class ResultTables:
             return self._in_unit(self._of(t, "kx2", "ke2", j, m), t, (j, m), unit)
         raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
 
-    def _in_unit(self, values: FloatArray, t: Target, dofs: Sequence[int], unit: Unit | None) -> FloatArray:
-        """``values`` of ``t`` differentiated by the inputs ``dofs`` (0-based) in ``unit``: with ``"deg"``, an
-        angle's value times 180/pi, divided by 180/pi for each angle input it is differentiated by."""
-        if check_unit(unit) != "deg":
+    def _in_unit(self, values: FloatArray, t: Target, dofs: Sequence[int], unit: str | None) -> FloatArray:
+        """``values`` of ``t`` differentiated by the inputs ``dofs`` (0-based) with every angle (or length) in
+        ``unit``: with ``"deg"`` for a model in radians, an angle's value times 180/pi, divided by 180/pi for each
+        angle input it is differentiated by."""
+        kind = kind_of(check_output_unit(unit) or "")
+        if unit is None or kind is None:
             return values
-        power = int(t.angle) - sum(self._names.input(j).angle for j in dofs)
-        if not t.angle and power == 0:
-            raise ValueError(
-                f"{t.name!r} is not an angle, and neither is an input it is differentiated by: unit='deg' applies to "
-                "angles only"
+        if kind not in ("angle", "length"):
+            raise ValueError(f"unit={unit!r}: a result is given in another unit of angle or length only")
+        source = run_units(self).get(kind)
+        if source == unit:
+            return values
+        of_kind = self._dimension(t) == kind
+        power = int(of_kind) - sum(self._dimension(self._names.input(j)) == kind for j in dofs)
+        if not of_kind and power == 0:
+            raise NotOfKindError(
+                f"{t.name!r} is not {'an angle' if kind == 'angle' else 'a length'}, and neither is an input it is "
+                f"differentiated by: unit={unit!r} applies to {'angles' if kind == 'angle' else 'lengths'} only"
             )
-        return values * factor("deg") ** power if power else values
+        if source is None:
+            raise ValueError(
+                f"unit={unit!r}: the model has no unit of length to convert from; give it one (UNITS LENGTH in its "
+                "deck, Mechanism(length=...))"
+            )
+        return values * scale(source, unit) ** power if power else values
 
-    def position(self, name: object, unit: Unit | None = None) -> FloatArray:
+    def _dimension(self, t: Target) -> str:
+        """What ``t`` measures: ``angle``, ``length`` or ``ratio`` (a point is a length)."""
+        if t.angle:
+            return "angle"
+        if t.kind == "point":
+            return "length"
+        model = self.model
+        if t.kind == "coordinate":
+            return _coordinate_dimensions(model).get(t.numbers[0], "length")
+        rows = {r.dest: r for r in [*model.prescribed, *model.dependent]}
+        row = rows.get(t.numbers[0])
+        if row is None:
+            return "ratio"
+        dims = set()
+        elements = {e.number: e for e in model.elements}
+        for term in row.terms:
+            e = elements[term.element]
+            dim = form_dimension(e.type, term.form)
+            dims.add(_coordinate_dimensions(model).get(e.coords[0], "length") if dim == "any" and e.coords else dim)
+        return dims.pop() if len(dims) == 1 else "ratio"
+
+    def position(self, name: object, unit: str | None = None) -> FloatArray:
         """The same as ``value(name)``: a point's (x, y), a co-ordinate, a row or an output (an angle in ``unit``,
         ``"rad"`` or ``"deg"``)."""
         return self.value(name, unit=unit)
 
     def output(
-        self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: Unit | None = None
+        self, name: object, order: int = 0, wrt: object = None, wrt2: object = None, unit: str | None = None
     ) -> FloatArray:
         """An output (or any row: a prescribed value, an input) and its transfer functions; see :meth:`value`."""
         return self._value(self._target(name, "output or row", ("row",)), order, wrt, wrt2, unit)
 
     def transfer(
-        self, name: object, order: int = 1, wrt: object = None, wrt2: object = None, unit: Unit | None = None
+        self, name: object, order: int = 1, wrt: object = None, wrt2: object = None, unit: str | None = None
     ) -> FloatArray:
         """Transfer function of first or second order; see :meth:`value`."""
         if order not in (1, 2):
             raise ValueError(f"a transfer function has order 1 or 2, not {order!r}")
         return self.value(name, order, wrt, wrt2, unit)
 
-    def velocity(self, name: object, unit: Unit | None = None) -> FloatArray:
+    def velocity(self, name: object, unit: str | None = None) -> FloatArray:
         """Velocity (time derivative) of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit``
         per time)."""
         t = self._any(name)
         return self._in_unit(self._of(t, "vx", "ve"), t, (), unit)
 
-    def acceleration(self, name: object, unit: Unit | None = None) -> FloatArray:
+    def acceleration(self, name: object, unit: str | None = None) -> FloatArray:
         """Acceleration of a point (positions x 2), co-ordinate, row or output (an angle's in ``unit`` per time
         squared)."""
         t = self._any(name)
         return self._in_unit(self._of(t, "ax", "ae"), t, (), unit)
 
-    def input(self, name: object = None, unit: Unit | None = None) -> FloatArray:
+    def input(self, name: object = None, unit: str | None = None) -> FloatArray:
         """The value of an input at every position (under free motion: where it went), an angle in ``unit``
         (``"rad"``, the default, or ``"deg"``)."""
         j = self._dof(name)
@@ -434,11 +480,12 @@ class ResultTables:
 
     # -- tables
 
-    def table(self, coordinates: bool = True) -> dict[str, FloatArray]:
+    def table(self, coordinates: bool = True, unit: str | None = None) -> dict[str, FloatArray]:
         """Every result as named columns: ``time``, ``det``, then each input, output and (with ``coordinates``)
         moving co-ordinate ``q`` as ``q``, ``q'``, ``q''`` (transfer functions; ``q'(a)``, ``q''(a,b)`` with
         several inputs), ``q_dot`` and ``q_ddot`` (velocity, acceleration). A deck's run gives those its buffers
-        recorded."""
+        recorded. Numbers are in the model's units; ``unit`` gives every angle or every length in that unit, as
+        for :meth:`value`."""
         inputs, outputs, coords = self._names.columns(coordinates)
         names = [r.name for r in inputs]
         single = len(names) == 1
@@ -446,7 +493,10 @@ class ResultTables:
 
         def put(key: str, get: Any, *args: Any) -> None:
             try:
-                out[key] = get(*args)
+                try:
+                    out[key] = get(*args, unit=unit)
+                except NotOfKindError:
+                    out[key] = get(*args)
             except KeyError:
                 if self.named:
                     raise
@@ -470,10 +520,50 @@ class ResultTables:
             add(c.name, c)
         return out
 
-    def to_pandas(self, coordinates: bool = True) -> Any:
-        """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...). Needs pandas
-        (``pip install 'mechfem[pandas]'``)."""
+    # -- the report
+
+    def to_html(self) -> str:
+        """The interactive report of the run as one self-contained HTML page (the text of the file ``mechfem run
+        --report`` writes): the mechanism animated, det(D^c) and the limit positions, every picture and a table of
+        the buffers, named and in the model's units."""
+        return REPORT.call(self)
+
+    def save_report(self, path: str | os.PathLike[str]) -> Path:
+        """Writes :meth:`to_html` to ``path`` (a file; its folder is made if needed), whole or not at all; returns
+        the path."""
+        return SAVE_REPORT.call(self, Path(path))
+
+    def to_pandas(self, coordinates: bool = True, unit: str | None = None) -> Any:
+        """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...), its columns named as the model
+        names its parts (``unit``: as for :meth:`table`). Needs pandas (``pip install 'mechfem[pandas]'``)."""
         pd = optional.pandas()
-        frame = pd.DataFrame(self.table(coordinates))
+        frame = pd.DataFrame(self.table(coordinates, unit))
         frame.index = pd.RangeIndex(1, self.coords.shape[0] + 1, name="position")
         return frame
+
+
+def _coordinate_dimensions(model: Model) -> dict[int, str]:
+    """What each co-ordinate measures, from the first element that uses it (``any``: left to the others)."""
+    out: dict[int, str] = {}
+    for e in model.elements:
+        for i, dim in zip(e.coords, coordinate_dimensions(e.type), strict=False):
+            if dim != "any":
+                out.setdefault(i, dim)
+    return out
+
+
+def run_units(result: Any) -> Units:
+    """The units of a run's numbers: its deck's UNITS (the model echo's), or its named model's."""
+    given = getattr(result.model, "units", None)
+    if given is not None:
+        return Units.of(given)
+    if getattr(result, "named", False):
+        units = getattr(result.mechanism, "units", None)
+        if isinstance(units, Units):
+            return units
+    return Units()
+
+
+# The report is written by mechfem.report, above this module (docs/architecture.md).
+REPORT: Hook[Callable[[Any], str]] = Hook("RunResult.to_html", "mechfem.report")
+SAVE_REPORT: Hook[Callable[[Any, Path], Path]] = Hook("RunResult.save_report", "mechfem.report")

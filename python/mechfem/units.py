@@ -1,27 +1,135 @@
-"""Angles in radians or degrees at the edges of the Python API.
+"""Units at the edges of the Python API: the units a model's numbers are in, and another unit for one output.
 
-The model, its deck and the solver work in radians. A motion, an input's start value or a result may be given
-or asked for in degrees (``unit="deg"``); the conversion happens where the value enters or leaves, with
-:func:`math.radians` and :func:`math.degrees`, so that a value in degrees gives exactly the radians
-``math.radians`` gives for it.
+A :class:`Units` is the deck's ``UNITS`` line: a unit of length, angle, mass, force and time
+(``UNITS LENGTH mm ANGLE deg``). A :class:`~mechfem.Mechanism` carries one; every number given to it is read in
+those units (``m.set("phi", 90)`` is 90 degrees when its angle unit is degrees), its deck says them on the
+``UNITS`` line and the deck reader converts at its edge, so a run's numbers come back in them. Without a unit of
+length, mass or force the numbers are the user's own consistent ones, as in a deck without ``UNITS``; angles
+default to radians and time to seconds.
+
+Where one output is wanted in another unit (``unit=`` of :meth:`~mechfem.RunResult.value`, ``x``, ``plot``,
+``to_pandas``), the conversion is a factor between two units of one kind (:func:`scale`); a value given in degrees
+for a model in radians gives exactly the radians :func:`math.radians` gives for it.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
 from typing import Literal, TypeAlias
 
 import numpy as np
 import numpy.typing as npt
 
 Unit: TypeAlias = Literal["rad", "deg"]
-"""The unit of an angle: ``"rad"`` (the model's own) or ``"deg"``."""
+"""The unit of an angle: ``"rad"`` (the default) or ``"deg"``."""
 
 UNITS: tuple[str, ...] = ("rad", "deg")
+"""The units of an angle."""
+
+#: Each kind of quantity the UNITS line sets, with its units and what one of each is in SI units.
+SI: dict[str, dict[str, float]] = {
+    "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "in": 0.0254},
+    "angle": {"rad": 1.0, "deg": math.pi / 180.0},
+    "mass": {"kg": 1.0, "g": 1e-3},
+    "force": {"N": 1.0, "kN": 1e3},
+    "time": {"s": 1.0, "ms": 1e-3},
+}
+
+#: The deck's word for each kind (the UNITS line's field).
+FIELD = {"length": "LENGTH", "angle": "ANGLE", "mass": "MASS", "force": "FORCE", "time": "TIME"}
 
 LARGE_ANGLE = 100.0
 """An angular change of a motion larger than this many radians (about 16 turns) given without a unit is
 probably meant in degrees: it warns with :class:`~mechfem.errors.UnitWarning`."""
+
+
+@dataclass(frozen=True)
+class Units:
+    """The units of a model's numbers: ``length``, ``mass`` and ``force`` (None: the numbers as they are, in a
+    consistent system of the user's), ``angle`` (``"rad"`` or ``"deg"``) and ``time`` (``"s"`` or ``"ms"``)."""
+
+    length: str | None = None
+    angle: str = "rad"
+    mass: str | None = None
+    force: str | None = None
+    time: str = "s"
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if value is None and f.name in ("angle", "time"):
+                object.__setattr__(self, f.name, "rad" if f.name == "angle" else "s")
+            elif value is not None and value not in SI[f.name]:
+                allowed = ", ".join(repr(u) for u in SI[f.name])
+                raise ValueError(f"the unit of {f.name} must be one of {allowed}, got {value!r}")
+
+    @classmethod
+    def of(cls, value: Units | Mapping[str, str | None] | None) -> Units:
+        """``value`` as units: a :class:`Units`, a mapping by kind (``{"length": "mm", "angle": "deg"}``, as a
+        model echo carries it) or None (the defaults)."""
+        if value is None:
+            return cls()
+        if isinstance(value, Units):
+            return value
+        unknown = [k for k in value if k not in SI]
+        if unknown:
+            raise ValueError(f"no kind of unit {unknown[0]!r}: units are given for {', '.join(SI)}")
+        get = value.get
+        return cls(get("length"), get("angle") or "rad", get("mass"), get("force"), get("time") or "s")
+
+    def get(self, kind: str) -> str | None:
+        """The unit of ``kind`` (``length``, ``angle``, ``mass``, ``force``, ``time``)."""
+        return getattr(self, kind)  # type: ignore[no-any-return]
+
+    @property
+    def default(self) -> bool:
+        """True when these are the units of a deck without ``UNITS`` (radians, seconds, nothing else)."""
+        return self == Units()
+
+    def deck_line(self) -> str | None:
+        """The deck's ``UNITS`` line for these units (the fields that differ from the defaults), or None for the
+        defaults."""
+        words = [
+            f"{FIELD[f.name]} {getattr(self, f.name)}"
+            for f in fields(self)
+            if getattr(self, f.name) != getattr(Units(), f.name)
+        ]
+        return "UNITS " + " ".join(words) if words else None
+
+    def as_dict(self) -> dict[str, str | None]:
+        """The units by kind."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+def kind_of(unit: str) -> str | None:
+    """The kind of quantity ``unit`` measures (``"mm"`` -> ``"length"``), or None for a unit mechfem does not
+    convert."""
+    return next((k for k, units in SI.items() if unit in units), None)
+
+
+def scale(source: str | None, target: str | None) -> float:
+    """What a value in ``source`` is multiplied by to give it in ``target`` (two units of one kind); 1 when either
+    is None (a quantity without a unit stays as it is)."""
+    if source is None or target is None or source == target:
+        return 1.0
+    kind = kind_of(source)
+    if kind is None or kind != kind_of(target):
+        raise ValueError(f"cannot convert {source!r} to {target!r}: they are not units of one kind")
+    if kind == "angle":
+        # math.degrees and math.radians, exactly.
+        return 180.0 / math.pi if target == "deg" else math.pi / 180.0
+    return SI[kind][source] / SI[kind][target]
+
+
+def check_output_unit(unit: object, what: str = "unit") -> str | None:
+    """``unit`` when it is None or a unit mechfem converts (``"rad"``, ``"deg"``, ``"mm"``, ...); a ValueError
+    otherwise."""
+    if unit is None or (isinstance(unit, str) and kind_of(unit) is not None):
+        return unit
+    every = ", ".join(repr(u) for units in SI.values() for u in units)
+    raise ValueError(f"{what} must be one of {every}, got {unit!r}")
 
 
 def check_unit(unit: object, what: str = "unit") -> Unit | None:
@@ -31,25 +139,48 @@ def check_unit(unit: object, what: str = "unit") -> Unit | None:
     raise ValueError(f"{what} must be 'rad' or 'deg', got {unit!r}")
 
 
-def factor(unit: Unit | None) -> float:
+def factor(unit: str | None) -> float:
     """What a value in radians is multiplied by to give it in ``unit``."""
     return 180.0 / math.pi if unit == "deg" else 1.0
 
 
-def to_radians(value: float, unit: Unit | None) -> float:
+def to_radians(value: float, unit: str | None) -> float:
     """``value`` given in ``unit``, in radians."""
     return math.radians(value) if unit == "deg" else float(value)
 
 
-def array_to_radians(values: npt.ArrayLike, unit: Unit | None) -> npt.NDArray[np.float64]:
+def array_to_radians(values: npt.ArrayLike, unit: str | None) -> npt.NDArray[np.float64]:
     """An array given in ``unit``, in radians (element by element as :func:`math.radians`)."""
     a = np.asarray(values, dtype=np.float64)
     return np.radians(a) if unit == "deg" else a
 
 
-def from_radians(values: npt.NDArray[np.float64], unit: Unit | None) -> npt.NDArray[np.float64]:
+def from_radians(values: npt.NDArray[np.float64], unit: str | None) -> npt.NDArray[np.float64]:
     """Values in radians, in ``unit``."""
     return np.degrees(values) if unit == "deg" else values
 
 
-__all__ = ["LARGE_ANGLE", "UNITS", "Unit", "array_to_radians", "check_unit", "factor", "from_radians", "to_radians"]
+def angle_in(value: float, given: str | None, model: str) -> float:
+    """An angle ``value`` given in ``given`` (None: the model's own unit), in the model's angle unit ``model``."""
+    if given is None or given == model:
+        return float(value)
+    return math.degrees(value) if model == "deg" else math.radians(value)
+
+
+__all__ = [
+    "FIELD",
+    "LARGE_ANGLE",
+    "SI",
+    "UNITS",
+    "Unit",
+    "Units",
+    "angle_in",
+    "array_to_radians",
+    "check_output_unit",
+    "check_unit",
+    "factor",
+    "from_radians",
+    "kind_of",
+    "scale",
+    "to_radians",
+]

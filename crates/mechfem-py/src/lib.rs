@@ -37,6 +37,7 @@ mod batch;
 mod cache;
 mod catalogue;
 mod convert;
+mod described_names;
 mod design;
 mod errors;
 mod model;
