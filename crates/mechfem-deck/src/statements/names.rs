@@ -112,6 +112,18 @@ impl Parser<'_> {
             }
             numbers.push(v);
         }
+        if let [x, y] = numbers.as_slice() {
+            if x.value == y.value {
+                return Err(self
+                    .src
+                    .error(
+                        DiagnosticKind::DuplicateName,
+                        y.span,
+                        format!("the point's x and y are both co-ordinate {}", y.value),
+                    )
+                    .with_hint("a point has two co-ordinates: POINT i j name, with i its x and j its y"));
+            }
+        }
         let name = if k == NameKind::Buf {
             let (a, b) = (&args[n], &args[args.len() - 1]);
             let text: String =
