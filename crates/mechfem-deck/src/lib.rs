@@ -40,6 +40,10 @@
 //!   co-ordinates, elements and rows (`XMOV 5 0.95 ; A.x`; free text such as
 //!   `; crank A0-A` names nothing). References between lines are checked here.
 //! * [`load`]: both steps for a file.
+//! * [`DeckBuilder`]: a typed [`Deck`] built item by item by a program that
+//!   holds the model in its own objects, compiled by the same [`compile`].
+//! * [`Compiled::move_through`]: runs a compiled deck's motion as its mode
+//!   says (simulated for `DYN SIM`, kinematically otherwise).
 //! * [`rewrite::design_deck`]: a deck's text with new PARA and XFIX/XMOV
 //!   values, a `KIN OPT` deck turned into the `KIN ANA` deck of its final
 //!   design.
@@ -90,6 +94,7 @@
 
 mod args;
 pub mod ast;
+mod builder;
 mod compile;
 mod compiled;
 mod diagnostic;
@@ -99,11 +104,13 @@ mod lexer;
 mod optimise;
 mod parse;
 pub mod rewrite;
+mod running;
 mod statements;
 
 use std::path::Path;
 
 pub use ast::{Deck, Mode};
+pub use builder::DeckBuilder;
 pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Names, Picture, PlotItem, RowInfo, TermInfo};
 pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned, MAX_OUTPUT_NAME};

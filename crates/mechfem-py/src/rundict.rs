@@ -13,7 +13,7 @@
 
 use std::path::Path;
 
-use mechfem_core::run::{Layout, SimReport};
+use mechfem_core::run::{Layout, MemoryRefusal, SimReport};
 use mechfem_core::{RunReport, SolveError, State};
 use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -57,7 +57,7 @@ pub enum Outcome {
     /// The run (possibly stopped early; see the report).
     Ran(Box<FullRun>),
     /// The results would not fit in the memory limit: nothing was run.
-    Refused(String),
+    Refused(MemoryRefusal),
     /// A change names a co-ordinate or row the deck does not have.
     BadChange(String),
 }
@@ -132,7 +132,7 @@ pub fn outcome_dict<'py>(
             run_dict(py, c, s, *r)
         }
         Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
-        Outcome::Refused(message) => Err(errors::ResourceError::new_err(message)),
+        Outcome::Refused(refusal) => Err(errors::resource_error(py, &refusal)),
         Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
         Outcome::Failed(mut state, e) => {
             let (c, _) = text.ok_or_else(lost)?;
