@@ -26,6 +26,7 @@ __all__ = [
     "run_deck_variants",
     "DesignModel",
     "Model",
+    "ModelBuilder",
     "optimised_deck_text",
 ]
 
