@@ -261,6 +261,16 @@ class ModelDict(TypedDict):
     """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None
     """The masses and loads (None for a KIN ANA deck)."""
+    units: NotRequired[dict[str, str | None]]
+    """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
+    points: NotRequired[list[PointDict]]
+    """The points the NAMES block names."""
+
+@type_check_only
+class PointDict(TypedDict):
+    x: int
+    y: int
+    name: str
 
 @type_check_only
 class BufferDict(TypedDict):
@@ -268,6 +278,8 @@ class BufferDict(TypedDict):
     keyword: str
     args: list[int]
     line: int
+    label: NotRequired[str]
+    unit: NotRequired[str]
 
 @type_check_only
 class PlotDict(TypedDict):

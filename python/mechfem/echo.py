@@ -6,7 +6,7 @@ Numbers that name things (co-ordinates, elements, rows, buffers) are the deck's 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mechfem._core as _core
 from mechfem.inverse_dynamics import DynamicsModel
@@ -22,7 +22,7 @@ class Element:
     coord_names: list[str]
     line: int
     name: str | None = None
-    """The name the comment of its ELEM line declares (``; crank: A0 A``), or None."""
+    """Its name in the deck's NAMES block (``ELEM 1 crank``), or None."""
 
 
 @dataclass(frozen=True)
@@ -50,7 +50,7 @@ class Row:
     value: float
     """Value at position 1."""
     name: str | None = None
-    """The name the comment of its first FORM line (or its PARA line) declares (``; coupler.length``), or None."""
+    """Its name in the deck's NAMES block (``ROW 6 phi``, ``DEP 1 psi``), or None."""
 
     def formula(self) -> str:
         """The combination, e.g. ``ANGB(2) - ANGB(4)``."""
@@ -74,7 +74,16 @@ class Coordinate:
     given: float
     adjusted: float
     name: str | None = None
-    """The name the comment of its XFIX or XMOV line declares (``; A.x``), or None."""
+    """Its name from the deck's NAMES block (``C.x`` for ``POINT 9 10 C``, ``s`` for ``COORD 11 s``), or None."""
+
+
+@dataclass(frozen=True)
+class Point:
+    """A point the NAMES block names: co-ordinates ``x`` and ``y`` (1-based) are ``name.x`` and ``name.y``."""
+
+    x: int
+    y: int
+    name: str
 
 
 @dataclass(frozen=True)
@@ -91,6 +100,12 @@ class Model:
     """The deck's mode line."""
     dynamics: DynamicsModel | None = None
     """The masses and loads of a DYN deck."""
+    units: dict[str, str | None] = field(default_factory=dict)
+    """The deck's UNITS: ``length``, ``angle``, ``mass``, ``force``, ``time`` to a symbol (``mm``, ``deg``) or None
+    where the deck declares none (all None without a UNITS line; with one, ``angle`` and ``time`` default to
+    ``rad`` and ``s``). Every number of a run is in these units."""
+    points: list[Point] = field(default_factory=list)
+    """The points the NAMES block names (``POINT 9 10 C``)."""
 
     @classmethod
     def from_core(cls, d: _core.ModelDict) -> Model:
@@ -111,6 +126,8 @@ class Model:
             ],
             mode=d.get("mode", "KIN ANA"),
             dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
+            units=dict(d.get("units", {})),
+            points=[Point(p["x"], p["y"], p["name"]) for p in d.get("points", [])],
         )
 
     @property
@@ -159,6 +176,12 @@ class Buffer:
     keyword: str
     args: list[int]
     line: int
+    name: str = ""
+    """Its label: the NAMES block's ``BUF b label``, else from the names of what it records (``psi``,
+    ``dpsi/dphi``, ``C.x``), else the deck's numbers (``x9``, ``ANGB(8)``, ``dANGB(3)/dinput1``)."""
+    unit: str = ""
+    """The unit its values are in: ``mm``, ``deg``, ``mm/deg``, ``-`` (deg/deg), ``N·mm``, ``kg·mm²``; "" without
+    UNITS (or where the deck declares no unit of a kind it needs)."""
 
     def label(self) -> str:
         """The definition as written in a deck, e.g. ``BUFKE1 -1 1``."""
@@ -197,7 +220,10 @@ class Storage:
 
     @classmethod
     def from_core(cls, d: _core.StorageDict) -> Storage:
-        buffers = [Buffer(b["number"], b["keyword"], list(b["args"]), b["line"]) for b in d["buffers"]]
+        buffers = [
+            Buffer(b["number"], b["keyword"], list(b["args"]), b["line"], b.get("label", ""), b.get("unit", ""))
+            for b in d["buffers"]
+        ]
         printbuf = d["printbuf"]
         if printbuf is not None and not printbuf:
             printbuf = [b.number for b in buffers]

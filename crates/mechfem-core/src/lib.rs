@@ -21,6 +21,9 @@
 //!   ([`run()`]), inverse dynamics ([`InverseDynamics`]), simulation
 //!   ([`simulate`]) and one design of an optimiser ([`design`]), with what
 //!   they hand on at every position ([`Observer`], [`Recorder`]).
+//! * [`names`] and [`units`]: what a designer calls the model's numbers,
+//!   and the scale of each kind of quantity between the model's units and
+//!   the core's (SI, or the numbers as they are), applied at the edges.
 //! * [`batch`]: many independent runs (the variants of a design study) on
 //!   every core.
 //!
@@ -33,8 +36,10 @@ pub mod elements;
 pub mod error;
 pub mod model;
 pub mod motion;
+pub mod names;
 pub mod run;
 pub mod solver;
+pub mod units;
 
 pub use elements::{Dimension, Element, ElementType, FormEval, Order, Slot};
 pub use error::{
@@ -42,9 +47,11 @@ pub use error::{
 };
 pub use model::{FormRef, Mechanism, MechanismBuilder, State, Term};
 pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};
+pub use names::Names;
 pub use run::{design, run, simulate, InverseDynamics, Observer, PositionView, RunReport, SimReport, Stop};
 pub use run::{record, record_evaluated, Layout, Quantity, Recorder};
 pub use solver::Params;
 pub use solver::{
     adjust, diagnose, AdjustInfo, DesignError, DesignVar, Kinematics, Mobility, NewtonInfo, Sensitivity, TransferOrder,
 };
+pub use units::{Dim, ModelDims, Units};

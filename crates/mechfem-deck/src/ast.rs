@@ -13,8 +13,11 @@ use mechfem_core::ElementType;
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Spanned};
 use crate::keywords::Keyword;
 
+mod names;
 mod optimise;
 
+pub(crate) use names::CoreScale;
+pub use names::{NameDef, NameKind, NamesBlock, UnitsDef};
 pub use optimise::{BoundDef, ObjectiveDef, Optimise, TargetDef, TargetDefKind, VaryDef};
 
 /// A parsed deck.
@@ -38,6 +41,12 @@ pub struct Deck {
     pub optimise: Option<Optimise>,
     /// The STORAGE block, if given.
     pub storage: Option<Storage>,
+    /// The NAMES block, if given.
+    pub names: Option<NamesBlock>,
+    /// The UNITS line, if given.
+    pub units: Option<UnitsDef>,
+    /// Set on the copy in the core's units that compiling works on.
+    pub(crate) scale: Option<Box<CoreScale>>,
     /// The raw lines of the file, for diagnostics.
     pub(crate) source: Vec<String>,
 }
@@ -206,8 +215,6 @@ pub struct ElemDef {
     pub ty: Spanned<ElementType>,
     /// Co-ordinate numbers in the type's order.
     pub coords: Vec<Spanned<i64>>,
-    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
-    pub comment: Option<String>,
 }
 
 /// `FORM s NAME k dest [f]`
@@ -225,8 +232,6 @@ pub struct FormDef {
     pub dest: Spanned<i64>,
     /// Factor f, if given (1.0 otherwise).
     pub factor: Option<Spanned<f64>>,
-    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
-    pub comment: Option<String>,
 }
 
 impl FormDef {
@@ -258,8 +263,6 @@ pub struct CoordDef {
     pub index: Spanned<i64>,
     /// Value (initial estimate for a moving co-ordinate).
     pub value: Spanned<f64>,
-    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
-    pub comment: Option<String>,
 }
 
 /// `PARA row value`
@@ -271,8 +274,6 @@ pub struct ParaDef {
     pub row: Spanned<i64>,
     /// Prescribed value.
     pub value: Spanned<f64>,
-    /// The line's `;` comment, trimmed (it may declare a name: [`crate::Names`]).
-    pub comment: Option<String>,
 }
 
 /// The DYNAMICS block (modes `DYN ANA` and `DYN SIM`), compiled to a

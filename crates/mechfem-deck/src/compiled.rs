@@ -7,9 +7,10 @@
 //! 1-based numbers.
 
 use mechfem_core::dynamics::{Dynamics, Integration};
-use mechfem_core::{ElementType, Mechanism, Motion, Params, Quantity, State};
+use mechfem_core::{ElementType, Mechanism, ModelDims, Motion, Names, Params, Quantity, State, Units};
 
 use crate::ast::Mode;
+use crate::diagnostic::Diagnostic;
 use crate::optimise::Optimise;
 
 /// A compiled deck, ready to run.
@@ -49,8 +50,19 @@ pub struct Compiled {
     pub prescribed: Vec<RowInfo>,
     /// The dependent form parameters 1..n_d.
     pub dependent: Vec<RowInfo>,
-    /// The names the deck declares in its comments.
+    /// The names the NAMES block declares, beside the numbers they name.
     pub names: Names,
+    /// The units the UNITS line declares ([`Units::NONE`] without one).
+    /// Every number of this model (co-ordinates, PARA values, motion,
+    /// masses, loads, design ranges, targets) is already in the core's
+    /// units; outputs are converted back with [`Units::from_core`] and the
+    /// kind of each quantity ([`Compiled::dims`]).
+    pub units: Units,
+    /// The kind of each co-ordinate and row of the model.
+    pub dims: ModelDims,
+    /// Numbers that look as if they were written in another unit (an
+    /// angle of 720 in radians): warnings, the run goes on.
+    pub warnings: Vec<Diagnostic>,
     /// The masses and loads (0-based indices): `Some` exactly for a
     /// [`Mode::DynAna`] or [`Mode::DynSim`] deck.
     pub dynamics: Option<Dynamics>,
@@ -150,37 +162,23 @@ pub struct TermInfo {
     pub line: usize,
 }
 
-/// The names a deck declares in the `;` comments of its lines, by deck
-/// number (index i - 1 for number i); `None` where no name is declared.
-///
-/// mechfem's rule, made for the decks its Python writer produces
-/// (`ELEM 1 BIN 1 2 5 6 ; crank: A0 A`, `FORM 3 LENL 2 2 1 ; coupler.length`,
-/// `XMOV 5 0.95 ; A.x`, `PARA 2 3.5 ; phi`) while free-text comments of
-/// hand-written decks (`; crank A0-A`) name nothing:
-///
-/// * a co-ordinate takes the comment of its XFIX or XMOV line (a line that
-///   repeats the keyword has its own), an element that of its ELEM line, a
-///   prescribed row or dependent form parameter that of the first FORM line
-///   with its destination, and a prescribed row whose first FORM line has no
-///   comment that of its PARA line;
-/// * the comment is trimmed; of an ELEM or FORM comment only the part before
-///   the first `:` counts (what follows is the element's slots or the row's
-///   formula), trimmed again;
-/// * that text is a name when it is one word of the form
-///   `[A-Za-z_][A-Za-z0-9_.]*` (`A.x`, `crank_angle`, `coupler.length`):
-///   anything with a blank, a comma or a hyphen in it is a note, not a name;
-/// * names are compared as written, case and all. A name declared for two
-///   co-ordinates, two elements or two rows, or for a co-ordinate and an
-///   element or row, would not say which is meant: it is dropped for all of
-///   them. An element and a row may share a name.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct Names {
-    /// Co-ordinates 1..N.
-    pub coordinates: Vec<Option<String>>,
-    /// Elements 1..n_e.
-    pub elements: Vec<Option<String>>,
-    /// Prescribed rows 1..n_p.
-    pub prescribed: Vec<Option<String>>,
-    /// Dependent form parameters 1..n_d.
-    pub dependent: Vec<Option<String>>,
+impl Compiled {
+    /// The label of buffer `b`: its NAMES label, else made from the names
+    /// of what it records (`psi`, `dpsi/dphi`, `C.x`), else the deck's
+    /// numbers (`x9`, `ANGB(8)`).
+    pub fn label(&self, b: &Buffer) -> String {
+        self.names.label(&self.mechanism, b.number, b.quantity)
+    }
+
+    /// The unit buffer `b` is shown in (`mm`, `deg`, `mm/deg`, `-`, `N·mm`;
+    /// "" without UNITS).
+    pub fn unit(&self, b: &Buffer) -> String {
+        self.dims.quantity(&self.mechanism, b.quantity).symbol(&self.units)
+    }
+
+    /// How many of the deck's units one of the core's is, for what `q`
+    /// records: multiply a column by it to give it in the deck's units.
+    pub fn out_scale(&self, q: Quantity) -> f64 {
+        1.0 / self.dims.quantity(&self.mechanism, q).scale(&self.units)
+    }
 }

@@ -179,6 +179,25 @@ pub enum DiagnosticKind {
     /// part, `..`, an absolute path, a control character or more than
     /// [`MAX_OUTPUT_NAME`] bytes. A run writes into its output folder only.
     OutputName,
+    /// A NAMES line that starts with no kind of name (POINT, COORD, ELEM,
+    /// ROW, DEP, BUF).
+    UnknownNameKind,
+    /// A name that is not `[A-Za-z_][A-Za-z0-9_]*` or is longer than 40
+    /// characters.
+    BadName,
+    /// A name given twice within its kind, or a thing named twice.
+    DuplicateName,
+    /// A NAMES line for a co-ordinate, element, row or buffer the deck does
+    /// not have.
+    NameOutOfRange,
+    /// A buffer label (NAMES `BUF`) that does not print or is longer than
+    /// 60 characters.
+    BadLabel,
+    /// A UNITS field or unit that does not exist.
+    UnknownUnit,
+    /// A number that looks as if it were written in another unit than the
+    /// deck's (a warning, never an error).
+    SuspiciousUnit,
 }
 
 impl DiagnosticKind {
@@ -238,6 +257,13 @@ impl DiagnosticKind {
             DiagnosticKind::NoSensitivity => "no_sensitivity",
             DiagnosticKind::Model => "model",
             DiagnosticKind::OutputName => "output_name",
+            DiagnosticKind::UnknownNameKind => "unknown_name_kind",
+            DiagnosticKind::BadName => "bad_name",
+            DiagnosticKind::DuplicateName => "duplicate_name",
+            DiagnosticKind::NameOutOfRange => "name_out_of_range",
+            DiagnosticKind::BadLabel => "bad_label",
+            DiagnosticKind::UnknownUnit => "unknown_unit",
+            DiagnosticKind::SuspiciousUnit => "suspicious_unit",
         }
     }
 }

@@ -9,6 +9,8 @@ pub enum Block {
     Topology,
     /// Initial co-ordinates and prescribed values.
     Geometry,
+    /// Names of points, co-ordinates, elements, rows and labels of buffers.
+    Names,
     /// Masses, loads and springs (modes `DYN ANA` and `DYN SIM`).
     Dynamics,
     /// Input motion and solver settings.
@@ -21,14 +23,22 @@ pub enum Block {
 
 impl Block {
     /// Every block, in the order of a deck.
-    pub const ALL: [Block; 6] =
-        [Block::Topology, Block::Geometry, Block::Dynamics, Block::Movement, Block::Optimise, Block::Storage];
+    pub const ALL: [Block; 7] = [
+        Block::Topology,
+        Block::Geometry,
+        Block::Names,
+        Block::Dynamics,
+        Block::Movement,
+        Block::Optimise,
+        Block::Storage,
+    ];
 
     /// The header word.
     pub fn name(self) -> &'static str {
         match self {
             Block::Topology => "TOPOLOGY",
             Block::Geometry => "GEOMETRY",
+            Block::Names => "NAMES",
             Block::Dynamics => "DYNAMICS",
             Block::Movement => "MOVEMENT",
             Block::Optimise => "OPTIMISE",
@@ -258,7 +268,7 @@ pub(crate) fn closest<'a>(word: &str, candidates: impl IntoIterator<Item = &'a s
 
 /// Every word that may start a line after the mode line.
 pub(crate) fn all_words() -> impl Iterator<Item = &'static str> {
-    Block::ALL.iter().map(|b| b.name()).chain(Keyword::ALL.iter().map(|k| k.name())).chain(["END"])
+    Block::ALL.iter().map(|b| b.name()).chain(Keyword::ALL.iter().map(|k| k.name())).chain(["UNITS", "END"])
 }
 
 #[cfg(test)]

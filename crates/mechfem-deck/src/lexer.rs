@@ -1,8 +1,8 @@
 //! Lexical rules of the deck: lines, words, comments and Fortran numbers.
 //!
 //! A line is split at blanks and tabs into words; `;` starts a comment that
-//! runs to the end of the line. The comment is kept beside the words, since
-//! it may declare a name (see [`crate::Names`]). Words keep their spelling
+//! runs to the end of the line and means nothing (names are declared in the
+//! NAMES block, never in comments). Words keep their spelling
 //! (file names and titles are case-sensitive); keywords are compared
 //! case-insensitively by the parser. Numbers follow Fortran's free format.
 
@@ -25,9 +25,6 @@ pub(crate) struct Line {
     pub number: usize,
     /// The words, in order (never empty).
     pub words: Vec<Word>,
-    /// The text after the first `;`, trimmed; `None` when there is no
-    /// comment or it is blank.
-    pub comment: Option<String>,
 }
 
 impl Line {
@@ -75,11 +72,9 @@ pub(crate) fn lex(raw: &[String]) -> impl Iterator<Item = Line> + '_ {
 pub(crate) fn lex_line(number: usize, text: &str) -> Option<Line> {
     let mut words = Vec::new();
     let mut current: Option<(usize, String)> = None;
-    let mut comment = None;
     let mut col = 0;
-    for (at, c) in text.char_indices() {
+    for c in text.chars() {
         if c == ';' {
-            comment = Some(text[at + 1..].trim()).filter(|t| !t.is_empty()).map(str::to_string);
             break;
         }
         if is_separator(c) {
@@ -94,7 +89,7 @@ pub(crate) fn lex_line(number: usize, text: &str) -> Option<Line> {
     if let Some((start, w)) = current {
         words.push(Word { text: w, span: Span::new(number, start, col) });
     }
-    (!words.is_empty()).then_some(Line { number, words, comment })
+    (!words.is_empty()).then_some(Line { number, words })
 }
 
 /// Whether a word starts like a number; a line starting with such a word
@@ -207,16 +202,6 @@ mod tests {
         assert_eq!(words("XFIX 1 0.0;no blank before"), ["XFIX", "1", "0.0"]);
         assert!(lex_line(1, "   ; only a comment").is_none());
         assert!(lex_line(1, "").is_none());
-    }
-
-    #[test]
-    fn a_statement_keeps_its_comment() {
-        let comment = |text: &str| lex_line(1, text).and_then(|l| l.comment);
-        assert_eq!(comment("XMOV 5 0.95 ; A.x ").as_deref(), Some("A.x"));
-        assert_eq!(comment("ELEM 1 BIN 1 2 5 6;crank: A0 A").as_deref(), Some("crank: A0 A"));
-        assert_eq!(comment("PARA 1 2 ; a; b").as_deref(), Some("a; b"));
-        assert_eq!(comment("PARA 1 2 ;  "), None);
-        assert_eq!(comment("PARA 1 2"), None);
     }
 
     #[test]

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use crate::args::Source;
 use crate::ast::{
     missing_dynamics, missing_movement, missing_optimise, Deck, Dynamics, Geometry, IntTolDef, Mode, MotionDef,
-    Movement, Optimise, PictureDef, Storage, Topology, Tstepe,
+    Movement, NameKind, NamesBlock, Optimise, PictureDef, Storage, Topology, Tstepe, UnitsDef,
 };
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Hint, Span, Spanned};
 use crate::files::read_deck;
@@ -79,6 +79,12 @@ pub(crate) struct Parser<'a> {
     pub elem_lines: i64,
     /// Lines of NRDOF, ANIMATE, ... for "given twice" messages.
     pub once: Vec<(Keyword, usize)>,
+    /// The NAMES block.
+    pub names: NamesBlock,
+    /// The kind a NAMES line starting with a number repeats.
+    pub names_previous: Option<NameKind>,
+    /// The UNITS line.
+    pub units: Option<UnitsDef>,
 }
 
 impl<'a> Parser<'a> {
@@ -101,6 +107,9 @@ impl<'a> Parser<'a> {
             picture: None,
             elem_lines: 0,
             once: Vec::new(),
+            names: NamesBlock::default(),
+            names_previous: None,
+            units: None,
         }
     }
 
@@ -172,11 +181,19 @@ impl<'a> Parser<'a> {
     /// Reads one line; false after END.
     fn line(&mut self, line: &Line) -> bool {
         let first = &line.words[0];
+        let upper = first.text.to_ascii_uppercase();
+        if upper == "UNITS" {
+            self.units_line(line);
+            return true;
+        }
+        if self.block == Some(Block::Names) && upper != "END" && Block::from_name(&upper).is_none() {
+            self.names_line(line);
+            return true;
+        }
         if looks_numeric(&first.text) {
             self.repetition(line);
             return true;
         }
-        let upper = first.text.to_ascii_uppercase();
         if upper == "END" {
             self.header_arguments("END", line);
             self.close_block();
@@ -272,6 +289,7 @@ impl<'a> Parser<'a> {
             match block {
                 Block::Topology => self.topology.line = line.number,
                 Block::Geometry => self.geometry.line = line.number,
+                Block::Names => self.names.line = line.number,
                 Block::Dynamics => self.dynamics.line = line.number,
                 Block::Movement => self.movement.line = line.number,
                 Block::Optimise => self.optimise.line = line.number,
@@ -279,6 +297,10 @@ impl<'a> Parser<'a> {
             }
         }
         self.check_block_mode(block, line);
+        if block == Block::Names {
+            self.check_names_place(line);
+            self.names_previous = None;
+        }
         self.block = Some(block);
         self.previous = None;
         self.poisoned = false;
@@ -458,6 +480,9 @@ impl<'a> Parser<'a> {
             movement,
             optimise: self.headers[Block::Optimise as usize].map(|_| self.optimise),
             storage: self.headers[Block::Storage as usize].map(|_| self.storage),
+            names: self.headers[Block::Names as usize].map(|_| self.names),
+            units: self.units,
+            scale: None,
             source: Vec::new(),
         })
     }

@@ -1,6 +1,7 @@
 //! One keyword line to one item of the typed deck.
 
 pub(crate) mod dynamics;
+pub(crate) mod names;
 mod optimise;
 
 use mechfem_core::ElementType;
@@ -65,8 +66,7 @@ impl Parser<'_> {
                 }
                 let factor = args.get(4).map(|w| src.real(w, "the factor")).transpose()?;
                 let name = Spanned::new(name.text.to_ascii_uppercase(), name.span);
-                let comment = line.comment.clone();
-                self.topology.forms.push(FormDef { line: line_no, seq, name, element, dest, factor, comment });
+                self.topology.forms.push(FormDef { line: line_no, seq, name, element, dest, factor });
             }
             Keyword::Nrdof => {
                 let n = src.whole(arg(0)?, "the number of degrees of freedom")?;
@@ -82,13 +82,12 @@ impl Parser<'_> {
                 let index = src.whole(arg(0)?, "the co-ordinate number")?;
                 let value = src.real(arg(1)?, "the co-ordinate's value")?;
                 let moving = kw.value == Keyword::Xmov;
-                let comment = line.comment.clone();
-                self.geometry.coords.push(CoordDef { line: line_no, moving, index, value, comment });
+                self.geometry.coords.push(CoordDef { line: line_no, moving, index, value });
             }
             Keyword::Para => {
                 let row = src.whole(arg(0)?, "the row number")?;
                 let value = src.real(arg(1)?, "the prescribed value")?;
-                self.geometry.paras.push(ParaDef { line: line_no, row, value, comment: line.comment.clone() });
+                self.geometry.paras.push(ParaDef { line: line_no, row, value });
             }
             Keyword::Tstepe => {
                 let steps = src.whole(arg(0)?, "the number of steps")?;
@@ -316,7 +315,7 @@ impl Parser<'_> {
         }
         let coords = coords.iter().map(|w| src.whole(w, "a co-ordinate number")).collect::<Result<Vec<_>, _>>()?;
         let ty = Spanned::new(ty, ty_word.span);
-        self.topology.elements.push(ElemDef { line: line.number, number, ty, coords, comment: line.comment.clone() });
+        self.topology.elements.push(ElemDef { line: line.number, number, ty, coords });
         Ok(())
     }
 

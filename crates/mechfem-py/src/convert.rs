@@ -189,6 +189,9 @@ pub struct Echo {
     coordinates: Vec<Py<PyDict>>,
     /// PARA of each prescribed row, as the deck gives it.
     para: Vec<Option<f64>>,
+    /// The deck's units and named points ([`crate::names`]).
+    units: Py<PyDict>,
+    points: Py<PyList>,
 }
 
 impl Echo {
@@ -220,6 +223,8 @@ impl Echo {
             dependent: unbind(named(rows(py, &c.dependent, &[])?, &c.names.dependent)?),
             coordinates,
             para: c.prescribed.iter().map(|r| r.para).collect(),
+            units: crate::names::units(py, c)?.unbind(),
+            points: crate::names::points(py, c)?.unbind(),
         })
     }
 
@@ -256,6 +261,8 @@ impl Echo {
         d.set_item("coordinates", coordinates)?;
         d.set_item("mode", self.mode)?;
         d.set_item("dynamics", self.dynamics.bind(py))?;
+        d.set_item("units", self.units.bind(py))?;
+        d.set_item("points", self.points.bind(py))?;
         Ok(d)
     }
 }
@@ -391,9 +398,11 @@ fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
     }
 }
 
-fn buffer<'py>(py: Python<'py>, b: &Buffer) -> PyResult<Bound<'py, PyDict>> {
+fn buffer<'py>(py: Python<'py>, c: &Compiled, b: &Buffer) -> PyResult<Bound<'py, PyDict>> {
     let (kw, args) = keyword(b.quantity);
     let d = PyDict::new(py);
+    d.set_item("label", c.label(b))?;
+    d.set_item("unit", c.unit(b))?;
     d.set_item("number", b.number)?;
     d.set_item("keyword", kw)?;
     d.set_item("args", args)?;
@@ -405,7 +414,7 @@ fn buffer<'py>(py: Python<'py>, b: &Buffer) -> PyResult<Bound<'py, PyDict>> {
 /// and the pictures.
 pub fn storage<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("buffers", c.buffers.iter().map(|b| buffer(py, b)).collect::<PyResult<Vec<_>>>()?)?;
+    d.set_item("buffers", c.buffers.iter().map(|b| buffer(py, c, b)).collect::<PyResult<Vec<_>>>()?)?;
     d.set_item("printbuf", c.printbuf.clone())?;
     d.set_item("savedata", c.savedata.clone())?;
     d.set_item("animate", c.animate.clone())?;

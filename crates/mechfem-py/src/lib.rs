@@ -43,6 +43,7 @@ mod convert;
 mod design;
 mod errors;
 mod model;
+mod names;
 mod observe;
 mod rundict;
 mod text;
@@ -77,6 +78,17 @@ fn echo<'py>(
     rec: &Recording,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let (prescribed, dependent) = (&rec.prescribed_at_1, &rec.dependent_at_1);
+    if !c.units.is_identity() {
+        // The echo speaks the deck's units.
+        let (mut g, mut a, mut p, mut d) = (given.to_vec(), at_1.to_vec(), prescribed.clone(), dependent.clone());
+        names::coords(c, &mut g);
+        names::coords(c, &mut a);
+        names::row_values(c, &mut p, true);
+        names::row_values(c, &mut d, false);
+        return slot.get_or_make(py, &[&g, &a, &p, &d], || {
+            Ok((convert::model(py, c, &g, &a, &p, &d)?, convert::storage(py, c)?))
+        });
+    }
     slot.get_or_make(py, &[given, at_1, prescribed, dependent], || {
         Ok((convert::model(py, c, given, at_1, prescribed, dependent)?, convert::storage(py, c)?))
     })
@@ -197,8 +209,10 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("n_dependent", mech.n_dependent())?;
     d.set_item("n_dof", mech.n_dof())?;
     let det = rec.selection.block("det").map_or(f64::NAN, |b| rec.table.get(0, b.start));
-    d.set_item("det", det)?;
-    d.set_item("coords", PyArray1::from_vec(py, at_1.clone()))?;
+    d.set_item("det", det * c.out_scale(Quantity::Det))?;
+    let mut at_1 = at_1;
+    names::coords(&c, &mut at_1);
+    d.set_item("coords", PyArray1::from_vec(py, at_1))?;
     d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
     d.set_item(intern!(py, "model"), model)?;
     Ok(d)
@@ -253,7 +267,8 @@ fn run_deck(
         let numbers = PyList::new(py, c.buffers.iter().map(|b| b.number))?;
         Ok([layout.into_any(), numbers.into_any(), PyList::new(py, coords)?.into_any()])
     })?;
-    let (table, coords) = (rec.table.into_vec(), rec.coords);
+    let (mut table, mut coords) = (rec.table.into_vec(), rec.coords);
+    names::table(&c, rec.selection.quantities(), &mut table, positions, &mut coords);
 
     let d = PyDict::new(py);
     d.set_item(intern!(py, "coords"), convert::array2(py, coords, positions, n)?)?;

@@ -10,10 +10,15 @@ mod names;
 mod optimise;
 mod refs;
 mod rows;
+mod scale;
 mod storage;
 mod table;
+mod tables;
+mod warn;
 
 use std::path::Path;
+
+use mechfem_core::{ModelDims, Units};
 
 use crate::ast::Deck;
 use crate::compiled::Compiled;
@@ -28,16 +33,45 @@ use crate::diagnostic::Diagnostics;
 /// loads, and for `KIN OPT` its optimisation problem; the first mistake
 /// found is returned.
 pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
-    let m = model::model(deck)?;
+    let written = deck;
+    let units = deck.units.as_ref().map_or(Units::NONE, |u| u.units);
+    // With UNITS, the deck is compiled from a copy in the core's units; the
+    // echo of its elements and rows keeps the numbers as written.
+    let core = if units.is_identity() {
+        None
+    } else {
+        let as_given = model::model(deck)?;
+        Some((scale::to_core(deck, units, &as_given.mechanism), as_given))
+    };
+    let (deck, as_given) = match &core {
+        Some((scaled, as_given)) => (scaled, Some(as_given)),
+        None => (deck, None),
+    };
+    let mut m = model::model(deck)?;
+    if let Some(g) = as_given {
+        m.elements.clone_from(&g.elements);
+        m.prescribed.clone_from(&g.prescribed);
+        m.dependent.clone_from(&g.dependent);
+    }
     let sizes = refs::Sizes::of(&m.mechanism);
-    let dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
-    let (motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
+    let mut dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
+    let (mut motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
     let integration = motion::integration(deck, &params);
     if let Some(mo) = &motion {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
     let out = storage::outputs(deck, &sizes)?;
-    let optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
+    let mut optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
+    let dims = match &deck.scale {
+        Some(s) => {
+            tables::to_core(s, &m.mechanism, motion.as_mut(), dynamics.as_mut(), optimise.as_mut(), &out.buffers);
+            s.dims.clone()
+        }
+        None => ModelDims::of(&m.mechanism),
+    };
+    let counts = [sizes.n_coords, m.elements.len(), sizes.n_prescribed, sizes.n_dependent];
+    let names = names::declared(deck, counts, &out.buffers)?;
+    let warnings = warn::suspicious(written, &units, &dims, &m.mechanism);
     Ok(Compiled {
         mode: deck.mode.value,
         mechanism: m.mechanism,
@@ -53,7 +87,10 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         elements: m.elements,
         prescribed: m.prescribed,
         dependent: m.dependent,
-        names: m.names,
+        names,
+        units,
+        dims,
+        warnings,
         dynamics,
         optimise,
     })

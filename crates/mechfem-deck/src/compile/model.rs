@@ -4,10 +4,9 @@ use mechfem_core::{ElementError, Mechanism, MechanismBuilder, ModelError, State,
 
 use super::coordinates::coordinates;
 use super::index;
-use super::names::declared;
 use super::rows::{check_square, degrees_of_freedom, paras, resolve_forms, rows, Resolved};
 use crate::ast::Deck;
-use crate::compiled::{ElementInfo, Names, RowInfo, TermInfo};
+use crate::compiled::{ElementInfo, RowInfo, TermInfo};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Hint, Span, Subject};
 
 /// The compiled model and its description for the print file.
@@ -17,7 +16,6 @@ pub(crate) struct Model {
     pub elements: Vec<ElementInfo>,
     pub prescribed: Vec<RowInfo>,
     pub dependent: Vec<RowInfo>,
-    pub names: Names,
 }
 
 pub(crate) fn model(deck: &Deck) -> Result<Model, Box<Diagnostic>> {
@@ -89,8 +87,7 @@ pub(crate) fn model(deck: &Deck) -> Result<Model, Box<Diagnostic>> {
             })
             .collect()
     };
-    let names = declared(deck, &coords, &prescribed, &dependent);
-    Ok(Model { mechanism, state, elements, prescribed: info(&prescribed, 1), dependent: info(&dependent, -1), names })
+    Ok(Model { mechanism, state, elements, prescribed: info(&prescribed, 1), dependent: info(&dependent, -1) })
 }
 
 /// A constant row that is one length alone (LENL, a distance between two

@@ -172,6 +172,8 @@ fn table(
             )));
     }
     if deck.mode.value == Mode::DynSim {
+        // The table's times are the deck's; `span` is in the core's units.
+        let span = deck.scale.as_ref().map_or(span, |s| s.units.from_core(mechfem_core::Dim::TIME, span));
         check_times(&table, span)?;
     }
     Ok(table

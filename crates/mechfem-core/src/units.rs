@@ -1,0 +1,502 @@
+//! Units: the scale of each kind of quantity between a model's own numbers
+//! and the core's.
+//!
+//! The core computes in one consistent system: metres, radians, kilograms,
+//! newtons and seconds (SI), or, for a model that declares no unit of a
+//! kind, that kind's numbers as they are. A model declares its units
+//! ([`Units`], a deck's `UNITS LENGTH mm ANGLE deg ...` line); every number
+//! it gives is multiplied by the scale of its [`Dim`] when it is read, and
+//! every number handed out is divided by it at the edge. The scales are
+//! pure factors (no offsets), so results agree with the same model written
+//! in SI to rounding, and a model without units is computed bit for bit as
+//! its numbers say.
+//!
+//! A quantity's kind is a [`Dim`]: its exponents of length, angle, mass,
+//! force and time. A torque is force x length (an angle does not count in
+//! a generalised force: it is work per radian), an inertia mass x length²,
+//! a transfer function the quantity's dimension over the input's
+//! ([`Dim::symbol`] writes `mm/deg`, and `-` for deg/deg).
+
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+
+use crate::elements::Dimension;
+use crate::model::{FormRef, Mechanism, Term};
+use crate::run::Quantity;
+
+macro_rules! unit_enum {
+    ($(#[$doc:meta])* $name:ident { $($(#[$vdoc:meta])* $variant:ident $symbol:literal $scale:expr,)* }) => {
+        $(#[$doc])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum $name {
+            $($(#[$vdoc])* $variant,)*
+        }
+
+        impl $name {
+            /// Every unit of the kind, in the order of the deck reference.
+            pub const ALL: &'static [$name] = &[$($name::$variant,)*];
+
+            /// The unit as written (`mm`, `deg`).
+            pub fn symbol(self) -> &'static str {
+                match self { $($name::$variant => $symbol,)* }
+            }
+
+            /// How many of the core's units one of these is.
+            pub fn scale(self) -> f64 {
+                match self { $($name::$variant => $scale,)* }
+            }
+
+            /// The unit written `symbol` (exactly as in the table: `mm`, `kN`).
+            pub fn from_symbol(symbol: &str) -> Option<$name> {
+                $name::ALL.iter().copied().find(|u| u.symbol() == symbol)
+            }
+        }
+    };
+}
+
+unit_enum! {
+    /// A unit of length.
+    Length {
+        /// Metre.
+        M "m" 1.0,
+        /// Millimetre.
+        Mm "mm" 1e-3,
+        /// Centimetre.
+        Cm "cm" 1e-2,
+        /// Inch.
+        In "in" 0.0254,
+    }
+}
+
+unit_enum! {
+    /// A unit of angle.
+    Angle {
+        /// Radian.
+        Rad "rad" 1.0,
+        /// Degree.
+        Deg "deg" PI / 180.0,
+    }
+}
+
+unit_enum! {
+    /// A unit of mass.
+    Mass {
+        /// Kilogram.
+        Kg "kg" 1.0,
+        /// Gram.
+        G "g" 1e-3,
+    }
+}
+
+unit_enum! {
+    /// A unit of force.
+    Force {
+        /// Newton.
+        N "N" 1.0,
+        /// Kilonewton.
+        KN "kN" 1e3,
+    }
+}
+
+unit_enum! {
+    /// A unit of time.
+    Time {
+        /// Second.
+        S "s" 1.0,
+        /// Millisecond.
+        Ms "ms" 1e-3,
+    }
+}
+
+/// The units a model declares. `declared` is false for a model that
+/// declares none (a deck without a UNITS line): then every number is the
+/// core's own and no unit is shown. With `declared`, an angle is in radians
+/// and time in seconds unless said otherwise; a length, mass or force
+/// without a unit is taken as it is, and shown without a unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Units {
+    /// Whether the model declares units at all.
+    pub declared: bool,
+    /// The unit of length, if declared.
+    pub length: Option<Length>,
+    /// The unit of angle, if declared (radians otherwise).
+    pub angle: Option<Angle>,
+    /// The unit of mass, if declared.
+    pub mass: Option<Mass>,
+    /// The unit of force, if declared.
+    pub force: Option<Force>,
+    /// The unit of time, if declared (seconds otherwise).
+    pub time: Option<Time>,
+}
+
+/// The five base kinds, in the order of [`Dim`]'s exponents.
+const KINDS: usize = 5;
+
+impl Units {
+    /// No units: every number is the core's own.
+    pub const NONE: Units = Units { declared: false, length: None, angle: None, mass: None, force: None, time: None };
+
+    /// Whether every scale is 1: numbers pass unchanged (a model without
+    /// units, or one in SI).
+    pub fn is_identity(&self) -> bool {
+        self.scales().iter().all(|&s| s == 1.0)
+    }
+
+    /// The scale of each base kind: length, angle, mass, force, time.
+    fn scales(&self) -> [f64; KINDS] {
+        [
+            self.length.map_or(1.0, Length::scale),
+            self.angle.map_or(1.0, Angle::scale),
+            self.mass.map_or(1.0, Mass::scale),
+            self.force.map_or(1.0, Force::scale),
+            self.time.map_or(1.0, Time::scale),
+        ]
+    }
+
+    /// The symbol of each base kind; `None` where it is not shown (no
+    /// units declared, or a length, mass or force without a unit).
+    fn symbols(&self) -> [Option<&'static str>; KINDS] {
+        if !self.declared {
+            return [None; KINDS];
+        }
+        [
+            self.length.map(Length::symbol),
+            Some(self.angle.unwrap_or(Angle::Rad).symbol()),
+            self.mass.map(Mass::symbol),
+            self.force.map(Force::symbol),
+            Some(self.time.unwrap_or(Time::S).symbol()),
+        ]
+    }
+
+    /// The symbol of each base kind as a model's units shows it, by name:
+    /// `length`, `angle`, `mass`, `force`, `time` (`None`: not declared; an
+    /// angle and time have their defaults once any unit is declared).
+    pub fn fields(&self) -> [(&'static str, Option<&'static str>); KINDS] {
+        let s = self.symbols();
+        [("length", s[0]), ("angle", s[1]), ("mass", s[2]), ("force", s[3]), ("time", s[4])]
+    }
+
+    /// `value` given in `dim`'s units, in the core's.
+    pub fn to_core(&self, dim: Dim, value: f64) -> f64 {
+        let s = dim.scale(self);
+        if s == 1.0 {
+            value
+        } else {
+            value * s
+        }
+    }
+
+    /// `value` in the core's units, in `dim`'s units of the model.
+    pub fn from_core(&self, dim: Dim, value: f64) -> f64 {
+        let s = dim.scale(self);
+        if s == 1.0 {
+            value
+        } else {
+            value / s
+        }
+    }
+}
+
+/// The kind of a quantity: its exponents of length, angle, mass, force and
+/// time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Dim(pub [i8; KINDS]);
+
+impl Dim {
+    /// A pure number.
+    pub const NONE: Dim = Dim([0; KINDS]);
+    /// A length.
+    pub const LENGTH: Dim = Dim([1, 0, 0, 0, 0]);
+    /// An angle.
+    pub const ANGLE: Dim = Dim([0, 1, 0, 0, 0]);
+    /// A mass.
+    pub const MASS: Dim = Dim([0, 0, 1, 0, 0]);
+    /// A force.
+    pub const FORCE: Dim = Dim([0, 0, 0, 1, 0]);
+    /// A time.
+    pub const TIME: Dim = Dim([0, 0, 0, 0, 1]);
+    /// An energy (force x length): also a torque, work per radian.
+    pub const ENERGY: Dim = Dim([1, 0, 0, 1, 0]);
+    /// A moment of inertia (mass x length²).
+    pub const INERTIA: Dim = Dim([2, 0, 1, 0, 0]);
+
+    /// The kind of a catalogue dimension (`Any` taken as a length).
+    pub fn of(d: Dimension) -> Dim {
+        match d {
+            Dimension::Length | Dimension::Any => Dim::LENGTH,
+            Dimension::Angle => Dim::ANGLE,
+            Dimension::Ratio => Dim::NONE,
+        }
+    }
+
+    /// `self x other`.
+    pub fn times(self, other: Dim) -> Dim {
+        Dim(std::array::from_fn(|k| self.0[k] + other.0[k]))
+    }
+
+    /// `self / other`.
+    pub fn over(self, other: Dim) -> Dim {
+        Dim(std::array::from_fn(|k| self.0[k] - other.0[k]))
+    }
+
+    /// `self` to the power `n`.
+    pub fn pow(self, n: i8) -> Dim {
+        Dim(self.0.map(|e| e * n))
+    }
+
+    /// `self` without its angle: what a generalised force divides work by.
+    fn without_angle(self) -> Dim {
+        let mut d = self;
+        d.0[1] = 0;
+        d
+    }
+
+    /// The generalised force on a quantity of this kind: work over it, an
+    /// angle not counted (force on a length, torque force x length on an
+    /// angle, energy on a pure number).
+    pub fn generalised_force(self) -> Dim {
+        Dim::ENERGY.over(self.without_angle())
+    }
+
+    /// How many of the core's units one of this kind in `units` is.
+    pub fn scale(self, units: &Units) -> f64 {
+        let s = units.scales();
+        let mut out = 1.0;
+        for (k, &e) in self.0.iter().enumerate() {
+            if e != 0 && s[k] != 1.0 {
+                out *= s[k].powi(i32::from(e));
+            }
+        }
+        out
+    }
+
+    /// The unit as shown: `mm`, `deg/s`, `N·mm`, `kg·mm²`, `mm/deg`, `-`
+    /// for a pure number; "" when `units` declares none, or not every base
+    /// unit the kind needs.
+    pub fn symbol(self, units: &Units) -> String {
+        let symbols = units.symbols();
+        if !units.declared || self.0.iter().zip(&symbols).any(|(&e, s)| e != 0 && s.is_none()) {
+            return String::new();
+        }
+        let part = |positive: bool| {
+            let mut out = String::new();
+            // Force and mass first, as in N·mm and kg·mm².
+            for k in [3, 2, 0, 1, 4] {
+                let (e, s) = (self.0[k], symbols[k]);
+                let n = if positive { e } else { -e };
+                if n <= 0 {
+                    continue;
+                }
+                if !out.is_empty() {
+                    out.push('·');
+                }
+                out.push_str(s.unwrap_or(""));
+                match n {
+                    1 => {}
+                    2 => out.push('²'),
+                    3 => out.push('³'),
+                    _ => {
+                        let _ = write!(out, "^{n}");
+                    }
+                }
+            }
+            out
+        };
+        let (num, den) = (part(true), part(false));
+        match (num.is_empty(), den.is_empty()) {
+            (true, true) => "-".to_string(),
+            (false, true) => num,
+            (true, false) => format!("1/{den}"),
+            (false, false) if den.contains('·') => format!("{num}/({den})"),
+            (false, false) => format!("{num}/{den}"),
+        }
+    }
+}
+
+/// The kinds of a model's co-ordinates and rows, from its elements: what
+/// each number of the model measures.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct ModelDims {
+    /// Co-ordinates 0..N.
+    pub coords: Vec<Dim>,
+    /// Prescribed rows 0..n_p.
+    pub prescribed: Vec<Dim>,
+    /// Dependent form parameters 0..n_d.
+    pub dependent: Vec<Dim>,
+}
+
+impl ModelDims {
+    /// The kinds of `mech`'s co-ordinates and rows. A co-ordinate takes the
+    /// dimension the first element that says one gives it (a length when
+    /// none does); a row that of its terms with factor ±1 when they agree,
+    /// else that of its first term (a factor carries the difference).
+    pub fn of(mech: &Mechanism) -> ModelDims {
+        let mut coords: Vec<Option<Dim>> = vec![None; mech.n_coords()];
+        for e in mech.elements() {
+            for (&i, &d) in e.coords().iter().zip(e.ty.coord_dimensions()) {
+                if d != Dimension::Any && coords[i].is_none() {
+                    coords[i] = Some(Dim::of(d));
+                }
+            }
+        }
+        let coords: Vec<Dim> = coords.into_iter().map(|d| d.unwrap_or(Dim::LENGTH)).collect();
+        let form = |t: &Term| {
+            let e = &mech.elements()[t.element];
+            match e.ty.form_dimensions().get(t.form) {
+                Some(Dimension::Any) => e.coords().first().map_or(Dim::LENGTH, |&i| coords[i]),
+                Some(&d) => Dim::of(d),
+                None => Dim::NONE,
+            }
+        };
+        let row = |terms: &[Term]| {
+            let plain: Vec<Dim> = terms.iter().filter(|t| t.factor.abs() == 1.0).map(form).collect();
+            match plain.first() {
+                Some(&d) if plain.iter().all(|&p| p == d) => d,
+                _ => terms.first().map_or(Dim::NONE, form),
+            }
+        };
+        ModelDims {
+            prescribed: (0..mech.n_prescribed()).map(|r| row(mech.prescribed_terms(r))).collect(),
+            dependent: (0..mech.n_dependent()).map(|d| row(mech.dependent_terms(d))).collect(),
+            coords,
+        }
+    }
+
+    /// The kind of a row.
+    pub fn form(&self, f: FormRef) -> Dim {
+        match f {
+            FormRef::Prescribed(r) => self.prescribed.get(r),
+            FormRef::Dependent(d) => self.dependent.get(d),
+        }
+        .copied()
+        .unwrap_or(Dim::NONE)
+    }
+
+    /// The kind of a co-ordinate.
+    pub fn coord(&self, i: usize) -> Dim {
+        self.coords.get(i).copied().unwrap_or(Dim::LENGTH)
+    }
+
+    /// The kind of input j (that of its row).
+    pub fn input(&self, mech: &Mechanism, j: usize) -> Dim {
+        self.prescribed.get(mech.input_row(j)).copied().unwrap_or(Dim::NONE)
+    }
+
+    /// The kind of what a buffer records.
+    pub fn quantity(&self, mech: &Mechanism, q: Quantity) -> Dim {
+        let input = |j: usize| self.input(mech, j);
+        let per_time = |d: Dim, n: i8| d.over(Dim::TIME.pow(n));
+        match q {
+            Quantity::Input(j) => input(j),
+            Quantity::Time => Dim::TIME,
+            Quantity::X0(i) => self.coord(i),
+            Quantity::Kx1 { coord, j } => self.coord(coord).over(input(j)),
+            Quantity::Kx2 { coord, j, m } => self.coord(coord).over(input(j)).over(input(m)),
+            Quantity::Vx(i) => per_time(self.coord(i), 1),
+            Quantity::Ax(i) => per_time(self.coord(i), 2),
+            Quantity::E0(f) => self.form(f),
+            Quantity::Ke1(f, j) => self.form(f).over(input(j)),
+            Quantity::Ke2(f, j, m) => self.form(f).over(input(j)).over(input(m)),
+            Quantity::Ve(f) => per_time(self.form(f), 1),
+            Quantity::Ae(f) => per_time(self.form(f), 2),
+            Quantity::Det => self.det(mech),
+            Quantity::Sigma(r) => self.form(FormRef::Prescribed(r)).generalised_force(),
+            Quantity::Drive(j) => input(j).generalised_force(),
+            Quantity::Reaction(i) => self.coord(i).generalised_force(),
+            Quantity::Ekin | Quantity::Epot => Dim::ENERGY,
+            Quantity::Power => Dim::ENERGY.over(Dim::TIME),
+            Quantity::Mred(j, m) => {
+                // Mass times one length for each input that is not a length.
+                let lengths = 2 - input(j).0[0] - input(m).0[0];
+                Dim::MASS.times(Dim::LENGTH.pow(lengths))
+            }
+        }
+    }
+
+    /// The kind of det(D^c): the rows' over the moving co-ordinates'.
+    pub fn det(&self, mech: &Mechanism) -> Dim {
+        let rows = self.prescribed.iter().fold(Dim::NONE, |a, &d| a.times(d));
+        mech.moving_coords().iter().fold(rows, |a, &i| a.over(self.coord(i)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mm_deg() -> Units {
+        Units {
+            declared: true,
+            length: Some(Length::Mm),
+            angle: Some(Angle::Deg),
+            mass: Some(Mass::Kg),
+            force: Some(Force::N),
+            time: None,
+        }
+    }
+
+    #[test]
+    fn derived_units_are_written_from_their_kinds() {
+        let u = mm_deg();
+        assert_eq!(Dim::LENGTH.symbol(&u), "mm");
+        assert_eq!(Dim::ANGLE.over(Dim::ANGLE).symbol(&u), "-");
+        assert_eq!(Dim::LENGTH.over(Dim::ANGLE).symbol(&u), "mm/deg");
+        assert_eq!(Dim::ANGLE.over(Dim::TIME).symbol(&u), "deg/s");
+        assert_eq!(Dim::LENGTH.over(Dim::TIME.pow(2)).symbol(&u), "mm/s²");
+        assert_eq!(Dim::ANGLE.generalised_force().symbol(&u), "N·mm");
+        assert_eq!(Dim::LENGTH.generalised_force().symbol(&u), "N");
+        assert_eq!(Dim::INERTIA.symbol(&u), "kg·mm²");
+        assert_eq!(Dim::ANGLE.generalised_force().over(Dim::ANGLE).symbol(&u), "N·mm/deg");
+        assert_eq!(Dim::LENGTH.over(Dim::ANGLE.times(Dim::ANGLE)).symbol(&u), "mm/deg²");
+        assert_eq!(Dim::NONE.over(Dim::TIME).symbol(&u), "1/s");
+        assert_eq!(Dim::LENGTH.over(Dim::ANGLE.times(Dim::TIME)).symbol(&u), "mm/(deg·s)");
+        // Without a UNITS line nothing is shown; a kind whose base unit is
+        // not declared is not shown either.
+        assert_eq!(Dim::ANGLE.symbol(&Units::NONE), "");
+        let angle_only = Units { declared: true, angle: Some(Angle::Deg), ..Units::NONE };
+        assert_eq!(Dim::ANGLE.symbol(&angle_only), "deg");
+        assert_eq!(Dim::LENGTH.over(Dim::ANGLE).symbol(&angle_only), "");
+        assert_eq!(Dim::TIME.symbol(&angle_only), "s");
+    }
+
+    #[test]
+    fn scales_convert_to_si_and_back() {
+        let u = mm_deg();
+        assert_eq!(u.to_core(Dim::LENGTH, 250.0), 0.25);
+        assert!((u.to_core(Dim::ANGLE, 180.0) - PI).abs() < 1e-15);
+        // A torsion spring of 1 N·mm/deg is 180/pi * 1e-3 N·m/rad.
+        let k = Dim::ANGLE.generalised_force().over(Dim::ANGLE);
+        assert!((u.to_core(k, 1.0) - 1e-3 * 180.0 / PI).abs() < 1e-15);
+        // An inertia of 1 kg·mm² is 1e-6 kg·m²; 1 g is 1e-3 kg; 1 kN 1000 N; 1 ms 1e-3 s.
+        assert!((u.to_core(Dim::INERTIA, 1.0) - 1e-6).abs() < 1e-21);
+        let other = Units {
+            declared: true,
+            mass: Some(Mass::G),
+            force: Some(Force::KN),
+            time: Some(Time::Ms),
+            length: Some(Length::In),
+            angle: None,
+        };
+        assert_eq!(other.to_core(Dim::MASS, 1.0), 1e-3);
+        assert_eq!(other.to_core(Dim::FORCE, 2.0), 2e3);
+        assert_eq!(other.to_core(Dim::TIME, 5.0), 5e-3);
+        assert_eq!(other.to_core(Dim::LENGTH, 1.0), 0.0254);
+        for d in [Dim::LENGTH, Dim::INERTIA, k, Dim::ENERGY.over(Dim::TIME)] {
+            let back = u.from_core(d, u.to_core(d, 123.456));
+            assert!((back - 123.456).abs() < 1e-12, "{d:?}");
+        }
+    }
+
+    #[test]
+    fn no_units_leave_every_number_as_it_is() {
+        let u = Units::NONE;
+        assert!(u.is_identity());
+        for v in [0.1, -3.7e-300, f64::MAX] {
+            assert_eq!(u.to_core(Dim::INERTIA, v).to_bits(), v.to_bits());
+            assert_eq!(u.from_core(Dim::LENGTH.over(Dim::ANGLE), v).to_bits(), v.to_bits());
+        }
+        let si = Units { declared: true, length: Some(Length::M), angle: Some(Angle::Rad), ..Units::NONE };
+        assert!(si.is_identity());
+        assert!(!mm_deg().is_identity());
+    }
+}

@@ -1,0 +1,260 @@
+"""A deck in millimetres and degrees (UNITS) with NAMES gives the SI deck's results converted, with its names.
+
+The decks in other units are made here from the examples by hand-written rules (which number is a length, which
+an angle), and every buffer is compared with the SI run times the factor its unit implies, written out by hand
+(mm/deg is 1000 * pi/180 of m/rad).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechfem
+from mechfem.errors import DeckError
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+
+L = 1000.0  # m -> mm
+DEG = 180.0 / math.pi  # rad -> deg
+
+Rule = Callable[[list[float]], list[float]]
+
+
+def _number(text: str) -> float:
+    return float(text.replace("d", "e").replace("D", "E"))
+
+
+def converted(text: str, rules: dict[str, Rule], head: str, names: str) -> str:
+    """``text`` with the numbers of each keyword's lines changed by ``rules[keyword](numbers)`` (comments
+    dropped), the line ``head`` after the mode line and the NAMES block ``names`` before MOVEMENT."""
+    out: list[str] = []
+    keyword = ""
+    for line in text.splitlines():
+        words = line.split(";", 1)[0].split()
+        if not words:
+            continue
+        if re.match(r"^[A-Za-z_]", words[0]):
+            keyword, lead, args = words[0].upper(), [words[0]], words[1:]
+        else:
+            lead, args = [], words
+        if keyword == "MOVEMENT" and names:
+            out.append(names.rstrip("\n"))
+            names = ""
+        rule = rules.get(keyword)
+        if rule is None or not args or not all(re.match(r"^[-+.\d]", a) for a in args):
+            out.append(line.split(";", 1)[0])
+            continue
+        old = [_number(a) for a in args]
+        new = rule(old)
+        out.append(" ".join([*lead, *(a if v == o else repr(v) for a, o, v in zip(args, old, new, strict=True))]))
+    out.insert(1, head)
+    if names:
+        out.append(names.rstrip("\n"))
+    return "\n".join(out) + "\n"
+
+
+def run(tmp_path: Path, name: str, text: str) -> mechfem.RunResult:
+    path = tmp_path / name
+    path.write_text(text)
+    return mechfem.run_deck(path)
+
+
+def by_number(result: mechfem.RunResult) -> dict[int, tuple[str, str]]:
+    return {b.number: (b.name, b.unit) for b in result.storage.buffers}
+
+
+def close(a: np.ndarray, b: np.ndarray, rtol: float = 1e-9) -> None:
+    scale = max(float(np.max(np.abs(b))), 1e-300)
+    np.testing.assert_allclose(a, b, rtol=0, atol=rtol * scale)
+
+
+# -- the four-bar ---------------------------------------------------------------------------------------------
+
+FOURBAR_NAMES = """NAMES
+POINT 1 2 A0
+POINT 3 4 B0
+POINT 5 6 A
+POINT 7 8 B
+POINT 9 10 C
+ELEM 1 crank
+ELEM 2 coupler
+ELEM 3 rocker
+ROW 6 phi
+DEP 1 psi
+BUF 30 transmission quality
+"""
+
+
+def fourbar_mm_deg() -> str:
+    text = (EXAMPLES / "fourbar" / "fourbar.mec").read_text()
+    rules: dict[str, Rule] = {
+        "XFIX": lambda v: [v[0], v[1] * L],
+        "XMOV": lambda v: [v[0], v[1] * L],
+        "PARA": lambda v: [v[0], v[1] * (DEG if v[0] == 6 else L)],
+        "MOV_RELE": lambda v: [v[0], v[1] * DEG],
+    }
+    return converted(text, rules, "UNITS LENGTH mm ANGLE deg", FOURBAR_NAMES)
+
+
+def test_fourbar_in_mm_and_degrees_gives_the_si_results_converted(tmp_path: Path) -> None:
+    si = mechfem.run_deck(EXAMPLES / "fourbar" / "fourbar.mec")
+    mm = run(tmp_path, "fourbar_mm.mec", fourbar_mm_deg())
+    assert mm.positions == si.positions == 145
+    rad = math.pi / 180
+    factors = {
+        1: DEG, 2: 1.0, 11: L, 12: L, 13: L * rad, 14: L * rad, 15: L * rad**2, 16: L * rad**2,
+        17: L, 18: L, 19: L, 20: L, 21: DEG, 22: 1.0, 23: rad, 24: DEG, 25: DEG,
+        # det(D^c): five length rows and the crank angle over six moving lengths.
+        30: DEG / L,
+    }  # fmt: skip
+    for number, factor in factors.items():
+        close(mm.buffers[number], si.buffers[number] * factor)
+    assert mm.model.units == {"length": "mm", "angle": "deg", "mass": None, "force": None, "time": "s"}
+    assert [c.adjusted for c in mm.model.coordinates] == pytest.approx([c.adjusted * L for c in si.model.coordinates])
+    labels = by_number(mm)
+    assert labels[1] == ("phi", "deg")
+    assert labels[2] == ("time", "s")
+    assert labels[11] == ("C.x", "mm")
+    assert labels[13] == ("dC.x/dphi", "mm/deg")
+    assert labels[15] == ("d2C.x/dphi^2", "mm/deg²")
+    assert labels[17] == ("vC.x", "mm/s")
+    assert labels[19] == ("aC.y", "mm/s²") or labels[20] == ("aC.y", "mm/s²")
+    assert labels[21] == ("psi", "deg")
+    assert labels[22] == ("dpsi/dphi", "-")
+    assert labels[23] == ("d2psi/dphi^2", "1/deg")
+    assert labels[24] == ("vpsi", "deg/s")
+    assert labels[30] == ("transmission quality", "deg/mm")
+    assert [p.name for p in mm.model.points] == ["A0", "B0", "A", "B", "C"]
+    assert [e.name for e in mm.model.elements] == ["crank", "coupler", "rocker"]
+
+
+def test_a_deck_without_names_keeps_todays_labels_and_no_units(tmp_path: Path) -> None:
+    si = mechfem.run_deck(EXAMPLES / "fourbar" / "fourbar.mec")
+    labels = by_number(si)
+    assert labels[11] == ("x9", "")
+    assert labels[13] == ("dx9/dinput1", "")
+    assert labels[21] == ("ANGB(3)", "")
+    assert labels[22] == ("dANGB(3)/dinput1", "")
+    assert labels[1] == ("ANGB(1)", "")
+    assert si.model.units == dict.fromkeys(["length", "angle", "mass", "force", "time"])
+    assert all(c.name is None for c in si.model.coordinates)
+
+
+def test_units_in_si_give_bit_identical_results(tmp_path: Path) -> None:
+    si = mechfem.run_deck(EXAMPLES / "fourbar" / "fourbar.mec")
+    text = (EXAMPLES / "fourbar" / "fourbar.mec").read_text().replace("KIN ANA", "KIN ANA\nUNITS LENGTH m ANGLE rad", 1)
+    same = run(tmp_path, "fourbar_si.mec", text)
+    for number, column in si.buffers.items():
+        assert np.array_equal(same.buffers[number], column)
+    assert by_number(same)[13] == ("dx9/dinput1", "m/rad")
+
+
+# -- the supply mechanism, kinematics and inverse dynamics ----------------------------------------------------
+
+SUPPLY_NAMES = """NAMES
+POINT 13 14 K
+ROW 5 kappa
+ROW 12 phi
+DEP 1 psi
+"""
+LENGTH_ROWS = {1, 2, 3, 4, 6, 7, 8, 9, 10, 11}
+
+
+def supply_rules(time: float) -> dict[str, Rule]:
+    return {
+        "XFIX": lambda v: [v[0], v[1] * L],
+        "XMOV": lambda v: [v[0], v[1] * L],
+        "PARA": lambda v: [v[0], v[1] * (L if v[0] in LENGTH_ROWS else DEG)],
+        "MOV_RELE": lambda v: [v[0], v[1] * DEG],
+        "VARY": lambda v: [v[0], v[1] * DEG, v[2] * DEG],
+        # u along the element in mm, the inertia in kg mm^2
+        "MASS": lambda v: [v[0], v[1], v[2] * L, v[3] * L, v[4] * L * L],
+        "GRAVITY": lambda v: [x * L / time**2 for x in v],
+        # a torque on an angle, in N mm
+        "LOAD": lambda v: [v[0], v[1] * L],
+        "TSTEPE": lambda v: [v[0], *(x * time for x in v[1:])],
+    }
+
+
+def test_supply_mechanism_in_mm_and_degrees(tmp_path: Path) -> None:
+    si = mechfem.run_deck(EXAMPLES / "supply" / "supply.mec")
+    text = converted(
+        (EXAMPLES / "supply" / "supply.mec").read_text(), supply_rules(1.0), "UNITS LENGTH mm ANGLE deg", SUPPLY_NAMES
+    )
+    mm = run(tmp_path, "supply_mm.mec", text)
+    for number, factor in {99: DEG, 100: DEG, 101: 1.0, 102: math.pi / 180}.items():
+        close(mm.buffers[number], si.buffers[number] * factor)
+    labels = by_number(mm)
+    assert labels[101] == ("dpsi/dphi", "-")
+    assert labels[99] == ("phi", "deg")
+
+
+def test_supply_inverse_dynamics_in_mm_degrees_and_milliseconds(tmp_path: Path) -> None:
+    si = mechfem.run_deck(EXAMPLES / "supply" / "supply_dyn.mec")
+    ms = 1000.0
+    text = converted(
+        (EXAMPLES / "supply" / "supply_dyn.mec").read_text(),
+        supply_rules(ms),
+        "UNITS LENGTH mm ANGLE deg MASS kg FORCE N TIME ms",
+        SUPPLY_NAMES,
+    )
+    mm = run(tmp_path, "supply_dyn_mm.mec", text)
+    factors = {
+        99: DEG, 100: DEG,
+        110: L,  # drive torque N mm
+        111: L, 112: L,  # energies N mm
+        113: L / ms,  # power N mm / ms
+        114: 1.0,  # the force in a length row, N
+        115: 1.0, 116: 1.0,  # reactions on the frame's lengths, N
+        117: L * L,  # reduced inertia, kg mm^2
+    }  # fmt: skip
+    for number, factor in factors.items():
+        close(mm.buffers[number], si.buffers[number] * factor, rtol=1e-8)
+    labels = by_number(mm)
+    assert labels[110] == ("drive(phi)", "N·mm")
+    assert labels[113] == ("power", "N·mm/ms")
+    assert labels[117] == ("M(phi,phi)", "kg·mm²")
+    assert labels[114][1] == "N"
+
+
+def test_kin_opt_with_vary_and_targets_in_degrees(tmp_path: Path) -> None:
+    si = mechfem.optimise_deck(EXAMPLES / "supply" / "supply_opt.mec") if hasattr(mechfem, "optimise_deck") else None
+    if si is None:
+        pytest.skip("no optimise_deck")
+    text = converted(
+        (EXAMPLES / "supply" / "supply_opt.mec").read_text(), supply_rules(1.0), "UNITS LENGTH mm ANGLE deg", ""
+    )
+    mm = mechfem.optimise_deck(_write(tmp_path, "supply_opt_mm.mec", text))
+    assert mm is not None
+
+
+def _write(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+# -- mistakes -------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("line", "words"),
+    [
+        ("NAMES\nPIONT 1 2 A\n", "not a kind of name"),
+        ("NAMES\nPOINT 1 2 A-B\n", "is not a name"),
+        ("NAMES\nELEM 1 crank\nELEM 2 crank\n", "given to two elements"),
+        ("NAMES\nCOORD 99 s\n", "does not have"),
+        ("UNITS LENGTH furlong\n", "not a unit of length"),
+    ],
+)
+def test_a_bad_names_or_units_line_is_a_deck_error(tmp_path: Path, line: str, words: str) -> None:
+    text = (EXAMPLES / "fourbar" / "fourbar.mec").read_text().replace("MOVEMENT", line + "MOVEMENT", 1)
+    with pytest.raises(DeckError, match=words):
+        run(tmp_path, "bad.mec", text)
