@@ -33,9 +33,19 @@ def _same_bits(a: object, b: object) -> bool:
 
 
 def _text_model(mech: mechfem.Mechanism) -> tuple[_core.Model, deckio.DeckText]:
+    """The model the mechanism's deck text compiles to, with the NAMES block of the names the builder carries
+    written after the geometry, where a deck states it."""
     deck = deckio.write(mech, mech.motion, mech.storage)
+    lines = deck.text.splitlines()
+    after = next(k for k, line in enumerate(lines) if line.split(";")[0].strip() in _AFTER_GEOMETRY)
+    names = building.deck_names(mech, deck.numbering)
+    block = ["NAMES", *[f"{kind} {' '.join(map(str, numbers))} {name}" for kind, numbers, name in names]]
+    text = "\n".join(lines[:after] + (block if names else []) + lines[after:]) + "\n"
     with deckio.tables_dir(deck.tables) as base:
-        return _core.Model(deck.text, deck.path, base), deck
+        return _core.Model(text, deck.path, base), deck
+
+
+_AFTER_GEOMETRY = {"DYNAMICS", "MOVEMENT", "STORAGE", "END"}
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)

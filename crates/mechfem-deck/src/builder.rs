@@ -8,6 +8,9 @@
 //! same things compile to the same [`Compiled`] model, to the last bit.
 //! (mujoco's `mjSpec`, which its own XML reader fills, is the pattern.)
 //!
+//! Names and units (`names.rs`) go where a deck states them: the UNITS
+//! line right below the mode line, the NAMES block after the geometry.
+//!
 //! The builder checks each value as the parser checks the word it reads
 //! (`checks.rs`): a number the parser would refuse is refused here, with a
 //! message that names the item by the name the caller gave it. Items take
@@ -17,6 +20,7 @@
 //! (buffers, pictures, elements, FORM terms) is the same as well.
 
 mod checks;
+mod names;
 #[cfg(test)]
 mod tests;
 
@@ -57,6 +61,8 @@ pub struct DeckBuilder {
     forms: i64,
     /// The block being filled.
     block: Option<Keyword>,
+    /// Whether names were given: the geometry is complete.
+    named: bool,
 }
 
 /// A span covering line `line` as a whole.
@@ -84,12 +90,16 @@ impl DeckBuilder {
                 movement: None,
                 optimise: None,
                 storage: None,
+                names: None,
+                units: None,
+                scale: None,
                 source: vec![String::new(), mode.name().to_string(), "TOPOLOGY".to_string()],
             },
             line: 3,
             elements: 0,
             forms: 0,
             block: Some(Keyword::Elem),
+            named: false,
         };
         if mode == Mode::KinOpt {
             return Err(b.refuse(
@@ -125,6 +135,15 @@ impl DeckBuilder {
         ))
     }
 
+    /// Refuses a geometry item after the names.
+    fn before_names(&self, what: &str) -> Result<(), Refused> {
+        if !self.named {
+            return Ok(());
+        }
+        let message = format!("{what} comes after the names: add items in the order of a deck");
+        Err(self.refuse(DiagnosticKind::WrongBlock, self.line + 1, message))
+    }
+
     /// Element `k` (the next number) of type `ty` on the co-ordinates
     /// `coords` (deck numbers), called `name`.
     pub fn element(&mut self, ty: &str, coords: &[i64], name: Option<&str>) -> Result<(), Refused> {
@@ -155,8 +174,7 @@ impl DeckBuilder {
         let coords = coords.iter().map(|&i| checks::whole(self, line, i, &label).map(|v| at(v, line)));
         let coords = coords.collect::<Result<Vec<_>, _>>()?;
         self.elements += 1;
-        let comment = checks::comment(self, line, name)?;
-        let elem = ElemDef { line, number: at(self.elements, line), ty: at(t, line), coords, comment };
+        let elem = ElemDef { line, number: at(self.elements, line), ty: at(t, line), coords };
         self.deck.topology.elements.push(elem);
         Ok(())
     }
@@ -175,7 +193,6 @@ impl DeckBuilder {
         }
         checks::finite(self, line, factor, &format!("the factor of a term of {label}"))?;
         self.forms += 1;
-        let comment = checks::comment(self, line, name)?;
         self.deck.topology.forms.push(FormDef {
             line,
             seq: at(self.forms, line),
@@ -183,7 +200,6 @@ impl DeckBuilder {
             element: at(element, line),
             dest: at(dest, line),
             factor: Some(at(factor, line)),
-            comment,
         });
         Ok(())
     }
@@ -212,12 +228,12 @@ impl DeckBuilder {
     pub fn coordinate(&mut self, number: i64, value: f64, moving: bool, name: Option<&str>) -> Result<(), Refused> {
         let kw = if moving { Keyword::Xmov } else { Keyword::Xfix };
         self.in_block(kw, Keyword::Xmov, "a co-ordinate")?;
+        self.before_names("a co-ordinate")?;
         let line = self.next_line(name.unwrap_or_default());
         let label = checks::label("the co-ordinate", name);
         checks::whole(self, line, number, &label)?;
         checks::finite(self, line, value, &format!("the value of {label}"))?;
-        let comment = checks::comment(self, line, name)?;
-        let coord = CoordDef { line, moving, index: at(number, line), value: at(value, line), comment };
+        let coord = CoordDef { line, moving, index: at(number, line), value: at(value, line) };
         self.deck.geometry.coords.push(coord);
         Ok(())
     }
@@ -225,12 +241,12 @@ impl DeckBuilder {
     /// The prescribed value (PARA) of row `row`, called `name`.
     pub fn para(&mut self, row: i64, value: f64, name: Option<&str>) -> Result<(), Refused> {
         self.in_block(Keyword::Para, Keyword::Xmov, "a prescribed value")?;
+        self.before_names("a prescribed value")?;
         let line = self.next_line(name.unwrap_or_default());
         let label = checks::label("the row", name);
         checks::whole(self, line, row, &label)?;
         checks::finite(self, line, value, &format!("the prescribed value of {label}"))?;
-        let comment = checks::comment(self, line, name)?;
-        self.deck.geometry.paras.push(ParaDef { line, row: at(row, line), value: at(value, line), comment });
+        self.deck.geometry.paras.push(ParaDef { line, row: at(row, line), value: at(value, line) });
         Ok(())
     }
 

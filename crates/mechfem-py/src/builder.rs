@@ -13,8 +13,8 @@ use crate::errors;
 use crate::model::Model;
 
 /// A model built item by item, in the order of a deck's blocks:
-/// `ModelBuilder(path, mode)`, then `element`, `form`, `nrdof`;
-/// `coordinate`, `para`; `dynamics` and its items; `movement` and its
+/// `ModelBuilder(path, mode)`, `units`, then `element`, `form`, `nrdof`;
+/// `coordinate`, `para`; `name`; `dynamics` and its items; `movement` and its
 /// items; `storage` and its items; then `build(base_dir)`. Each refusal is
 /// a `DeckError` naming the item by the name it was given.
 #[pyclass(module = "mechfem._core")]
@@ -41,6 +41,28 @@ impl ModelBuilder {
         };
         let builder = DeckBuilder::new(path.clone(), m).map_err(|d| refused(py, &path, d))?;
         Ok(ModelBuilder { builder, path })
+    }
+
+    /// The model's units by symbol (`mm`, `deg`, ...), each kind optional;
+    /// before every other item.
+    #[pyo3(signature = (length=None, angle=None, mass=None, force=None, time=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn units(
+        &mut self,
+        py: Python<'_>,
+        length: Option<&str>,
+        angle: Option<&str>,
+        mass: Option<&str>,
+        force: Option<&str>,
+        time: Option<&str>,
+    ) -> PyResult<()> {
+        self.builder.units(length, angle, mass, force, time).map_err(|d| refused(py, &self.path, d))
+    }
+
+    /// A name of the NAMES block (after the geometry): `kind` POINT, COORD,
+    /// ELEM, ROW, DEP or BUF, its numbers and the name (a BUF's label).
+    fn name(&mut self, py: Python<'_>, kind: &str, numbers: Vec<i64>, name: &str) -> PyResult<()> {
+        self.builder.name(kind, &numbers, name).map_err(|d| refused(py, &self.path, d))
     }
 
     /// The next element: its type and co-ordinate numbers, and its name.

@@ -154,16 +154,6 @@ pub(super) fn title(b: &DeckBuilder, line: usize, title: &str) -> Result<String,
     Ok(t.to_string())
 }
 
-/// An item's name as the deck keeps a line's comment: trimmed, None when empty.
-pub(super) fn comment(b: &DeckBuilder, line: usize, name: Option<&str>) -> Result<Option<String>, Refused> {
-    let Some(name) = name else { return Ok(None) };
-    if name.chars().any(char::is_control) {
-        let message = format!("the name {name:?} holds a control character");
-        return Err(b.refuse(DiagnosticKind::BadValue, line, message));
-    }
-    Ok(Some(name.trim()).filter(|t| !t.is_empty()).map(str::to_string))
-}
-
 /// Refuses a motion keyword (or INTTOL) that the model's mode does not
 /// have: free motion of a model with dynamics, a motion by the forces or
 /// the integrator's tolerances without a simulation.

@@ -10,6 +10,7 @@ use crate::DiagnosticKind;
 /// deck text laid out line for line as the builder numbers its items.
 const TEXT: &str = "; pendulum
 DYN SIM
+UNITS LENGTH mm ANGLE deg
 TOPOLOGY
 ELEM 1 BIN 1 2 3 4 ; crank: A0 A
 FORM 1 LENL 1 1 1.0 ; crank.length
@@ -21,6 +22,12 @@ XFIX 2 0.0 ; A0.y
 XMOV 3 1.0 ; A.x
 XMOV 4 0.5 ; A.y
 PARA 1 1.118033988749895 ; crank.length
+NAMES
+POINT 3 4 A
+COORD 1 a0x
+ELEM 1 crank
+ROW 2 phi
+BUF 1 the x of A
 DYNAMICS
 MASS 1 2.0 0.5 0.0 0.1
 PMASS 3 4 0.25
@@ -50,6 +57,7 @@ END
 
 fn built() -> Result<DeckBuilder, Box<crate::Diagnostic>> {
     let mut b = DeckBuilder::new("pendulum.mec", Mode::DynSim)?;
+    b.units(Some("mm"), Some("DEG"), None, None, None)?;
     b.element("BIN", &[1, 2, 3, 4], Some("crank: A0 A"))?;
     b.form("LENL", 1, 1, 1.0, Some("crank.length"))?;
     b.form("angb", 1, 2, 1.0, Some("crank.angle"))?;
@@ -59,6 +67,11 @@ fn built() -> Result<DeckBuilder, Box<crate::Diagnostic>> {
         b.coordinate(i, v, moving, Some(name))?;
     }
     b.para(1, 1.118033988749895, Some("crank.length"))?;
+    b.name("POINT", &[3, 4], "A")?;
+    b.name("coord", &[1], "a0x")?;
+    b.name("ELEM", &[1], "crank")?;
+    b.name("ROW", &[2], "phi")?;
+    b.name("BUF", &[1], " the x of A ")?;
     b.dynamics()?;
     b.mass(1, 2.0, 0.5, 0.0, 0.1, "crank")?;
     b.point_mass(3, 4, 0.25, "A")?;
@@ -106,6 +119,10 @@ fn a_value_the_parser_refuses_is_refused_with_the_items_name() {
     let e = b.coordinate(3, f64::INFINITY, true, Some("A.x")).unwrap_err();
     assert!(e.message.contains("the value of the co-ordinate \"A.x\" is inf"), "{}", e.message);
     assert_eq!(b.movement(0, 1.0).unwrap_err().kind, DiagnosticKind::BadValue);
+    assert_eq!(b.name("ROW", &[1], "crank.length").unwrap_err().kind, DiagnosticKind::BadName);
+    b.name("ROW", &[1], "length").unwrap();
+    assert_eq!(b.name("ROW", &[2], "length").unwrap_err().kind, DiagnosticKind::DuplicateName);
+    assert_eq!(b.coordinate(4, 0.0, true, None).unwrap_err().kind, DiagnosticKind::WrongBlock);
     // A model without masses has no dynamics, and free motion cannot drive one that has them.
     assert_eq!(b.dynamics().unwrap_err().kind, DiagnosticKind::WrongMode);
     let mut d = DeckBuilder::new("d.mec", Mode::DynAna).unwrap();
