@@ -16,7 +16,7 @@ import pytest
 
 import mechfem
 import mechfem._core as _core
-from mechfem import building, deckio, running
+from mechfem import building, deckio, numbering, running
 from mechfem.errors import DeckError
 from tests.conftest import ROOT
 
@@ -33,28 +33,20 @@ def _same_bits(a: object, b: object) -> bool:
 
 
 def _text_model(mech: mechfem.Mechanism) -> tuple[_core.Model, deckio.DeckText]:
-    """The model the mechanism's deck text compiles to, with the NAMES block of the names the builder carries
-    written after the geometry, where a deck states it."""
+    """The model the mechanism's deck text compiles to (its names in its NAMES block)."""
     deck = deckio.write(mech, mech.motion, mech.storage)
-    lines = deck.text.splitlines()
-    after = next(k for k, line in enumerate(lines) if line.split(";")[0].strip() in _AFTER_GEOMETRY)
-    names = building.deck_names(mech, deck.numbering)
-    block = ["NAMES", *[f"{kind} {' '.join(map(str, numbers))} {name}" for kind, numbers, name in names]]
-    text = "\n".join(lines[:after] + (block if names else []) + lines[after:]) + "\n"
     with deckio.tables_dir(deck.tables) as base:
-        return _core.Model(text, deck.path, base), deck
-
-
-_AFTER_GEOMETRY = {"DYNAMICS", "MOVEMENT", "STORAGE", "END"}
+        return _core.Model(deck.text, deck.path, base), deck
 
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
 def test_builder_and_deck_reader_make_the_same_model(path: Path) -> None:
     mech = mechfem.Mechanism.from_deck(path)
-    built, numbering = building.build(mech, mech.motion, mech.storage)
+    built, nb = building.build(mech, mech.motion, mech.storage)
     text, deck = _text_model(mech)
     assert built.fingerprint() == text.fingerprint()
-    assert numbering.coords == deck.numbering.coords
+    assert ("NAMES" in deck.text) == bool(numbering.deck_names(mech.points, deck.numbering))
+    assert nb.coords == deck.numbering.coords
     ran, read = built.run(), text.run()
     for key in ("table", "buffer_values", "coords"):
         assert _same_bits(ran[key], read[key]), key

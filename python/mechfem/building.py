@@ -5,7 +5,7 @@ The builder takes the model's items one call each, with deck numbers (:func:`mec
 model's names, in the order a deck states them, and compiles them with the deck reader's own compiler: the model
 it gives is the one the deck text of the mechanism (:func:`mechfem.deckio.write`) compiles to, to the last bit
 (``tests/test_builder.py`` compares the two for every example). The model's names that a deck can hold go into the
-core's model as a deck's NAMES block puts them there (:func:`deck_names`). Table motions and load tables are handed over as
+core's model as the NAMES block of its deck puts them there (:func:`mechfem.numbering.deck_names`). Table motions and load tables are handed over as
 the files the deck would name, in a temporary folder; no deck text is written or read.
 
 A mistake the builder or the compiler finds raises :class:`~mechfem.DeckError`; so does the Python side of the
@@ -14,15 +14,13 @@ model (a ``ValueError``, ``KeyError`` or ``TypeError``) for what the deck writer
 
 from __future__ import annotations
 
-import re
-
 import mechfem._core as _core
 from mechfem import deckio, loads
 from mechfem.catalogue import DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
 from mechfem.model import By, Dynamic, Free, InputKey, InputMotion, Mechanism, Motion, Storage, Table, To
 from mechfem.motion import check_units
-from mechfem.numbering import Numbering
+from mechfem.numbering import Numbering, deck_names
 from mechfem.storage import check_file_names
 
 
@@ -63,7 +61,7 @@ def _builder(
     for r in nb.prescribed:
         if r.value is not None:
             b.para(nb.row_dest[r], float(r.value), r.name)
-    for kind, numbers, name in deck_names(mech, nb):
+    for kind, numbers, name in deck_names(mech.points, nb):
         b.name(kind, numbers, name)
     if mech.loads is not None:
         b.dynamics()
@@ -73,31 +71,6 @@ def _builder(
     if storage is not None:
         _storage(b, mech, storage, nb)
     return b
-
-
-_DECK_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]{0,39}")
-"""A name a deck can hold (the NAMES block's rule); others (``coupler.length``) stay the Python model's own."""
-
-
-def deck_names(mech: Mechanism, nb: Numbering) -> list[tuple[str, list[int], str]]:
-    """The mechanism's names that the core's model carries (the lines of a deck's NAMES block): its points, the
-    co-ordinates of no point, elements, prescribed rows and outputs, each whose name a deck can hold."""
-    coord = nb.coord_number
-    out: list[tuple[str, list[int], str]] = []
-    named: set[int] = set()
-    for p in mech.points:
-        x, y = coord.get(p.x), coord.get(p.y)
-        if x is not None and y is not None and x not in named and y not in named and _DECK_NAME.fullmatch(p.name):
-            out.append(("POINT", [x, y], p.name))
-            named |= {x, y}
-    for c in nb.coords:
-        i = coord[c]
-        if i not in named and c.point is None and _DECK_NAME.fullmatch(c.name):
-            out.append(("COORD", [i], c.name))
-    out += [("ELEM", [k], e.name) for k, e in enumerate(nb.elements, 1) if _DECK_NAME.fullmatch(e.name)]
-    out += [("ROW", [nb.row_dest[r]], r.name) for r in nb.prescribed if _DECK_NAME.fullmatch(r.name)]
-    out += [("DEP", [-nb.row_dest[r]], r.name) for r in nb.dependent if _DECK_NAME.fullmatch(r.name)]
-    return out
 
 
 def _loads(
@@ -203,4 +176,4 @@ def _whole(v: object) -> int:
     return int(v)
 
 
-__all__ = ["build", "deck_names"]
+__all__ = ["build"]
