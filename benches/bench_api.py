@@ -172,17 +172,19 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     core = core_seconds[steps]
     add("the core's own run, second order (throughput example)", steps, core)
     once, per = "compiled once", "compiled per call"
+    second, with_kin = "run_deck, second order", "pylinkage step_fast_with_kinematics"
+    positions, fast = "run_deck, positions only (det=False)", "pylinkage step_fast"
+    named, handled = "Mechanism.run(order=2)", "compiled handle run(order=2)"
     pairs = [
-        (f"second order / pylinkage with kinematics, {once}", "run_deck, second order", "pylinkage step_fast_with_kinematics", once),
-        (f"second order / pylinkage with kinematics, {per}", "run_deck, second order", "pylinkage step_fast_with_kinematics", per),
-        (f"positions only / pylinkage step_fast, {once}", "run_deck, positions only (det=False)", "pylinkage step_fast", once),
-        (f"positions only / pylinkage step_fast, {per}", "run_deck, positions only (det=False)", "pylinkage step_fast", per),
-        (f"Mechanism.run time / compiled handle time, {once}", "compiled handle run(order=2)", "Mechanism.run(order=2)", once),
+        (f"second order / pylinkage with kinematics, {once}", second, with_kin, once),
+        (f"second order / pylinkage with kinematics, {per}", second, with_kin, per),
+        (f"positions only / pylinkage step_fast, {once}", positions, fast, once),
+        (f"positions only / pylinkage step_fast, {per}", positions, fast, per),
+        (f"Mechanism.run time / compiled handle time, {once}", handled, named, once),
     ]
     for what, num, den, how in pairs:
         print(f"  ratio {what}: {rates[f'{num}, {how}', steps] / rates[f'{den}, {how}', steps]:.2f}")
-    named = best["Mechanism.run(order=2), compiled once"]
-    print(f"  ratio Mechanism.run(order=2) time / the core's own run time: {named / core:.2f}")
+    print(f"  ratio Mechanism.run(order=2) time / the core's own run time: {best[f'{named}, {once}'] / core:.2f}")
 
 
 def main() -> None:

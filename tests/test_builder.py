@@ -13,18 +13,14 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from tests.conftest import ROOT
 
 import mechfem
 import mechfem._core as _core
 from mechfem import building, deckio, numbering, running
 from mechfem.errors import DeckError
-from tests.conftest import ROOT
 
-EXAMPLES = sorted(
-    p
-    for p in (ROOT / "examples").glob("*/*.mec")
-    if _core.deck_files(p)["mode"] != "KIN OPT"
-)
+EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*/*.mec") if _core.deck_files(p)["mode"] != "KIN OPT")
 
 
 def _same_bits(a: object, b: object) -> bool:
@@ -78,14 +74,14 @@ def test_mechanism_run_gives_the_deck_texts_numbers_without_writing_deck_text(
 def test_a_refused_value_is_a_deck_error_naming_the_item() -> None:
     b = _core.ModelBuilder("m.mec", "KIN ANA")
     b.element("BIN", [1, 2, 3, 4], "crank: A0 A")
-    with pytest.raises(DeckError, match="the row \"crank.angle\" has destination 0"):
+    with pytest.raises(DeckError, match='the row "crank.angle" has destination 0'):
         b.form("ANGB", 1, 0, 1.0, "crank.angle")
-    with pytest.raises(DeckError, match="the element \"coupler\" has the unknown element type `BNI`"):
+    with pytest.raises(DeckError, match='the element "coupler" has the unknown element type `BNI`'):
         b.element("BNI", [1, 2, 3, 4], "coupler")
     b.form("LENL", 1, 1, 1.0, "crank.length")
     b.form("ANGB", 1, 2, 1.0, "crank.angle")
     b.nrdof(1)
-    with pytest.raises(DeckError, match="the value of the co-ordinate \"A.x\" is NaN, not a finite number"):
+    with pytest.raises(DeckError, match='the value of the co-ordinate "A.x" is NaN, not a finite number'):
         b.coordinate(3, float("nan"), True, "A.x")
 
 

@@ -5,8 +5,9 @@ The builder takes the model's items one call each, with deck numbers (:func:`mec
 model's names, in the order a deck states them, and compiles them with the deck reader's own compiler: the model
 it gives is the one the deck text of the mechanism (:func:`mechfem.deckio.write`) compiles to, to the last bit
 (``tests/test_builder.py`` compares the two for every example). The model's names that a deck can hold go into the
-core's model as the NAMES block of its deck puts them there (:func:`mechfem.numbering.deck_names`). Table motions and load tables are handed over as
-the files the deck would name, in a temporary folder; no deck text is written or read.
+core's model as the NAMES block of its deck puts them there (:func:`mechfem.numbering.deck_names`). Table motions
+and load tables are handed over as the files the deck would name, in a temporary folder; no deck text is written
+or read.
 
 A mistake the builder or the compiler finds raises :class:`~mechfem.DeckError`; so does the Python side of the
 model (a ``ValueError``, ``KeyError`` or ``TypeError``) for what the deck writer refuses.
@@ -18,15 +19,13 @@ import mechfem._core as _core
 from mechfem import deckio, loads
 from mechfem.catalogue import DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
-from mechfem.model import By, Dynamic, Free, InputKey, InputMotion, Mechanism, Motion, Storage, Table, To
+from mechfem.model import By, Dynamic, Element, Free, InputKey, InputMotion, Mechanism, Motion, Storage, Table, To
 from mechfem.motion import check_units
 from mechfem.numbering import Numbering, deck_names
 from mechfem.storage import check_file_names
 
 
-def build(
-    mech: Mechanism, motion: Motion | None, storage: Storage | None
-) -> tuple[_core.Model, Numbering]:
+def build(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> tuple[_core.Model, Numbering]:
     """The compiled model of ``mech`` with ``motion`` and ``storage``, and its numbering."""
     nb = deckio.number_model(mech)
     tables: dict[str, str] = {}
@@ -74,7 +73,7 @@ def _builder(
 
 
 def _loads(
-    b: _core.ModelBuilder, mech: Mechanism, nb: Numbering, element: dict[object, int], tables: dict[str, str]
+    b: _core.ModelBuilder, mech: Mechanism, nb: Numbering, element: dict[Element, int], tables: dict[str, str]
 ) -> None:
     """The masses and loads, as :func:`mechfem.loads.deck_lines` writes them."""
     assert mech.loads is not None
@@ -165,7 +164,10 @@ def _storage(b: _core.ModelBuilder, mech: Mechanism, storage: Storage, nb: Numbe
     for pic in storage.pictures:
         if not pic.plots:
             raise ValueError(f"picture {pic.title!r} has no plots")
-        plots = [(kw, *map(_whole, deckio.plot_numbers(mech, nb, kw, a, c))) for kw, a, c in pic.plots]
+        plots: list[tuple[str, int, int]] = []
+        for kw, a, c in pic.plots:
+            first, second = deckio.plot_numbers(mech, nb, kw, a, c)
+            plots.append((kw, _whole(first), _whole(second)))
         b.picture(pic.title.replace(";", ",").rstrip(), plots)
 
 

@@ -194,10 +194,10 @@ def write(
         value = over.get(r, r.value)
         if value is not None:
             out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name), r.name)
-    names = deck_names(mech.points, nb)
-    if names:
+    named = deck_names(mech.points, nb)
+    if named:
         out.add("NAMES", ("names", mech.name))
-        for kind, numbers, name in names:
+        for kind, numbers, name in named:
             out.add(" ".join([kind, *map(str, numbers), name]), (kind.lower(), name))
 
     tables: dict[str, str] = {}

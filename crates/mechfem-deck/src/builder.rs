@@ -20,7 +20,9 @@
 //! (buffers, pictures, elements, FORM terms) is the same as well.
 
 mod checks;
+mod dynamics;
 mod names;
+mod storage;
 #[cfg(test)]
 mod tests;
 
@@ -29,9 +31,8 @@ use std::path::{Path, PathBuf};
 use mechfem_core::ElementType;
 
 use crate::ast::{
-    BufDef, BufList, CoordDef, Deck, Dynamics, ElemDef, ForceDef, FormDef, Geometry, GravityDef, InertiaDef, IntTolDef,
-    LoadDef, LoadDefKind, MassDef, Mode, MotionDef, MotionKind, Movement, ParaDef, PictureDef, PlotDef, PointMassDef,
-    Storage, Topology, Tstepe,
+    CoordDef, Deck, ElemDef, FormDef, Geometry, IntTolDef, Mode, MotionDef, MotionKind, Movement, ParaDef, Topology,
+    Tstepe,
 };
 use crate::compiled::Compiled;
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned};
@@ -182,7 +183,14 @@ impl DeckBuilder {
     /// A FORM term: `factor` times form parameter `form` of element
     /// `element`, into destination `dest` (prescribed row `dest > 0`,
     /// dependent form parameter `-dest`), of the row called `name`.
-    pub fn form(&mut self, form: &str, element: i64, dest: i64, factor: f64, name: Option<&str>) -> Result<(), Refused> {
+    pub fn form(
+        &mut self,
+        form: &str,
+        element: i64,
+        dest: i64,
+        factor: f64,
+        name: Option<&str>,
+    ) -> Result<(), Refused> {
         self.in_block(Keyword::Form, Keyword::Elem, "a row's term")?;
         let line = self.next_line(name.unwrap_or_default());
         let label = checks::label("the row", name);
@@ -250,134 +258,6 @@ impl DeckBuilder {
         Ok(())
     }
 
-    /// Begins the masses and loads (DYNAMICS), which a dynamics mode needs.
-    pub fn dynamics(&mut self) -> Result<(), Refused> {
-        self.in_block(Keyword::Mass, Keyword::Xmov, "the masses and loads")?;
-        let line = self.next_line("DYNAMICS");
-        let mode = self.deck.mode.value;
-        if !mode.has_dynamics() {
-            return Err(self.refuse(
-                DiagnosticKind::WrongMode,
-                line,
-                format!("a {} model has no masses or loads", mode.name()),
-            ));
-        }
-        self.deck.dynamics = Some(Dynamics { line, ..Dynamics::default() });
-        self.block = Some(Keyword::Mass);
-        Ok(())
-    }
-
-    fn dynamics_block(&mut self, kw: Keyword, what: &str) -> Result<(usize, String), Refused> {
-        self.in_block(kw, Keyword::Mass, what)?;
-        let line = self.next_line(what);
-        Ok((line, what.to_string()))
-    }
-
-    fn dyn_mut(&mut self) -> &mut Dynamics {
-        self.deck.dynamics.get_or_insert_with(Dynamics::default)
-    }
-
-    /// A body's mass `mass` with centre of mass (`u`, `v`) in the frame of
-    /// element `element` and moment of inertia `inertia`, named `what`.
-    pub fn mass(&mut self, element: i64, mass: f64, u: f64, v: f64, inertia: f64, what: &str) -> Result<(), Refused> {
-        let (line, w) = self.dynamics_block(Keyword::Mass, what)?;
-        checks::whole(self, line, element, &w)?;
-        let mass = checks::not_negative(self, line, mass, &format!("the mass of {w}"))?;
-        let u = checks::bounded(self, line, u, &format!("the centre of mass u of {w}"))?;
-        let v = checks::bounded(self, line, v, &format!("the centre of mass v of {w}"))?;
-        let inertia = checks::not_negative(self, line, inertia, &format!("the moment of inertia of {w}"))?;
-        let def = MassDef { line, element: at(element, line), mass, u, v, inertia: Some(inertia) };
-        self.dyn_mut().masses.push(def);
-        Ok(())
-    }
-
-    /// A point mass `mass` at the point of co-ordinates `x`, `y`, named `what`.
-    pub fn point_mass(&mut self, x: i64, y: i64, mass: f64, what: &str) -> Result<(), Refused> {
-        let (line, w) = self.dynamics_block(Keyword::Pmass, what)?;
-        let (x, y) = checks::point(self, line, x, y, &w)?;
-        let mass = checks::not_negative(self, line, mass, &format!("the mass of {w}"))?;
-        self.dyn_mut().point_masses.push(PointMassDef { line, x, y, mass });
-        Ok(())
-    }
-
-    /// A moment of inertia `inertia` on the angle co-ordinate `coord`, named `what`.
-    pub fn inertia(&mut self, coord: i64, inertia: f64, what: &str) -> Result<(), Refused> {
-        let (line, w) = self.dynamics_block(Keyword::Inertia, what)?;
-        checks::whole(self, line, coord, &w)?;
-        let inertia = checks::not_negative(self, line, inertia, &format!("the moment of inertia of {w}"))?;
-        self.dyn_mut().inertias.push(InertiaDef { line, coord: at(coord, line), inertia });
-        Ok(())
-    }
-
-    /// The acceleration of gravity (`gx`, `gy`), given once.
-    pub fn gravity(&mut self, gx: f64, gy: f64) -> Result<(), Refused> {
-        let (line, w) = self.dynamics_block(Keyword::Gravity, "gravity")?;
-        if self.deck.dynamics.as_ref().is_some_and(|d| d.gravity.is_some()) {
-            return Err(self.refuse(DiagnosticKind::DuplicateKeyword, line, "gravity is given twice"));
-        }
-        let gx = checks::bounded(self, line, gx, &format!("the acceleration of {w}"))?;
-        let gy = checks::bounded(self, line, gy, &format!("the acceleration of {w}"))?;
-        self.dyn_mut().gravity = Some(GravityDef { line, gx, gy });
-        Ok(())
-    }
-
-    /// A constant force (`fx`, `fy`) at the point of co-ordinates `x`, `y`, named `what`.
-    pub fn force(&mut self, x: i64, y: i64, fx: f64, fy: f64, what: &str) -> Result<(), Refused> {
-        let (line, w) = self.dynamics_block(Keyword::Force, what)?;
-        let (x, y) = checks::point(self, line, x, y, &w)?;
-        let fx = checks::bounded(self, line, fx, &format!("the force of {w}"))?;
-        let fy = checks::bounded(self, line, fy, &format!("the force of {w}"))?;
-        self.dyn_mut().forces.push(ForceDef { line, x, y, fx, fy });
-        Ok(())
-    }
-
-    fn load_def(&mut self, kw: Keyword, row: i64, what: &str, kind: impl FnOnce(&Self, usize, &str) -> Result<LoadDefKind, Refused>) -> Result<(), Refused> {
-        let (line, w) = self.dynamics_block(kw, what)?;
-        checks::whole(self, line, row, &w)?;
-        let kind = kind(self, line, &w)?;
-        let def = LoadDef { line, keyword: at(kw, line), form: at(row, line), kind };
-        self.dyn_mut().loads.push(def);
-        Ok(())
-    }
-
-    /// A constant generalised force `value` on row `row`, named `what`.
-    pub fn load(&mut self, row: i64, value: f64, what: &str) -> Result<(), Refused> {
-        self.load_def(Keyword::Load, row, what, |b, line, w| {
-            Ok(LoadDefKind::Constant(checks::bounded(b, line, value, &format!("the load on {w}"))?))
-        })
-    }
-
-    /// A generalised force on row `row` read from the table file `file`
-    /// (relative to the folder [`DeckBuilder::build`] is given), named `what`.
-    pub fn load_table(&mut self, row: i64, file: &str, what: &str) -> Result<(), Refused> {
-        self.load_def(Keyword::LoadFunc, row, what, |b, line, w| {
-            Ok(LoadDefKind::Function(at(checks::file_name(b, line, file, w)?, line)))
-        })
-    }
-
-    /// A spring of stiffness `k` and free value `e0` with damping `c` on row `row`, named `what`.
-    pub fn spring(&mut self, row: i64, k: f64, e0: f64, c: f64, what: &str) -> Result<(), Refused> {
-        self.load_def(Keyword::Spring, row, what, |b, line, w| {
-            Ok(LoadDefKind::Spring {
-                k: checks::not_negative(b, line, k, &format!("the stiffness of {w}"))?,
-                e0: checks::bounded(b, line, e0, &format!("the free value of {w}"))?,
-                c: Some(checks::not_negative(b, line, c, &format!("the damping of {w}"))?),
-            })
-        })
-    }
-
-    /// A motor of stall torque `t0` and no-load speed `w0` on row `row`, named `what`.
-    pub fn motor(&mut self, row: i64, t0: f64, w0: f64, what: &str) -> Result<(), Refused> {
-        self.load_def(Keyword::Motor, row, what, |b, line, w| {
-            let t0 = checks::bounded(b, line, t0, &format!("the stall torque of {w}"))?;
-            let w0 = checks::bounded(b, line, w0, &format!("the no-load speed of {w}"))?;
-            if w0.value == 0.0 {
-                return Err(b.refuse(DiagnosticKind::BadValue, line, format!("the no-load speed of {w} is 0")));
-            }
-            Ok(LoadDefKind::Motor { t0, w0 })
-        })
-    }
-
     /// Begins the motion: `steps` steps of time `dt` each.
     pub fn movement(&mut self, steps: i64, dt: f64) -> Result<(), Refused> {
         if !matches!(self.block, Some(Keyword::Xmov | Keyword::Mass)) {
@@ -426,7 +306,9 @@ impl DeckBuilder {
             _ => MotionKind::Dynamic(v),
         };
         let def = MotionDef { line, keyword: at(kw, line), dof: at(dof, line), kind };
-        self.deck.movement.as_mut().map(|m| m.motions.push(def));
+        if let Some(m) = self.deck.movement.as_mut() {
+            m.motions.push(def);
+        }
         Ok(())
     }
 
@@ -437,134 +319,59 @@ impl DeckBuilder {
         let line = self.next_line(what);
         checks::whole(self, line, dof, what)?;
         let file = checks::file_name(self, line, file, what)?;
-        let def =
-            MotionDef { line, keyword: at(Keyword::MovFunc, line), dof: at(dof, line), kind: MotionKind::Function(at(file, line)) };
-        self.deck.movement.as_mut().map(|m| m.motions.push(def));
+        let def = MotionDef {
+            line,
+            keyword: at(Keyword::MovFunc, line),
+            dof: at(dof, line),
+            kind: MotionKind::Function(at(file, line)),
+        };
+        if let Some(m) = self.deck.movement.as_mut() {
+            m.motions.push(def);
+        }
         Ok(())
     }
 
     /// Newton's tolerance (ACCURACY) and iteration limit (MAXITER), each if
     /// given, and the integrator's tolerances `(rtol, atol)` (INTTOL) of a
     /// simulation, if given.
-    pub fn tolerances(&mut self, accuracy: Option<f64>, max_iter: Option<i64>, inttol: Option<(f64, f64)>) -> Result<(), Refused> {
+    pub fn tolerances(
+        &mut self,
+        accuracy: Option<f64>,
+        max_iter: Option<i64>,
+        inttol: Option<(f64, f64)>,
+    ) -> Result<(), Refused> {
         self.in_block(Keyword::Accuracy, Keyword::Tstepe, "the motion's tolerances")?;
         if let Some(tol) = accuracy {
             let line = self.next_line("accuracy");
             let tol = checks::finite(self, line, tol, "the accuracy")?;
             if tol <= 0.0 {
-                return Err(self.refuse(DiagnosticKind::BadValue, line, format!("the accuracy must be positive, got {tol}")));
+                return Err(self.refuse(
+                    DiagnosticKind::BadValue,
+                    line,
+                    format!("the accuracy must be positive, got {tol}"),
+                ));
             }
-            self.deck.movement.as_mut().map(|m| m.accuracy = Some(at(tol, line)));
+            if let Some(m) = self.deck.movement.as_mut() {
+                m.accuracy = Some(at(tol, line));
+            }
         }
         if let Some(m) = max_iter {
             let line = self.next_line("max_iter");
             checks::max_iter(self, line, m)?;
-            self.deck.movement.as_mut().map(|mv| mv.maxiter = Some(at(m, line)));
+            if let Some(mv) = self.deck.movement.as_mut() {
+                mv.maxiter = Some(at(m, line));
+            }
         }
         if let Some((rtol, atol)) = inttol {
             let line = self.next_line("rtol and atol");
             checks::motion_mode(self, line, Keyword::Inttol, "the integrator's tolerances")?;
             let rtol = checks::tolerance(self, line, rtol, Tolerance::Relative)?;
             let atol = checks::tolerance(self, line, atol, Tolerance::Absolute)?;
-            self.deck.movement.as_mut().map(|m| m.inttol = Some(IntTolDef { line, rtol, atol }));
+            if let Some(m) = self.deck.movement.as_mut() {
+                m.inttol = Some(IntTolDef { line, rtol, atol });
+            }
         }
         self.block = Some(Keyword::Accuracy);
-        Ok(())
-    }
-
-    /// Begins the storage: buffers, lists and pictures.
-    pub fn storage(&mut self) -> Result<(), Refused> {
-        if matches!(self.block, Some(Keyword::Elem | Keyword::BufX0)) {
-            return Err(self.refuse(DiagnosticKind::WrongBlock, self.line + 1, "the storage comes before the geometry or twice"));
-        }
-        let line = self.next_line("STORAGE");
-        self.deck.storage = Some(Storage { line, ..Storage::default() });
-        self.block = Some(Keyword::BufX0);
-        Ok(())
-    }
-
-    /// Buffer `number`: `keyword` (`BUFX0`, ...) of the deck numbers `args`.
-    pub fn buffer(&mut self, keyword: &str, args: &[i64], number: i64) -> Result<(), Refused> {
-        self.in_block(Keyword::BufX0, Keyword::BufX0, "a buffer")?;
-        let line = self.next_line(format!("buffer {number}"));
-        let what = format!("buffer {number}");
-        let kw = Keyword::from_name(keyword).filter(|k| k.is_buffer());
-        let Some(kw) = kw else {
-            return Err(self.refuse(DiagnosticKind::UnknownKeyword, line, format!("{what} records `{keyword}`, no quantity")));
-        };
-        if kw.is_dynamic_buffer() && !self.deck.mode.value.has_dynamics() {
-            let message = format!("{what} records a result of the dynamics ({kw}), which a model without masses or loads does not compute");
-            return Err(self.refuse(DiagnosticKind::WrongMode, line, message));
-        }
-        let (min, max) = kw.arity();
-        let n = args.len() + 1;
-        if n < min || max.is_some_and(|m| n > m) {
-            return Err(self.refuse(DiagnosticKind::ArgumentCount, line, format!("{what} ({kw}) has {} arguments", args.len())));
-        }
-        let args = args.iter().map(|&a| checks::whole(self, line, a, &what).map(|v| at(v, line)));
-        let args = args.collect::<Result<Vec<_>, _>>()?;
-        let number = checks::buffer_number(self, line, number)?;
-        self.deck.storage.as_mut().map(|s| s.buffers.push(BufDef { line, keyword: at(kw, line), args, number }));
-        Ok(())
-    }
-
-    /// The buffers the print file tabulates (all of them when empty).
-    pub fn printbuf(&mut self, buffers: &[i64]) -> Result<(), Refused> {
-        self.buffer_list(buffers, "PRINTBUF", true)
-    }
-
-    /// The buffers the data set holds, in order.
-    pub fn savedata(&mut self, buffers: &[i64]) -> Result<(), Refused> {
-        self.buffer_list(buffers, "SAVEDATA", false)
-    }
-
-    fn buffer_list(&mut self, buffers: &[i64], what: &str, print: bool) -> Result<(), Refused> {
-        self.in_block(Keyword::PrintBuf, Keyword::BufX0, what)?;
-        let line = self.next_line(what);
-        let buffers = buffers.iter().map(|&b| checks::buffer_number(self, line, b)).collect::<Result<Vec<_>, _>>()?;
-        let list = BufList { line, buffers };
-        if let Some(s) = self.deck.storage.as_mut() {
-            if print { s.printbuf.push(list) } else { s.savedata.push(list) }
-        }
-        Ok(())
-    }
-
-    /// The name of the animation file (without extension).
-    pub fn animate(&mut self, name: &str) -> Result<(), Refused> {
-        self.in_block(Keyword::Animate, Keyword::BufX0, "the animation")?;
-        let line = self.next_line("ANIMATE");
-        let name = checks::file_name(self, line, name, "the animation")?;
-        self.deck.storage.as_mut().map(|s| s.animate = Some(at(name, line)));
-        Ok(())
-    }
-
-    /// A picture titled `title` of `plots`: (`PLOTFUNC`, `PLOTCURV` or
-    /// `PLOTHODO`, first, second), buffer numbers or, for PLOTHODO, a point's
-    /// co-ordinate numbers.
-    pub fn picture(&mut self, title: &str, plots: &[(String, i64, i64)]) -> Result<(), Refused> {
-        self.in_block(Keyword::BeginPic, Keyword::BufX0, "a picture")?;
-        let line = self.next_line(title);
-        let title = checks::title(self, line, title)?;
-        if plots.is_empty() {
-            let message = format!("the picture {title:?} has nothing in it: give it at least one plot");
-            return Err(self.refuse(DiagnosticKind::PictureStructure, line, message));
-        }
-        let mut items = Vec::with_capacity(plots.len());
-        for (kw, a, b) in plots {
-            let l = self.next_line(format!("a plot of {title:?}"));
-            let keyword = Keyword::from_name(kw).filter(|k| matches!(k, Keyword::PlotFunc | Keyword::PlotCurv | Keyword::PlotHodo));
-            let Some(keyword) = keyword else {
-                return Err(self.refuse(DiagnosticKind::UnknownKeyword, l, format!("the picture {title:?} has a plot of kind `{kw}`")));
-            };
-            let (a, b) = if keyword == Keyword::PlotHodo {
-                (checks::whole(self, l, *a, "a co-ordinate")?, checks::whole(self, l, *b, "a co-ordinate")?)
-            } else {
-                (checks::buffer_number(self, l, *a)?.value, checks::buffer_number(self, l, *b)?.value)
-            };
-            items.push(PlotDef { line: l, keyword: at(keyword, l), a: at(a, l), b: at(b, l) });
-        }
-        self.next_line("ENDPIC");
-        self.deck.storage.as_mut().map(|s| s.pictures.push(PictureDef { line, title, items }));
         Ok(())
     }
 

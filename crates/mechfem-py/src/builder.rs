@@ -73,7 +73,15 @@ impl ModelBuilder {
 
     /// A term `factor` x `form` of element `element` into row `dest`, of the row `name`.
     #[pyo3(signature = (form, element, dest, factor, name=None))]
-    fn form(&mut self, py: Python<'_>, form: &str, element: i64, dest: i64, factor: f64, name: Option<&str>) -> PyResult<()> {
+    fn form(
+        &mut self,
+        py: Python<'_>,
+        form: &str,
+        element: i64,
+        dest: i64,
+        factor: f64,
+        name: Option<&str>,
+    ) -> PyResult<()> {
         self.builder.form(form, element, dest, factor, name).map_err(|d| refused(py, &self.path, d))
     }
 
@@ -84,7 +92,14 @@ impl ModelBuilder {
 
     /// Co-ordinate `number` at `value`, moving or fixed, and its name.
     #[pyo3(signature = (number, value, moving, name=None))]
-    fn coordinate(&mut self, py: Python<'_>, number: i64, value: f64, moving: bool, name: Option<&str>) -> PyResult<()> {
+    fn coordinate(
+        &mut self,
+        py: Python<'_>,
+        number: i64,
+        value: f64,
+        moving: bool,
+        name: Option<&str>,
+    ) -> PyResult<()> {
         self.builder.coordinate(number, value, moving, name).map_err(|d| refused(py, &self.path, d))
     }
 
@@ -101,7 +116,16 @@ impl ModelBuilder {
 
     /// A body's mass on element `element`.
     #[allow(clippy::too_many_arguments)]
-    fn mass(&mut self, py: Python<'_>, element: i64, mass: f64, u: f64, v: f64, inertia: f64, what: &str) -> PyResult<()> {
+    fn mass(
+        &mut self,
+        py: Python<'_>,
+        element: i64,
+        mass: f64,
+        u: f64,
+        v: f64,
+        inertia: f64,
+        what: &str,
+    ) -> PyResult<()> {
         self.builder.mass(element, mass, u, v, inertia, what).map_err(|d| refused(py, &self.path, d))
     }
 
@@ -206,7 +230,8 @@ impl ModelBuilder {
     /// The compiled model (table files read from `base_dir`); the builder
     /// can be built again.
     fn build(&self, py: Python<'_>, base_dir: PathBuf) -> PyResult<Model> {
-        let compiled = py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
+        let compiled =
+            py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
         Model::kept(py, compiled, self.path.clone())
     }
 }

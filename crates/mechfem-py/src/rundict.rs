@@ -125,9 +125,7 @@ fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, r: FullRun) -> PyRes
     let mut key = bits(&r.given);
     key.extend(bits(at_1).into_iter().chain(bits(prescribed)).chain(bits(dependent)));
     key.extend(r.para.iter().map(|p| p.map_or(u64::MAX, f64::to_bits)));
-    let model = kept(py, &s.last_echo, key, || {
-        s.echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para))
-    })?;
+    let model = kept(py, &s.last_echo, key, || s.echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para)))?;
     let report = || convert::report(py, mech, &r.report, r.steps);
     let report = match convert::plain_report_key(&r.report, r.steps).filter(|_| r.sim.is_none()) {
         Some(key) => kept(py, &s.last_report, key, report)?,

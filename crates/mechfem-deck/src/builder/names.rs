@@ -83,7 +83,11 @@ impl DeckBuilder {
         for &n in numbers {
             let n = if k == NameKind::Dep { n.checked_abs().unwrap_or(0) } else { n };
             if n < 1 {
-                return Err(self.refuse(DiagnosticKind::NameOutOfRange, line, format!("{} {n} names nothing", k.word())));
+                return Err(self.refuse(
+                    DiagnosticKind::NameOutOfRange,
+                    line,
+                    format!("{} {n} names nothing", k.word()),
+                ));
             }
             nums.push(at(super::checks::whole(self, line, n, name)?, line));
         }
@@ -138,8 +142,10 @@ fn label(b: &DeckBuilder, line: usize, text: &str) -> Result<String, Refused> {
     let t = text.trim_matches(|c| matches!(c, ' ' | '\t' | '\r' | '\x0c' | '\x0b'));
     let bad = t.chars().find(|&c| c.is_control() || is_format(c) || c == ';');
     if t.is_empty() || bad.is_some() || t.chars().count() > MAX_LABEL {
-        let message = format!("the label {text:?} is empty, holds a ';' or a character that does not print, or is \
-                               longer than {MAX_LABEL} characters");
+        let message = format!(
+            "the label {text:?} is empty, holds a ';' or a character that does not print, or is \
+                               longer than {MAX_LABEL} characters"
+        );
         return Err(b.refuse(DiagnosticKind::BadLabel, line, message));
     }
     Ok(t.to_string())

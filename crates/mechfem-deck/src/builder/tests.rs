@@ -62,7 +62,8 @@ fn built() -> Result<DeckBuilder, Box<crate::Diagnostic>> {
     b.form("LENL", 1, 1, 1.0, Some("crank.length"))?;
     b.form("angb", 1, 2, 1.0, Some("crank.angle"))?;
     b.nrdof(1)?;
-    for (i, v, moving, name) in [(1, 0.0, false, "A0.x"), (2, 0.0, false, "A0.y"), (3, 1.0, true, "A.x"), (4, 0.5, true, "A.y")]
+    for (i, v, moving, name) in
+        [(1, 0.0, false, "A0.x"), (2, 0.0, false, "A0.y"), (3, 1.0, true, "A.x"), (4, 0.5, true, "A.y")]
     {
         b.coordinate(i, v, moving, Some(name))?;
     }
