@@ -66,10 +66,11 @@ def kept_model(
     mech: Mechanism, motion: Motion | None, storage: Storage | None
 ) -> tuple[_core.Model, Numbering, list[Change]] | None:
     """The compiled model of ``mech`` with ``motion`` and ``storage`` (compiled only when its topology is new), its
-    numbering and its numbers as changes; None for a mechanism that runs from its deck text: one whose deck needs
-    files, and one that the deck writer or reader would refuse, so that they name the mistake.
+    numbering and its numbers as changes; None for a mechanism that is not kept: one whose model needs files (it is
+    built for each run), and one that the deck writer or reader would refuse (its deck text names the mistake).
 
-    Compiling raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.Model`` gives it)."""
+    Building raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.ModelBuilder`` gives
+    it)."""
     shape = _shape(mech, motion, storage)
     with _LOCK:
         last = _LAST.get(mech)
