@@ -14,7 +14,8 @@
 //!   the co-ordinates, as numpy arrays; plus the run report, the model
 //!   echo and the storage requests as dicts (`convert`). The run releases
 //!   the GIL; `observe` attaches only to report progress.
-//! * `text` runs deck text (what the Python model API writes) and records
+//! * `text` runs deck text (a design study's, or a named model's to word its
+//!   mistake) and records
 //!   every quantity of the buffer table; `batch` runs many variants of a
 //!   few deck texts on worker threads without the GIL, for design studies.
 //! * `builder` builds a `Model` item by item from Python's `Mechanism`

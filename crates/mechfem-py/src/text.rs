@@ -1,6 +1,7 @@
-//! Decks given as text instead of files, for the Python model API
-//! (`mechfem.Mechanism`), which writes a deck and runs it through the same
-//! reader and solver as `mechfem run`.
+//! Decks given as text instead of files (a deck read into a `Mechanism`,
+//! the decks of design studies, and the deck text that words a named
+//! model's mistake), and the run of a compiled model that a kept `Model`
+//! shares with them.
 //!
 //! * [`describe_deck_text`] reads and compiles a deck and returns what it
 //!   declares (co-ordinates, elements, rows, motion, storage) without solving.
