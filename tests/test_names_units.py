@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 
@@ -53,6 +54,7 @@ def converted(text: str, rules: dict[str, Rule], head: str, names: str) -> str:
             continue
         old = [_number(a) for a in args]
         new = rule(old)
+        lead = lead or [keyword]
         out.append(" ".join([*lead, *(a if v == o else repr(v) for a, o, v in zip(args, old, new, strict=True))]))
     out.insert(1, head)
     if names:
@@ -180,6 +182,11 @@ def supply_rules(time: float) -> dict[str, Rule]:
         # a torque on an angle, in N mm
         "LOAD": lambda v: [v[0], v[1] * L],
         "TSTEPE": lambda v: [v[0], *(x * time for x in v[1:])],
+        # a torsion spring in N mm/deg about a free angle in deg, its damper in N mm time/deg
+        "SPRING": lambda v: [v[0], v[1] * L / DEG, v[2] * DEG, v[3] * L / DEG * time],
+        # a motor's stall torque in N mm, its no-load speed in deg/time
+        "MOTOR": lambda v: [v[0], v[1] * L, v[2] * DEG / time],
+        "MOV_DYN": lambda v: [v[0], v[1] * DEG / time],
     }
 
 
@@ -224,15 +231,46 @@ def test_supply_inverse_dynamics_in_mm_degrees_and_milliseconds(tmp_path: Path) 
     assert labels[114][1] == "N"
 
 
-def test_kin_opt_with_vary_and_targets_in_degrees(tmp_path: Path) -> None:
-    si = mechfem.optimise_deck(EXAMPLES / "supply" / "supply_opt.mec") if hasattr(mechfem, "optimise_deck") else None
-    if si is None:
-        pytest.skip("no optimise_deck")
-    text = converted(
-        (EXAMPLES / "supply" / "supply_opt.mec").read_text(), supply_rules(1.0), "UNITS LENGTH mm ANGLE deg", ""
+def test_supply_simulation_in_mm_degrees_and_milliseconds(tmp_path: Path) -> None:
+    ms = 1000.0
+    source = (EXAMPLES / "supply" / "supply_sim.mec").read_text().replace("TSTEPE 800 2.5E-3", "TSTEPE 100 2E-2")
+    source = "".join(
+        s for s in source.splitlines(keepends=True) if not re.match(r"\s*(ANIMATE|BEGINPIC|ENDPIC|PLOT)", s)
     )
-    mm = mechfem.optimise_deck(_write(tmp_path, "supply_opt_mm.mec", text))
-    assert mm is not None
+    si = run(tmp_path, "supply_sim_si.mec", source)
+    text = converted(source, supply_rules(ms), "UNITS LENGTH mm ANGLE deg MASS kg FORCE N TIME ms", SUPPLY_NAMES)
+    mm = run(tmp_path, "supply_sim_mm.mec", text)
+    assert mm.positions == si.positions == 101
+    factors = {98: ms, 99: DEG, 100: DEG, 101: DEG / ms, 111: L, 112: L, 114: 1.0, 115: 1.0, 116: 1.0}
+    for number, factor in factors.items():
+        close(mm.buffers[number], si.buffers[number] * factor, rtol=1e-7)
+    assert by_number(mm)[101] == ("vphi", "deg/ms")
+
+
+def test_kin_opt_with_vary_and_targets_in_degrees(tmp_path: Path) -> None:
+    """The supply mechanism's kappa optimised from a deck in mm and degrees (VARY in degrees) and from the SI deck
+    (24 steps, to be quick): the same design, and the final design deck keeps UNITS and gets kappa in degrees."""
+    from mechfem import optimise_deck
+
+    source = (EXAMPLES / "supply" / "supply_opt.mec").read_text().replace("TSTEPE 72", "TSTEPE 24")
+    source = "".join(
+        s for s in source.splitlines(keepends=True) if not re.match(r"\s*(ANIMATE|BEGINPIC|ENDPIC|PLOT)", s)
+    )
+    text = converted(source, supply_rules(1.0), "UNITS LENGTH mm ANGLE deg", SUPPLY_NAMES)
+    assert "VARY 5 -315.12" in text
+    kappa = {}
+    for name, deck_text in [("si", source), ("mm", text)]:
+        deck = _write(tmp_path, f"supply_opt_{name}.mec", deck_text)
+        outcome = optimise_deck.optimise(deck, optimise_deck.describe(deck)["optimise"])  # type: ignore[arg-type]
+        written = optimise_deck.write_design_deck(outcome, tmp_path / name).read_text()
+        kappa[name] = float(re.search(r"^\s*(?:PARA)?\s+5 (\S+)", written, re.M).group(1))  # type: ignore[union-attr]
+        if name == "mm":
+            assert "UNITS LENGTH mm ANGLE deg" in written
+            # The co-ordinates of the final design's position 1 are written in millimetres.
+            x9 = float(re.search(r"^XMOV 9 (\S+)", written, re.M).group(1))  # type: ignore[union-attr]
+            assert 100 < abs(x9) < 1000
+    assert abs(kappa["mm"] - kappa["si"] * DEG) < 1e-6 * DEG
+    assert abs(kappa["si"] - (-5.17514)) < 1e-2
 
 
 def _write(tmp_path: Path, name: str, text: str) -> Path:
@@ -255,6 +293,45 @@ def _write(tmp_path: Path, name: str, text: str) -> Path:
     ],
 )
 def test_a_bad_names_or_units_line_is_a_deck_error(tmp_path: Path, line: str, words: str) -> None:
-    text = (EXAMPLES / "fourbar" / "fourbar.mec").read_text().replace("MOVEMENT", line + "MOVEMENT", 1)
+    text = re.sub(
+        r"^MOVEMENT", line + "MOVEMENT", (EXAMPLES / "fourbar" / "fourbar.mec").read_text(), count=1, flags=re.M
+    )
     with pytest.raises(DeckError, match=words):
         run(tmp_path, "bad.mec", text)
+
+
+# -- every example: SI units change no bit --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("deck", sorted(EXAMPLES.glob("**/*.mec")), ids=lambda p: p.stem)
+def test_an_example_in_si_units_gives_its_results_bit_for_bit(deck: Path, tmp_path: Path) -> None:
+    import shutil
+
+    from mechfem import _core
+
+    text = deck.read_text()
+    if re.search(r"^\s*UNITS\b", text, re.M):
+        pytest.skip("the example declares its units")
+    folder = tmp_path / deck.parent.name
+    shutil.copytree(deck.parent, folder)
+    mode = re.search(r"^\s*(KIN|DYN)\s+\w+.*$", text, re.M)
+    assert mode is not None
+    si = folder / deck.name
+    si.write_text(text[: mode.end()] + "\nUNITS LENGTH m ANGLE rad MASS kg FORCE N TIME s" + text[mode.end() :])
+    a, b = _core.run_deck(deck), _core.run_deck(si)
+    for key in ("table", "coords"):
+        assert np.array_equal(np.asarray(a[key]).view(np.uint64), np.asarray(b[key]).view(np.uint64)), key
+
+
+def test_an_angle_that_looks_like_degrees_is_warned_about(tmp_path: Path) -> None:
+    from mechfem import _core
+
+    text = (EXAMPLES / "fourbar" / "fourbar.mec").read_text().replace("MOV_RELE 1 12.566370614359172", "MOV_RELE 1 720")
+    with pytest.warns(_core.UnitWarning, match=r"720 is an angle in radians, but looks like degrees") as caught:
+        run(tmp_path, "degrees.mec", text)
+    assert "UNITS ANGLE deg" in str(caught[0].message)
+    # The same deck saying so is taken in degrees, without a warning.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = run(tmp_path, "said.mec", text.replace("KIN ANA", "KIN ANA\nUNITS ANGLE deg", 1))
+    assert result.buffers[1][-1] == pytest.approx(720.0)

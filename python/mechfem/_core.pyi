@@ -95,6 +95,10 @@ class ConvergenceError(MechfemError):
 class ResourceError(MechfemError):
     """The results would take more memory than the limit; the run was refused before it started."""
 
+class UnitWarning(UserWarning):
+    """A number of a deck that looks as if it were written in another unit than the deck's (an angle of 720 where
+    angles are radians); the run goes on with the number as written."""
+
 class LimitPositionError(MechfemError):
     """D^c is singular at position 1."""
 
@@ -487,6 +491,10 @@ class VaryDict(TypedDict):
     lo: float
     hi: float
     line: int
+    unit: NotRequired[str]
+    """The unit of its numbers in the deck ("" without UNITS)."""
+    scale: NotRequired[float]
+    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class TargetDict(TypedDict):
@@ -502,6 +510,10 @@ class TargetDict(TypedDict):
     value: float | None
     weight: float
     line: int
+    unit: NotRequired[str]
+    """The unit of its numbers in the deck ("" without UNITS)."""
+    scale: NotRequired[float]
+    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class BoundDict(TypedDict):
@@ -509,6 +521,10 @@ class BoundDict(TypedDict):
     lo: float
     hi: float
     line: int
+    unit: NotRequired[str]
+    """The unit of its numbers in the deck ("" without UNITS)."""
+    scale: NotRequired[float]
+    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class ObjectiveDict(TypedDict):
@@ -545,6 +561,8 @@ class DescribedDeckDict(TypedDict):
     """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None
     """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
+    units: NotRequired[dict[str, str | None]]
+    """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
     inttol: NotRequired[list[float] | None]
     """``[rtol, atol]`` of INTTOL; None (or absent) for a deck without INTTOL."""
     optimise: NotRequired[OptimiseDict | None]
@@ -670,5 +688,6 @@ def optimised_deck_text(
     coords: list[tuple[int, float]],
     file_dir: str | os.PathLike[str] | None = None,
 ) -> str:
-    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value) replaced, in
-    mode KIN ANA without OPTIMISE; MOV_FUNC files named from ``file_dir`` (the old deck's folder) when given."""
+    """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value; the core's
+    numbers, written in the deck's UNITS where it has them) replaced, in mode KIN ANA without OPTIMISE; MOV_FUNC
+    files named from ``file_dir`` (the old deck's folder) when given."""

@@ -7,6 +7,8 @@
 //! names of what it records (`psi`, `dpsi/dphi`, `C.x`, `vC.x`), else as
 //! the deck's numbers say (`x9`, `ANGB(8)`, `dANGB(3)/dinput1`).
 
+use std::collections::BTreeMap;
+
 use crate::model::{FormRef, Mechanism, Term};
 use crate::run::Quantity;
 
@@ -25,8 +27,8 @@ pub struct Names {
     pub prescribed: Vec<Option<String>>,
     /// Dependent form parameters 0..n_d.
     pub dependent: Vec<Option<String>>,
-    /// Explicit labels of buffers, by buffer number, in the order given.
-    pub buffers: Vec<(u32, String)>,
+    /// Explicit labels of buffers, by buffer number.
+    pub buffers: BTreeMap<u32, String>,
 }
 
 fn get(names: &[Option<String>], k: usize) -> Option<&str> {
@@ -43,7 +45,7 @@ impl Names {
             elements: vec![None; e],
             prescribed: vec![None; p],
             dependent: vec![None; d],
-            buffers: Vec::new(),
+            buffers: BTreeMap::new(),
         }
     }
 
@@ -60,7 +62,7 @@ impl Names {
 
     /// The explicit label of buffer `number`, if any.
     pub fn buffer(&self, number: u32) -> Option<&str> {
-        self.buffers.iter().find(|(b, _)| *b == number).map(|(_, l)| l.as_str())
+        self.buffers.get(&number).map(String::as_str)
     }
 
     /// Co-ordinate i by name: its name, else `x<i+1>`.
@@ -251,7 +253,7 @@ mod tests {
         n.coordinates[5] = Some("B.y".into());
         n.prescribed[mech.input_row(0)] = Some("phi".into());
         n.dependent[0] = Some("psi".into());
-        n.buffers.push((7, "the tip's height".into()));
+        n.buffers.insert(7, "the tip's height".into());
         assert_eq!(n.label(&mech, 1, Quantity::E0(FormRef::Dependent(0))), "psi");
         assert_eq!(n.label(&mech, 1, Quantity::Ke1(FormRef::Dependent(0), 0)), "dpsi/dphi");
         assert_eq!(n.label(&mech, 1, Quantity::Ke2(FormRef::Dependent(0), 0, 0)), "d2psi/dphi^2");

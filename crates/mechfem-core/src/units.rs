@@ -25,7 +25,7 @@ use crate::model::{FormRef, Mechanism, Term};
 use crate::run::Quantity;
 
 macro_rules! unit_enum {
-    ($(#[$doc:meta])* $name:ident { $($(#[$vdoc:meta])* $variant:ident $symbol:literal $scale:expr,)* }) => {
+    ($(#[$doc:meta])* $name:ident { $($(#[$vdoc:meta])* $variant:ident $symbol:literal $scale:expr, $per:expr;)* }) => {
         $(#[$doc])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
         pub enum $name {
@@ -46,6 +46,12 @@ macro_rules! unit_enum {
                 match self { $($name::$variant => $scale,)* }
             }
 
+            /// How many of these one of the core's units is (`1 / scale`,
+            /// written exactly where it is a round number: 1000 mm in a m).
+            pub fn per_core(self) -> f64 {
+                match self { $($name::$variant => $per,)* }
+            }
+
             /// The unit written `symbol` (exactly as in the table: `mm`, `kN`).
             pub fn from_symbol(symbol: &str) -> Option<$name> {
                 $name::ALL.iter().copied().find(|u| u.symbol() == symbol)
@@ -58,13 +64,13 @@ unit_enum! {
     /// A unit of length.
     Length {
         /// Metre.
-        M "m" 1.0,
+        M "m" 1.0, 1.0;
         /// Millimetre.
-        Mm "mm" 1e-3,
+        Mm "mm" 1e-3, 1e3;
         /// Centimetre.
-        Cm "cm" 1e-2,
+        Cm "cm" 1e-2, 1e2;
         /// Inch.
-        In "in" 0.0254,
+        In "in" 0.0254, 1.0 / 0.0254;
     }
 }
 
@@ -72,9 +78,9 @@ unit_enum! {
     /// A unit of angle.
     Angle {
         /// Radian.
-        Rad "rad" 1.0,
+        Rad "rad" 1.0, 1.0;
         /// Degree.
-        Deg "deg" PI / 180.0,
+        Deg "deg" PI / 180.0, 180.0 / PI;
     }
 }
 
@@ -82,9 +88,9 @@ unit_enum! {
     /// A unit of mass.
     Mass {
         /// Kilogram.
-        Kg "kg" 1.0,
+        Kg "kg" 1.0, 1.0;
         /// Gram.
-        G "g" 1e-3,
+        G "g" 1e-3, 1e3;
     }
 }
 
@@ -92,9 +98,9 @@ unit_enum! {
     /// A unit of force.
     Force {
         /// Newton.
-        N "N" 1.0,
+        N "N" 1.0, 1.0;
         /// Kilonewton.
-        KN "kN" 1e3,
+        KN "kN" 1e3, 1e-3;
     }
 }
 
@@ -102,9 +108,9 @@ unit_enum! {
     /// A unit of time.
     Time {
         /// Second.
-        S "s" 1.0,
+        S "s" 1.0, 1.0;
         /// Millisecond.
-        Ms "ms" 1e-3,
+        Ms "ms" 1e-3, 1e3;
     }
 }
 
@@ -153,6 +159,17 @@ impl Units {
         ]
     }
 
+    /// The inverse scale of each base kind.
+    fn per_core(&self) -> [f64; KINDS] {
+        [
+            self.length.map_or(1.0, Length::per_core),
+            self.angle.map_or(1.0, Angle::per_core),
+            self.mass.map_or(1.0, Mass::per_core),
+            self.force.map_or(1.0, Force::per_core),
+            self.time.map_or(1.0, Time::per_core),
+        ]
+    }
+
     /// The symbol of each base kind; `None` where it is not shown (no
     /// units declared, or a length, mass or force without a unit).
     fn symbols(&self) -> [Option<&'static str>; KINDS] {
@@ -188,11 +205,11 @@ impl Units {
 
     /// `value` in the core's units, in `dim`'s units of the model.
     pub fn from_core(&self, dim: Dim, value: f64) -> f64 {
-        let s = dim.scale(self);
+        let s = dim.out_scale(self);
         if s == 1.0 {
             value
         } else {
-            value / s
+            value * s
         }
     }
 }
@@ -260,14 +277,13 @@ impl Dim {
 
     /// How many of the core's units one of this kind in `units` is.
     pub fn scale(self, units: &Units) -> f64 {
-        let s = units.scales();
-        let mut out = 1.0;
-        for (k, &e) in self.0.iter().enumerate() {
-            if e != 0 && s[k] != 1.0 {
-                out *= s[k].powi(i32::from(e));
-            }
-        }
-        out
+        product(self, units.scales())
+    }
+
+    /// How many of this kind in `units` one of the core's units is: what a
+    /// number of the core is multiplied by to be given in `units`.
+    pub fn out_scale(self, units: &Units) -> f64 {
+        product(self, units.per_core())
     }
 
     /// The unit as shown: `mm`, `deg/s`, `N·mm`, `kg·mm²`, `mm/deg`, `-`
@@ -311,6 +327,17 @@ impl Dim {
             (false, false) => format!("{num}/{den}"),
         }
     }
+}
+
+/// The product of the base factors `s` raised to the exponents of `dim`.
+fn product(dim: Dim, s: [f64; KINDS]) -> f64 {
+    let mut out = 1.0;
+    for (k, &e) in dim.0.iter().enumerate() {
+        if e != 0 && s[k] != 1.0 {
+            out *= s[k].powi(i32::from(e));
+        }
+    }
+    out
 }
 
 /// The kinds of a model's co-ordinates and rows, from its elements: what

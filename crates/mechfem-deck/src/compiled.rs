@@ -7,7 +7,9 @@
 //! 1-based numbers.
 
 use mechfem_core::dynamics::{Dynamics, Integration};
-use mechfem_core::{ElementType, Mechanism, ModelDims, Motion, Names, Params, Quantity, State, Units};
+use mechfem_core::{
+    Dim, Dimension, ElementType, FormRef, Mechanism, ModelDims, Motion, Names, Params, Quantity, State, Units,
+};
 
 use crate::ast::Mode;
 use crate::diagnostic::Diagnostic;
@@ -176,9 +178,42 @@ impl Compiled {
         self.dims.quantity(&self.mechanism, b.quantity).symbol(&self.units)
     }
 
+    /// The prescribed and dependent rows with their PARA values and FORM
+    /// factors as the deck writes them (in its UNITS), for an echo of the
+    /// model; [`Compiled::prescribed`] and [`Compiled::dependent`] hold the
+    /// core's.
+    pub fn rows_as_written(&self) -> [Vec<RowInfo>; 2] {
+        let [mut prescribed, mut dependent] = [self.prescribed.clone(), self.dependent.clone()];
+        if self.units.is_identity() {
+            return [prescribed, dependent];
+        }
+        let term_dim = |t: &TermInfo| {
+            let Some(e) = t.element.checked_sub(1).and_then(|k| self.elements.get(k)) else { return Dim::NONE };
+            match e.ty.form_index(t.name).and_then(|k| e.ty.form_dimensions().get(k)) {
+                Some(Dimension::Any) => e.coords.first().map_or(Dim::LENGTH, |&c| self.dims.coord(c.saturating_sub(1))),
+                Some(&d) => Dim::of(d),
+                None => Dim::NONE,
+            }
+        };
+        for (rows, prescribed) in [(&mut prescribed, true), (&mut dependent, false)] {
+            for (k, r) in rows.iter_mut().enumerate() {
+                let row = self.dims.form(if prescribed { FormRef::Prescribed(k) } else { FormRef::Dependent(k) });
+                r.para = r.para.map(|p| self.units.from_core(row, p));
+                for t in &mut r.terms {
+                    // The core's factor turns the term's core number into the row's: f s_term / s_row.
+                    let (a, b) = (row.out_scale(&self.units), term_dim(t).out_scale(&self.units));
+                    if a != b {
+                        t.factor = t.factor * a / b;
+                    }
+                }
+            }
+        }
+        [prescribed, dependent]
+    }
+
     /// How many of the deck's units one of the core's is, for what `q`
     /// records: multiply a column by it to give it in the deck's units.
     pub fn out_scale(&self, q: Quantity) -> f64 {
-        1.0 / self.dims.quantity(&self.mechanism, q).scale(&self.units)
+        self.dims.quantity(&self.mechanism, q).out_scale(&self.units)
     }
 }

@@ -435,6 +435,19 @@ fn width(c: char) -> usize {
     }
 }
 
+impl Diagnostic {
+    /// The diagnostic rendered as a warning (`warning: ...`, the place, the
+    /// line, a caret and the hint), for one that does not stop the deck
+    /// ([`crate::Compiled::warnings`]).
+    pub fn warning_text(&self) -> String {
+        let text = self.to_string();
+        match text.strip_prefix("error: ") {
+            Some(rest) => format!("warning: {rest}"),
+            None => text,
+        }
+    }
+}
+
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "error: {}", self.message)?;

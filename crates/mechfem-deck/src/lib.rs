@@ -2,7 +2,8 @@
 //!
 //! This crate reads the deck language of the classic RUNMEC program (the
 //! mode `KIN ANA`, `KIN OPT`, `DYN ANA` or `DYN SIM`, then the blocks
-//! TOPOLOGY, GEOMETRY, DYNAMICS, MOVEMENT, OPTIMISE, STORAGE) and turns it
+//! TOPOLOGY, GEOMETRY, DYNAMICS, MOVEMENT, OPTIMISE, STORAGE, with mechfem's
+//! NAMES block and UNITS line) and turns it
 //! into what [`mechfem_core`] runs. It does **not** solve anything: no
 //! Newton iteration, no transfer functions, no dynamics, no simulation, no
 //! optimisation, no output files. It only reads, checks and translates, and
@@ -11,8 +12,8 @@
 //! A tour, in the order data flows:
 //!
 //! * [`parse_file`] / [`parse_str`]: text to a typed [`Deck`]. The lexer
-//!   splits lines at blanks and tabs, sets a line's `;` comment aside (ELEM,
-//!   FORM, XFIX, XMOV and PARA items keep it) and reads Fortran
+//!   splits lines at blanks and tabs, drops a line's `;` comment (comments
+//!   mean nothing) and reads Fortran
 //!   numbers (`-3.d-2`, `1.5D0`, `.5`); a line that starts with a number
 //!   repeats the previous keyword of its block, and a keyword alone on its
 //!   line (as `FORM` in the theory's tables) waits for such lines. What one
@@ -36,9 +37,15 @@
 //!   targets with TARGET files read like MOV_FUNC files, bounds, the
 //!   objective), the output [`Buffer`]s of STORAGE and OPTIMISE, lists and
 //!   [`Picture`]s, and a description of the elements and rows for echoing
-//!   the model, with the [`Names`] the deck's comments declare for its
-//!   co-ordinates, elements and rows (`XMOV 5 0.95 ; A.x`; free text such as
-//!   `; crank A0-A` names nothing). References between lines are checked here.
+//!   the model, with the [`Names`] of the NAMES block (`POINT 9 10 C`,
+//!   `ROW 6 phi`, `DEP 1 psi`, `BUF 30 label`) from which every buffer gets
+//!   its label ([`Compiled::label`]). References between lines are checked
+//!   here. A deck with a `UNITS LENGTH mm ANGLE deg ...` line is compiled
+//!   from a copy of its numbers in the core's units (SI): every number of
+//!   the [`Compiled`] is the core's, [`Compiled::units`] and
+//!   [`Compiled::dims`] give each output's unit and scale back
+//!   ([`Compiled::unit`], [`Compiled::out_scale`]), and a number that looks
+//!   like the wrong unit is a warning ([`Compiled::warnings`]).
 //! * [`load`]: both steps for a file.
 //! * [`DeckBuilder`]: a typed [`Deck`] built item by item by a program that
 //!   holds the model in its own objects, compiled by the same [`compile`].
@@ -109,7 +116,7 @@ mod statements;
 
 use std::path::Path;
 
-pub use ast::{Deck, Mode};
+pub use ast::{Deck, Mode, NameDef, NameKind, NamesBlock, UnitsDef};
 pub use builder::DeckBuilder;
 pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
@@ -119,6 +126,7 @@ pub use keywords::{Block, Keyword};
 pub use mechfem_core::{Names, Units};
 pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};
 pub use parse::{parse_file, parse_str};
+pub use statements::names::{MAX_LABEL, MAX_NAME};
 pub use statements::{MAX_ITER, MAX_STEPS};
 
 /// Reads, checks and compiles the deck at `path`; MOV_FUNC, LOADFUNC and

@@ -83,6 +83,8 @@ pub(crate) struct Parser<'a> {
     pub names: NamesBlock,
     /// The kind a NAMES line starting with a number repeats.
     pub names_previous: Option<NameKind>,
+    /// The names and numbers named so far.
+    pub names_seen: crate::statements::names::NamesSeen,
     /// The UNITS line.
     pub units: Option<UnitsDef>,
 }
@@ -109,6 +111,7 @@ impl<'a> Parser<'a> {
             once: Vec::new(),
             names: NamesBlock::default(),
             names_previous: None,
+            names_seen: Default::default(),
             units: None,
         }
     }

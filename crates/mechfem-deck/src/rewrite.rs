@@ -9,7 +9,9 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use crate::ast::{Deck, LoadDefKind, MotionKind};
+use mechfem_core::{Dim, FormRef, Units};
+
+use crate::ast::{Deck, LoadDefKind, MotionKind, NameKind};
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned};
 use crate::keywords::Block;
 use crate::lexer::{lex_line, looks_numeric};
@@ -30,8 +32,10 @@ use crate::parse::parse_str;
 /// to the new deck's folder, or absolute), so that the new deck finds the
 /// same files. Without it the names are kept.
 ///
-/// Values are written with Rust's shortest round-trip formatting, so the
-/// new deck reads back exactly these numbers. A row without a PARA line or
+/// The values are in the core's units, as the optimiser computes them: a
+/// deck with UNITS gets them converted into its own units. Values are
+/// written with Rust's shortest round-trip formatting, so the new deck
+/// (without UNITS) reads back exactly these numbers. A row without a PARA line or
 /// a co-ordinate not declared is reported as a diagnostic, as is a deck
 /// that does not parse.
 ///
@@ -59,7 +63,16 @@ pub fn design_deck(
     // Word replacements per line: (span, new text).
     let mut edits: BTreeMap<usize, Vec<(Span, String)>> = BTreeMap::new();
     let mut edit = |span: Span, new: String| edits.entry(span.line).or_default().push((span, new));
+    // The values are the core's; a deck with UNITS gets them in its own units.
+    let units = deck.units.as_ref().map_or(Units::NONE, |u| u.units);
+    let dims =
+        if units.is_identity() { None } else { Some(crate::compile::dims(&deck).map_err(|d| Diagnostics(vec![*d]))?) };
+    let written = |dim: Option<Dim>, value: f64| match dim {
+        Some(dim) => units.from_core(dim, value),
+        None => value,
+    };
     for &(r, value) in rows {
+        let value = written(dims.as_ref().map(|d| d.form(FormRef::Prescribed(r.saturating_sub(1)))), value);
         let para = deck.geometry.paras.iter().find(|p| usize::try_from(p.row.value) == Ok(r));
         let para = para.ok_or_else(|| {
             missing(&path, DiagnosticKind::UnknownRow, format!("prescribed row {r} has no PARA line"))
@@ -67,6 +80,7 @@ pub fn design_deck(
         edit(para.value.span, format!("{value}"));
     }
     for &(i, value) in coords {
+        let value = written(dims.as_ref().map(|d| d.coord(i.saturating_sub(1))), value);
         let coord = deck.geometry.coords.iter().find(|c| usize::try_from(c.index.value) == Ok(i));
         let message = || format!("co-ordinate {i} is not declared (XFIX or XMOV)");
         let coord = coord.ok_or_else(|| missing(&path, DiagnosticKind::CoordinateNotDeclared, message()))?;
@@ -84,12 +98,24 @@ pub fn design_deck(
         edit(deck.mode.span, "KIN ANA".to_string());
     }
     let moved = moved_buffers(&deck, &lines);
+    // Without a STORAGE block the OPTIMISE block's buffers go, and so do their NAMES labels.
+    let dropped: Vec<usize> = match (&deck.optimise, &deck.storage, &deck.names) {
+        (Some(o), None, Some(names)) => names
+            .names
+            .iter()
+            .filter(|n| n.kind.value == NameKind::Buf && o.buffers.iter().any(|b| b.number.value == n.numbers[0].value))
+            .map(|n| n.line)
+            .collect(),
+        _ => Vec::new(),
+    };
+    let units_line = deck.units.as_ref().map(|u| u.line);
 
     let newline = if text.contains("\r\n") { "\r\n" } else { "\n" };
     let mut out: Vec<String> = Vec::with_capacity(lines.len() + moved.len());
     for (k, line) in lines.iter().enumerate() {
         let number = k + 1;
-        if optimise.is_some_and(|(first, last)| (first..=last).contains(&number)) {
+        let in_optimise = optimise.is_some_and(|(first, last)| (first..=last).contains(&number));
+        if (in_optimise && units_line != Some(number)) || dropped.contains(&number) {
             continue;
         }
         out.push(match edits.get_mut(&number) {

@@ -73,7 +73,8 @@ fn numbers_in_mm_degrees_and_ms_are_read_as_the_same_deck_in_si() {
         }
     }
     // The echo keeps the numbers as written.
-    assert_eq!(mm.prescribed[0].para, Some(100.0));
+    assert_eq!(mm.rows_as_written()[0][0].para, Some(100.0));
+    assert!((mm.prescribed[0].para.unwrap() - 0.1).abs() < 1e-15);
     let unit = |c: &Compiled, k: usize| c.unit(&c.buffers[k]);
     assert_eq!([unit(&mm, 0), unit(&mm, 1), unit(&mm, 2), unit(&mm, 3)], ["mm", "mm/deg", "N·mm", "kg·mm²"]);
     assert_eq!(unit(&si, 0), "");
@@ -104,4 +105,50 @@ fn an_angle_in_degrees_where_radians_are_meant_is_warned_about() {
     let c = compile(&degrees);
     assert_eq!(c.warnings.len(), 1, "{:?}", c.warnings);
     assert!(c.warnings[0].message.contains("looks like radians"));
+}
+
+#[test]
+fn a_final_design_is_written_in_the_decks_units() {
+    let text =
+        "KIN OPT\nUNITS LENGTH mm ANGLE deg\nTOPOLOGY\nELEM 1 BIN 1 2 3 4\nFORM 1 LENL 1 1\n 2 ANGB 1 2\nNRDOF 1\n\
+                GEOMETRY\nXFIX 1 0\n 2 0\nXMOV 3 1000\n 4 500\nPARA 1 1000\n 2 0\nMOVEMENT\nTSTEPE 4\n\
+                MOV_RELE 1 90\nOPTIMISE\nVARY 1 500 2000\nBUFX0 4 1\nTARGETAT 1 5 500\nNAMES\nBUF 1 tip height\n";
+    // The core's numbers: a crank of 0.75 m whose tip starts at (0.7 m, 0).
+    let out = mechfem_deck::rewrite::design_deck(text, "design.mec", &[(1, 0.75)], &[(3, 0.7)], None).unwrap();
+    assert!(out.contains("PARA 1 750\n"), "{out}");
+    assert!(out.contains("XMOV 3 700\n"), "{out}");
+    assert!(out.contains("UNITS LENGTH mm ANGLE deg\n"));
+    // The buffer went with the OPTIMISE block (there is no STORAGE), and so did its label.
+    assert!(!out.contains("BUF 1 tip height"), "{out}");
+    let c = compile(&out);
+    assert!((c.state.target[0] - 0.75).abs() < 1e-15);
+    // Its targets are read in millimetres: 500 mm is 0.5 m.
+    let c = compile(text);
+    let o = c.optimise.unwrap();
+    assert_eq!(o.targets[0].kind, mechfem_deck::TargetKind::At { position: 4, value: 0.5 });
+    assert!((o.vary[0].lo - 0.5).abs() < 1e-15 && (o.vary[0].hi - 2.0).abs() < 1e-15);
+}
+
+#[test]
+fn the_numbers_as_written_come_back_in_the_decks_units() {
+    let deg = 180.0 / PI;
+    let (l, t) = (1000.0, 1000.0);
+    let mm = compile(&slider_crank("UNITS LENGTH mm ANGLE deg TIME ms MASS kg FORCE N", l, deg, t));
+    let plain = compile(&slider_crank("", l, deg, t));
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+    // The plain deck's compiled numbers are the numbers as written.
+    for (a, b) in mm.coords_as_written().iter().zip(&plain.state.x) {
+        assert!(near(*a, *b), "{a} {b}");
+    }
+    let (m, p) = (mm.motion_as_written().unwrap(), plain.motion.clone().unwrap());
+    assert!(near(m.dt, p.dt));
+    assert_eq!(format!("{:.9?}", m.inputs), format!("{:.9?}", p.inputs));
+    let (d, p) = (mm.dynamics_as_written().unwrap(), plain.dynamics.clone().unwrap());
+    assert_eq!(format!("{:.6?}", d), format!("{:.6?}", p));
+    let [rows, _] = mm.rows_as_written();
+    for (a, b) in rows.iter().zip(&plain.prescribed) {
+        assert!(near(a.para.unwrap(), b.para.unwrap()));
+    }
+    // Without UNITS they are the compiled numbers, bit for bit.
+    assert_eq!(plain.coords_as_written(), plain.state.x);
 }

@@ -210,6 +210,8 @@ impl Echo {
             })
             .collect::<PyResult<Vec<_>>>()?;
         let unbind = |rows: Vec<Bound<'_, PyDict>>| rows.into_iter().map(Bound::unbind).collect();
+        // The echo speaks the deck's units (crate::names).
+        let [written, written_dependent] = c.rows_as_written();
         let dynamics = match &c.dynamics {
             Some(m) => dynamics(py, m, &[])?.into_any(),
             None => py.None().into_bound(py),
@@ -219,10 +221,10 @@ impl Echo {
             dofs: PyList::new(py, (0..mech.n_dof()).map(|j| mech.input_row(j) + 1))?.unbind(),
             dynamics: dynamics.unbind(),
             mode: c.mode.name(),
-            prescribed: unbind(named(rows(py, &c.prescribed, &[])?, &c.names.prescribed)?),
-            dependent: unbind(named(rows(py, &c.dependent, &[])?, &c.names.dependent)?),
+            prescribed: unbind(named(rows(py, &written, &[])?, &c.names.prescribed)?),
+            dependent: unbind(named(rows(py, &written_dependent, &[])?, &c.names.dependent)?),
             coordinates,
-            para: c.prescribed.iter().map(|r| r.para).collect(),
+            para: written.iter().map(|r| r.para).collect(),
             units: crate::names::units(py, c)?.unbind(),
             points: crate::names::points(py, c)?.unbind(),
         })

@@ -66,7 +66,9 @@ use crate::observe::Recording;
 
 /// Reads and compiles a deck (or takes it from [`cache`]), without the GIL.
 fn load(py: Python<'_>, path: &Path) -> PyResult<(Compiled, Arc<EchoSlot>)> {
-    py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))
+    let loaded = py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))?;
+    names::warn(py, &loaded.0)?;
+    Ok(loaded)
 }
 
 /// The model echo and storage requests of a run of `c` (see [`EchoSlot`]).
@@ -301,6 +303,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
     m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
     m.add("ResourceError", py.get_type::<ResourceError>())?;
+    m.add("UnitWarning", py.get_type::<names::UnitWarning>())?;
     m.add("DEFAULTS", catalogue::defaults(py)?)?;
     m.add_function(wrap_pyfunction!(catalogue::catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;

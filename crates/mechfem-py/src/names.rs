@@ -3,8 +3,12 @@
 //! deck's at the edge ([`mechfem_deck::Compiled::units`]). A deck without
 //! UNITS passes every number unchanged.
 
-use mechfem_core::{FormRef, Quantity};
+use mechfem_core::{DesignVar, Dim, FormRef, Quantity};
 use mechfem_deck::Compiled;
+use mechfem_deck::Optimise;
+use std::ffi::CString;
+
+use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -50,7 +54,7 @@ fn rows(values: &mut [f64], scales: &[f64]) {
 
 /// The factor from the core's units to the deck's of each co-ordinate.
 fn coord_scales(c: &Compiled) -> Vec<f64> {
-    (0..c.mechanism.n_coords()).map(|i| 1.0 / c.dims.coord(i).scale(&c.units)).collect()
+    (0..c.mechanism.n_coords()).map(|i| c.dims.coord(i).out_scale(&c.units)).collect()
 }
 
 /// Co-ordinates (rows of N, one per position) in the deck's units.
@@ -66,7 +70,7 @@ pub fn row_values(c: &Compiled, values: &mut [f64], prescribed: bool) {
         return;
     }
     let f = |k: usize| if prescribed { FormRef::Prescribed(k) } else { FormRef::Dependent(k) };
-    let scales: Vec<f64> = (0..values.len()).map(|k| 1.0 / c.dims.form(f(k)).scale(&c.units)).collect();
+    let scales: Vec<f64> = (0..values.len()).map(|k| c.dims.form(f(k)).out_scale(&c.units)).collect();
     rows(values, &scales);
 }
 
@@ -83,4 +87,82 @@ pub fn table(c: &Compiled, quantities: &[Quantity], table: &mut [f64], positions
         }
     }
     coords(c, coords_);
+}
+
+pyo3::create_exception!(
+    _core,
+    UnitWarning,
+    PyUserWarning,
+    "A number of a deck that looks as if it were written in another unit than the deck's (an angle of 720 where \
+     angles are radians); the run goes on with the number as written."
+);
+
+/// Warns (a [`UnitWarning`], a Python `UserWarning`) of every number of the deck that looks
+/// like the wrong unit ([`Compiled::warnings`]).
+pub fn warn(py: Python<'_>, c: &Compiled) -> PyResult<()> {
+    for w in &c.warnings {
+        let text = CString::new(w.warning_text().replace('\0', " "))?;
+        PyErr::warn(py, &py.get_type::<UnitWarning>(), &text, 1)?;
+    }
+    Ok(())
+}
+
+/// Adds to the optimise dict of a deck ([`crate::convert::optimise`],
+/// whose numbers are the core's) the `unit` of every design variable,
+/// target and bound and the `scale` that gives a core number in it (the
+/// engine computes in the core's units; a report multiplies by `scale`),
+/// for a deck with UNITS.
+pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> PyResult<()> {
+    if !c.units.declared {
+        return Ok(());
+    }
+    let set = |key: &str, dims: Vec<Dim>| -> PyResult<()> {
+        let Some(list) = dict.get_item(key)? else { return Ok(()) };
+        for (item, dim) in list.try_iter()?.zip(dims) {
+            let item = item?;
+            item.set_item("unit", dim.symbol(&c.units))?;
+            item.set_item("scale", dim.out_scale(&c.units))?;
+        }
+        Ok(())
+    };
+    let buffer = |b: u32| {
+        c.buffers.iter().find(|x| x.number == b).map_or(Dim::NONE, |x| c.dims.quantity(&c.mechanism, x.quantity))
+    };
+    let vary = o
+        .vary
+        .iter()
+        .map(|v| match v.var {
+            DesignVar::Fixed(i) => c.dims.coord(i),
+            DesignVar::Row(r) => c.dims.form(FormRef::Prescribed(r)),
+        })
+        .collect();
+    set("vary", vary)?;
+    set("targets", o.targets.iter().map(|t| buffer(t.buffer)).collect())?;
+    set("bounds", o.bounds.iter().map(|b| buffer(b.buffer)).collect())?;
+    Ok(())
+}
+
+/// A run of deck text ([`crate::rundict::FullRun`]) in the deck's units:
+/// its full layout, its buffers, its co-ordinates and the numbers of its
+/// echo (the co-ordinates as given, the rows at position 1, the PARA
+/// values it ran with).
+pub fn full_run(c: &Compiled, r: &mut crate::rundict::FullRun) {
+    if c.units.is_identity() {
+        return;
+    }
+    let positions = r.positions;
+    let layout = mechfem_core::Layout::full(&c.mechanism, c.dynamics.is_some()).quantities();
+    table(c, &layout, &mut r.table, positions, &mut r.coords);
+    let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
+    table(c, &buffers, &mut r.buffers, positions, &mut []);
+    coords(c, &mut r.given);
+    let np = c.mechanism.n_prescribed().min(r.rows_at_1.len());
+    let (prescribed, dependent) = r.rows_at_1.split_at_mut(np);
+    row_values(c, prescribed, true);
+    row_values(c, dependent, false);
+    for (k, p) in r.para.iter_mut().enumerate() {
+        if let Some(p) = p {
+            *p *= c.dims.form(FormRef::Prescribed(k)).out_scale(&c.units);
+        }
+    }
 }

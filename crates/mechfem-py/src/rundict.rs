@@ -116,7 +116,8 @@ impl Shared {
 /// column and shape), `buffer_values` (positions x the deck's buffers, in
 /// the order of `buffer_numbers`), `coords`, the model's sizes, `report`,
 /// and the `model` echo and `storage` requests as `run_deck` gives them.
-fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, r: FullRun) -> PyResult<Bound<'py, PyDict>> {
+fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, mut r: FullRun) -> PyResult<Bound<'py, PyDict>> {
+    crate::names::full_run(c, &mut r);
     let mech = &c.mechanism;
     let (positions, n, nd, np) = (r.positions, mech.n_coords(), mech.n_dof(), mech.n_prescribed());
     let at_1 = r.coords.get(..n).unwrap_or(&r.given);

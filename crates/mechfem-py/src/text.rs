@@ -343,6 +343,7 @@ pub fn run_deck_text<'py>(
     memory_limit: u64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+    crate::names::warn(py, &c)?;
     let numbers = Numbers::with(&c, &[]).map_err(PyValueError::new_err)?;
     let shared = Shared::new(py, &c)?;
     run_compiled(py, (&c, &shared), numbers, &path, motion, progress, order, memory_limit)
@@ -398,23 +399,26 @@ pub fn describe_deck_text<'py>(
     let (deck, c) = parsed.map_err(|d| errors::deck_error(py, &path, &d))?;
     let mech = &c.mechanism;
     let d = PyDict::new(py);
+    // The deck's numbers as written, in its UNITS (crate::names).
+    let (x, [prescribed, dependent]) = (c.coords_as_written(), c.rows_as_written());
+    let (motion, dynamics) = (c.motion_as_written(), c.dynamics_as_written());
     let coords = (0..mech.n_coords())
         .map(|i| {
             let cd = PyDict::new(py);
             cd.set_item("number", i + 1)?;
             cd.set_item("moving", mech.is_moving(i))?;
-            cd.set_item("value", c.state.x[i])?;
+            cd.set_item("value", x[i])?;
             Ok(cd)
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("coordinates", coords)?;
     d.set_item("elements", convert::elements(py, &c)?)?;
-    d.set_item("prescribed", convert::rows(py, &c.prescribed, &[])?)?;
-    d.set_item("dependent", convert::rows(py, &c.dependent, &[])?)?;
+    d.set_item("prescribed", convert::rows(py, &prescribed, &[])?)?;
+    d.set_item("dependent", convert::rows(py, &dependent, &[])?)?;
     d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
-    d.set_item("tol", c.params.tol)?;
+    d.set_item("tol", c.units.from_core(mechfem_core::Dim::LENGTH, c.params.tol))?;
     d.set_item("max_iter", c.params.max_iter)?;
-    let motion = match &c.motion {
+    let motion = match &motion {
         None => None,
         Some(m) => {
             let files: Vec<Option<String>> = (1..=m.inputs.len())
@@ -474,7 +478,12 @@ pub fn describe_deck_text<'py>(
     let inttol = deck.movement.as_ref().and_then(|m| m.inttol.as_ref()).map(|t| vec![t.rtol.value, t.atol.value]);
     d.set_item("inttol", inttol)?;
     d.set_item("mode", c.mode.name())?;
-    d.set_item("dynamics", c.dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
-    d.set_item("optimise", c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?)?;
+    d.set_item("dynamics", dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
+    let optimise = c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?;
+    if let (Some(o), Some(dict)) = (&c.optimise, &optimise) {
+        crate::names::optimise_units(&c, o, dict)?;
+    }
+    d.set_item("optimise", optimise)?;
+    d.set_item("units", crate::names::units(py, &c)?)?;
     Ok(d)
 }

@@ -15,6 +15,7 @@ mod storage;
 mod table;
 mod tables;
 mod warn;
+mod written;
 
 use std::path::Path;
 
@@ -35,24 +36,11 @@ use crate::diagnostic::Diagnostics;
 pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let written = deck;
     let units = deck.units.as_ref().map_or(Units::NONE, |u| u.units);
-    // With UNITS, the deck is compiled from a copy in the core's units; the
-    // echo of its elements and rows keeps the numbers as written.
-    let core = if units.is_identity() {
-        None
-    } else {
-        let as_given = model::model(deck)?;
-        Some((scale::to_core(deck, units, &as_given.mechanism), as_given))
-    };
-    let (deck, as_given) = match &core {
-        Some((scaled, as_given)) => (scaled, Some(as_given)),
-        None => (deck, None),
-    };
-    let mut m = model::model(deck)?;
-    if let Some(g) = as_given {
-        m.elements.clone_from(&g.elements);
-        m.prescribed.clone_from(&g.prescribed);
-        m.dependent.clone_from(&g.dependent);
-    }
+    // With UNITS, the deck is compiled from a copy in the core's units.
+    let core =
+        if units.is_identity() { None } else { Some(scale::to_core(deck, units, &model::model(deck)?.mechanism)) };
+    let deck = core.as_ref().unwrap_or(deck);
+    let m = model::model(deck)?;
     let sizes = refs::Sizes::of(&m.mechanism);
     let mut dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
     let (mut motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
@@ -94,6 +82,11 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         dynamics,
         optimise,
     })
+}
+
+/// The kinds of the co-ordinates and rows of `deck`'s model, as written.
+pub(crate) fn dims(deck: &Deck) -> Result<ModelDims, Box<crate::diagnostic::Diagnostic>> {
+    Ok(ModelDims::of(&model::model(deck)?.mechanism))
 }
 
 /// A deck number (1-based, already checked to be positive) as a 0-based index.

@@ -2,6 +2,8 @@
 //! checked against the model (co-ordinates 1..N, elements 1..n_e, rows
 //! 1..n_p, dependent form parameters 1..n_d, defined buffers).
 
+use std::collections::BTreeSet;
+
 use mechfem_core::Names;
 
 use crate::ast::{Deck, NameKind};
@@ -15,6 +17,7 @@ pub(crate) fn declared(deck: &Deck, sizes: [usize; 4], buffers: &[Buffer]) -> Re
     let [n_coords, n_elements, n_prescribed, n_dependent] = sizes;
     let mut names = Names::empty(n_coords, n_elements, n_prescribed, n_dependent);
     let Some(block) = &deck.names else { return Ok(names) };
+    let defined: BTreeSet<i64> = buffers.iter().map(|x| i64::from(x.number)).collect();
     for def in &block.names {
         let k = def.kind.value;
         let (count, thing, hint) = match k {
@@ -26,8 +29,11 @@ pub(crate) fn declared(deck: &Deck, sizes: [usize; 4], buffers: &[Buffer]) -> Re
         };
         if k == NameKind::Buf {
             let b = &def.numbers[0];
-            if !buffers.iter().any(|x| i64::from(x.number) == b.value) {
-                let defined: Vec<String> = buffers.iter().map(|x| x.number.to_string()).collect();
+            if !defined.contains(&b.value) {
+                let mut defined: Vec<String> = buffers.iter().take(12).map(|x| x.number.to_string()).collect();
+                if buffers.len() > 12 {
+                    defined.push(format!("... ({} in all)", buffers.len()));
+                }
                 let hint = if defined.is_empty() {
                     "the deck defines no buffers: label a buffer that a BUF... line of STORAGE or OPTIMISE defines"
                         .to_string()
@@ -38,7 +44,7 @@ pub(crate) fn declared(deck: &Deck, sizes: [usize; 4], buffers: &[Buffer]) -> Re
                     .error(DiagnosticKind::NameOutOfRange, b.span, format!("buffer {} is not defined", b.value))
                     .with_hint(hint));
             }
-            names.buffers.push((u32::try_from(b.value).unwrap_or(u32::MAX), def.name.value.clone()));
+            names.buffers.insert(u32::try_from(b.value).unwrap_or(u32::MAX), def.name.value.clone());
             continue;
         }
         for n in &def.numbers {
@@ -105,7 +111,7 @@ mod tests {
         assert_eq!(n.points, [(0, 1, "O".to_string())]);
         assert_eq!(n.elements, some(&["crank"]));
         assert_eq!(n.prescribed, some(&["r", "phi"]));
-        assert_eq!(n.buffers, [(7, "the tip's x".to_string())]);
+        assert_eq!(n.buffers.into_iter().collect::<Vec<_>>(), [(7, "the tip's x".to_string())]);
     }
 
     #[test]

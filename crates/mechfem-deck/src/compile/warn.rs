@@ -80,6 +80,8 @@ pub(crate) fn suspicious(deck: &Deck, units: &Units, dims: &ModelDims, mech: &Me
 mod tests {
     use super::*;
 
+    // The approximations of pi are the point: they are what a deck writes.
+    #[allow(clippy::approx_constant)]
     #[test]
     fn an_angle_of_whole_turns_in_degrees_is_suspicious_in_radians() {
         assert!(degrees_in_radians(720.0) && degrees_in_radians(-360.0) && degrees_in_radians(90.0));

@@ -3,6 +3,8 @@
 //! name given twice within its kind, a unit that does not exist). Whether
 //! the numbers exist in the model is checked by [`crate::compile`].
 
+use std::collections::HashMap;
+
 use mechfem_core::units::{Angle, Force, Length, Mass, Time};
 use mechfem_core::Units;
 
@@ -16,6 +18,13 @@ use crate::parse::Parser;
 pub const MAX_NAME: usize = 40;
 /// The longest buffer label, in characters.
 pub const MAX_LABEL: usize = 60;
+
+/// The names and numbers the NAMES block has given so far, with their lines.
+#[derive(Default)]
+pub(crate) struct NamesSeen {
+    names: HashMap<(NameKind, String), usize>,
+    numbers: HashMap<(NameKind, i64), usize>,
+}
 
 /// The fields of UNITS, in the order of [`UnitsDef::spans`].
 const FIELDS: [&str; 5] = ["LENGTH", "ANGLE", "MASS", "FORCE", "TIME"];
@@ -116,7 +125,7 @@ impl Parser<'_> {
             self.check_name(k, &name)?;
             name
         };
-        self.check_unique(k, &numbers, &name)?;
+        self.check_unique(k, line.number, &numbers, &name)?;
         self.names.names.push(NameDef { line: line.number, kind, numbers, name });
         Ok(())
     }
@@ -185,47 +194,56 @@ impl Parser<'_> {
         Ok(())
     }
 
-    /// A name given twice within its kind, or a thing named twice.
+    /// A name given twice within its kind, or a thing named twice (looked
+    /// up, so that a deck of many names is read in linear time).
     fn check_unique(
-        &self,
+        &mut self,
         k: NameKind,
+        line: usize,
         numbers: &[Spanned<i64>],
         name: &Spanned<String>,
     ) -> Result<(), Box<Diagnostic>> {
-        let coordinates = |d: &NameDef| matches!(d.kind.value, NameKind::Point | NameKind::Coord);
-        for d in &self.names.names {
-            let same_kind = d.kind.value == k;
-            if same_kind && k != NameKind::Buf && d.name.value == name.value {
+        if k != NameKind::Buf {
+            if let Some(&first) = self.names_seen.names.get(&(k, name.value.clone())) {
                 return Err(self
                     .src
                     .error(
                         DiagnosticKind::DuplicateName,
                         name.span,
-                        format!("the name `{}` is given to two {} (first at line {})", name.value, plural(k), d.line),
+                        format!("the name `{}` is given to two {} (first at line {first})", name.value, plural(k)),
                     )
                     .with_hint(format!("give every {} its own name", singular(k))));
             }
-            let related = same_kind || (coordinates(d) && matches!(k, NameKind::Point | NameKind::Coord));
-            if !related {
-                continue;
-            }
-            if let Some(n) = numbers.iter().find(|n| d.numbers.iter().any(|m| m.value == n.value)) {
-                let thing = match k {
-                    NameKind::Point | NameKind::Coord => "co-ordinate",
+        }
+        // Points and single co-ordinates name the same things.
+        let group = match k {
+            NameKind::Point | NameKind::Coord => NameKind::Coord,
+            other => other,
+        };
+        for n in numbers {
+            if let Some(&first) = self.names_seen.numbers.get(&(group, n.value)) {
+                let thing = match group {
                     NameKind::Elem => "element",
                     NameKind::Row => "row",
                     NameKind::Dep => "dependent form parameter",
                     NameKind::Buf => "buffer",
+                    NameKind::Point | NameKind::Coord => "co-ordinate",
                 };
                 return Err(self
                     .src
                     .error(
                         DiagnosticKind::DuplicateName,
                         n.span,
-                        format!("{thing} {} is named twice (first at line {})", n.value, d.line),
+                        format!("{thing} {} is named twice (first at line {first})", n.value),
                     )
                     .with_hint(format!("keep one name for {thing} {}", n.value)));
             }
+        }
+        if k != NameKind::Buf {
+            self.names_seen.names.insert((k, name.value.clone()), line);
+        }
+        for n in numbers {
+            self.names_seen.numbers.insert((group, n.value), line);
         }
         Ok(())
     }

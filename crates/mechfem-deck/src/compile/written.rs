@@ -1,0 +1,94 @@
+//! The numbers of a compiled deck with UNITS back in the deck's units, for
+//! a description of the deck as written (its co-ordinates, motion, masses
+//! and loads): the inverse of [`super::scale`] and [`super::tables`].
+
+use mechfem_core::dynamics::{Dynamics, LoadKind};
+use mechfem_core::{Dim, InputMotion, Motion};
+
+use super::scale::inertia_on;
+use crate::compiled::Compiled;
+
+impl Compiled {
+    /// The co-ordinates as the deck gives them (XFIX and XMOV values), in
+    /// its units.
+    pub fn coords_as_written(&self) -> Vec<f64> {
+        let (u, d) = (&self.units, &self.dims);
+        self.state.x.iter().enumerate().map(|(i, &x)| u.from_core(d.coord(i), x)).collect()
+    }
+
+    /// The motion in the deck's units (steps, increments, tables, speeds).
+    pub fn motion_as_written(&self) -> Option<Motion> {
+        let mut m = self.motion.clone()?;
+        let u = &self.units;
+        if u.is_identity() {
+            return Some(m);
+        }
+        m.dt = u.from_core(Dim::TIME, m.dt);
+        for (j, input) in m.inputs.iter_mut().enumerate() {
+            let e = self.dims.input(&self.mechanism, j);
+            match input {
+                InputMotion::Relative { delta: v } | InputMotion::Absolute { end: v } => *v = u.from_core(e, *v),
+                InputMotion::Free { ds } => *ds = u.from_core(Dim::LENGTH, *ds),
+                InputMotion::Dynamic { v0 } => *v0 = u.from_core(e.over(Dim::TIME), *v0),
+                InputMotion::Table { rows } => {
+                    let k = [Dim::TIME, e, e.over(Dim::TIME), e.over(Dim::TIME.pow(2))].map(|d| d.out_scale(u));
+                    for row in rows.iter_mut() {
+                        for (v, k) in row.iter_mut().zip(k) {
+                            *v *= k;
+                        }
+                    }
+                }
+            }
+        }
+        Some(m)
+    }
+
+    /// The masses and loads in the deck's units.
+    pub fn dynamics_as_written(&self) -> Option<Dynamics> {
+        let mut d = self.dynamics.clone()?;
+        let u = &self.units;
+        if u.is_identity() {
+            return Some(d);
+        }
+        for b in &mut d.bodies {
+            b.mass = u.from_core(Dim::MASS, b.mass);
+            b.u = u.from_core(Dim::LENGTH, b.u);
+            b.v = u.from_core(Dim::LENGTH, b.v);
+            b.inertia = u.from_core(Dim::INERTIA, b.inertia);
+        }
+        for p in &mut d.point_masses {
+            p.mass = u.from_core(Dim::MASS, p.mass);
+        }
+        for i in &mut d.inertias {
+            i.inertia = u.from_core(inertia_on(self.dims.coord(i.coord)), i.inertia);
+        }
+        let accel = Dim::LENGTH.over(Dim::TIME.pow(2));
+        d.gravity = d.gravity.map(|g| u.from_core(accel, g));
+        for f in &mut d.forces {
+            f.f = f.f.map(|v| u.from_core(Dim::FORCE, v));
+        }
+        for l in &mut d.loads {
+            let e = self.dims.form(l.form);
+            let q = e.generalised_force();
+            match &mut l.kind {
+                LoadKind::Constant(v) => *v = u.from_core(q, *v),
+                LoadKind::Table(rows) => {
+                    for row in rows.iter_mut() {
+                        row[0] = u.from_core(Dim::TIME, row[0]);
+                        row[1] = u.from_core(q, row[1]);
+                    }
+                }
+                LoadKind::Spring { k, e0, c } => {
+                    *k = u.from_core(q.over(e), *k);
+                    *e0 = u.from_core(e, *e0);
+                    *c = u.from_core(q.over(e).times(Dim::TIME), *c);
+                }
+                LoadKind::Motor { t0, w0 } => {
+                    *t0 = u.from_core(q, *t0);
+                    *w0 = u.from_core(e.over(Dim::TIME), *w0);
+                }
+            }
+        }
+        Some(d)
+    }
+}
