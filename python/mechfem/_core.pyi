@@ -15,6 +15,7 @@ __all__ = [
     "ConvergenceError",
     "LimitPositionError",
     "ResourceError",
+    "UnitWarning",
     "DEFAULTS",
     "catalogue",
     "check_deck",
