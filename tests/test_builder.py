@@ -17,7 +17,7 @@ from tests.conftest import ROOT
 
 import mechfem
 import mechfem._core as _core
-from mechfem import building, deckio, numbering, running
+from mechfem import building, deckio, running
 from mechfem.errors import DeckError
 
 EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*/*.mec") if _core.deck_files(p)["mode"] != "KIN OPT")
@@ -29,7 +29,7 @@ def _same_bits(a: object, b: object) -> bool:
 
 
 def _text_model(mech: mechfem.Mechanism) -> tuple[_core.Model, deckio.DeckText]:
-    """The model the mechanism's deck text compiles to (its names in its NAMES block)."""
+    """The model the mechanism's deck text compiles to."""
     deck = deckio.write(mech, mech.motion, mech.storage)
     with deckio.tables_dir(deck.tables) as base:
         return _core.Model(deck.text, deck.path, base), deck
@@ -41,7 +41,6 @@ def test_builder_and_deck_reader_make_the_same_model(path: Path) -> None:
     built, nb = building.build(mech, mech.motion, mech.storage)
     text, deck = _text_model(mech)
     assert built.fingerprint() == text.fingerprint()
-    assert ("NAMES" in deck.text) == bool(numbering.deck_names(mech.points, deck.numbering))
     assert nb.coords == deck.numbering.coords
     ran, read = built.run(), text.run()
     for key in ("table", "buffer_values", "coords"):
@@ -100,3 +99,56 @@ def test_the_built_model_reads_table_files_from_a_folder_of_its_own() -> None:
     built, _ = building.build(mech, mech.motion, mech.storage)
     assert set(os.listdir(".")) == before
     assert len(built.run()["coords"]) == mech.motion.steps + 1
+
+
+def test_the_builder_carries_names_and_units_as_a_decks_names_block_and_units_line() -> None:
+    text = "\n".join(
+        [
+            "; crank",
+            "KIN ANA",
+            "UNITS LENGTH mm ANGLE deg",
+            "TOPOLOGY",
+            "ELEM 1 BIN 1 2 3 4",
+            "FORM 1 LENL 1 1 1.0",
+            "FORM 2 ANGB 1 2 1.0",
+            "NRDOF 1",
+            "GEOMETRY",
+            "XFIX 1 0.0",
+            "XFIX 2 0.0",
+            "XMOV 3 30.0",
+            "XMOV 4 0.0",
+            "NAMES",
+            "POINT 3 4 A",
+            "ELEM 1 crank",
+            "ROW 2 phi",
+            "MOVEMENT",
+            "TSTEPE 4 0.5",
+            "MOV_RELE 1 90.0",
+            "END",
+        ]
+    )
+    b = _core.ModelBuilder("crank.mec", "KIN ANA")
+    b.units(length="mm", angle="deg")
+    b.element("BIN", [1, 2, 3, 4], "crank")
+    b.form("LENL", 1, 1, 1.0, "crank.length")
+    b.form("ANGB", 1, 2, 1.0, "phi")
+    b.nrdof(1)
+    for i, value, moving in [(1, 0.0, False), (2, 0.0, False), (3, 30.0, True), (4, 0.0, True)]:
+        b.coordinate(i, value, moving)
+    b.name("POINT", [3, 4], "A")
+    b.name("ELEM", [1], "crank")
+    b.name("ROW", [2], "phi")
+    b.movement(4, 0.5)
+    b.motion(1, "by", 90.0, "phi")
+    b.tolerances()
+    built, read = b.build("."), _core.Model(text, "crank.mec", ".")
+    assert built.fingerprint() == read.fingerprint()
+    assert "crank" in built.fingerprint() and "Deg" in built.fingerprint()
+    assert _same_bits(built.run()["coords"], read.run()["coords"])
+    bad = _core.ModelBuilder("crank.mec", "KIN ANA")
+    bad.element("BIN", [1, 2, 3, 4], "crank")
+    bad.nrdof(1)
+    with pytest.raises(DeckError, match="`coupler.length` is not a name"):
+        bad.name("ROW", [1], "coupler.length")
+    with pytest.raises(DeckError, match="`furlong` is not a unit of length"):
+        _core.ModelBuilder("m.mec", "KIN ANA").units(length="furlong")

@@ -4,10 +4,10 @@ without deck text.
 The builder takes the model's items one call each, with deck numbers (:func:`mechfem.deckio.number_model`) and the
 model's names, in the order a deck states them, and compiles them with the deck reader's own compiler: the model
 it gives is the one the deck text of the mechanism (:func:`mechfem.deckio.write`) compiles to, to the last bit
-(``tests/test_builder.py`` compares the two for every example). The model's names that a deck can hold go into the
-core's model as the NAMES block of its deck puts them there (:func:`mechfem.numbering.deck_names`). Table motions
-and load tables are handed over as the files the deck would name, in a temporary folder; no deck text is written
-or read.
+(``tests/test_builder.py`` compares the two for every example). The builder takes a model's names and units as a
+deck's NAMES block and UNITS line give them (``ModelBuilder.name``, ``ModelBuilder.units``); a mechanism gives them
+the ones its deck says. Table motions and load tables are handed over as the files the deck would name, in a
+temporary folder; no deck text is written or read.
 
 A mistake the builder or the compiler finds raises :class:`~mechfem.DeckError`; so does the Python side of the
 model (a ``ValueError``, ``KeyError`` or ``TypeError``) for what the deck writer refuses.
@@ -21,7 +21,7 @@ from mechfem.catalogue import DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
 from mechfem.model import By, Dynamic, Element, Free, InputKey, InputMotion, Mechanism, Motion, Storage, Table, To
 from mechfem.motion import check_units
-from mechfem.numbering import Numbering, deck_names
+from mechfem.numbering import Numbering
 from mechfem.storage import check_file_names
 
 
@@ -60,8 +60,6 @@ def _builder(
     for r in nb.prescribed:
         if r.value is not None:
             b.para(nb.row_dest[r], float(r.value), r.name)
-    for kind, numbers, name in deck_names(mech.points, nb):
-        b.name(kind, numbers, name)
     if mech.loads is not None:
         b.dynamics()
         _loads(b, mech, nb, element, tables)

@@ -53,7 +53,7 @@ from mechfem.model import (
     To,
 )
 from mechfem.motion import check_units
-from mechfem.numbering import DeckText, Numbering, deck_names, number
+from mechfem.numbering import DeckText, Numbering, number
 from mechfem.storage import check_file_names, from_described
 
 Progress = bool | Callable[[int, int], object] | None
@@ -194,11 +194,6 @@ def write(
         value = over.get(r, r.value)
         if value is not None:
             out.add(f"PARA {nb.row_dest[r]} {number(value)}", (r.kind, r.name), r.name)
-    named = deck_names(mech.points, nb)
-    if named:
-        out.add("NAMES", ("names", mech.name))
-        for kind, numbers, name in named:
-            out.add(" ".join([kind, *map(str, numbers), name]), (kind.lower(), name))
 
     tables: dict[str, str] = {}
     if mech.loads is not None:

@@ -6,12 +6,10 @@ can read the numbering without importing the writer.
 
 from __future__ import annotations
 
-import re
-from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from mechfem.motion import InputKey, input_dof
-from mechfem.parts import Coordinate, Element, Point, Row
+from mechfem.parts import Coordinate, Element, Row
 
 
 def number(v: float) -> str:
@@ -69,29 +67,3 @@ class DeckText:
     """MOV_FUNC file name -> its text."""
     simulated: list[str] = field(default_factory=list)
     """The inputs that move under the forces (MOV_DYN)."""
-
-
-_DECK_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]{0,39}")
-"""A name a deck's NAMES block can hold; others (``coupler.length``) stay the Python model's own."""
-
-
-def deck_names(points: Iterable[Point], nb: Numbering) -> list[tuple[str, list[int], str]]:
-    """The names of a model numbered ``nb`` that its core model carries, as the lines of its deck's NAMES block
-    (kind, deck numbers, name): its ``points`` (their co-ordinates ``A.x``, ``A.y`` named by them), the other
-    co-ordinates, elements, prescribed rows (``ROW``) and outputs (``DEP``), each whose name a deck can hold."""
-    coord = nb.coord_number
-    out: list[tuple[str, list[int], str]] = []
-    in_point: set[Coordinate] = set()
-    for p in points:
-        if p.x in coord and p.y in coord and _DECK_NAME.fullmatch(p.name):
-            out.append(("POINT", [coord[p.x], coord[p.y]], p.name))
-            in_point.update((p.x, p.y))
-    for i, c in enumerate(nb.coords, 1):
-        if c not in in_point and _DECK_NAME.fullmatch(c.name):
-            out.append(("COORD", [i], c.name))
-    out += [("ELEM", [k], e.name) for k, e in enumerate(nb.elements, 1) if _DECK_NAME.fullmatch(e.name)]
-    for r in nb.rows:
-        if _DECK_NAME.fullmatch(r.name):
-            dest = nb.row_dest[r]
-            out.append(("ROW", [dest], r.name) if dest > 0 else ("DEP", [-dest], r.name))
-    return out
