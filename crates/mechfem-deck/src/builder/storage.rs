@@ -86,6 +86,9 @@ impl DeckBuilder {
     pub fn animate(&mut self, name: &str) -> Result<(), Refused> {
         self.in_block(Keyword::Animate, Keyword::BufX0, "the animation")?;
         let line = self.next_line("ANIMATE");
+        if self.deck.storage.as_ref().is_some_and(|s| s.animate.is_some()) {
+            return Err(self.refuse(DiagnosticKind::DuplicateKeyword, line, "the animation is given twice"));
+        }
         let name = checks::file_name(self, line, name, "the animation")?;
         if let Some(s) = self.deck.storage.as_mut() {
             s.animate = Some(at(name, line));

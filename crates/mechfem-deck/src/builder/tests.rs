@@ -136,4 +136,7 @@ fn a_value_the_parser_refuses_is_refused_with_the_items_name() {
     assert_eq!(d.load(2, 1e200, "crank.angle").unwrap_err().kind, DiagnosticKind::NumberOutOfRange);
     d.movement(10, 0.1).unwrap();
     assert_eq!(d.motion(1, "free", 0.1, "crank.angle").unwrap_err().kind, DiagnosticKind::WrongMode);
+    d.storage().unwrap();
+    d.animate("swing").unwrap();
+    assert_eq!(d.animate("again").unwrap_err().kind, DiagnosticKind::DuplicateKeyword);
 }
