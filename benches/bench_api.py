@@ -3,15 +3,22 @@
     .venv/bin/python benches/bench_api.py [--steps 360 100000] [--repeat 7] [--variants 400]
 
 Timed, each the best of repeated calls (``bench_peers.best_of``), the tools alternated position count by
-position count in one run:
+position count in one run, every tool twice: **compiled once** (its model made and compiled before the timing and
+reused by every timed call, as a user who runs one model many times does) and **compiled per call** (its model
+read or built and compiled inside each timed call):
 
 * ``mechfem.run_deck`` on a deck on disk: one recording the coupler point with ``det=False`` (positions only),
-  and one recording its velocity and acceleration too (first- and second-order transfer functions);
-* the same velocity/acceleration deck as a named model, ``Mechanism.run(order=2)``, and through a compiled
-  handle, ``_core.Model.from_path(deck).run(order=2)``, for the same work;
+  and one recording its velocity and acceleration too (first- and second-order transfer functions); compiled
+  once is the deck run again unchanged (kept compiled), compiled per call a deck text never run before;
+* the same velocity/acceleration deck as a named model, ``Mechanism.run(order=2)`` (compiled per call: its kept
+  compiled model forgotten before each call, so the call builds it through the typed builder), and through a
+  compiled handle, ``_core.Model.from_path(deck).run(order=2)`` (compiled per call: ``_core.Model(text)``);
+* pylinkage's ``step_fast`` and ``step_fast_with_kinematics`` (numba): compiled once is one linkage, compiled with
+  ``Linkage.compile`` and run once before the timing, set back to its start (``set_coords``, untimed) before each
+  call; compiled per call is a linkage built before each call (untimed) whose numba state is made in the call;
+* the core's own run of the same four-bar with second order (``examples/throughput.rs``), in the same run;
 * ``mechfem.sweep`` of 360-position variants of the four-bar (its crank length), on 1 and on 2 workers alternated,
-  the best of the rounds run between the tools' rounds;
-* pylinkage's ``step_fast`` and ``step_fast_with_kinematics``.
+  the best of the rounds run between the tools' rounds.
 
 Every tool's coupler point is first checked against the closed form of the four-bar (the crank pin on its
 circle, the rocker pin at its distances from the crank pin and the rocker pivot), and pylinkage's against
@@ -25,9 +32,23 @@ import math
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 
-from bench_peers import ALPHA, PEERS, A, B, C, D, P, agree, best_of, fourbar_deck, pylinkage_fourbar
+from bench_peers import (
+    ALPHA,
+    PEERS,
+    A,
+    B,
+    C,
+    D,
+    P,
+    agree,
+    best_of,
+    fourbar_deck,
+    mechfem_core_rates,
+    pylinkage_fourbar,
+)
 from benchenv import ROOT, ensure_venv
 
 
@@ -45,13 +66,13 @@ def closed_form_check(coords, steps: int) -> None:  # type: ignore[no-untyped-de
     assert np.allclose(cx, ax + P * np.cos(theta), atol=1e-9) and np.allclose(cy, ay + P * np.sin(theta), atol=1e-9)
 
 
-def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_round) -> None:  # type: ignore[no-untyped-def]
+def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_round, core_seconds) -> None:  # type: ignore[no-untyped-def]
     """Checks, then times every tool at ``steps`` steps, alternating them, and a round of the study after each
     round of the tools."""
     import numpy as np
 
     import mechfem
-    from mechfem import _core
+    from mechfem import _core, compiled
 
     print(f"{steps} steps")
     pos_deck, kin_deck = tmp / f"pos_{steps}.mec", tmp / f"kin_{steps}.mec"
@@ -75,44 +96,95 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     agree("pylinkage velocities", v[:, 4, :], np.column_stack([kin.buffers[3], kin.buffers[4]])[1:], 1e-8)
     agree("pylinkage accelerations", a[:, 4, :], np.column_stack([kin.buffers[5], kin.buffers[6]])[1:], 1e-8)
 
-    # Alternated: each round times every tool once more; the best of each is kept.
-    best: dict[str, float] = {}
-    tools = {
-        "run_deck, positions only (det=False)": lambda: mechfem.run_deck(pos_deck, det=False),
-        "pylinkage step_fast": None,
-        "run_deck, second order": lambda: mechfem.run_deck(kin_deck),
-        "pylinkage step_fast_with_kinematics": None,
-        "Mechanism.run(order=2)": lambda: mech.run(order=2, progress=False),
-        "compiled handle run(order=2)": lambda: handle.run(order=2),
+    # Every tool twice: its model compiled once and reused by every timed call (mechfem's kept deck, pylinkage's
+    # linkage compiled by ``Linkage.compile`` and set back to its start before each call, untimed), and compiled
+    # anew inside each timed call (a deck text never run before, a linkage built and compiled by its first call).
+    fresh = iter(range(10**9))
+
+    def new_deck(kinematics: bool) -> Path:
+        # A text never run before (its first line says which call it is for): read, parsed and compiled in the call.
+        path = tmp / f"new_{steps}_{kinematics}.mec"
+        path.write_text(f"; call {next(fresh)}\n" + fourbar_deck(steps, kinematics))
+        return path
+
+    def kept_linkage():  # type: ignore[no-untyped-def]
+        linkage = pylinkage_fourbar(steps)
+        linkage.compile()
+        linkage.step_fast_with_kinematics(iterations=steps)  # numba's own compilation, once
+        start = linkage.get_coords()
+
+        def reset():  # type: ignore[no-untyped-def]
+            linkage.set_coords(start)
+            return linkage
+
+        return reset
+
+    kept_lk = kept_linkage()
+
+    def forget_compiled() -> object:
+        # Mechanism.run keeps its compiled model per topology and per mechanism: both forgotten, untimed.
+        compiled._COMPILED.clear()
+        compiled._LAST.clear()
+        return mech
+
+    kin_text = fourbar_deck(steps, True)
+    tools: dict[str, tuple[Callable[..., object], Callable[[], object] | None]] = {
+        "run_deck, positions only (det=False), compiled once": (lambda: mechfem.run_deck(pos_deck, det=False), None),
+        "run_deck, positions only (det=False), compiled per call": (
+            lambda p: mechfem.run_deck(p, det=False),
+            lambda: new_deck(False),
+        ),
+        "pylinkage step_fast, compiled once": (lambda lk: lk.step_fast(iterations=steps), kept_lk),
+        "pylinkage step_fast, compiled per call": (
+            lambda lk: lk.step_fast(iterations=steps),
+            lambda: pylinkage_fourbar(steps),
+        ),
+        "run_deck, second order, compiled once": (lambda: mechfem.run_deck(kin_deck), None),
+        "run_deck, second order, compiled per call": (lambda p: mechfem.run_deck(p), lambda: new_deck(True)),
+        "pylinkage step_fast_with_kinematics, compiled once": (
+            lambda lk: lk.step_fast_with_kinematics(iterations=steps),
+            kept_lk,
+        ),
+        "pylinkage step_fast_with_kinematics, compiled per call": (
+            lambda lk: lk.step_fast_with_kinematics(iterations=steps),
+            lambda: pylinkage_fourbar(steps),
+        ),
+        "Mechanism.run(order=2), compiled once": (lambda: mech.run(order=2, progress=False), None),
+        "Mechanism.run(order=2), compiled per call": (lambda m: m.run(order=2, progress=False), forget_compiled),
+        "compiled handle run(order=2), compiled once": (lambda: handle.run(order=2), None),
+        "compiled handle run(order=2), compiled per call": (
+            lambda: _core.Model(kin_text, "kin.mec", ".").run(order=2),
+            None,
+        ),
     }
     rounds = args.repeat
     # A call at 100 000 positions writes tens of MB, and its time moves by a third from call to call with the
     # memory's state: more calls a round there, so that the best of them is the call's own cost.
     min_time = 0.05 if steps < 10_000 else 0.25
+    best: dict[str, float] = {}
     for _ in range(rounds):
-        for name, fn in tools.items():
-            if name == "pylinkage step_fast":
-                t, _ = best_of(1, lambda lk: lk.step_fast(iterations=steps), lambda: pylinkage_fourbar(steps), min_time)
-            elif name == "pylinkage step_fast_with_kinematics":
-                t, _ = best_of(
-                    1,
-                    lambda lk: lk.step_fast_with_kinematics(iterations=steps),
-                    lambda: pylinkage_fourbar(steps),
-                    min_time,
-                )
-            else:
-                t, _ = best_of(1, fn, min_time=min_time)
+        for name, (fn, setup) in tools.items():
+            t, _ = best_of(1, fn, setup, min_time)
             best[name] = min(best.get(name, math.inf), t)
         study_round()
     for name, t in best.items():
         add(name, steps, t)
+    core = core_seconds[steps]
+    add("the core's own run, second order (throughput example)", steps, core)
+    once, per = "compiled once", "compiled per call"
+    second, with_kin = "run_deck, second order", "pylinkage step_fast_with_kinematics"
+    positions, fast = "run_deck, positions only (det=False)", "pylinkage step_fast"
+    named, handled = "Mechanism.run(order=2)", "compiled handle run(order=2)"
     pairs = [
-        ("second order / pylinkage with kinematics", "run_deck, second order", "pylinkage step_fast_with_kinematics"),
-        ("positions only / pylinkage step_fast", "run_deck, positions only (det=False)", "pylinkage step_fast"),
-        ("Mechanism.run time / compiled handle time", "compiled handle run(order=2)", "Mechanism.run(order=2)"),
+        (f"second order / pylinkage with kinematics, {once}", second, with_kin, once),
+        (f"second order / pylinkage with kinematics, {per}", second, with_kin, per),
+        (f"positions only / pylinkage step_fast, {once}", positions, fast, once),
+        (f"positions only / pylinkage step_fast, {per}", positions, fast, per),
+        (f"Mechanism.run time / compiled handle time, {once}", handled, named, once),
     ]
-    for what, num, den in pairs:
-        print(f"  ratio {what}: {rates[num, steps] / rates[den, steps]:.2f}")
+    for what, num, den, how in pairs:
+        print(f"  ratio {what}: {rates[f'{num}, {how}', steps] / rates[f'{den}, {how}', steps]:.2f}")
+    print(f"  ratio Mechanism.run(order=2) time / the core's own run time: {best[f'{named}, {once}'] / core:.2f}")
 
 
 def main() -> None:
@@ -151,8 +223,14 @@ def main() -> None:
             rate = args.variants / (time.perf_counter() - t0)
             study_rates[workers] = max(study_rates.get(workers, 0.0), rate)
 
+    # The core's own run (examples/throughput.rs, second order) in the same run of the bench, before the tools.
+    core_seconds = {
+        int(r["steps"]): float(r["seconds"])  # type: ignore[arg-type]
+        for r in mechfem_core_rates(args.steps, args.repeat, 0.2)
+        if r["mode"] == "second"
+    }
     for steps in args.steps:
-        measure(steps, args, tmp, add, rates, study_round)
+        measure(steps, args, tmp, add, rates, study_round, core_seconds)
     for w, rate in study_rates.items():
         print(f"  sweep, {args.variants} variants x 360 positions, {w} worker(s): {rate:,.0f} variants/s")
     print(f"  sweep speed-up 1 -> 2 workers: {study_rates[2] / study_rates[1]:.2f}")

@@ -96,7 +96,13 @@ def run_deck(
     again unchanged is not read into a model again.
     """
     deck = path if isinstance(path, _Path) else _Path(path)
-    d = _core.run_deck(deck, progress, limits.memory_limit(memory_limit), det)
+    try:
+        d = _core.run_deck(deck, progress, limits.memory_limit(memory_limit), det)
+    except ResourceError as e:
+        # The core words the refusal; how to raise a deck's limit is the deck path's to say.
+        refused = ResourceError(f"{e} {limits.RAISE_DECK_LIMIT}")
+        refused.__dict__.update(vars(e))
+        raise refused from None
     result = run_result(deck, d)
     if d["interrupted"]:
         raise RunInterrupted(result)

@@ -1,9 +1,9 @@
 """The compiled model of a named :class:`~mechfem.Mechanism`, kept per topology.
 
-A mechanism's deck is written (:func:`mechfem.deckio.write`) and compiled (``_core.Model``) once per *topology*:
-everything its deck says apart from the numbers a compiled model takes anew at every run, the values of the
+A mechanism is built into the core's model (:func:`mechfem.building.build`, no deck text) once per *topology*:
+everything its deck would say apart from the numbers a compiled model takes anew at every run, the values of the
 co-ordinates (XFIX, XMOV) and the prescribed values and input starts (PARA). A run of a mechanism whose topology is
-unchanged writes and reads no text: :func:`kept_model` gives the compiled model, the numbering of the mechanism and
+unchanged builds nothing: :func:`kept_model` gives the compiled model, the numbering of the mechanism and
 its numbers as changes, taken from its parts.
 
 The topology (:func:`topology`) is what the deck writer puts on the deck's lines besides those numbers, in deck
@@ -13,7 +13,7 @@ co-ordinates when it compiles (the directions its elements track their angles fr
 gives none) the compiled model derives again from the co-ordinates of every run (``Mechanism::start_state`` in the
 core), so a kept model gives to the last bit what the deck text gives whatever its points' positions.
 
-A deck that needs files beside it (a table motion, a load table) has no kept model: it runs from its text.
+A model that needs files beside it (a table motion, a load table) has no kept model: it is built for each run.
 
 Working out the topology walks the whole model, which costs about as much as a short run. So each mechanism also
 remembers what its last run read (:func:`_shape`): the same objects, with the attributes the numbering and the
@@ -30,7 +30,7 @@ from collections.abc import Hashable, Mapping
 from dataclasses import dataclass, fields
 
 import mechfem._core as _core
-from mechfem import deckio
+from mechfem import building, deckio
 from mechfem.loads import Loads, LoadTable
 from mechfem.model import Mechanism
 from mechfem.motion import Free, Motion, Table, To, check_units, input_dof
@@ -66,10 +66,11 @@ def kept_model(
     mech: Mechanism, motion: Motion | None, storage: Storage | None
 ) -> tuple[_core.Model, Numbering, list[Change]] | None:
     """The compiled model of ``mech`` with ``motion`` and ``storage`` (compiled only when its topology is new), its
-    numbering and its numbers as changes; None for a mechanism that runs from its deck text: one whose deck needs
-    files, and one that the deck writer or reader would refuse, so that they name the mistake.
+    numbering and its numbers as changes; None for a mechanism that is not kept: one whose model needs files (it is
+    built for each run), and one that the deck writer or reader would refuse (its deck text names the mistake).
 
-    Compiling raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.Model`` gives it)."""
+    Building raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.ModelBuilder`` gives
+    it)."""
     shape = _shape(mech, motion, storage)
     with _LOCK:
         last = _LAST.get(mech)
@@ -98,10 +99,10 @@ def kept_model(
         if motion is not None:
             check_units(motion, numbering.inputs)
     else:
-        deck = deckio.write(mech, motion, storage)
-        if deck.tables:
+        try:
+            kept, _ = building.build(mech, motion, storage)
+        except (KeyError, ValueError, TypeError):
             return None
-        kept = _core.Model(deck.text, deck.path, ".")
         with _LOCK:
             _COMPILED.pop(key, None)
             while len(_COMPILED) >= _KEEP:

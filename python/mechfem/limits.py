@@ -69,3 +69,10 @@ def memory_limit(value: int | str | None = None) -> int:
     if value > MAX_MEMORY_LIMIT:
         raise ValueError(f"the memory limit must be at most {MAX_TEXT}, not {value}")
     return int(value)
+
+
+RAISE_DECK_LIMIT = (
+    "with `mechfem run --memory-limit SIZE` or the environment variable MECHFEM_MEMORY_LIMIT (for example 8G)"
+)
+"""How a deck's run raises its limit: the words that end the core's refusal (``... or raise the limit``) on the
+deck path (``run_deck``, the command line)."""

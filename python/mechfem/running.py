@@ -1,10 +1,11 @@
 """Runs a :class:`~mechfem.Mechanism` and gives the result as a :class:`~mechfem.RunResult`, its errors in the
 model's words.
 
-A mechanism runs on its kept compiled model (:mod:`mechfem.compiled`): no deck text is written or read unless its
-topology is new. A deck that needs files beside it (table motions, load tables) runs from its text, and so does a
-mechanism whose kept model fails: the deck reader then names the mistake as it does for the deck text (coincident
-points, a zero length), whatever was compiled before.
+A mechanism runs on its kept compiled model (:mod:`mechfem.compiled`), built through the typed builder
+(:mod:`mechfem.building`) when its topology is new, and one with table motions or load tables is built for each run:
+no deck text is written or read. Only a mistake is worded through the deck text written for the model: the deck
+reader then names it as it does for that text (coincident points, a zero length), in the model's words
+(:func:`mechfem.explain.translate`), whatever was compiled before.
 
 :meth:`Mechanism.run <mechfem.Mechanism.run>` and :meth:`Mechanism.check <mechfem.Mechanism.check>` sit in the model
 layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when it is imported.
@@ -15,7 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import mechfem._core as _core
-from mechfem import compiled, deckio
+from mechfem import building, compiled, deckio
 from mechfem import model as _model
 from mechfem.deckio import Progress
 from mechfem.errors import MechfemError, RunInterrupted, on_stop
@@ -50,10 +51,15 @@ def run(
             kept = compiled.kept_model(mech, motion, storage)
             if kept is not None:
                 model, numbering, changes = kept
-                d = model.run(changes, moving, callback, order, memory_limit())
-        except MechfemError:
-            # The deck reader checks the given numbers (coincident points, a zero length) when it compiles; a kept
-            # model that only takes new numbers meets them in the core instead. The text path names the mistake.
+            else:
+                # A model with tables, or one the builder refuses (which raises).
+                (model, numbering), changes = building.build(mech, motion, storage), []
+            d = model.run(changes, moving, callback, order, memory_limit())
+        except (MechfemError, KeyError, ValueError, TypeError):
+            # A mistake in the model: the deck reader checks the given numbers (coincident points, a zero length)
+            # when it compiles, a kept model that only takes new numbers meets them in the core instead, and the
+            # deck writer refuses what no deck can say. The deck written for the model names the mistake in the
+            # model's words, and so does the run of that deck.
             d = None
         if d is None:
             d, numbering = _run_text(mech, motion, storage, moving, callback, order)

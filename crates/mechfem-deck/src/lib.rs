@@ -47,6 +47,10 @@
 //!   ([`Compiled::unit`], [`Compiled::out_scale`]), and a number that looks
 //!   like the wrong unit is a warning ([`Compiled::warnings`]).
 //! * [`load`]: both steps for a file.
+//! * [`DeckBuilder`]: a typed [`Deck`] built item by item by a program that
+//!   holds the model in its own objects, compiled by the same [`compile`].
+//! * [`Compiled::move_through`]: runs a compiled deck's motion as its mode
+//!   says (simulated for `DYN SIM`, kinematically otherwise).
 //! * [`rewrite::design_deck`]: a deck's text with new PARA and XFIX/XMOV
 //!   values, a `KIN OPT` deck turned into the `KIN ANA` deck of its final
 //!   design.
@@ -97,6 +101,7 @@
 
 mod args;
 pub mod ast;
+mod builder;
 mod compile;
 mod compiled;
 mod diagnostic;
@@ -106,11 +111,13 @@ mod lexer;
 mod optimise;
 mod parse;
 pub mod rewrite;
+mod running;
 mod statements;
 
 use std::path::Path;
 
 pub use ast::{Deck, Mode, NameDef, NameKind, NamesBlock, UnitsDef};
+pub use builder::DeckBuilder;
 pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
 pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned, MAX_OUTPUT_NAME};

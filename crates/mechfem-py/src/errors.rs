@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use mechfem_core::run::MemoryRefusal;
 use mechfem_core::{
     diagnose, DeckTerm, DynamicSource, DynamicsFault, ElementError, FormRef, Mechanism, Piece, SolveError, State,
 };
@@ -52,43 +53,17 @@ create_exception!(
     "The run would keep more results in memory than its limit allows; it was refused before it started."
 );
 
-/// How many bytes a run holds per recorded value at its peak: the
-/// recording itself, and the arrays handed to Python while it is converted.
-const BYTES_PER_VALUE: u128 = 3 * 8;
-
-/// The refusal of a run of `positions` positions that records `values`
-/// numbers per position, when its results would not fit in `limit` bytes;
-/// `None` when they fit. Checked before the run starts, so that a deck
-/// asking for too much fails at once instead of after hours or by running
-/// the machine out of memory.
-pub fn memory_refusal(positions: usize, values: usize, limit: u64) -> Option<String> {
-    let need = positions as u128 * values as u128 * BYTES_PER_VALUE;
-    (need > u128::from(limit)).then(|| {
-        format!(
-            "the run would keep about {} of results in memory ({positions} positions x {values} values), more than \
-             the memory limit of {}. Ask for fewer steps (TSTEPE), fewer buffers or a smaller model, or raise the \
-             limit with `mechfem run --memory-limit SIZE` or the environment variable MECHFEM_MEMORY_LIMIT \
-             (for example 8G)",
-            bytes_text(need),
-            bytes_text(u128::from(limit))
-        )
-    })
-}
-
-/// Bytes in words: `512 MiB`, `5.4 GiB`.
-fn bytes_text(bytes: u128) -> String {
-    const UNITS: [&str; 5] = ["bytes", "KiB", "MiB", "GiB", "TiB"];
-    let mut value = bytes as f64;
-    let mut unit = 0;
-    while value >= 1024.0 && unit + 1 < UNITS.len() {
-        value /= 1024.0;
-        unit += 1;
-    }
-    if unit == 0 || value >= 100.0 || value.fract() == 0.0 {
-        format!("{value:.0} {}", UNITS[unit])
-    } else {
-        format!("{value:.1} {}", UNITS[unit])
-    }
+/// The `ResourceError` of a run refused before it started, worded by the
+/// core, with its facts as fields: `positions`, `values`, `need` and
+/// `limit` (bytes).
+pub fn resource_error(py: Python<'_>, refusal: &MemoryRefusal) -> PyErr {
+    let e = ResourceError::new_err(refusal.to_string());
+    let value = e.value(py);
+    let _ = value.setattr("positions", refusal.positions);
+    let _ = value.setattr("values", refusal.values);
+    let _ = value.setattr("need", refusal.need);
+    let _ = value.setattr("limit", refusal.limit);
+    e
 }
 
 /// The fields of one diagnostic, as a dict: `kind` (a stable code,

@@ -14,9 +14,12 @@
 //!   the co-ordinates, as numpy arrays; plus the run report, the model
 //!   echo and the storage requests as dicts (`convert`). The run releases
 //!   the GIL; `observe` attaches only to report progress.
-//! * `text` runs deck text (what the Python model API writes) and records
+//! * `text` runs deck text (a design study's, or a named model's to word its
+//!   mistake) and records
 //!   every quantity of the buffer table; `batch` runs many variants of a
 //!   few deck texts on worker threads without the GIL, for design studies.
+//! * `builder` builds a `Model` item by item from Python's `Mechanism`
+//!   (`ModelBuilder`), with no deck text written or parsed.
 //! * `model` keeps a compiled deck for Python (`Model`), run again with
 //!   other numbers without reading text; `cache` keeps the decks `run_deck`
 //!   read, so that a file run again unchanged is not parsed again.
@@ -34,6 +37,7 @@
 static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 mod batch;
+mod builder;
 mod cache;
 mod catalogue;
 mod convert;
@@ -49,7 +53,7 @@ mod text;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use mechfem_core::run::{Selection, SimReport};
+use mechfem_core::run::{MemoryRefusal, Selection, SimReport};
 use mechfem_core::{InputMotion, Motion, Quantity, RunReport};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
@@ -151,14 +155,12 @@ fn execute(
     let hodograph = if with_motion { hodograph_coords(&c) } else { Vec::new() };
     let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, c.dynamics.is_some());
     let (total, n) = (motion.map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
-    if let Some(message) = errors::memory_refusal(total, selection.width() + n, memory_limit) {
-        return Err(ResourceError::new_err(message));
-    }
+    MemoryRefusal::check(total, selection.width() + n, memory_limit).map_err(|r| errors::resource_error(py, &r))?;
     let mut rec = Recording::new(selection, n, total, progress, det);
     rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
-    let (mech, state, params) = (&c.mechanism, &mut c.state, &c.params);
-    let sim = text::simulation(c.mode, c.dynamics.as_ref(), &c.integration);
-    let result = py.detach(|| text::move_through(mech, state, motion, params, sim, &mut rec));
+    let mut state = c.state.clone();
+    let result = py.detach(|| c.move_through(&mut state, motion, &mut rec));
+    c.state = state;
     let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
     match result {
         Ok((report, sim)) => Ok(Ran { compiled: c, given, rec, report, sim, interrupted }),
@@ -313,6 +315,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<model::Model>()?;
+    m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     Ok(())

@@ -46,6 +46,13 @@ impl Model {
         self.compiled.mechanism.n_coords()
     }
 
+    /// The compiled model in full (Rust's `Debug` text): two models with
+    /// the same text compute the same numbers, for comparing a model built
+    /// item by item with the one its deck text compiles to.
+    fn fingerprint(&self) -> String {
+        format!("{:?}", self.compiled)
+    }
+
     /// Number of prescribed rows.
     #[getter]
     fn n_prescribed(&self) -> usize {
@@ -76,7 +83,8 @@ impl Model {
 }
 
 impl Model {
-    fn kept(py: Python<'_>, compiled: Compiled, path: PathBuf) -> PyResult<Model> {
+    /// A model kept for Python: its runs share what every run's dict holds alike.
+    pub fn kept(py: Python<'_>, compiled: Compiled, path: PathBuf) -> PyResult<Model> {
         let shared = Shared::new(py, &compiled)?;
         Ok(Model { compiled, path, shared })
     }

@@ -12,8 +12,9 @@
 //! deck so builds little more than its arrays and small dicts per variant.
 
 use std::path::Path;
+use std::sync::Mutex;
 
-use mechfem_core::run::{Layout, SimReport};
+use mechfem_core::run::{Layout, MemoryRefusal, SimReport};
 use mechfem_core::{RunReport, SolveError, State};
 use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -57,7 +58,7 @@ pub enum Outcome {
     /// The run (possibly stopped early; see the report).
     Ran(Box<FullRun>),
     /// The results would not fit in the memory limit: nothing was run.
-    Refused(String),
+    Refused(MemoryRefusal),
     /// A change names a co-ordinate or row the deck does not have.
     BadChange(String),
 }
@@ -71,6 +72,28 @@ pub struct Shared {
     storage: Py<PyDict>,
     buffer_numbers: Py<PyList>,
     echo: convert::Echo,
+    /// The model echo and the report of the last run, with the numbers
+    /// they were made from (bit patterns): a run with the same numbers
+    /// hands Python the same dicts, which it converted once.
+    last_echo: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    last_report: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+}
+
+/// The dict kept in `slot` for `key`, else the one `make` builds (then kept).
+fn kept<'py>(
+    py: Python<'py>,
+    slot: &Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    key: Vec<u64>,
+    make: impl FnOnce() -> PyResult<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lock = || slot.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, d)) = lock().as_ref().filter(|(k, _)| *k == key) {
+        return Ok(d.bind(py).clone());
+    }
+    // Made without the lock held: making it runs Python code.
+    let d = make()?;
+    *lock() = Some((key, d.clone().unbind()));
+    Ok(d)
 }
 
 impl Shared {
@@ -82,6 +105,8 @@ impl Shared {
             storage: convert::storage(py, c)?.unbind(),
             buffer_numbers: PyList::new(py, c.buffers.iter().map(|b| b.number))?.unbind(),
             echo: convert::Echo::new(py, c)?,
+            last_echo: Mutex::new(None),
+            last_report: Mutex::new(None),
         })
     }
 }
@@ -97,12 +122,21 @@ fn run_dict<'py>(py: Python<'py>, c: &Compiled, s: &Shared, mut r: FullRun) -> P
     let (positions, n, nd, np) = (r.positions, mech.n_coords(), mech.n_dof(), mech.n_prescribed());
     let at_1 = r.coords.get(..n).unwrap_or(&r.given);
     let (prescribed, dependent) = r.rows_at_1.split_at(np.min(r.rows_at_1.len()));
-    let model = s.echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para))?;
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let mut key = bits(&r.given);
+    key.extend(bits(at_1).into_iter().chain(bits(prescribed)).chain(bits(dependent)));
+    key.extend(r.para.iter().map(|p| p.map_or(u64::MAX, f64::to_bits)));
+    let model = kept(py, &s.last_echo, key, || s.echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para)))?;
+    let report = || convert::report(py, mech, &c.dynamics_lines, &r.report, r.steps);
+    let report = match convert::plain_report_key(&r.report, r.steps).filter(|_| r.sim.is_none()) {
+        Some(key) => kept(py, &s.last_report, key, report)?,
+        None => report()?,
+    };
 
     let d = PyDict::new(py);
     d.set_item("model", model)?;
     d.set_item("storage", s.storage.bind(py))?;
-    d.set_item("report", convert::report(py, mech, &c.dynamics_lines, &r.report, r.steps)?)?;
+    d.set_item("report", report)?;
     d.set_item("buffer_numbers", s.buffer_numbers.bind(py))?;
     d.set_item("n_coords", n)?;
     d.set_item("n_dof", nd)?;
@@ -133,7 +167,7 @@ pub fn outcome_dict<'py>(
             run_dict(py, c, s, *r)
         }
         Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
-        Outcome::Refused(message) => Err(errors::ResourceError::new_err(message)),
+        Outcome::Refused(refusal) => Err(errors::resource_error(py, &refusal)),
         Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
         Outcome::Failed(mut state, e) => {
             let (c, _) = text.ok_or_else(lost)?;

@@ -1,6 +1,7 @@
-//! Decks given as text instead of files, for the Python model API
-//! (`mechfem.Mechanism`), which writes a deck and runs it through the same
-//! reader and solver as `mechfem run`.
+//! Decks given as text instead of files (a deck read into a `Mechanism`,
+//! the decks of design studies, and the deck text that words a named
+//! model's mistake), and the run of a compiled model that a kept `Model`
+//! shares with them.
 //!
 //! * [`describe_deck_text`] reads and compiles a deck and returns what it
 //!   declares (co-ordinates, elements, rows, motion, storage) without solving.
@@ -15,15 +16,11 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use mechfem_core::dynamics::{Dynamics, Integration};
-use mechfem_core::run::{simulate, Columns, InverseDynamics, Layout, SimReport};
+use mechfem_core::run::{Columns, InverseDynamics, Layout, MemoryRefusal};
 use mechfem_core::SolveError;
-use mechfem_core::{
-    record_evaluated, run, InputMotion, Mechanism, Motion, Observer, Params, PositionView, Quantity, RunReport, State,
-    TransferOrder,
-};
+use mechfem_core::{record_evaluated, InputMotion, Observer, PositionView, Quantity, State, TransferOrder};
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
-use mechfem_deck::{Compiled, Diagnostics, Mode};
+use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -153,34 +150,6 @@ pub fn transfer_order(c: &Compiled, order: Option<u8>) -> PyResult<TransferOrder
     }
 }
 
-/// The masses and loads and the tolerances of a DYN SIM deck, whose motion
-/// is simulated; None for any other deck.
-pub fn simulation<'a>(
-    mode: Mode,
-    dynamics: Option<&'a Dynamics>,
-    integration: &'a Integration,
-) -> Option<(&'a Dynamics, &'a Integration)> {
-    Some((dynamics.filter(|_| mode == Mode::DynSim)?, integration))
-}
-
-/// Moves the mechanism through `motion` (position 1 alone without one):
-/// simulated with `simulation` ([`simulation`]), run otherwise.
-pub fn move_through(
-    mech: &Mechanism,
-    state: &mut State,
-    motion: Option<&Motion>,
-    params: &Params,
-    simulation: Option<(&Dynamics, &Integration)>,
-    observer: &mut dyn Observer,
-) -> Result<(RunReport, Option<SimReport>), SolveError> {
-    match (motion, simulation) {
-        (Some(m), Some((d, tol))) => {
-            simulate(mech, state, m, params, tol, d, observer).map(|s| (s.run.clone(), Some(s)))
-        }
-        _ => run(mech, state, motion, params, observer).map(|r| (r, None)),
-    }
-}
-
 /// The numbers of one run of a compiled deck: its state (co-ordinates and
 /// prescribed values) and the PARA value of each prescribed row, as the
 /// deck gives them with a variant's changes made. Everything else of the
@@ -241,8 +210,8 @@ pub fn execute(
     let motion = if with_motion { c.motion.as_ref() } else { None };
     let steps = motion.map_or(0, |m| m.steps);
     let (width, n) = (buffers.len() + layout.width(), c.mechanism.n_coords());
-    if let Some(message) = errors::memory_refusal(steps + 1, width + n, memory_limit) {
-        return (Outcome::Refused(message), None);
+    if let Err(refusal) = MemoryRefusal::check(steps + 1, width + n, memory_limit) {
+        return (Outcome::Refused(refusal), None);
     }
     let mut watch = Watch {
         row: Vec::with_capacity(width),
@@ -256,8 +225,7 @@ pub fn execute(
         cancel,
         progress,
     };
-    let sim = simulation(c.mode, c.dynamics.as_ref(), &c.integration);
-    let result = move_through(&c.mechanism, &mut state, motion, &c.params, sim, &mut watch);
+    let result = c.move_through(&mut state, motion, &mut watch);
     let raised = watch.progress.and_then(|p| p.error);
     let outcome = match result {
         Ok((report, sim)) => {

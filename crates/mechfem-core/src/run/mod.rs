@@ -10,6 +10,9 @@
 //!   run with the design sensitivities and the extrema of chosen quantities,
 //!   on the assembly branch of the start design (`branch.rs`).
 //!
+//! [`move_through`] (`dispatch.rs`) runs or simulates as a [`RunMode`] says,
+//! and [`MemoryRefusal`] refuses a run whose results would not fit in memory.
+//!
 //! Every mode hands its positions to an [`Observer`] and ends with a
 //! [`RunReport`] (`observe.rs`); a [`Recorder`] (`record.rs`) keeps the
 //! [`Quantity`]s of the deck's buffer table, a [`Layout`] (`layout.rs`)
@@ -18,6 +21,7 @@
 
 mod branch;
 pub mod design;
+mod dispatch;
 mod fault;
 mod inverse;
 mod kinematic;
@@ -27,6 +31,7 @@ mod record;
 mod selection;
 mod simulate;
 
+pub use dispatch::{move_through, MemoryRefusal, RunMode};
 pub use inverse::InverseDynamics;
 pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
