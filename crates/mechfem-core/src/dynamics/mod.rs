@@ -434,12 +434,21 @@ impl Integration {
     /// The smallest Newton tolerance [`Self::newton_tolerance`] gives.
     pub const NEWTON_FLOOR: f64 = 1e-14;
 
-    /// Whether a Newton tolerance `tol` set by the deck (ACCURACY) is too
-    /// loose for these tolerances: the positions' error, up to `tol`, then
-    /// bounds the simulation's error instead of the integrator's, and
-    /// steps fail their error test on position noise.
-    pub fn conflicts_with(&self, tol: f64) -> bool {
-        tol > self.rtol.min(self.atol).max(Self::NEWTON_FLOOR)
+    /// Why a Newton tolerance `tol` (ACCURACY) is too loose for these
+    /// tolerances, if it is: more than ten times the tighter of the two,
+    /// the positions' error, up to `tol`, bounds the simulation's error
+    /// instead of the integrator's, and steps fail their error test on
+    /// position noise.
+    pub fn conflict(&self, tol: f64) -> Option<String> {
+        let t = self.rtol.min(self.atol);
+        (tol > 10.0 * t.max(Self::NEWTON_FLOOR)).then(|| {
+            format!(
+                "ACCURACY {tol:e} (the Newton tolerance of every position) is far looser than INTTOL's {t:e}: the \
+                 positions' error, not the integrator's, bounds the simulation's accuracy, and steps may be rejected \
+                 on it; leave ACCURACY out (it then follows from INTTOL) or give ACCURACY {:e} or less",
+                (0.1 * t).max(Self::NEWTON_FLOOR)
+            )
+        })
     }
 }
 

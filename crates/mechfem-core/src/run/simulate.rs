@@ -79,6 +79,9 @@ pub struct SimReport {
     pub segments: Vec<Segment>,
     /// Where a STOPWHEN condition ended the simulation, if it did.
     pub event: Option<Event>,
+    /// Why the Newton tolerance and the integrator's tolerances conflict,
+    /// if they do ([`Integration::conflict`]).
+    pub tolerance_warning: Option<String>,
 }
 
 /// A stretch of time one method integrated.
@@ -288,6 +291,7 @@ pub fn simulate_within(
         reached,
         segments,
         event: out.event,
+        tolerance_warning: integration.conflict(params.tol),
     })
 }
 
@@ -404,5 +408,6 @@ fn prescribed(
         reached,
         segments: Vec::new(),
         event: None,
+        tolerance_warning: integration.conflict(params.tol),
     })
 }
