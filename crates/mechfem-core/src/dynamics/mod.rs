@@ -348,16 +348,16 @@ pub struct Integration {
 /// The integration method of a simulation (deck `INTEGRATOR`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Integrator {
-    /// DOP853 while the motion is not stiff, Radau IIA 5 while it is: the
-    /// method switches on detected stiffness, as LSODA does (`auto`, the
-    /// default).
+    /// Dormand-Prince 5(4) while the motion is not stiff, Radau IIA 5
+    /// while it is: the method switches on detected stiffness, as LSODA
+    /// does (`auto`, the default).
     #[default]
     Auto,
     /// The explicit Runge-Kutta method of Dormand and Prince of order 8
-    /// (`explicit` or `dop853`).
+    /// with its dense output of order 7 (`dop853`).
     Dop853,
     /// The explicit Runge-Kutta method of Dormand and Prince of order 5(4)
-    /// (`dopri5`).
+    /// (`explicit` or `dopri5`).
     Dopri5,
     /// The implicit Runge-Kutta method Radau IIA of order 5 (`implicit` or
     /// `radau5`).
@@ -368,7 +368,7 @@ impl Integrator {
     /// The method's name as the print file and the run report say it.
     pub fn name(self) -> &'static str {
         match self {
-            Integrator::Auto => "auto (DOP853, Radau IIA 5 while stiff)",
+            Integrator::Auto => "auto (Dormand-Prince 5(4), Radau IIA 5 while stiff)",
             Integrator::Dop853 => "DOP853 (explicit Runge-Kutta, order 8)",
             Integrator::Dopri5 => "Dormand-Prince 5(4) (explicit Runge-Kutta)",
             Integrator::Radau5 => "Radau IIA 5 (implicit Runge-Kutta, order 5)",
@@ -379,8 +379,8 @@ impl Integrator {
     pub fn from_word(word: &str) -> Option<Integrator> {
         Some(match word.to_ascii_lowercase().as_str() {
             "auto" => Integrator::Auto,
-            "explicit" | "dop853" => Integrator::Dop853,
-            "dopri5" => Integrator::Dopri5,
+            "dop853" => Integrator::Dop853,
+            "explicit" | "dopri5" => Integrator::Dopri5,
             "implicit" | "radau5" => Integrator::Radau5,
             _ => return None,
         })
@@ -441,7 +441,7 @@ impl Integration {
     /// position noise.
     pub fn conflict(&self, tol: f64) -> Option<String> {
         let t = self.rtol.min(self.atol);
-        (tol > 10.0 * t.max(Self::NEWTON_FLOOR)).then(|| {
+        (tol > 10.000_001 * t.max(Self::NEWTON_FLOOR)).then(|| {
             format!(
                 "ACCURACY {tol:e} (the Newton tolerance of every position) is far looser than INTTOL's {t:e}: the \
                  positions' error, not the integrator's, bounds the simulation's accuracy, and steps may be rejected \

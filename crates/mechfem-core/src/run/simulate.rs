@@ -15,10 +15,10 @@
 //! explicit Runge-Kutta methods of Dormand and Prince of order 8 (DOP853)
 //! and 5(4), and the implicit Radau IIA of order 5 with a Jacobian of the
 //! reduced equations by finite differences over the free states. The
-//! default (`INTEGRATOR auto`) integrates with DOP853 and goes over to
-//! Radau IIA where the motion is stiff (stiff springs and dampers, a motion
-//! come to rest), and back where it is not, as LSODA does; the report says
-//! which method ran where ([`SimReport::segments`]).
+//! default (`INTEGRATOR auto`) integrates with Dormand-Prince 5(4) and goes
+//! over to Radau IIA where the motion is stiff (stiff springs and dampers,
+//! a motion come to rest), and back where it is not, as LSODA does; the
+//! report says which method ran where ([`SimReport::segments`]).
 //!
 //! The outputs come from the integrator's own solution: at each output time
 //! its dense output gives q and q', the position there is found by Newton

@@ -63,20 +63,19 @@ impl<'a> System<'a> {
     /// two are kept there.
     pub(super) fn pair_at(&self, t: f64, f: impl FnOnce(&Evaluation, &Evaluation) -> bool) -> bool {
         let last = self.last.borrow();
-        let at: Vec<&Evaluation> = last.iter().filter(|e| e.t == t).collect();
         let distance =
             |a: &Evaluation, b: &Evaluation| a.y.iter().zip(&b.y).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
         let mut best: Option<(f64, usize, usize)> = None;
-        for i in 0..at.len() {
-            for j in i + 1..at.len() {
-                let d = distance(at[i], at[j]);
+        for i in (0..KEPT).filter(|&i| last[i].t == t) {
+            for j in (i + 1..KEPT).filter(|&j| last[j].t == t) {
+                let d = distance(&last[i], &last[j]);
                 if best.is_none_or(|b| d > b.0) {
                     best = Some((d, i, j));
                 }
             }
         }
         match best {
-            Some((d, i, j)) if d > 0.0 => f(at[i], at[j]),
+            Some((d, i, j)) if d > 0.0 => f(&last[i], &last[j]),
             _ => false,
         }
     }
