@@ -254,6 +254,9 @@ pub fn simulate_within(
         steps: 0,
         rejected: 0,
         acc: vec![0.0; nf],
+        a0: acc0,
+        a1: vec![0.0; nf],
+        yd: vec![0.0; 2 * nf],
         error: None,
     };
     let segments = integrate(&mut run, integration);

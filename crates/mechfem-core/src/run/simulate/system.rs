@@ -103,6 +103,21 @@ impl Free for Vec<f64> {
     }
 }
 
+impl System<'_> {
+    /// The free accelerations of the kept evaluation at exactly `(t, y)`,
+    /// into `acc`, if one is kept.
+    pub(super) fn acc_at(&self, t: f64, y: &[f64], acc: &mut [f64]) -> bool {
+        let last = self.last.borrow();
+        match last.iter().find(|e| e.t == t && e.y == y) {
+            Some(e) => {
+                acc.copy_from_slice(&e.dy[y.len() / 2..]);
+                true
+            }
+            None => false,
+        }
+    }
+}
+
 impl<Y: Free> ODE<f64, Y> for System<'_> {
     fn diff(&self, t: f64, y: &Y, dydt: &mut Y) {
         let (y, dydt) = (y.as_ref(), dydt.as_mut());
