@@ -267,8 +267,16 @@ impl DeckBuilder {
         let line = self.next_line("the motion's steps");
         checks::steps(self, line, steps, dt)?;
         let tstepe = Tstepe { line, steps: at(steps, line), dt: Some(at(dt, line)) };
-        self.deck.movement =
-            Some(Movement { line: header, tstepe, motions: Vec::new(), accuracy: None, maxiter: None, inttol: None });
+        self.deck.movement = Some(Movement {
+            line: header,
+            tstepe,
+            motions: Vec::new(),
+            accuracy: None,
+            maxiter: None,
+            inttol: None,
+            integrator: None,
+            stop_when: None,
+        });
         self.block = Some(Keyword::Tstepe);
         Ok(())
     }

@@ -46,16 +46,25 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         Some((d, lines)) => (Some(d), lines),
         None => (None, Vec::new()),
     };
-    let (mut motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
-    let integration = motion::integration(deck, &params);
+    let (mut motion, mut params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
+    let mut integration = motion::integration(deck, &mut params);
     if let Some(mo) = &motion {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
     let out = storage::outputs(deck, &sizes)?;
+    integration.stop_when = motion::stop_when(deck, &out.buffers)?;
     let mut optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
     let dims = match &deck.scale {
         Some(s) => {
-            tables::to_core(s, &m.mechanism, motion.as_mut(), dynamics.as_mut(), optimise.as_mut(), &out.buffers);
+            tables::to_core(
+                s,
+                &m.mechanism,
+                motion.as_mut(),
+                dynamics.as_mut(),
+                &mut integration,
+                optimise.as_mut(),
+                &out.buffers,
+            );
             s.dims.clone()
         }
         None => ModelDims::of(&m.mechanism),

@@ -2,24 +2,29 @@
 //! TARGET files) and for buffers (targets, bounds), to the core's units:
 //! scaled once compiled, when the kind of each column is known.
 
-use mechfem_core::dynamics::{Dynamics, LoadKind};
+use mechfem_core::dynamics::{Dynamics, Integration, LoadKind};
 use mechfem_core::{Dim, InputMotion, Mechanism, Motion};
 
 use crate::ast::CoreScale;
 use crate::compiled::Buffer;
 use crate::optimise::{Optimise, TargetKind};
 
-/// Scales the tables of `motion` and `dynamics` and the targets and bounds
-/// of `optimise` by `s`.
+/// Scales the tables of `motion` and `dynamics`, the value of a STOPWHEN
+/// and the targets and bounds of `optimise` by `s`.
 pub(crate) fn to_core(
     s: &CoreScale,
     mech: &Mechanism,
     motion: Option<&mut Motion>,
     dynamics: Option<&mut Dynamics>,
+    integration: &mut Integration,
     optimise: Option<&mut Optimise>,
     buffers: &[Buffer],
 ) {
     let u = &s.units;
+    if let Some(stop) = &mut integration.stop_when {
+        // The value is given in the unit of the buffer it is compared with.
+        stop.value *= s.dims.quantity(mech, stop.quantity).scale(u);
+    }
     let time = Dim::TIME.scale(u);
     if let Some(m) = motion {
         for (j, input) in m.inputs.iter_mut().enumerate() {
