@@ -30,6 +30,7 @@ class Run:
     steps: int | None = None
     jacobians: int | None = None
     note: str = ""  # why the run did not reach the end, or what else to know
+    gave_up: bool = False  # stopped by the evaluation budget: not timed
 
 
 @dataclass
@@ -129,25 +130,41 @@ class Mechfem(Solver):
             return self._read(run_result(path, raw))
 
     def _read(self, result: Any) -> Run:
-        sim = result.simulation
-        reason = result.report.stop_reason()
-        values = None if reason else self.problem.read_mechfem(result.buffers)
-        note = "" if not reason else f"stopped at t = {sim.reached:.4g}: {reason}"
-        return Run(values, sim.evaluations, sim.steps, None, note)
+        sim, stop = result.simulation, result.report.stop
+        if stop is None:
+            return Run(self.problem.read_mechfem(result.buffers), sim.evaluations, sim.steps)
+        # The solver's own words, up to the hint that follows them.
+        why = stop.message.split(" (")[0].split(": ")[-1]
+        return Run(None, sim.evaluations, sim.steps, None, f"stopped at t = {sim.reached:.3g}: {why}")
 
 
 # --- SciPy ----------------------------------------------------------------------------------------------------------
 
 
-class Counted:
-    """A right-hand side that counts its evaluations (a vectorised call of k states counts k)."""
+class GaveUp(Exception):
+    """A run stopped by its evaluation budget, at time ``t``."""
 
-    def __init__(self, fun: Callable[[float, Any], Any]) -> None:
-        self.fun, self.count = fun, 0
+    def __init__(self, t: float) -> None:
+        self.t = t
+
+
+class Counted:
+    """A right-hand side that counts its evaluations (a vectorised call of k states counts k), and gives up
+    (:class:`GaveUp`) beyond ``limit`` of them."""
+
+    def __init__(self, fun: Callable[[float, Any], Any], limit: int) -> None:
+        self.fun, self.count, self.limit = fun, 0, limit
 
     def __call__(self, t: float, y: Any) -> Any:
         self.count += 1 if y.ndim == 1 else y.shape[1]
+        if self.count > self.limit:
+            raise GaveUp(t)
         return self.fun(t, y)
+
+
+# An explicit method on the stiff problem needs millions of evaluations of a Python right-hand side (minutes each):
+# a counted run gives up beyond this many, and is not timed.
+EVALUATION_BUDGET = 1_000_000
 
 
 class Scipy(Solver):
@@ -174,8 +191,12 @@ class Scipy(Solver):
 
     def counted(self, tol: float) -> Run:
         """A run whose evaluations are counted (not timed: the count costs a Python call per evaluation)."""
-        fun = Counted(self.problem.ode_rhs)
-        run = self._read(self.solve(fun, tol))
+        fun = Counted(self.problem.ode_rhs, EVALUATION_BUDGET)
+        try:
+            run = self._read(self.solve(fun, tol))
+        except GaveUp as stop:
+            end = self.problem.times[-1]
+            return Run(None, fun.count, None, None, f"gave up at t = {stop.t:.3g} of {end:g}", gave_up=True)
         run.evaluations = fun.count
         return run
 
