@@ -33,8 +33,9 @@ least ``--repeat`` calls and of more until they have taken ``--min-time`` second
 
 Evaluations are counted in a separate, untimed run: every call of the right-hand side or residual, Jacobian
 columns included (a vectorised call of k states counts k); mechfem's are the equations of motion its integrator
-evaluated (one Newton position each). A method whose single run takes longer than ``--budget`` seconds is timed
-once, and not at tighter tolerances. The peers are installed into ``.venv-bench`` (created on first use; the script
+evaluated (one Newton position each). A run that takes longer than ``--budget`` seconds, or does not reach the
+end, is timed once (to its stop), and the method is not run at tighter tolerances; an explicit SciPy method gives
+up after a million evaluations. The peers are installed into ``.venv-bench`` (created on first use; the script
 re-runs itself there), never into mechfem's ``.venv``; mechfem is imported from this source tree (``python/``, with
 the compiled module ``make install`` builds). Nothing here asserts a time: it is a benchmark, not a test.
 """
@@ -220,7 +221,7 @@ def measure(
         }  # fmt: skip
         if run.gave_up:
             row["seconds"], row["timed"] = None, "no"
-        elif first > args.budget:
+        elif first > args.budget or run.values is None:
             row["seconds"], row["timed"] = first, "once"
         else:
             calls = {"once": partial(solver.run, k)}
@@ -234,6 +235,9 @@ def measure(
         print_row(row, knob)
         if first > args.budget or run.gave_up:
             print(f"  ({solver.name}: {first:.1f} s for one run; tighter {knob} left out)", flush=True)
+            break
+        if run.values is None and knob == "tol":
+            print(f"  ({solver.name} did not finish; tighter {knob} left out)", flush=True)
             break
     return out
 
