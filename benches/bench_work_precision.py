@@ -23,7 +23,7 @@ least ``--repeat`` calls and of more until they have taken ``--min-time`` second
 * mechfem: the deck run by ``mechfem.run_deck`` (compiled once: a deck file run again unchanged is not read again),
   and, where the deck reading shows, by ``run_deck_text`` (compiled in every call); each ``--mechfem`` method is the
   deck's ``INTEGRATOR`` statement (``default``: none, the deck's default). INTTOL is the tolerance, ACCURACY 1e-10
-  or the tolerance below it.
+  or the tolerance below it (``--accuracy default``: no ACCURACY, the deck's default).
 * SciPy ``solve_ivp``: Radau, DOP853 and LSODA (``--scipy``) on the index-1 ODE form, right-hand sides vectorised
   NumPy (``vectorized=True``: Radau's finite-difference Jacobian is one call).
 * SUNDIALS IDA (scikit-sundae): Andrews in the stabilised index-2 (GGL) form, the four-bar as an implicit ODE; with
@@ -144,6 +144,12 @@ def main() -> None:
     parser.add_argument(
         "--mechfem", nargs="+", default=["default"], help="the deck's INTEGRATOR methods ('default': no statement)"
     )
+    parser.add_argument(
+        "--accuracy",
+        choices=["tol", "default"],
+        default="tol",
+        help="mechfem's ACCURACY: 1e-10 or the tolerance below it ('tol'), or none, the deck's default ('default')",
+    )
     parser.add_argument("--scipy", nargs="*", default=["Radau", "DOP853", "LSODA"])
     parser.add_argument("--no-ida", action="store_true")
     parser.add_argument("--no-exudyn", action="store_true")
@@ -179,7 +185,8 @@ def main() -> None:
 
             ratio = f.stiffness_ratio(*f.reference_states())
             print(f"stiffness ratio along the motion: {ratio.min():.2g} to {ratio.max():.2g}")
-        solvers: list[Any] = [Mechfem(None if m == "default" else m) for m in args.mechfem]
+        set_accuracy = args.accuracy == "tol"
+        solvers: list[Any] = [Mechfem(None if m == "default" else m, set_accuracy) for m in args.mechfem]
         solvers += [Scipy(m) for m in args.scipy]
         if not args.no_ida and sundae_version() != "not installed":
             solvers += [Ida(jacobian=False), Ida(jacobian=True)]

@@ -76,8 +76,9 @@ def accuracy(tol: float) -> float:
     return min(1e-10, tol)
 
 
-def deck_at(text: str, tol: float, integrator: str | None) -> str:
-    """The deck ``text`` with INTTOL ``tol``, ACCURACY :func:`accuracy` and, if given, ``INTEGRATOR integrator``."""
+def deck_at(text: str, tol: float, integrator: str | None, set_accuracy: bool = True) -> str:
+    """The deck ``text`` with INTTOL ``tol``, ACCURACY :func:`accuracy` (with ``set_accuracy``; otherwise none, the
+    default) and, if given, ``INTEGRATOR integrator``."""
     out = []
     for line in text.splitlines():
         word = line.split(";")[0].split()
@@ -86,7 +87,8 @@ def deck_at(text: str, tol: float, integrator: str | None) -> str:
         out.append(line)
         if word and word[0] == "MOV_DYN":
             out.append(f"INTTOL\t{tol:.3e}\t{tol:.3e}")
-            out.append(f"ACCURACY\t{accuracy(tol):.3e}")
+            if set_accuracy:
+                out.append(f"ACCURACY\t{accuracy(tol):.3e}")
             if integrator is not None:
                 out.append(f"INTEGRATOR\t{integrator}")
     return "\n".join(out) + "\n"
@@ -98,8 +100,8 @@ class Mechfem(Solver):
 
     per_call_differs = True
 
-    def __init__(self, integrator: str | None = None) -> None:
-        self.integrator = integrator
+    def __init__(self, integrator: str | None = None, set_accuracy: bool = True) -> None:
+        self.integrator, self.set_accuracy = integrator, set_accuracy
         self.name = "mechfem" + ("" if integrator is None else f" {integrator}")
         self._tmp = tempfile.TemporaryDirectory()
         self._decks: dict[float, Path] = {}
@@ -107,7 +109,7 @@ class Mechfem(Solver):
     def deck(self, tol: float) -> Path:
         if tol not in self._decks:
             path = Path(self._tmp.name) / f"{self.problem.name}_{len(self._decks)}.mec"
-            path.write_text(deck_at(self.problem.deck.read_text(), tol, self.integrator))
+            path.write_text(deck_at(self.problem.deck.read_text(), tol, self.integrator, self.set_accuracy))
             self._decks[tol] = path
         return self._decks[tol]
 
