@@ -92,14 +92,14 @@ def test_the_harness_runs_mechfem_and_scipy_on_andrews_and_they_agree() -> None:
     (problem,) = bench.problems(["andrews"])
     assert "INTEGRATOR\timplicit" in deck_at(problem.deck.read_text(), 1e-6, "implicit")
     runs = {}
-    for solver in (Mechfem(None), Scipy("DOP853")):
+    for solver, tol in ((Mechfem(None), 1e-7), (Scipy("DOP853"), 1e-5)):
         solver.build(problem)
-        runs[solver.name] = solver.run(1e-7)
+        runs[solver.name] = solver.run(tol)
     mech, dop = runs["mechfem"], runs["SciPy DOP853"]
     assert mech.values.shape == dop.values.shape == (31, 7)
     assert mech.evaluations and mech.evaluations > 100
     # Both follow the benchmark to its own accuracy, and reach the published angles at t = 0.03.
-    assert problem.error(mech.values, dop.values) < 1e-4
+    assert problem.error(mech.values, dop.values) < 1e-3
     assert np.abs(mech.values[-1] - andrews.Q_PUBLISHED).max() < 1e-4
     assert interpolate([(1e-6, 1.0), (1e-8, 4.0)], 1e-7) == pytest.approx(2.0)
 
