@@ -207,7 +207,8 @@ def main() -> None:
         summary(problem, [r for r in rows if r["problem"] == problem.name])
         if args.json:
             with open(args.json, "w") as out:
-                json.dump({"machine": machine(), "load": os.getloadavg(), "rows": rows}, out, indent=1)
+                record = {"machine": machine(), "load": os.getloadavg(), "rows": rows}
+                json.dump(record, out, indent=1, default=lambda o: o.item())  # NumPy's integers
 
 
 def measure(
