@@ -114,3 +114,16 @@ def test_ida_solves_the_ggl_form_of_andrews() -> None:
     ida.build(problem)
     run = ida.run(1e-6)
     assert np.abs(run.values[-1] - andrews.Q_PUBLISHED).max() < 1e-2
+
+
+def test_exudyn_models_andrews_as_the_deck_does() -> None:
+    pytest.importorskip("exudyn")
+    import bench_work_precision as bench
+    from sim_exudyn import Exudyn
+
+    (problem,) = bench.problems(["andrews"])
+    exudyn = Exudyn()
+    exudyn.build(problem)
+    run = exudyn.run(960)  # 32 steps an output: an error of about 1e-3 rad
+    assert np.abs(run.values[0] - andrews.Q0).max() < 1e-12
+    assert np.abs(run.values[-1] - andrews.Q_PUBLISHED).max() < 1e-2
