@@ -92,7 +92,7 @@ fn count_simulation(tol: f64) -> (usize, usize) {
     };
     let motion = Motion { steps: 50, dt: 0.02, inputs: vec![InputMotion::Dynamic { v0: 0.0 }] };
     let (mut s, mut touch) = (state.clone(), Touch(0.0, Some(TransferOrder::Second)));
-    let integration = Integration { rtol: tol, atol: tol };
+    let integration = Integration::new(tol, tol);
     let mut steps = 0;
     let info = allocation_counter::measure(|| {
         let report = simulate(&mech, &mut s, &motion, &Params::default(), &integration, &dynamics, &mut touch).unwrap();

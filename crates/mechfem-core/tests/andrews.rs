@@ -255,7 +255,7 @@ fn simulate_squeezer_at(steps: usize, dt: f64, accuracy: f64, tol: f64) -> Vec<O
     quantities.extend(angles.iter().map(|&d| Quantity::E0(FormRef::Dependent(d))));
     let mut rec = Recorder::new(quantities, false);
     let params = Params { tol: accuracy, ..Params::default() };
-    let integration = Integration { rtol: tol, atol: tol };
+    let integration = Integration::new(tol, tol);
     let report = simulate(&mech, &mut state, &motion, &params, &integration, &dynamics, &mut rec).unwrap();
     assert!(report.run.stop.is_none(), "{:?}", report.run.stop);
     assert_eq!(rec.positions(), steps + 1);

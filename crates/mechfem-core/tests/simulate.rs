@@ -28,7 +28,7 @@ fn elliptic_k(k: f64) -> f64 {
 }
 
 fn tight() -> Integration {
-    Integration { rtol: 1e-12, atol: 1e-12 }
+    Integration::new(1e-12, 1e-12)
 }
 
 /// Simulates `steps` steps of `dt` with input 0 free from rest, recording `q`.
@@ -139,7 +139,7 @@ fn inverse_then_forward_dynamics_gives_the_motion_back() {
     let mut out = Recorder::new(vec![Quantity::Time, Quantity::Input(0)], false);
     let mut s = state.clone();
     let params = Params { tol: 1e-12, ..Params::default() };
-    let tol = Integration { rtol: 1e-10, atol: 1e-10 };
+    let tol = Integration::new(1e-10, 1e-10);
     let report = simulate(&mech, &mut s, &motion, &params, &tol, &forward, &mut out).unwrap();
     assert!(report.run.stop.is_none(), "{:?}", report.run.stop);
     for r in out.data().chunks(2) {

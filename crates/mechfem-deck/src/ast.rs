@@ -416,6 +416,21 @@ pub struct Movement {
     pub maxiter: Option<Spanned<i64>>,
     /// `INTTOL rtol atol`, if given (mode `DYN SIM` only).
     pub inttol: Option<IntTolDef>,
+    /// `INTEGRATOR method`, if given (mode `DYN SIM` only).
+    pub integrator: Option<Spanned<mechfem_core::dynamics::Integrator>>,
+    /// `STOPWHEN b value`, if given (mode `DYN SIM` only).
+    pub stop_when: Option<StopWhenDef>,
+}
+
+/// `STOPWHEN b value`: the simulation ends where buffer b crosses value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StopWhenDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// The buffer watched (1..=u32::MAX).
+    pub buffer: Spanned<i64>,
+    /// The value.
+    pub value: Spanned<f64>,
 }
 
 /// `INTTOL rtol atol`: the tolerances of the integrator of a simulation.

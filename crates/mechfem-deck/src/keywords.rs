@@ -109,6 +109,8 @@ keywords! {
     Accuracy "ACCURACY" Movement 1 Some(1), "tol";
     Maxiter "MAXITER" Movement 1 Some(1), "m";
     Inttol "INTTOL" Movement 2 Some(2), "rtol atol";
+    Integrator "INTEGRATOR" Movement 1 Some(1), "auto|explicit|implicit";
+    StopWhen "STOPWHEN" Movement 2 Some(2), "b value";
     Vary "VARY" Optimise 3 Some(3), "r lo hi";
     VaryX "VARYX" Optimise 3 Some(3), "i lo hi";
     Target "TARGET" Optimise 2 Some(3), "b file [w]";

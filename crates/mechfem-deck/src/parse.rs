@@ -52,6 +52,8 @@ pub(crate) struct MovementParts {
     pub accuracy: Option<Spanned<f64>>,
     pub maxiter: Option<Spanned<i64>>,
     pub inttol: Option<IntTolDef>,
+    pub integrator: Option<Spanned<mechfem_core::dynamics::Integrator>>,
+    pub stop_when: Option<crate::ast::StopWhenDef>,
     /// A missing or late TSTEPE has been reported.
     pub tstepe_reported: bool,
 }
@@ -446,6 +448,8 @@ impl<'a> Parser<'a> {
                 accuracy: m.accuracy,
                 maxiter: m.maxiter,
                 inttol: m.inttol,
+                integrator: m.integrator,
+                stop_when: m.stop_when,
             }),
             _ => None,
         };

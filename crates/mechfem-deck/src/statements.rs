@@ -2,6 +2,7 @@
 
 pub(crate) mod dynamics;
 mod optimise;
+mod simulation;
 
 use mechfem_core::ElementType;
 
@@ -202,6 +203,16 @@ impl Parser<'_> {
                 self.once(kw)?;
                 self.movement.inttol = Some(IntTolDef { line: line_no, rtol, atol });
             }
+            Keyword::Integrator => {
+                let method = simulation::integrator(src, arg(0)?)?;
+                self.once(kw)?;
+                self.movement.integrator = Some(method);
+            }
+            Keyword::StopWhen => {
+                let def = simulation::stop_when(src, line_no, args)?;
+                self.once(kw)?;
+                self.movement.stop_when = Some(def);
+            }
             Keyword::PrintBuf | Keyword::SaveData => {
                 let buffers = args.iter().map(|w| src.buffer(w)).collect::<Result<Vec<_>, _>>()?;
                 let list = BufList { line: line_no, buffers };
@@ -370,6 +381,11 @@ impl Parser<'_> {
                 format!("INTTOL sets the tolerances of a simulation's integrator, which a {name} deck does not run"),
                 "remove this line (ACCURACY sets how closely Newton meets the prescribed values), or change the mode \
                  line to `DYN SIM`",
+            ),
+            Mode::KinAna | Mode::KinOpt | Mode::DynAna if matches!(k, Keyword::Integrator | Keyword::StopWhen) => err(
+                format!("{k} sets how a simulation is integrated or ends, which a {name} deck does not run"),
+                "remove this line, or change the mode line to `DYN SIM` and let an input move under the forces with \
+                 MOV_DYN",
             ),
             _ => Ok(()),
         }

@@ -300,7 +300,7 @@ fn pendulum_released_from_rest_in_dyn_sim() {
     assert_eq!(motion.inputs, [InputMotion::Dynamic { v0: 0.0 }]);
     // Without INTTOL the integrator is as accurate as ACCURACY.
     assert_eq!(c.params.tol, 1e-10);
-    assert_eq!(c.integration, Integration { rtol: 1e-10, atol: 1e-10 });
+    assert_eq!(c.integration, Integration::new(1e-10, 1e-10));
     assert_eq!(quantities(&c)[5..], [Quantity::Sigma(0), Quantity::Ekin, Quantity::Epot]);
 }
 
@@ -323,7 +323,7 @@ fn motor_run_up_with_its_own_integrator_tolerances() {
     assert_eq!(c.mode, Mode::DynSim);
     assert_eq!(c.motion.as_ref().expect("motion").inputs, [InputMotion::Dynamic { v0: 0.0 }]);
     assert_eq!(c.params.tol, 1e-11);
-    assert_eq!(c.integration, Integration { rtol: 1e-9, atol: 1e-12 });
+    assert_eq!(c.integration, Integration::new(1e-9, 1e-12));
     let d = c.dynamics.as_ref().expect("dynamics");
     assert_eq!(d.loads[1], Load { form: FormRef::Prescribed(3), kind: LoadKind::Motor { t0: 20.0, w0: 200.0 } });
     assert_eq!(d.check(&c.mechanism), Ok(()));

@@ -117,7 +117,7 @@ fn a_simulation_may_drive_every_dof() {
 #[test]
 fn inttol_sets_the_integrators_tolerances() {
     let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nACCURACY 1e-11\nINTTOL 1e-9 1E-12\n"));
-    assert_eq!(c.integration, Integration { rtol: 1e-9, atol: 1e-12 });
+    assert_eq!(c.integration, Integration::new(1e-9, 1e-12));
     assert_eq!(c.params.tol, 1e-11);
 }
 
@@ -125,7 +125,7 @@ fn inttol_sets_the_integrators_tolerances() {
 fn without_inttol_the_integrator_follows_accuracy() {
     let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nACCURACY 1e-9\n"));
     assert_eq!(c.integration, Integration::from_accuracy(1e-9));
-    assert_eq!(c.integration, Integration { rtol: 1e-9, atol: 1e-9 });
+    assert_eq!(c.integration, Integration::new(1e-9, 1e-9));
     let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\n"));
     assert_eq!(c.integration, Integration::from_accuracy(Params::default().tol));
 }

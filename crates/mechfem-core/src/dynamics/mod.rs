@@ -330,15 +330,77 @@ impl Dynamics {
     }
 }
 
-/// Settings of the integrator of a simulation (deck `INTTOL rtol atol`):
-/// each step's estimated local error in every free degree of freedom and
-/// its speed stays below `atol + rtol * |value|`.
+/// Settings of the integrator of a simulation (deck `INTTOL rtol atol`,
+/// `INTEGRATOR`, `STOPWHEN`): each step's estimated local error in every
+/// free degree of freedom and its speed stays below `atol + rtol * |value|`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Integration {
     /// Relative tolerance.
     pub rtol: f64,
     /// Absolute tolerance.
     pub atol: f64,
+    /// The method, or how it is chosen (deck `INTEGRATOR`).
+    pub integrator: Integrator,
+    /// A condition that ends the simulation early (deck `STOPWHEN`).
+    pub stop_when: Option<StopWhen>,
+}
+
+/// The integration method of a simulation (deck `INTEGRATOR`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Integrator {
+    /// DOP853 while the motion is not stiff, Radau IIA 5 while it is: the
+    /// method switches on detected stiffness, as LSODA does (`auto`, the
+    /// default).
+    #[default]
+    Auto,
+    /// The explicit Runge-Kutta method of Dormand and Prince of order 8
+    /// (`explicit` or `dop853`).
+    Dop853,
+    /// The explicit Runge-Kutta method of Dormand and Prince of order 5(4)
+    /// (`dopri5`).
+    Dopri5,
+    /// The implicit Runge-Kutta method Radau IIA of order 5 (`implicit` or
+    /// `radau5`).
+    Radau5,
+}
+
+impl Integrator {
+    /// The method's name as the print file and the run report say it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integrator::Auto => "auto (DOP853, Radau IIA 5 while stiff)",
+            Integrator::Dop853 => "DOP853 (explicit Runge-Kutta, order 8)",
+            Integrator::Dopri5 => "Dormand-Prince 5(4) (explicit Runge-Kutta)",
+            Integrator::Radau5 => "Radau IIA 5 (implicit Runge-Kutta, order 5)",
+        }
+    }
+
+    /// The method a deck's `INTEGRATOR word` names (case-insensitive), if any.
+    pub fn from_word(word: &str) -> Option<Integrator> {
+        Some(match word.to_ascii_lowercase().as_str() {
+            "auto" => Integrator::Auto,
+            "explicit" | "dop853" => Integrator::Dop853,
+            "dopri5" => Integrator::Dopri5,
+            "implicit" | "radau5" => Integrator::Radau5,
+            _ => return None,
+        })
+    }
+
+    /// The words [`Self::from_word`] knows.
+    pub const WORDS: [&'static str; 6] = ["auto", "explicit", "implicit", "dop853", "dopri5", "radau5"];
+}
+
+/// Ends a simulation where a recorded quantity crosses a value (deck
+/// `STOPWHEN b value`): the crossing is located on the integrator's dense
+/// output, and the simulation's last position is there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StopWhen {
+    /// The quantity watched.
+    pub quantity: crate::run::Quantity,
+    /// The deck's number of its buffer (for the report).
+    pub buffer: u32,
+    /// The value whose crossing ends the simulation.
+    pub value: f64,
 }
 
 impl Integration {
@@ -346,12 +408,38 @@ impl Integration {
     /// rounding dominates.
     pub const MIN_TOLERANCE: f64 = 1e-13;
 
+    /// The tolerances `rtol`, `atol` with the default method and no stop
+    /// condition.
+    pub fn new(rtol: f64, atol: f64) -> Integration {
+        Integration { rtol, atol, integrator: Integrator::Auto, stop_when: None }
+    }
+
     /// Both tolerances at the Newton tolerance `tol` (deck ACCURACY), so
     /// that the integrator is as accurate as the positions it moves
     /// through; at least [`Self::MIN_TOLERANCE`].
     pub fn from_accuracy(tol: f64) -> Integration {
         let t = tol.max(Self::MIN_TOLERANCE);
-        Integration { rtol: t, atol: t }
+        Integration::new(t, t)
+    }
+
+    /// The Newton tolerance (deck ACCURACY) that keeps the positions'
+    /// error out of the integration error: a tenth of the tighter of the
+    /// two tolerances, never looser than the default Newton tolerance and
+    /// not below 1e-14 (about 50 ulp of a co-ordinate of order 1, below
+    /// which Newton meets rounding).
+    pub fn newton_tolerance(&self) -> f64 {
+        (0.1 * self.rtol.min(self.atol)).clamp(Self::NEWTON_FLOOR, crate::solver::Params::default().tol)
+    }
+
+    /// The smallest Newton tolerance [`Self::newton_tolerance`] gives.
+    pub const NEWTON_FLOOR: f64 = 1e-14;
+
+    /// Whether a Newton tolerance `tol` set by the deck (ACCURACY) is too
+    /// loose for these tolerances: the positions' error, up to `tol`, then
+    /// bounds the simulation's error instead of the integrator's, and
+    /// steps fail their error test on position noise.
+    pub fn conflicts_with(&self, tol: f64) -> bool {
+        tol > self.rtol.min(self.atol).max(Self::NEWTON_FLOOR)
     }
 }
 

@@ -33,4 +33,4 @@ pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
 pub use record::{record, record_evaluated, Quantity, Recorder};
 pub use selection::Selection;
-pub use simulate::{simulate, simulate_within, SimReport};
+pub use simulate::{simulate, simulate_within, Event, Segment, SimReport};

@@ -10,16 +10,15 @@
 //! no constraint drift to correct: positions are found by Newton at every
 //! evaluation, from a prediction by the first-order transfer functions.
 //!
-//! The free DOFs and their speeds are integrated by the explicit
-//! Runge-Kutta method of Dormand and Prince of order 5(4) with step-size
-//! control, dense output and stiffness detection (`ode_solvers::Dopri5`):
-//! a mechanism without stiff springs is not stiff, an explicit method needs
-//! one evaluation of the equations (one Newton position) per stage and no
-//! Jacobian of them, and a stiff problem is detected and stops the run with
-//! that reason instead of creeping on. (The crate's eighth-order `Dop853`
-//! would take fewer steps at tight tolerances, but version 0.6 evaluates its
-//! twelfth stage at the start of the step instead of its end, which is wrong
-//! for forces that depend on time.)
+//! The free DOFs and their speeds are integrated by the methods of the
+//! crate `differential-equations`, one step at a time ([`advance`]): the
+//! explicit Runge-Kutta methods of Dormand and Prince of order 8 (DOP853)
+//! and 5(4), and the implicit Radau IIA of order 5 with a Jacobian of the
+//! reduced equations by finite differences over the free states. The
+//! default (`INTEGRATOR auto`) integrates with DOP853 and goes over to
+//! Radau IIA where the motion is stiff (stiff springs and dampers, a motion
+//! come to rest), and back where it is not, as LSODA does; the report says
+//! which method ran where ([`SimReport::segments`]).
 //!
 //! The outputs come from the integrator's own solution: at each output time
 //! its dense output gives q and q', the position there is found by Newton
@@ -29,26 +28,31 @@
 //! observer as soon as the step that contains it is accepted, whatever the
 //! spacing of the outputs against the steps; the integration then goes on
 //! from the position it found itself, so that the outputs asked for do not
-//! change the motion.
+//! change the motion. The last step ends at the last output time exactly.
+//! A STOPWHEN condition is watched at the end of every step and its
+//! crossing located on the dense output ([`Event`]).
 
+mod advance;
 mod eom;
+mod outputs;
 mod stiffness;
+mod system;
 
-use nalgebra::{allocator::Allocator, Const, DefaultAllocator, Dim, Dyn, OVector, U1};
-use ode_solvers::{Dopri5, OutputType, System};
-use std::cell::RefCell;
+use differential_equations::methods::{DormandPrince, ExplicitRungeKutta, ImplicitRungeKutta, Ordinary, Radau};
 
 use super::inverse::InverseDynamics;
 use super::kinematic::{run, timed_finite};
 use super::observe::{Observer, RunReport, Stop};
-use crate::dynamics::{Dynamics, Integration};
+use crate::dynamics::{Dynamics, Integration, Integrator};
 use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
-use crate::motion::limits::{LimitKind, LimitPosition};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, Kinematics, Params, TransferOrder};
+use advance::{advance, Next, Run};
 use eom::{Driver, Eom, LIMIT_REASON};
-use stiffness::{Evaluation, Stiffness, STIFF_REASON};
+pub use outputs::Event;
+use outputs::Outputs;
+use system::System;
 
 /// What a simulation did: the integrator's work, and the outputs it gave.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,277 +60,41 @@ pub struct SimReport {
     /// The outputs observed; its `stop` says why the simulation ended
     /// early, if it did.
     pub run: RunReport,
-    /// The tolerances used.
+    /// The tolerances and the method asked for.
     pub integration: Integration,
     /// Steps the integrator accepted.
     pub steps: usize,
     /// Steps it rejected (too large an error estimate, or a position that
     /// could not be found).
     pub rejected: usize,
-    /// Evaluations of the equations of motion.
+    /// Evaluations of the equations of motion (each one Newton position),
+    /// those of the Jacobians included.
     pub evaluations: usize,
+    /// Jacobians of the equations computed by the implicit method (each
+    /// `2 nf + 1` evaluations).
+    pub jacobians: usize,
     /// The time the integration reached.
     pub reached: f64,
+    /// Which method integrated which stretch of time, in order.
+    pub segments: Vec<Segment>,
+    /// Where a STOPWHEN condition ended the simulation, if it did.
+    pub event: Option<Event>,
 }
 
-/// The outputs of a simulation as the integration produces them.
-struct Outputs<'o> {
-    observer: &'o mut dyn Observer,
-    /// The last output index (TSTEPE's n), the output interval and the
-    /// time of the last output.
-    steps: usize,
-    dt: f64,
-    span: f64,
-    /// The time of the next output as the integrator's dense output counts
-    /// it (the same sum of intervals, so the same number to the last bit),
-    /// and its index.
-    xd: f64,
-    next: usize,
-    /// The last output observed and its inputs, from which a sign change
-    /// of det(D^c) before the next one is located.
-    previous: State,
-    prev_inputs: Vec<f64>,
-    inputs: Vec<f64>,
-    /// det(D^c) at the two outputs before the last one, and its largest
-    /// magnitude so far.
-    det_prev2: f64,
-    det_prev: f64,
-    det_max: f64,
-    report: RunReport,
-    /// Why the outputs ended before the last one, when it is not the
-    /// integrator's own failure.
-    stop: Option<SolveError>,
-    /// The outputs are over (the last one observed, or a stop).
-    done: bool,
-    /// Outputs were found inside the step last accepted.
-    inside: bool,
-    /// The time the integration reached.
-    reached: f64,
-    stiffness: Stiffness,
-}
-
-/// The integrator's view of the equations of motion; interior mutability
-/// because it evaluates them through a shared reference.
-struct Ode<'a, 'o> {
-    eom: RefCell<Eom<'a>>,
-    /// Scratch for one evaluation's accelerations.
-    acc: RefCell<Vec<f64>>,
-    /// The integrator's last two evaluations, the latest at index 1: after
-    /// an accepted step, the latest is at its end.
-    evals: RefCell<[Evaluation; 2]>,
-    out: Outputs<'o>,
-}
-
-/// The integrator owns its system: it gets this borrow, so that the
-/// equations and the outputs are handed back afterwards.
-struct OdeRef<'r, 'a, 'o>(&'r mut Ode<'a, 'o>);
-
-impl<D: Dim> System<f64, OVector<f64, D>> for OdeRef<'_, '_, '_>
-where
-    DefaultAllocator: Allocator<D>,
-{
-    fn system(&self, t: f64, y: &OVector<f64, D>, dy: &mut OVector<f64, D>) {
-        let (mut eom, mut acc) = (self.0.eom.borrow_mut(), self.0.acc.borrow_mut());
-        let nf = eom.free.len();
-        for k in 0..nf {
-            dy[k] = y[nf + k];
-        }
-        match eom.accelerations(t, y.as_slice(), &mut acc) {
-            Ok(()) => {
-                for k in 0..nf {
-                    dy[nf + k] = acc[k];
-                }
-            }
-            // A derivative far too large makes the step fail its error
-            // test: the integrator retries a shorter one, and gives up
-            // when the step becomes too short.
-            Err(_) => dy.fill(1e150),
-        }
-        let mut evals = self.0.evals.borrow_mut();
-        evals.swap(0, 1);
-        evals[1].t = t;
-        evals[1].y.copy_from_slice(y.as_slice());
-        evals[1].dy.copy_from_slice(dy.as_slice());
-    }
-
-    /// Called by `Dopri5` (dense output) once for every output time inside
-    /// an accepted step, as it adds it (`y` that output), and then once for
-    /// the step itself (`t` its end).
-    fn solout(&mut self, t: f64, y: &OVector<f64, D>, _dy: &OVector<f64, D>) -> bool {
-        let ode = &mut *self.0;
-        if ode.out.done {
-            return true;
-        }
-        let step_end = ode.evals.get_mut()[1].t;
-        // The integrator adds the outputs up to the step's end, counting
-        // their times as `xd` is counted here.
-        let done = if ode.out.xd <= step_end {
-            let at = ode.out.xd;
-            ode.out.xd += ode.out.dt;
-            let done = ode.output(at, y.as_slice());
-            // The integration ends with this step, accepted.
-            if done {
-                ode.out.reached = step_end;
-            }
-            done
-        } else {
-            ode.stepped(t)
-        };
-        ode.out.done |= done;
-        done
-    }
-}
-
-impl Ode<'_, '_> {
-    /// The next output, at time `t` with the dense output's free state `y`:
-    /// its position found from the last one the integration found, its
-    /// accelerations, and the observer told. Whether the outputs are over.
-    fn output(&mut self, t: f64, y: &[f64]) -> bool {
-        let k = self.out.next;
-        self.out.next += 1;
-        // Position 1 is observed before the integration starts.
-        if k == 0 {
-            return false;
-        }
-        let (eom, acc) = (self.eom.get_mut(), self.acc.get_mut());
-        if !self.out.inside {
-            eom.keep();
-            self.out.inside = true;
-        }
-        if let Err(e) = eom.reach(t, y, acc) {
-            self.out.stop = Some(e);
-            return true;
-        }
-        let view = eom.view(k, acc);
-        if let Err(e) = timed_finite(view.mech, view.kin, view.input_vel, view.input_acc) {
-            self.out.stop = Some(e);
-            return true;
-        }
-        let out = &mut self.out;
-        let mech = view.mech;
-        out.inputs.clear();
-        out.inputs.extend((0..mech.n_dof()).map(|j| view.input(j)));
-        if let Err(e) = out.limits(view.kin.det(), k) {
-            out.stop = Some(e);
-            return true;
-        }
-        if let Err(e) = out.observer.check(&view) {
-            out.stop = Some(e);
-            return true;
-        }
-        out.observer.position(&view);
-        out.report.positions += 1;
-        out.previous.clone_from(view.state);
-        std::mem::swap(&mut out.prev_inputs, &mut out.inputs);
-        if k == out.steps {
-            return true;
-        }
-        if out.observer.stop_requested() {
-            out.stop = Some(SolveError::Interrupted);
-            return true;
-        }
-        false
-    }
-
-    /// An accepted step ending at `t`: progress, and a request to stop.
-    fn stepped(&mut self, t: f64) -> bool {
-        let out = &mut self.out;
-        if out.inside {
-            self.eom.get_mut().back();
-            out.inside = false;
-        }
-        let h = t - out.reached;
-        out.reached = t;
-        if out.stiffness.stiff(h, out.dt, self.evals.get_mut()) {
-            out.stop = Some(SolveError::Simulation { time: t, reason: STIFF_REASON });
-            return true;
-        }
-        out.observer.simulated(t, out.span);
-        if out.observer.stop_requested() {
-            out.stop = Some(SolveError::Interrupted);
-            return true;
-        }
-        false
-    }
-}
-
-impl Outputs<'_> {
-    /// The limit positions between the last output and output `k`, where
-    /// det(D^c) is `det`, found as a kinematic run finds them: a local
-    /// minimum of |det| far below its largest value. A sign change of
-    /// det(D^c) between two outputs means the integration passed a limit
-    /// position or a point where two assembly branches meet without
-    /// meeting the limit test of its evaluations: output `k` would be on
-    /// another branch, so it is refused.
-    fn limits(&mut self, det: f64, k: usize) -> Result<(), SolveError> {
-        if self.det_prev * det < 0.0 {
-            return Err(SolveError::DetSignChange { before: self.det_prev, after: det });
-        }
-        self.det_max = self.det_max.max(det.abs());
-        let prev = self.det_prev.abs();
-        if prev < self.det_prev2.abs() && prev <= det.abs() && prev < 1e-3 * self.det_max {
-            self.report.limits.push(LimitPosition {
-                kind: LimitKind::NearZero,
-                after: k - 1,
-                inputs: self.prev_inputs.clone(),
-                coords: self.previous.x.clone(),
-                det: self.det_prev,
-            });
-        }
-        (self.det_prev2, self.det_prev) = (self.det_prev, det);
-        Ok(())
-    }
-}
-
-/// The integrator's statistics, or why it gave up.
-fn integrate<D: Dim>(
-    ode: &mut Ode<'_, '_>,
-    dim: D,
-    y0: &[f64],
-    (end, dt, span): (f64, f64, f64),
-    tol: Integration,
-    budget: Option<u32>,
-) -> Result<(usize, usize, usize), SolveError>
-where
-    DefaultAllocator: Allocator<D>,
-{
-    let y = OVector::<f64, D>::from_iterator_generic(dim, U1, y0.iter().copied());
-    let mut solver = Dopri5::from_param(
-        OdeRef(ode),
-        0.0,
-        end,
-        dt,
-        y,
-        tol.rtol,
-        tol.atol,
-        0.9,
-        0.04,
-        0.2,
-        10.0,
-        span,
-        0.0,
-        budget.unwrap_or_else(|| max_steps(span, dt)),
-        // Its own stiffness test never: `Stiffness` takes its place.
-        u32::MAX,
-        OutputType::Dense,
-    );
-    use ode_solvers::dop_shared::IntegrationError as E;
-    match solver.integrate() {
-        Ok(s) => Ok((s.accepted_steps as usize, s.rejected_steps as usize, s.num_eval as usize)),
-        Err(E::StiffnessDetected { x }) => Err(SolveError::Simulation { time: x, reason: STIFF_REASON }),
-        Err(E::StepSizeUnderflow { x }) => Err(SolveError::Simulation {
-            time: x,
-            reason: "the step size collapsed: no position could be found beyond this time (a limit position?)",
-        }),
-        Err(E::MaxNumStepReached { x, .. }) if budget.is_some() => {
-            Err(SolveError::Simulation { time: x, reason: "the integrator used up the step budget it was given" })
-        }
-        Err(E::MaxNumStepReached { x, .. }) => Err(SolveError::Simulation {
-            time: x,
-            reason: "the integrator needed more than 2000 steps per output interval on average: the motion has \
-                     oscillations far faster than the outputs (a very stiff spring?)",
-        }),
-    }
+/// A stretch of time one method integrated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Segment {
+    /// The method ([`Integrator::Dop853`], [`Integrator::Dopri5`] or
+    /// [`Integrator::Radau5`]).
+    pub method: Integrator,
+    /// Start and end time.
+    pub from: f64,
+    /// End time.
+    pub to: f64,
+    /// Steps accepted in it.
+    pub steps: usize,
+    /// Evaluations of the equations of motion in it.
+    pub evaluations: usize,
 }
 
 /// The most steps a simulation to `end` with outputs every `dt` may take:
@@ -334,9 +102,9 @@ where
 /// needs more has oscillations far faster than anything the outputs could
 /// show (a very stiff spring resolved step by step), and would otherwise run
 /// for hours.
-fn max_steps(end: f64, dt: f64) -> u32 {
+fn max_steps(end: f64, dt: f64) -> usize {
     let outputs = (end / dt).ceil().clamp(1.0, 1e6);
-    (200_000.0 + 2_000.0 * outputs) as u32
+    (200_000.0 + 2_000.0 * outputs) as usize
 }
 
 /// Simulates the motion of `mech` under the masses and loads of
@@ -432,28 +200,27 @@ pub fn simulate_within(
         kept_t: 0.0,
         det_max: 0.0,
         limit_met: false,
+        det_last: 0.0,
+        kept_det: 0.0,
     };
     // The free DOFs' accelerations at the start: a model they cannot move
     // in is refused here, before anything is integrated.
     let mut acc0 = vec![0.0; nf];
     eom.accelerations(0.0, &y0, &mut acc0)?;
+    let g0 = integration.stop_when.map_or(f64::NAN, |sw| eom.watch(sw.quantity, &acc0) - sw.value);
     let view = eom.view(0, &acc0);
     timed_finite(mech, view.kin, view.input_vel, view.input_acc)?;
     observer.check(&view)?;
     observer.position(&view);
     let det = view.kin.det();
-    let evaluation = || Evaluation { t: f64::NAN, y: vec![0.0; 2 * nf], dy: vec![0.0; 2 * nf] };
-    let mut ode = Ode {
-        eom: RefCell::new(eom),
-        acc: RefCell::new(vec![0.0; nf]),
-        evals: RefCell::new([evaluation(), evaluation()]),
+    let interrupted = motion.steps > 0 && observer.stop_requested();
+    let mut run = Run {
+        sys: System::new(eom),
         out: Outputs {
             observer,
             steps: motion.steps,
             dt: motion.dt,
-            span,
-            xd: 0.0,
-            next: 0,
+            next: 1,
             previous: state.clone(),
             prev_inputs: start.clone(),
             inputs: start.clone(),
@@ -468,44 +235,33 @@ pub fn simulate_within(
                 singular_positions: Vec::new(),
                 stop: None,
             },
-            stop: None,
-            done: motion.steps == 0,
-            inside: false,
-            reached: 0.0,
-            stiffness: Stiffness::default(),
+            stop: interrupted.then_some(SolveError::Interrupted),
+            done: motion.steps == 0 || interrupted,
+            stop_when: integration.stop_when,
+            g_prev: g0,
+            event: None,
         },
+        span,
+        tol: *integration,
+        budget: budget.map_or_else(|| max_steps(span, motion.dt), |b| b as usize),
+        budget_given: budget.is_some(),
+        t: 0.0,
+        y: y0,
+        h: 0.0,
+        steps: 0,
+        rejected: 0,
+        acc: vec![0.0; nf],
+        error: None,
     };
-    if !ode.out.done && ode.out.observer.stop_requested() {
-        (ode.out.stop, ode.out.done) = (Some(SolveError::Interrupted), true);
-    }
-    // The integration is asked to go on to twice the last output time,
-    // which it never reaches: it ends with the step that holds the last
-    // output. So that output lies inside a step (the dense output of
-    // ode_solvers 0.6 at the very end of an integration is extrapolated
-    // from an earlier step), and neither the longest step (the span) nor
-    // any other choice of the integrator depends on the output interval:
-    // the same motion is integrated whatever the outputs.
-    let past = (2.0 * span).min(f64::MAX);
-    let integrated = if ode.out.done {
-        Ok((0, 0, 0))
-    } else {
-        match nf {
-            1 => integrate(&mut ode, Const::<2>, &y0, (past, motion.dt, span), *integration, budget),
-            2 => integrate(&mut ode, Const::<4>, &y0, (past, motion.dt, span), *integration, budget),
-            3 => integrate(&mut ode, Const::<6>, &y0, (past, motion.dt, span), *integration, budget),
-            _ => integrate(&mut ode, Dyn(2 * nf), &y0, (past, motion.dt, span), *integration, budget),
-        }
-    };
-    let Ode { eom, out, .. } = ode;
-    let eom = eom.into_inner();
+    let segments = integrate(&mut run, integration);
+    let Run { sys, out, steps, rejected, error, t, .. } = run;
+    let (evaluations, jacobians) = (sys.calls.get(), sys.jacobians.get());
+    let eom = sys.eom.into_inner();
     let mut report = out.report;
     state.clone_from(&out.previous);
-    let (stats, failed) = match integrated {
-        Ok(stats) => (stats, None),
-        Err(e) => ((0, 0, 0), Some(e)),
-    };
-    if report.positions < motion.steps + 1 {
-        let error = match out.stop.or(failed) {
+    let reached = out.event.as_ref().map_or(t.min(span), |e| e.time);
+    if report.positions < motion.steps + 1 && out.event.is_none() {
+        let error = match out.stop.or(error) {
             // Steps cut down again and again at a limit position end as a
             // collapse or as apparent stiffness: the limit is the reason.
             Some(SolveError::Simulation { time, .. }) if eom.limit_met => {
@@ -525,12 +281,94 @@ pub fn simulate_within(
     Ok(SimReport {
         run: report,
         integration: *integration,
-        steps: stats.0,
-        rejected: stats.1,
-        evaluations: stats.2.max(eom.evaluations),
-        reached: out.reached.min(span),
+        steps,
+        rejected,
+        evaluations: evaluations.max(eom.evaluations),
+        jacobians,
+        reached,
+        segments,
+        event: out.event,
     })
 }
+
+/// Integrates `run` to its end with the method of `integration`, the
+/// automatic choice switching between Dormand-Prince 5(4) and Radau IIA;
+/// the stretches each method integrated. The free state is an array for
+/// up to [`IMPLICIT_MAX_FREE`] free DOFs, a `Vec` beyond, where the
+/// implicit method is not available.
+fn integrate(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
+    match run.y.len() {
+        2 => integrate_as::<[f64; 2]>(run, integration),
+        4 => integrate_as::<[f64; 4]>(run, integration),
+        6 => integrate_as::<[f64; 6]>(run, integration),
+        _ => integrate_as::<Vec<f64>>(run, integration),
+    }
+}
+
+/// The most free DOFs the implicit method integrates.
+pub const IMPLICIT_MAX_FREE: usize = 3;
+
+fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
+    let implicit = run.y.len() <= 2 * IMPLICIT_MAX_FREE;
+    let auto = integration.integrator == Integrator::Auto && implicit;
+    let mut method = match integration.integrator {
+        Integrator::Auto => Integrator::Dopri5,
+        Integrator::Radau5 if !implicit => {
+            run.error = Some(SolveError::Simulation { time: 0.0, reason: TOO_MANY_FOR_IMPLICIT });
+            return Vec::new();
+        }
+        m => m,
+    };
+    let (rtol, atol, span) = (integration.rtol, integration.atol, run.span);
+    let mut segments = Vec::new();
+    while !run.out.done {
+        let (from, calls, steps) = (run.t, run.sys.calls.get(), run.steps);
+        let next = match method {
+            Integrator::Radau5 => advance::<Y, _>(run, method, auto, |h| {
+                ImplicitRungeKutta::<Ordinary, Radau, f64, Y, 5, 3, 3>::radau5()
+                    .rtol(rtol)
+                    .atol(atol)
+                    .h0(h)
+                    .h_max(span)
+                    .max_steps(usize::MAX)
+            }),
+            Integrator::Dop853 => advance::<Y, _>(run, method, auto, |h| {
+                ExplicitRungeKutta::<Ordinary, DormandPrince, f64, Y, 8, 12, 16>::dop853()
+                    .rtol(rtol)
+                    .atol(atol)
+                    .h0(h)
+                    .h_max(span)
+                    .max_steps(usize::MAX)
+            }),
+            _ => advance::<Y, _>(run, method, auto, |h| {
+                ExplicitRungeKutta::<Ordinary, DormandPrince, f64, Y, 5, 7, 7>::dopri5()
+                    .rtol(rtol)
+                    .atol(atol)
+                    .h0(h)
+                    .h_max(span)
+                    .max_steps(usize::MAX)
+            }),
+        };
+        let to = run.out.event.as_ref().map_or(run.t, |e| e.time);
+        if to > from || segments.is_empty() {
+            segments.push(Segment {
+                method,
+                from,
+                to,
+                steps: run.steps - steps,
+                evaluations: run.sys.calls.get() - calls,
+            });
+        }
+        match next {
+            Next::Switch(m) => method = m,
+            Next::Done => break,
+        }
+    }
+    segments
+}
+
+const TOO_MANY_FOR_IMPLICIT: &str = "the implicit integrator takes at most 3 degrees of freedom moving under the \
+                                     forces: integrate this mechanism with `INTEGRATOR explicit`";
 
 /// A simulation without a free DOF: the prescribed motion, run as a
 /// kinematic run through the output times.
@@ -556,5 +394,15 @@ fn prescribed(
     let replay = Motion { steps: motion.steps, dt: motion.dt, inputs: tables.collect() };
     let report = run(mech, state, Some(&replay), params, observer)?;
     let reached = report.stop.as_ref().map_or(motion.steps, |s| s.last_good) as f64 * motion.dt;
-    Ok(SimReport { run: report, integration: *integration, steps: 0, rejected: 0, evaluations: 0, reached })
+    Ok(SimReport {
+        run: report,
+        integration: *integration,
+        steps: 0,
+        rejected: 0,
+        evaluations: 0,
+        jacobians: 0,
+        reached,
+        segments: Vec::new(),
+        event: None,
+    })
 }

@@ -31,12 +31,13 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let m = model::model(deck)?;
     let sizes = refs::Sizes::of(&m.mechanism);
     let dynamics = dynamics::dynamics(deck, &m.mechanism, &sizes, deck_dir)?;
-    let (motion, params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
-    let integration = motion::integration(deck, &params);
+    let (motion, mut params) = motion::motion(deck, sizes.n_dof, deck_dir)?;
+    let mut integration = motion::integration(deck, &mut params);
     if let Some(mo) = &motion {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
     let out = storage::outputs(deck, &sizes)?;
+    integration.stop_when = motion::stop_when(deck, &out.buffers)?;
     let optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
     Ok(Compiled {
         mode: deck.mode.value,

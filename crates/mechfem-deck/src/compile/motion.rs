@@ -3,7 +3,9 @@
 
 use std::path::Path;
 
-use mechfem_core::dynamics::Integration;
+use mechfem_core::dynamics::{Integration, StopWhen};
+
+use crate::compiled::Buffer;
 use mechfem_core::{InputMotion, Mechanism, Motion, Params, State};
 
 use super::table::{self, Layout, Table};
@@ -93,12 +95,32 @@ pub(crate) fn motion(deck: &Deck, n_dof: usize, deck_dir: &Path) -> Result<(Opti
 }
 
 /// The integrator's tolerances: INTTOL's, else both from the Newton
-/// tolerance `params.tol` (ACCURACY or its default).
-pub(crate) fn integration(deck: &Deck, params: &Params) -> Integration {
-    match deck.movement.as_ref().and_then(|mv| mv.inttol.as_ref()) {
-        Some(t) => Integration { rtol: t.rtol.value, atol: t.atol.value },
+/// tolerance `params.tol` (ACCURACY or its default); its method
+/// (INTEGRATOR). With INTTOL and without ACCURACY, the Newton tolerance
+/// follows from INTTOL ([`Integration::newton_tolerance`]).
+pub(crate) fn integration(deck: &Deck, params: &mut Params) -> Integration {
+    let mv = deck.movement.as_ref();
+    let mut integration = match mv.and_then(|mv| mv.inttol.as_ref()) {
+        Some(t) => {
+            let i = Integration::new(t.rtol.value, t.atol.value);
+            if mv.is_some_and(|mv| mv.accuracy.is_none()) {
+                params.tol = i.newton_tolerance();
+            }
+            i
+        }
         None => Integration::from_accuracy(params.tol),
+    };
+    if let Some(m) = mv.and_then(|mv| mv.integrator) {
+        integration.integrator = m.value;
     }
+    integration
+}
+
+/// The STOPWHEN condition, its buffer checked against those defined.
+pub(crate) fn stop_when(deck: &Deck, buffers: &[Buffer]) -> Result<Option<StopWhen>, Box<Diagnostic>> {
+    let Some(def) = deck.movement.as_ref().and_then(|mv| mv.stop_when.as_ref()) else { return Ok(None) };
+    let buffer = super::storage::defined_buffer(deck, &super::storage::by_number(buffers), &def.buffer)?;
+    Ok(Some(StopWhen { quantity: buffer.quantity, buffer: buffer.number, value: def.value.value }))
 }
 
 /// Checks the velocity change / (n dt) of every MOV_RELE and MOV_ABSE

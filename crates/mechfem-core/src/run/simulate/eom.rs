@@ -3,6 +3,7 @@
 
 use super::super::inverse::InverseDynamics;
 use super::super::observe::PositionView;
+use super::super::record::{record, Quantity};
 use crate::error::{SolveError, Unsupported};
 use crate::model::{Mechanism, State};
 use crate::solver::{correct, Kinematics, Params, TransferOrder};
@@ -73,10 +74,13 @@ pub(super) struct Eom<'a> {
     pub(super) kept_q: Vec<f64>,
     pub(super) kept_y: Vec<f64>,
     pub(super) kept_t: f64,
+    pub(super) kept_det: f64,
     /// The largest |det(D^c)| met so far.
     pub(super) det_max: f64,
     /// Whether a stage ran into a limit position of a free DOF.
     pub(super) limit_met: bool,
+    /// det(D^c) at the last position found (0 before the first).
+    pub(super) det_last: f64,
 }
 
 /// |det(D^c)| below this share of the largest met so far is a limit position.
@@ -124,6 +128,16 @@ impl Eom<'_> {
         // forever. Such a position counts as not found.
         let det = self.kin.det().abs();
         self.det_max = self.det_max.max(det);
+        // Newton from a far prediction (a long step's stage) can close the
+        // mechanism on its other assembly branch, where det(D^c) has the
+        // other sign: such a position counts as not found either.
+        let (before, after) = (self.det_last, self.kin.det());
+        if before * after < 0.0 {
+            self.state.clone_from(&self.saved);
+            let _ = self.kin.transfer(mech, &mut self.state, TransferOrder::Second);
+            return Err(SolveError::DetSignChange { before, after });
+        }
+        self.det_last = after;
         if det < LIMIT_DET * self.det_max {
             self.limit_met = true;
             self.state.clone_from(&self.saved);
@@ -198,6 +212,7 @@ impl Eom<'_> {
         self.kept_q.copy_from_slice(&self.q_last);
         self.kept_y.copy_from_slice(&self.found_y);
         self.kept_t = self.found_t;
+        self.kept_det = self.det_last;
     }
 
     /// Back at the position [`Self::keep`] kept, so that the integration
@@ -208,6 +223,7 @@ impl Eom<'_> {
         self.q_last.copy_from_slice(&self.kept_q);
         self.found_y.copy_from_slice(&self.kept_y);
         self.found_t = self.kept_t;
+        self.det_last = self.kept_det;
         let _ = self.kin.transfer(self.mech, &mut self.state, TransferOrder::Second);
     }
 
@@ -226,6 +242,29 @@ impl Eom<'_> {
             input_vel: &self.qd,
             input_acc: &self.qdd,
         }
+    }
+}
+
+impl Eom<'_> {
+    /// The value of `quantity` at the position last found, with the free
+    /// DOFs' accelerations `acc` found there (inverse dynamics evaluated
+    /// for a quantity of the dynamics).
+    pub(super) fn watch(&mut self, quantity: Quantity, acc: &[f64]) -> f64 {
+        for (&j, &a) in self.free.iter().zip(acc) {
+            self.qdd[j] = a;
+        }
+        let view = PositionView {
+            index: 0,
+            time: self.found_t,
+            mech: self.mech,
+            state: &self.state,
+            kin: &self.kin,
+            input_vel: &self.qd,
+            input_acc: &self.qdd,
+        };
+        let mut out = Vec::with_capacity(1);
+        record(&[quantity], &view, Some(&mut self.inverse), &mut out);
+        out[0]
     }
 }
 

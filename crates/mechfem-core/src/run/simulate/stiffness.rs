@@ -10,47 +10,50 @@ pub(super) struct Evaluation {
 }
 
 /// Why a stiff simulation stops.
-pub(super) const STIFF_REASON: &str = "the motion became stiff (a very stiff spring or damper?): the integrator's \
-                                       steps are held by its stability to less than 1/2000 of the output interval, \
-                                       and an explicit method would need very many steps";
+pub(super) const STIFF_REASON: &str = "the motion became stiff (a very stiff spring or damper?): the explicit \
+                                       integrator's steps are held by its stability to less than 1/2000 of the \
+                                       output interval (let `INTEGRATOR auto` or `INTEGRATOR implicit` integrate it)";
 
 /// The stiffness test of Hairer and Wanner (Solving ODEs II, section IV.2,
-/// as in their DOPRI5), which `Dopri5`'s own test is, with one condition
-/// more: stiffness is a problem only when it is expensive.
+/// as in their DOPRI5 and DOP853), with one condition more for an explicit
+/// method that must not switch: stiffness is a problem only when it is
+/// expensive.
 ///
-/// Dormand and Prince's last two stages are both at the step's end, so
-/// `rho = |k7 - k6| / |y7 - y6|` estimates the largest |eigenvalue| of the
-/// equations' Jacobian, and `h rho` near the method's stability bound
-/// (3.25) says that stability, not accuracy, holds the step. That is also
-/// true of every motion that has come to rest: nothing limits the step but
-/// stability, and it settles near the bound, one to two steps per period of
-/// the mechanism's own slowest oscillation. Such a step is not short and
-/// the motion not expensive; only a step held far below the output interval
-/// (a very stiff spring's oscillation, far faster than anything the
-/// outputs show) is. So a step counts as stiff when `h rho > 3.25` and it
-/// is shorter than 1/2000 of the output interval (the step budget's
-/// average); fifteen of them with fewer than six others in between stop
-/// the simulation, as in DOPRI5.
-#[derive(Default)]
+/// The method's last stage and the next step's first are both at the
+/// step's end, so `rho = |f1 - f2| / |y1 - y2|` estimates the largest
+/// |eigenvalue| of the equations' Jacobian, and `h rho` near the method's
+/// stability bound (3.25 for Dormand-Prince 5(4), 6.1 for DOP853) says that
+/// stability, not accuracy, holds the step. That is also true of every
+/// motion that has come to rest: nothing limits the step but stability,
+/// and it settles near the bound, one to two steps per period of the
+/// mechanism's own slowest oscillation. For the automatic choice that is
+/// reason enough to go implicit; an explicit method chosen by the deck
+/// stops only when the step is held far below the output interval (a very
+/// stiff spring's oscillation, far faster than anything the outputs show),
+/// shorter than 1/2000 of it (the step budget's average). Fifteen stiff
+/// steps with fewer than six others in between make the motion stiff, as
+/// in DOPRI5.
 pub(super) struct Stiffness {
     /// Stiff steps counted, and other steps since the last stiff one.
     stiff: u32,
     calm: u32,
+    /// The method's stability bound on `h rho`.
+    bound: f64,
+    /// Whether only steps far below the output interval count.
+    costly_only: bool,
 }
 
 impl Stiffness {
-    /// Whether the step of length `h` just accepted, whose last two
-    /// evaluations are `evals`, makes the motion stiff.
-    pub(super) fn stiff(&mut self, h: f64, dt: f64, evals: &[Evaluation; 2]) -> bool {
-        let [stage6, stage7] = evals;
-        // Both at the step's end, or the step is not what it is taken for.
-        if stage6.t != stage7.t {
-            return false;
-        }
+    pub(super) fn new(bound: f64, costly_only: bool) -> Stiffness {
+        Stiffness { stiff: 0, calm: 0, bound, costly_only }
+    }
+
+    /// Whether the step of length `h` just accepted, ending at `t`, makes
+    /// the motion stiff; `sys` holds its last evaluations.
+    pub(super) fn stiff(&mut self, h: f64, t: f64, dt: f64, sys: &super::system::System<'_>) -> bool {
         let distance = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-        let (num, den) = (distance(&stage7.dy, &stage6.dy), distance(&stage7.y, &stage6.y));
-        let held = den > 0.0 && h * num > 3.25 * den;
-        if held && h * 2000.0 < dt {
+        let held = sys.pair_at(t, |a, b| h * distance(&a.dy, &b.dy) > self.bound * distance(&a.y, &b.y));
+        if held && (!self.costly_only || h * 2000.0 < dt) {
             self.calm = 0;
             self.stiff += 1;
             return self.stiff >= 15;
