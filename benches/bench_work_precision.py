@@ -57,7 +57,7 @@ from benchenv import ROOT, ensure_venv
 PEERS = ["scipy==1.17.1", "scikit-sundae==1.2.0", "exudyn==1.13.6"]
 TARGETS = [1e-4, 1e-6, 1e-8, 1e-10]
 # mechfem's INTEGRATOR methods that can afford the stiff problem at a tight tolerance.
-STIFF_OK = ("implicit", "auto")
+STIFF_OK = ("implicit", "radau5", "auto", None)
 
 
 def problems(names: list[str]) -> list[Any]:

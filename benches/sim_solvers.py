@@ -133,8 +133,11 @@ class Mechfem(Solver):
 
     def _read(self, result: Any) -> Run:
         sim, stop = result.simulation, result.report.stop
+        # The Jacobians an implicit method formed, where the binding reports them.
+        jacobians = (getattr(result, "_raw", {}).get("simulation") or {}).get("jacobians")
         if stop is None:
-            return Run(self.problem.read_mechfem(result.buffers), sim.evaluations, sim.steps)
+            values = self.problem.read_mechfem(result.buffers)
+            return Run(values, sim.evaluations, sim.steps, jacobians)
         # The solver's own words, up to the hint that follows them.
         why = stop.message.split(" (")[0].split(": ")[-1]
         return Run(None, sim.evaluations, sim.steps, None, f"stopped at t = {sim.reached:.3g}: {why}")
