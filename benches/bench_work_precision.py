@@ -22,8 +22,9 @@ least ``--repeat`` calls and of more until they have taken ``--min-time`` second
 
 * mechfem: the deck run by ``mechfem.run_deck`` (compiled once: a deck file run again unchanged is not read again),
   and, where the deck reading shows, by ``run_deck_text`` (compiled in every call); each ``--mechfem`` method is the
-  deck's ``INTEGRATOR`` statement (``default``: none, the deck's default). INTTOL is the tolerance, ACCURACY 1e-10
-  or the tolerance below it (``--accuracy default``: no ACCURACY, the deck's default).
+  deck's ``INTEGRATOR`` statement (``default``: none): by default ``auto``, ``dopri5``, ``dop853`` and ``radau5``.
+  INTTOL is the tolerance; no ACCURACY, so that the Newton tolerance follows from INTTOL as in a user's deck
+  (``--accuracy tol``: ACCURACY 1e-10 or the tolerance below it).
 * SciPy ``solve_ivp``: Radau, DOP853 and LSODA (``--scipy``) on the index-1 ODE form, right-hand sides vectorised
   NumPy (``vectorized=True``: Radau's finite-difference Jacobian is one call).
 * SUNDIALS IDA (scikit-sundae): Andrews in the stabilised index-2 (GGL) form, the four-bar as an implicit ODE; with
@@ -142,13 +143,17 @@ def main() -> None:
     parser.add_argument("--problem", nargs="+", default=["andrews", "stiff"], choices=["andrews", "stiff"])
     parser.add_argument("--tol", type=float, nargs="+", default=[1e-4, 1e-6, 1e-8, 1e-10, 1e-12])
     parser.add_argument(
-        "--mechfem", nargs="+", default=["default"], help="the deck's INTEGRATOR methods ('default': no statement)"
+        "--mechfem",
+        nargs="+",
+        default=["auto", "dopri5", "dop853", "radau5"],
+        help="the deck's INTEGRATOR methods ('default': no statement)",
     )
     parser.add_argument(
         "--accuracy",
         choices=["tol", "default"],
-        default="tol",
-        help="mechfem's ACCURACY: 1e-10 or the tolerance below it ('tol'), or none, the deck's default ('default')",
+        default="default",
+        help="mechfem's ACCURACY: none, the deck's default, which follows from INTTOL ('default'), or 1e-10 or the "
+        "tolerance below it ('tol')",
     )
     parser.add_argument("--scipy", nargs="*", default=["Radau", "DOP853", "LSODA"])
     parser.add_argument("--no-ida", action="store_true")

@@ -118,7 +118,10 @@ class Mechfem(Solver):
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            result = mechfem.run_deck(self.deck(tol), det=False)
+            try:
+                result = mechfem.run_deck(self.deck(tol), det=False)
+            except mechfem.DeckError as e:  # a method this mechfem does not have
+                return Run(None, note=str(e).splitlines()[0])
         return self._read(result)
 
     def run_fresh(self, tol: float) -> Run:
