@@ -295,13 +295,15 @@ def sundae_version() -> str:
 
 
 def interpolate(runs: list[tuple[float, float]], at: float) -> float | None:
-    """The cost (second of each pair) at error ``at`` (first), log-log between the two runs whose errors bracket
-    it; None outside the runs' range."""
-    pts = sorted((e, c) for e, c in runs if e > 0 and c > 0 and math.isfinite(e))
-    for (e1, c1), (e2, c2) in zip(pts, pts[1:], strict=False):
+    """The cost (second of each pair) at error ``at`` (first): log-log between the two runs whose errors bracket it
+    on the method's work-precision front (a run that costs more than another without being more accurate is left
+    out); None outside the front's range."""
+    front: list[tuple[float, float]] = []
+    for e, c in sorted((e, c) for e, c in runs if e > 0 and c > 0 and math.isfinite(e) and math.isfinite(c)):
+        if not front or c < front[-1][1]:
+            front.append((e, c))
+    for (e1, c1), (e2, c2) in zip(front, front[1:], strict=False):
         if e1 <= at <= e2:
-            if e1 == e2:
-                return min(c1, c2)
             w = (math.log(at) - math.log(e1)) / (math.log(e2) - math.log(e1))
             return math.exp(math.log(c1) + w * (math.log(c2) - math.log(c1)))
     return None
