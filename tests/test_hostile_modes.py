@@ -69,7 +69,12 @@ def test_a_simulated_dof_without_any_mass_is_refused_clearly(tmp_path: Path, cli
 def test_a_very_stiff_spring_stops_the_simulation_with_its_reason_in_bounded_time(tmp_path: Path, cli: Cli):
     # k = 1e12 on the output angle: oscillations of period ~1e-6 s against outputs every 2.5 ms. The integrator
     # gives up after its step budget (2000 steps per output interval, at least 200 000) instead of running for hours.
-    deck = variant(tmp_path, SIM, ("SPRING\t-1\t0\t0", "SPRING\t-1\t1e12\t0"), ("TSTEPE 800", "TSTEPE 10"))
+    deck = variant(
+        tmp_path,
+        SIM,
+        ("SPRING\t-1\t0\t0", "SPRING\t-1\t1e12\t0"),
+        ("TSTEPE 800 2.5E-3", "TSTEPE 10 2.5E-3\nINTEGRATOR explicit"),
+    )
     t0 = time.monotonic()
     status, err, out = run(cli, deck)
     assert time.monotonic() - t0 < 240

@@ -128,16 +128,17 @@ def test_supply_mechanism_runs_up_to_its_steady_speed(tmp_path: Path, cli: Cli) 
     assert 60.0 < late.mean() < 66.0
     assert (late.max() - late.min()) / late.mean() < 0.06
     prt = (tmp_path / "supply_sim.prt").read_text()
-    assert "SIMULATION\n  integrator: Dormand-Prince 5(4)" in prt
+    assert "SIMULATION\n  integrator: auto (Dormand-Prince 5(4)" in prt
     assert "tolerances: relative 1e-10, absolute 1e-10" in prt
     assert "energy balance from the first position to the last" in prt
 
 
-def test_a_very_stiff_spring_stops_the_simulation_with_its_reason(tmp_path: Path) -> None:
-    # A torsion spring of 1e15 N m on the pendulum: oscillations far faster than the outputs. The integrator's
-    # steps are held by its stability to far less than the output interval, the motion is found stiff within a few
-    # thousand steps, and the simulation stops with that reason instead of running for hours.
+def test_a_very_stiff_spring_stops_the_explicit_integrator_with_its_reason(tmp_path: Path) -> None:
+    # A torsion spring of 1e15 N m on the pendulum: oscillations far faster than the outputs. The explicit
+    # integrator's steps are held by its stability to far less than the output interval, the motion is found stiff
+    # within a few thousand steps, and the simulation stops with that reason instead of running for hours.
     text = RELEASED.read_text().replace("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nSPRING 2 1E15 0 0.001")
+    text = text.replace("MOV_DYN 1 0 ", "INTEGRATOR explicit\nMOV_DYN 1 0 ")
     deck = tmp_path / "stiff.mec"
     deck.write_text(text)
     with pytest.warns(mechfem.IncompleteRunWarning, match="became stiff"):
@@ -162,3 +163,47 @@ def test_a_damped_pendulum_rests_to_the_end_of_a_long_simulation(tmp_path: Path,
     assert abs(r.buffers[2][-1] + math.pi / 2) < 1e-8
     energy = r.buffers[5] + r.buffers[6]
     assert np.all(np.diff(energy) <= 1e-10 * (energy[0] - energy[-1]))
+
+
+def test_the_automatic_choice_integrates_a_stiff_spring_damper_implicitly(tmp_path: Path) -> None:
+    # A stiff torsion spring with a strong damper on the pendulum (k = 1e6, c = 1e5): the automatic choice goes over
+    # to Radau IIA, runs to the end, and the print file says which method ran where.
+    text = RELEASED.read_text().replace("GRAVITY 0 -9.81", "GRAVITY 0 -9.81\nSPRING 2 1E6 -1.0 1E5")
+    deck = tmp_path / "stiff.mec"
+    deck.write_text(text)
+    r = mechfem.run_deck(deck)
+    assert r.report.complete and r.simulation is not None
+    methods = [m for m, *_ in r.simulation.segments]
+    assert methods[0].startswith("Dormand-Prince") and any(m.startswith("Radau") for m in methods)
+    assert r.simulation.jacobians > 0 and r.simulation.segments[-1][2] == pytest.approx(2.4, abs=1e-12)
+    lines = "\n".join(r.simulation.lines(r.dynamic, r.time))
+    assert "methods by stretch of time:" in lines and "Radau IIA 5" in lines
+
+
+def test_stopwhen_ends_the_pendulum_at_the_bottom_and_says_when(tmp_path: Path, cli: Cli) -> None:
+    # Released horizontal, the pendulum reaches the bottom (angle -pi/2, buffer 2) after a quarter of its period
+    # 4 sqrt(1/9.81) K(sin 45 deg): the simulation ends there, with the crossing as its last position.
+    quarter = math.sqrt(1 / 9.81) * 1.8540746773013719
+    text = RELEASED.read_text().replace("MOV_DYN 1 0 ", f"STOPWHEN 2 {-math.pi / 2!r}\nMOV_DYN 1 0 ")
+    deck = tmp_path / "stop.mec"
+    deck.write_text(text)
+    r = mechfem.run_deck(deck)
+    assert r.report.complete and r.simulation is not None and r.simulation.event is not None
+    buffer, value, time, inputs = r.simulation.event
+    assert (buffer, value) == (2, -math.pi / 2)
+    assert abs(time - quarter) < 1e-8 and abs(inputs[0] + math.pi / 2) < 1e-8
+    assert r.positions == math.floor(quarter / 0.01) + 2 and r.time[-1] == time
+    proc = cli("run", deck, "-o", tmp_path / "out", "--no-media")
+    assert proc.returncode == 0, proc.stderr
+    prt = (tmp_path / "out" / "stop.prt").read_text()
+    assert "stopped by STOPWHEN: buffer 2 crossed -1.570796327 at time 0.591960" in prt
+
+
+def test_an_accuracy_far_looser_than_inttol_is_warned_of(tmp_path: Path) -> None:
+    text = RELEASED.read_text().replace("ACCURACY 1E-10", "ACCURACY 1E-10\nINTTOL 1E-13 1E-13")
+    deck = tmp_path / "loose.mec"
+    deck.write_text(text)
+    with pytest.warns(UserWarning, match="ACCURACY 1e-10 .* is far looser than INTTOL"):
+        r = mechfem.run_deck(deck)
+    assert r.simulation is not None and r.simulation.tolerance_warning is not None
+    assert "warning: ACCURACY" in "\n".join(r.simulation.lines(r.dynamic, r.time))

@@ -8,7 +8,8 @@ Numbers that name things are the deck's own (1-based, destinations signed).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import warnings
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -186,9 +187,22 @@ class Simulation:
     """Evaluations of the equations of motion (each one Newton position)."""
     reached: float
     """The time the simulation reached."""
+    jacobians: int = 0
+    """Jacobians the implicit method computed (each ``2 nf + 1`` of the evaluations, nf the inputs moving under the
+    forces)."""
+    segments: list[tuple[str, float, float, int, int]] = field(default_factory=list)
+    """Which method integrated which stretch: ``(method, from, to, steps, evaluations)`` in order."""
+    event: tuple[int, float, float, list[float]] | None = None
+    """Where STOPWHEN ended the simulation: ``(buffer, value, time, inputs)``; None when it did not."""
+    tolerance_warning: str | None = None
+    """Why ACCURACY and INTTOL conflict, if they do."""
 
     @classmethod
     def from_core(cls, d: dict[str, Any]) -> Simulation:
+        warning = d.get("tolerance_warning")
+        if warning:
+            warnings.warn(warning, UserWarning, stacklevel=3)
+        event = d.get("event")
         return cls(
             str(d["method"]),
             float(d["rtol"]),
@@ -197,6 +211,10 @@ class Simulation:
             int(d["rejected"]),
             int(d["evaluations"]),
             float(d["reached"]),
+            int(d.get("jacobians", 0)),
+            [(str(m), float(a), float(b), int(s), int(e)) for m, a, b, s, e in d.get("segments", [])],
+            None if event is None else (int(event[0]), float(event[1]), float(event[2]), [float(x) for x in event[3]]),
+            None if warning is None else str(warning),
         )
 
     def lines(self, series: DynamicSeries | None, time: FloatArray) -> list[str]:
@@ -209,6 +227,20 @@ class Simulation:
             "equations of motion",
             f"  time reached: {self.reached:.10g}",
         ]
+        if self.jacobians:
+            out.append(f"  Jacobians of the equations of motion: {self.jacobians}")
+        if len(self.segments) > 1 or (self.segments and not self.method.startswith(self.segments[0][0])):
+            out.append("  methods by stretch of time:")
+            out += [
+                f"    {method}: from {a:.10g} to {b:.10g}, {s} steps, {e} evaluations"
+                for method, a, b, s, e in self.segments
+            ]
+        if self.event is not None:
+            b, v, t, q = self.event
+            at = ", ".join(f"{x:.10g}" for x in q)
+            out.append(f"  stopped by STOPWHEN: buffer {b} crossed {v:.10g} at time {t:.10g} (inputs {at})")
+        if self.tolerance_warning:
+            out.append(f"  warning: {self.tolerance_warning}")
         if series is not None and time.size > 1:
             with np.errstate(over="ignore", invalid="ignore"):
                 e = series.kinetic + series.potential

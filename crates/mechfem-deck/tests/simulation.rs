@@ -229,3 +229,38 @@ fn the_modes_with_dynamics() {
     assert!(Mode::DynAna.has_dynamics() && Mode::DynSim.has_dynamics());
     assert!(!Mode::KinAna.has_dynamics() && !Mode::KinOpt.has_dynamics());
 }
+
+#[test]
+fn without_accuracy_the_newton_tolerance_follows_inttol() {
+    let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nINTTOL 1e-12 1e-13\n"));
+    assert!((c.params.tol - 1e-14).abs() < 1e-28);
+    let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nINTTOL 1e-6 1e-6\n"));
+    assert_eq!(c.params.tol, Params::default().tol);
+    let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nINTTOL 1e-10 1e-10\n"));
+    assert!((c.params.tol - 1e-11).abs() < 1e-25);
+    assert!(c.integration.conflict(c.params.tol).is_none());
+    let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nACCURACY 1e-10\nINTTOL 1e-13 1e-13\n"));
+    assert!(c.integration.conflict(c.params.tol).is_some_and(|w| w.contains("ACCURACY")));
+}
+
+#[test]
+fn integrator_and_stopwhen_choose_the_method_and_the_end() {
+    use mechfem_core::dynamics::Integrator;
+    let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\n"));
+    assert_eq!((c.integration.integrator, c.integration.stop_when), (Integrator::Auto, None));
+    for (word, method) in [
+        ("auto", Integrator::Auto),
+        ("explicit", Integrator::Dopri5),
+        ("Implicit", Integrator::Radau5),
+        ("DOP853", Integrator::Dop853),
+        ("dopri5", Integrator::Dopri5),
+        ("radau5", Integrator::Radau5),
+    ] {
+        let c = ok(&pendulum("DYN SIM", &format!("TSTEPE 10 0.01\nMOV_DYN 1 0\nINTEGRATOR {word}\n")));
+        assert_eq!(c.integration.integrator, method, "{word}");
+    }
+    let c = ok(&pendulum("DYN SIM", "TSTEPE 10 0.01\nMOV_DYN 1 0\nSTOPWHEN 2 -1.5\nSTORAGE\nBUFTIME 1\nBUFINP 1 2\n"));
+    let sw = c.integration.stop_when.expect("STOPWHEN");
+    assert_eq!((sw.buffer, sw.value), (2, -1.5));
+    assert_eq!(Some(sw.quantity), c.buffers.iter().find(|b| b.number == 2).map(|b| b.quantity));
+}

@@ -348,16 +348,16 @@ pub struct Integration {
 /// The integration method of a simulation (deck `INTEGRATOR`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Integrator {
-    /// DOP853 while the motion is not stiff, Radau IIA 5 while it is: the
-    /// method switches on detected stiffness, as LSODA does (`auto`, the
-    /// default).
+    /// Dormand-Prince 5(4) while the motion is not stiff, Radau IIA 5
+    /// while it is: the method switches on detected stiffness, as LSODA
+    /// does (`auto`, the default).
     #[default]
     Auto,
     /// The explicit Runge-Kutta method of Dormand and Prince of order 8
-    /// (`explicit` or `dop853`).
+    /// with its dense output of order 7 (`dop853`).
     Dop853,
     /// The explicit Runge-Kutta method of Dormand and Prince of order 5(4)
-    /// (`dopri5`).
+    /// (`explicit` or `dopri5`).
     Dopri5,
     /// The implicit Runge-Kutta method Radau IIA of order 5 (`implicit` or
     /// `radau5`).
@@ -368,7 +368,7 @@ impl Integrator {
     /// The method's name as the print file and the run report say it.
     pub fn name(self) -> &'static str {
         match self {
-            Integrator::Auto => "auto (DOP853, Radau IIA 5 while stiff)",
+            Integrator::Auto => "auto (Dormand-Prince 5(4), Radau IIA 5 while stiff)",
             Integrator::Dop853 => "DOP853 (explicit Runge-Kutta, order 8)",
             Integrator::Dopri5 => "Dormand-Prince 5(4) (explicit Runge-Kutta)",
             Integrator::Radau5 => "Radau IIA 5 (implicit Runge-Kutta, order 5)",
@@ -379,8 +379,8 @@ impl Integrator {
     pub fn from_word(word: &str) -> Option<Integrator> {
         Some(match word.to_ascii_lowercase().as_str() {
             "auto" => Integrator::Auto,
-            "explicit" | "dop853" => Integrator::Dop853,
-            "dopri5" => Integrator::Dopri5,
+            "dop853" => Integrator::Dop853,
+            "explicit" | "dopri5" => Integrator::Dopri5,
             "implicit" | "radau5" => Integrator::Radau5,
             _ => return None,
         })
@@ -434,12 +434,21 @@ impl Integration {
     /// The smallest Newton tolerance [`Self::newton_tolerance`] gives.
     pub const NEWTON_FLOOR: f64 = 1e-14;
 
-    /// Whether a Newton tolerance `tol` set by the deck (ACCURACY) is too
-    /// loose for these tolerances: the positions' error, up to `tol`, then
-    /// bounds the simulation's error instead of the integrator's, and
-    /// steps fail their error test on position noise.
-    pub fn conflicts_with(&self, tol: f64) -> bool {
-        tol > self.rtol.min(self.atol).max(Self::NEWTON_FLOOR)
+    /// Why a Newton tolerance `tol` (ACCURACY) is too loose for these
+    /// tolerances, if it is: more than ten times the tighter of the two,
+    /// the positions' error, up to `tol`, bounds the simulation's error
+    /// instead of the integrator's, and steps fail their error test on
+    /// position noise.
+    pub fn conflict(&self, tol: f64) -> Option<String> {
+        let t = self.rtol.min(self.atol);
+        (tol > 10.000_001 * t.max(Self::NEWTON_FLOOR)).then(|| {
+            format!(
+                "ACCURACY {tol:e} (the Newton tolerance of every position) is far looser than INTTOL's {t:e}: the \
+                 positions' error, not the integrator's, bounds the simulation's accuracy, and steps may be rejected \
+                 on it; leave ACCURACY out (it then follows from INTTOL) or give ACCURACY {:e} or less",
+                (0.1 * t).max(Self::NEWTON_FLOOR)
+            )
+        })
     }
 }
 

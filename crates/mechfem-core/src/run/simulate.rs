@@ -15,10 +15,10 @@
 //! explicit Runge-Kutta methods of Dormand and Prince of order 8 (DOP853)
 //! and 5(4), and the implicit Radau IIA of order 5 with a Jacobian of the
 //! reduced equations by finite differences over the free states. The
-//! default (`INTEGRATOR auto`) integrates with DOP853 and goes over to
-//! Radau IIA where the motion is stiff (stiff springs and dampers, a motion
-//! come to rest), and back where it is not, as LSODA does; the report says
-//! which method ran where ([`SimReport::segments`]).
+//! default (`INTEGRATOR auto`) integrates with Dormand-Prince 5(4) and goes
+//! over to Radau IIA where the motion is stiff (stiff springs and dampers,
+//! a motion come to rest), and back where it is not, as LSODA does; the
+//! report says which method ran where ([`SimReport::segments`]).
 //!
 //! The outputs come from the integrator's own solution: at each output time
 //! its dense output gives q and q', the position there is found by Newton
@@ -79,6 +79,9 @@ pub struct SimReport {
     pub segments: Vec<Segment>,
     /// Where a STOPWHEN condition ended the simulation, if it did.
     pub event: Option<Event>,
+    /// Why the Newton tolerance and the integrator's tolerances conflict,
+    /// if they do ([`Integration::conflict`]).
+    pub tolerance_warning: Option<String>,
 }
 
 /// A stretch of time one method integrated.
@@ -251,6 +254,9 @@ pub fn simulate_within(
         steps: 0,
         rejected: 0,
         acc: vec![0.0; nf],
+        a0: acc0,
+        a1: vec![0.0; nf],
+        yd: vec![0.0; 2 * nf],
         error: None,
     };
     let segments = integrate(&mut run, integration);
@@ -288,6 +294,7 @@ pub fn simulate_within(
         reached,
         segments,
         event: out.event,
+        tolerance_warning: integration.conflict(params.tol),
     })
 }
 
@@ -404,5 +411,6 @@ fn prescribed(
         reached,
         segments: Vec::new(),
         event: None,
+        tolerance_warning: integration.conflict(params.tol),
     })
 }

@@ -63,20 +63,19 @@ impl<'a> System<'a> {
     /// two are kept there.
     pub(super) fn pair_at(&self, t: f64, f: impl FnOnce(&Evaluation, &Evaluation) -> bool) -> bool {
         let last = self.last.borrow();
-        let at: Vec<&Evaluation> = last.iter().filter(|e| e.t == t).collect();
         let distance =
             |a: &Evaluation, b: &Evaluation| a.y.iter().zip(&b.y).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
         let mut best: Option<(f64, usize, usize)> = None;
-        for i in 0..at.len() {
-            for j in i + 1..at.len() {
-                let d = distance(at[i], at[j]);
+        for i in (0..KEPT).filter(|&i| last[i].t == t) {
+            for j in (i + 1..KEPT).filter(|&j| last[j].t == t) {
+                let d = distance(&last[i], &last[j]);
                 if best.is_none_or(|b| d > b.0) {
                     best = Some((d, i, j));
                 }
             }
         }
         match best {
-            Some((d, i, j)) if d > 0.0 => f(at[i], at[j]),
+            Some((d, i, j)) if d > 0.0 => f(&last[i], &last[j]),
             _ => false,
         }
     }
@@ -101,6 +100,21 @@ impl<const N: usize> Free for [f64; N] {
 impl Free for Vec<f64> {
     fn from_slice(y: &[f64]) -> Self {
         y.to_vec()
+    }
+}
+
+impl System<'_> {
+    /// The free accelerations of the kept evaluation at exactly `(t, y)`,
+    /// into `acc`, if one is kept.
+    pub(super) fn acc_at(&self, t: f64, y: &[f64], acc: &mut [f64]) -> bool {
+        let last = self.last.borrow();
+        match last.iter().find(|e| e.t == t && e.y == y) {
+            Some(e) => {
+                acc.copy_from_slice(&e.dy[y.len() / 2..]);
+                true
+            }
+            None => false,
+        }
     }
 }
 
