@@ -310,5 +310,5 @@ def test_a_mechanism_without_inputs_has_nothing_to_simulate() -> None:
 
 def test_simulation_statistics_are_a_dataclass() -> None:
     r = pendulum().simulate(0.5, 10)
-    assert isinstance(r.simulation, Simulation) and r.simulation.method.startswith("Dormand-Prince")
+    assert isinstance(r.simulation, Simulation) and r.simulation.method.startswith("auto (Dormand-Prince")
     assert r.simulation.rejected >= 0 and r.simulation.evaluations >= r.simulation.steps > 0

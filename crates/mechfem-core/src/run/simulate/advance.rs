@@ -101,12 +101,17 @@ where
             }
         }
         let stepped = m.step(&run.sys);
-        if run.sys.take_failure().is_some() {
+        if let Some(failure) = run.sys.take_failure() {
             // The step is not taken: again from its start, shorter.
             (run.rejected, failures) = (run.rejected + 1, failures + 1);
             let shorter = 0.25 * h;
             if failures > 40 || shorter <= 1e-14 * run.span {
-                run.error = Some(SolveError::Simulation { time: run.t, reason: COLLAPSE_REASON });
+                // A force or mass too large for a double is named as such;
+                // anything else is a position that cannot be found.
+                run.error = Some(match failure {
+                    e @ SolveError::Dynamics(_) => e,
+                    _ => SolveError::Simulation { time: run.t, reason: COLLAPSE_REASON },
+                });
                 return Next::Done;
             }
             let Some(fresh) = start(run, &make, shorter) else { return Next::Done };
