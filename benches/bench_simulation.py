@@ -33,6 +33,9 @@ whose errors bracket it (with the time of the loosest run at least as accurate b
 SciPy is installed into ``.venv-bench`` (created on first use; the script re-runs itself there), never into
 mechfem's own environment; mechfem is imported from this source tree (``python/``, with the compiled module that
 ``make install`` builds). Nothing here asserts a time: it is a benchmark, not a test.
+
+The work-precision comparison with SciPy, SUNDIALS IDA and Exudyn on Andrews' squeezing mechanism and a stiff
+four-bar is ``bench_work_precision.py`` (docs/simulation-benchmarks.md).
 """
 
 from __future__ import annotations
