@@ -22,12 +22,13 @@ def test_run_supply_writes_print_file_and_data_set(cli: Cli, supply_with_savedat
     assert prt.is_file() and data.is_file()
     assert f"wrote {prt}" in proc.stdout
     rows = list(csv.reader(data.read_text().splitlines()))
-    assert rows[0] == ["99 ANGB(1)", "100 ANGB(8)", "101 dANGB(8)/dinput1", "102 d2ANGB(8)/dinput1^2"]
+    # The header names the buffers as the deck's NAMES block names alpha and delta.
+    assert rows[0] == ["99 alpha", "100 delta", "101 ddelta/dalpha", "102 d2delta/dalpha^2"]
     assert len(rows) - 1 == SUPPLY_STEPS + 1
     text = prt.read_text()
     assert "ADJUSTMENT OF POSITION 1" in text
     # The legend of the tables: number, name, unit, deck line, what the buffer holds.
-    assert re.search(r"^ +99 +ANGB\(1\) +rad +BUFINP 1 +value of input 1 \(ANGB\(1\)\)$", text, re.M)
+    assert re.search(r"^ +99 +alpha +rad +BUFINP 1 +value of input 1 \(alpha\)$", text, re.M)
 
 
 def test_run_without_savedata_writes_no_data_set(cli: Cli, tmp_path: Path) -> None:

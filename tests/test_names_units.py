@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import re
+import shutil
 import warnings
 from collections.abc import Callable
 from pathlib import Path
@@ -17,10 +18,11 @@ import numpy as np
 import pytest
 
 import mechfem
+from bare_examples import BARE_EXAMPLES
 from mechfem.errors import DeckError
 
 ROOT = Path(__file__).resolve().parents[1]
-EXAMPLES = ROOT / "examples"
+EXAMPLES = BARE_EXAMPLES
 
 L = 1000.0  # m -> mm
 DEG = 180.0 / math.pi  # rad -> deg
@@ -305,7 +307,6 @@ def test_a_bad_names_or_units_line_is_a_deck_error(tmp_path: Path, line: str, wo
 
 @pytest.mark.parametrize("deck", sorted(EXAMPLES.glob("**/*.mec")), ids=lambda p: p.stem)
 def test_an_example_in_si_units_gives_its_results_bit_for_bit(deck: Path, tmp_path: Path) -> None:
-    import shutil
 
     from mechfem import _core
 

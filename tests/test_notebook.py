@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import mechfem
+from bare_examples import bare
 from conftest import ROOT, SUPPLY
 from mechfem import Driven, Mechanism, Motion, Output, figures, notebook
 
@@ -129,7 +130,7 @@ def test_a_stopped_analysis_says_why_and_lists_its_limits() -> None:
 
 
 def test_a_deck_run_shows_its_buffers_with_labels_and_the_mechanism() -> None:
-    result = mechfem.run_deck(SUPPLY)
+    result = mechfem.run_deck(bare(SUPPLY))
     page = Page(result._repr_html_())
     assert page.titles == ["Run of supply.mec"]
     assert page.after("mode") == ["KIN ANA"]

@@ -57,7 +57,8 @@ def test_the_supply_deck_finds_kappa_of_the_theory(optimised: tuple[Path, Path, 
     text = (out / "supply_opt_opt.mec").read_text()
     kappa = float(re.search(r"^\s+5 (\S+)\s+; the angle kappa", text, re.M).group(1))  # type: ignore[union-attr]
     assert abs(kappa - KAPPA) < 2e-4
-    assert "PARA 5 = " in stdout
+    # The variable by the deck's name, with its unit.
+    assert re.search(r"; kappa = -5\.17\d* rad$", stdout, re.M)
     assert re.search(r"^  iteration 1: objective \S+, largest violation 0, step \S+, \d+ runs?$", stderr, re.M)
     # Both dead-position accelerations below 1 % of the largest second-order transfer function.
     data = np.loadtxt(out / "supply_opt.csv", delimiter=",", skiprows=1)
@@ -90,7 +91,7 @@ def test_the_print_file_has_the_history_and_the_variables(optimised: tuple[Path,
     assert "method: least_squares (trf)" in section
     assert re.search(r"^\s+iteration\s+objective\s+violation\s+step\s+runs$", section, re.M)
     assert re.search(r"^\s+0\s+2\.359\d+e-01\s+0\s+0\s+1$", section, re.M)
-    row = re.search(r"^\s+PARA 5\s+-5\.25\s+(\S+)\s+-5\.5\s+-5$", section, re.M)
+    row = re.search(r"^\s+kappa\s+rad\s+-5\.25\s+(\S+)\s+-5\.5\s+-5$", section, re.M)
     assert row is not None and abs(float(row.group(1)) - KAPPA) < 2e-4
     assert re.search(r"objective: start 0\.2359\d+, final \S+", section)
     assert re.search(r"\d+ mechanism runs in \S+ s", section)
@@ -109,10 +110,10 @@ def test_an_infeasible_start_is_refused_with_its_line(cli: Cli, tmp_path: Path) 
     p = cli("run", deck, "-o", tmp_path / "out")
     assert p.returncode == 1, p.stderr
     assert "Traceback" not in p.stderr
-    assert f"error: {deck}: the optimisation (OPTIMISE, line 74) cannot start: the start design is infeasible" in (
+    assert f"error: {deck}: the optimisation (OPTIMISE, line 97) cannot start: the start design is infeasible" in (
         p.stderr
     )
-    assert "PARA 1 (VARY on line 75)" in p.stderr
+    assert "PARA 1 (VARY on line 98)" in p.stderr
     assert not (tmp_path / "out" / "supply_opt_opt.mec").exists()
 
 
@@ -121,7 +122,7 @@ def test_describe_gives_the_optimise_block_in_deck_numbering() -> None:
     assert d["mode"] == "KIN OPT"
     opt = d.get("optimise")
     assert opt is not None
-    assert opt["vary"] == [{"kind": 1, "number": 5, "lo": -5.5, "hi": -5.0, "line": 75}]
+    assert opt["vary"] == [{"kind": 1, "number": 5, "lo": -5.5, "hi": -5.0, "line": 98}]
     assert opt["targets"] == [
         {
             "buffer": 102,
@@ -132,10 +133,10 @@ def test_describe_gives_the_optimise_block_in_deck_numbering() -> None:
             "reference": 100,
             "value": 0.0,
             "weight": 1.0,
-            "line": 78,
+            "line": 101,
         }
     ]
-    assert (opt["bounds"], opt["objective"], opt["steps"], opt["tol"], opt["line"]) == ([], None, 200, None, 74)
+    assert (opt["bounds"], opt["objective"], opt["steps"], opt["tol"], opt["line"]) == ([], None, 200, None, 97)
     plain = _core.describe_deck_text(ROOT.joinpath("examples/supply/supply.mec").read_text(), "supply.mec", ".")
     assert plain.get("optimise") is None
 

@@ -40,7 +40,7 @@ def test_print_file_tabulates_every_buffer_for_bare_printbuf() -> None:
     lines = print_file_lines(result)
     header = next(k for k, line in enumerate(lines) if line.startswith("  position"))
     assert lines[header].split() == ["position", "99", "100", "101", "102"]
-    assert lines[header + 1].split() == ["ANGB(1)", "ANGB(8)", "dANGB(8)/dinput1", "d2ANGB(8)/dinput1^2"]
+    assert lines[header + 1].split() == ["alpha", "delta", "ddelta/dalpha", "d2delta/dalpha^2"]
     table = lines[header + 2 : header + 2 + result.positions]
     assert [int(row.split()[0]) for row in table] == list(range(1, 74))
 

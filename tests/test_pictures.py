@@ -16,6 +16,7 @@ from matplotlib.figure import Figure
 from PIL import Image
 
 import mechfem
+from bare_examples import bare
 from conftest import ROOT, SUPPLY, Cli
 from mechfem.animation import MAX_FRAMES, GifStream, frame_plan, write_animation
 from mechfem.drawing import MechanismDrawing
@@ -30,7 +31,7 @@ SUPPLY_PICTURES = ["supply_pic1.png", "supply_pic1.svg", "supply_pic2.png", "sup
 
 @pytest.fixture(scope="module")
 def supply() -> RunResult:
-    return mechfem.run_deck(SUPPLY)
+    return mechfem.run_deck(bare(SUPPLY))
 
 
 @pytest.fixture(scope="module")
@@ -40,7 +41,7 @@ def every_element() -> RunResult:
 
 def supply_variant(tmp_path: Path, name: str, replace: dict[str, str]) -> Path:
     """A copy of the supply deck with some text replaced."""
-    text = SUPPLY.read_text()
+    text = bare(SUPPLY).read_text()
     for old, new in replace.items():
         assert old in text
         text = text.replace(old, new)

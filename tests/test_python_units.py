@@ -119,3 +119,24 @@ def test_the_names_block_names_points_elements_rows_and_outputs_by_deck_number()
         "ROW 4 phi",
         "DEP 1 psi",
     ]
+
+
+@pytest.mark.parametrize("units", [{}, {"angle": "deg"}, {"length": "mm", "angle": "deg", "mass": "kg", "force": "N"}])
+def test_a_model_read_back_from_its_deck_keeps_every_name_and_unit(units: dict[str, str]) -> None:
+    m = fourbar(**units)
+    motion = Motion.by(4, 360 if units else 2 * math.pi)
+    text = m.to_deck(motion)
+    back = Mechanism.from_deck_text(text, "fourbar")
+    assert back.units == m.units
+    assert set(back.names()) == set(m.names())
+    assert back.to_deck(motion) == text
+
+
+def test_a_model_in_degrees_runs_as_its_twin_in_radians() -> None:
+    deg, rad = fourbar(angle="deg"), fourbar()
+    a, b = deg.run(Motion.by(12, 360)), rad.run(Motion.by(12, 2 * math.pi))
+    assert np.allclose(a.input("phi"), np.degrees(b.input("phi")), rtol=1e-12, atol=1e-12)
+    assert np.allclose(a.value("psi"), np.degrees(b.value("psi")), rtol=1e-12)
+    assert np.allclose(a.value("psi", 1, "phi"), b.value("psi", 1, "phi"), rtol=1e-9)  # deg/deg = rad/rad
+    assert np.allclose(a.value("B"), b.value("B"), rtol=1e-12)  # lengths as they are
+    assert np.allclose(a.value("psi", unit="rad"), b.value("psi"), rtol=1e-12)

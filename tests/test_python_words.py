@@ -528,7 +528,7 @@ def test_a_large_angle_without_a_unit_warns() -> None:
 
 def test_degrees_for_an_input_that_is_not_an_angle_are_refused() -> None:
     slider = Mechanism.from_deck(LIMITS / "slider_dead_centre.mec")
-    with pytest.raises(ValueError, match="gives the input 'E3.value' in degrees .* but it is not an angle"):
+    with pytest.raises(ValueError, match="gives the input 's' in degrees .* but it is not an angle"):
         slider.run(Motion.by(4, 0.1, unit="deg"))
     m = Mechanism("slider")
     B = m.point("B", 1.0, 0.0, fixed="y")

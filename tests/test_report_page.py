@@ -26,14 +26,16 @@ import pytest
 from PIL import Image
 
 import mechfem
+from bare_examples import BARE_EXAMPLES, bare
 from conftest import ROOT, SUPPLY
 from mechfem.report import write_report
 from mechfem.result import RunResult
 from test_report_browser import CHROMIUM, chromium, needs_chromium, self_test
 
-GEARS = ROOT / "examples" / "gears" / "geared_slider_crank.mec"
-LIMITS = ROOT / "examples" / "limits" / "nongrashof.mec"
-DECKS = {"supply": (SUPPLY, 20), "gears": (GEARS, 13), "limits": (LIMITS, 240)}
+# The examples without their NAMES blocks: the labels of the deck's numbers.
+GEARS = bare(ROOT / "examples" / "gears" / "geared_slider_crank.mec")
+LIMITS = bare(ROOT / "examples" / "limits" / "nongrashof.mec")
+DECKS = {"supply": (bare(SUPPLY), 20), "gears": (GEARS, 13), "limits": (LIMITS, 240)}
 WINDOW = (1400, 1000)
 LIMIT_RED = (192, 57, 43)
 
@@ -47,10 +49,10 @@ def pages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Page]:
     tmp = tmp_path_factory.mktemp("report-pages")
     out = {}
     for name, (deck, _) in DECKS.items():
-        # Run from the repository's folder, so that the page names the deck as the docs do.
-        with warnings.catch_warnings(), contextlib.chdir(ROOT):
+        # Run from the examples' folder, so that the page names the deck by a relative path as the docs do.
+        with warnings.catch_warnings(), contextlib.chdir(BARE_EXAMPLES.parent):
             warnings.simplefilter("ignore")
-            result = mechfem.run_deck(deck.relative_to(ROOT))
+            result = mechfem.run_deck(deck.relative_to(BARE_EXAMPLES.parent))
         if name == "limits":
             # A value the run could not compute (as a transfer function at a singular position) is NaN.
             result.buffers[5][100] = math.nan

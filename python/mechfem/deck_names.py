@@ -40,7 +40,8 @@ def names_block(mech: Mechanism, nb: Numbering) -> Iterator[tuple[str, tuple[str
     lines: list[tuple[str, tuple[str, str]]] = []
     numbered = nb.coord_number
     in_point: set[object] = set()
-    for p in mech.points:
+    # Points in the order of their x co-ordinate's number, as a deck read back has them.
+    for p in sorted((p for p in mech.points if p.x in numbered), key=lambda p: numbered[p.x]):
         if p.x in numbered and p.y in numbered and deck_name(p.name) and p.name != f"P{numbered[p.x]}":
             lines.append((f"POINT {numbered[p.x]} {numbered[p.y]} {p.name}", ("point", p.name)))
             in_point.update((p.x, p.y))
