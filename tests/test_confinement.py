@@ -21,7 +21,7 @@ from mechfem.motion import Table
 
 FOURBAR = ROOT / "examples" / "fourbar" / "fourbar.mec"
 ROCKER = ROOT / "tests" / "decks" / "rocker.mec"
-ANIMATE_LINE = 74  # the ANIMATE line of fourbar.mec
+ANIMATE_LINE = 91  # the ANIMATE line of fourbar.mec
 
 
 def fourbar_copy(folder: Path, animate: str | None = None, steps: int | None = None) -> Path:

@@ -120,10 +120,11 @@ def test_the_outputs_show_the_dynamics(tmp_path: Path, cli: Cli) -> None:
     assert "a flywheel's energy swing" in summary
     with open(tmp_path / "supply_dyn.csv", newline="") as f:
         header = next(csv.reader(f))
-    assert header[:3] == ["99 ANGB(1)", "100 ANGB(8)", "110 drive(ANGB(1))"]
+    # Named by the deck's NAMES block: ROW for the input alpha, DEP for the output delta.
+    assert header[:3] == ["99 alpha", "100 delta", "110 drive(alpha)"]
     report = (tmp_path / "supply_dyn.html").read_text()
-    assert "drive force or torque against input 1" in report
-    assert "energies against input 1" in report
+    assert "drive force or torque against alpha" in report
+    assert "energies against alpha" in report
 
 
 def test_the_energy_swing_is_the_work_fluctuation_about_the_mean() -> None:

@@ -17,6 +17,11 @@ SIM = ROOT / "examples" / "supply" / "supply_sim.mec"
 OPT = ROOT / "examples" / "supply" / "supply_opt.mec"
 
 
+def line_of(deck: Path, text: str) -> int:
+    """The number of the first line of ``deck`` that holds ``text``."""
+    return next(k for k, line in enumerate(deck.read_text().splitlines(), 1) if text in line)
+
+
 def variant(tmp_path: Path, deck: Path, *changes: tuple[str, str]) -> Path:
     text = deck.read_text()
     for old, new in changes:
@@ -44,7 +49,7 @@ def run(cli: Cli, deck: Path) -> tuple[int, str, Path]:
 def test_negative_masses_and_inertias_are_deck_errors(tmp_path: Path, cli: Cli, old: str, new: str, message: str):
     status, err, out = run(cli, variant(tmp_path, SIM, (old, new)))
     assert status == 1
-    assert "supply_sim.mec:74:" in err and message in err
+    assert f"supply_sim.mec:{line_of(SIM, old)}:" in err and message in err
     assert not out.exists()
 
 
@@ -107,7 +112,7 @@ def test_design_variable_ranges_that_cannot_be_used_are_deck_errors(
 ) -> None:
     status, err, out = run(cli, variant(tmp_path, OPT, ("VARY 5 -5.5 -5.0", vary)))
     assert status == 1
-    assert "supply_opt.mec:75:" in err, err
+    assert f"supply_opt.mec:{line_of(OPT, 'VARY 5 -5.5 -5.0')}:" in err, err
     assert message in err
     assert not out.exists()
 
@@ -270,9 +275,9 @@ def test_overflowing_simulations_are_refused_with_their_line(
 @pytest.mark.parametrize(
     ("change", "message"),
     [
-        (("TARGETEXT 102 100 0.0", "TARGETAT 100 10 1e300"), "supply_opt.mec:78:"),
+        (("TARGETEXT 102 100 0.0", "TARGETAT 100 10 1e300"), "supply_opt.mec:{line}:"),
         (("TARGETEXT 102 100 0.0", "TARGET 100 huge.dat"), "huge.dat:1:1"),
-        (("TARGETEXT 102 100 0.0", "TARGETEXT 102 100 0.0\nOPTSTEPS 2147483648"), "supply_opt.mec:79:"),
+        (("TARGETEXT 102 100 0.0", "TARGETEXT 102 100 0.0\nOPTSTEPS 2147483648"), "supply_opt.mec:{next}:"),
     ],
     ids=["targetat", "target-file", "optsteps"],
 )
@@ -282,7 +287,8 @@ def test_overflowing_optimisations_are_refused_with_their_line(
     (tmp_path / "huge.dat").write_text("1e308\n" * 73)
     status, err = run_here(variant(tmp_path, OPT, change), tmp_path / "out", capsys)
     assert status == 1, err
-    assert message in err, err
+    line = line_of(OPT, change[0])
+    assert message.format(line=line, next=line + 1) in err, err
     assert "optimised in" not in err
 
 

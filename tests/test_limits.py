@@ -368,7 +368,7 @@ def test_free_motion_from_a_dead_centre_writes_nan_only_there(cli: Cli, tmp_path
     with (tmp_path / "out" / "dead_centre.csv").open() as f:
         header, *rows = list(csv.reader(f))
     nan_cells = [(k + 1, header[c]) for k, row in enumerate(rows) for c, v in enumerate(row) if v == "nan"]
-    assert nan_cells == [(1, "3 dANGB(1)/dinput1")]
+    assert nan_cells == [(1, "3 dtheta/ds")]
     notes = flat((tmp_path / "out" / "dead_centre.notes.txt").read_text())
     assert "column 3 (BUFKE1 -1 1) holds nan at position 1 and nowhere else" in notes
     assert "D^c is singular at position 1" in notes

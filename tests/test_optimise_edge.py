@@ -19,15 +19,15 @@ ROOT = Path(__file__).resolve().parent.parent
 
 SCRIPT = """
 import numpy as np, mechfem
-m = mechfem.Mechanism.from_deck({deck!r}).variant(row5=-5.25)
+m = mechfem.Mechanism.from_deck({deck!r}).variant(kappa=-5.25)
 
 def swing(e):
-    v, g = e.value("out1"), e.gradient("out1")
+    v, g = e.value("delta"), e.gradient("delta")
     i, k = int(np.argmax(v)), int(np.argmin(v))
     return -(v[i] - v[k]), -(g[i] - g[k])
 
-opt = mechfem.optimize(m, {{"E1.length": (0.1, 5.0)}}, objective=swing, quantities=["out1"], steps=40)
-print(opt.values["E1.length"], opt.infeasible, opt.runs)
+opt = mechfem.optimize(m, {{"crank.length": (0.1, 5.0)}}, objective=swing, quantities=["delta"], steps=40)
+print(opt.values["crank.length"], opt.infeasible, opt.runs)
 """
 
 

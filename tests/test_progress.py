@@ -130,5 +130,5 @@ def test_a_binary_data_set_with_nan_gets_its_notes(tmp_path: Path) -> None:
     assert notes.startswith("Notes on supply.npz, the data set of ")
     assert "column 101 (BUFKE1 -1 1) holds nan at position 6 and nowhere else" in notes
     with np.load(tmp_path / "supply.npz") as z:
-        column = z["101 dANGB(8)/dinput1"]
+        column = z["101 ddelta/dalpha"]
         assert np.isnan(column[5]) and not np.isnan(np.delete(column, 5)).any()

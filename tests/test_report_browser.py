@@ -129,15 +129,15 @@ def test_report_is_one_self_contained_file(supply: RunResult, tmp_path: Path) ->
     assert data["table"] == ["b99", "b100", "b101", "b102"]
     cols = data["columns"]
     assert all(len(cols[k]["values"]) == 73 for k in data["table"])
-    assert cols["b101"]["header"] == "101 dANGB(8)/dinput1 [-]"
+    assert cols["b101"]["header"] == "101 ddelta/dalpha [-]"
     # Picture 1 is the hodograph; picture 2's three PLOTFUNC lines of three units are three charts.
     assert [[c["type"] for c in card["charts"]] for card in data["cards"]] == [["xy"], ["function"] * 3]
     hodo = data["cards"][0]["charts"][0]["hodographs"][0]
     assert (hodo["x"], hodo["y"], hodo["vx"]) == ("c13", "c14", "k13") and len(cols["k13"]["values"]) == 73
     assert [c["ylabel"] for c in data["cards"][1]["charts"]] == [
-        "ANGB(8) [rad]",
-        "dANGB(8)/dinput1 [-]",
-        "d2ANGB(8)/dinput1^2 [1/rad]",
+        "delta [rad]",
+        "ddelta/dalpha [-]",
+        "d2delta/dalpha^2 [1/rad]",
     ]
     assert [p["x"] for p in data["paths"]] == ["c13"]
     assert len(data["scene"]["frames"]) == 73 and data["scene"]["moving"]
@@ -192,7 +192,7 @@ def test_report_in_headless_chromium(supply: RunResult, tmp_path: Path) -> None:
     assert mech["ink_before"] > 1000 and mech["ink_after"] > 1000
     assert mech["changed_pixels"] > 200
     assert result["slider"] == {"target": 36, "current": 36}
-    assert result["position_before"].startswith("position 1 of 73: ANGB(1) = -1.03907 rad")
+    assert result["position_before"].startswith("position 1 of 73: alpha = -1.03907 rad")
     assert result["position_after"].startswith("position 37 of 73")
     # det(D^c), then every picture as uPlot charts whose marker follows the slider.
     charts = result["charts"]
@@ -210,9 +210,9 @@ def test_report_in_headless_chromium(supply: RunResult, tmp_path: Path) -> None:
         assert c["cursor_before"] and c["cursor_after"] and c["cursor_before"] != c["cursor_after"]
         assert c["readout"].startswith("at the slider: position 37")
     function = charts[2]
-    assert function["curves"] == ["ANGB(8)"] and function["ylabel"] == "ANGB(8) [rad]"
+    assert function["curves"] == ["delta"] and function["ylabel"] == "delta [rad]"
     assert function["cursor_after"][0][0] > function["cursor_before"][0][0] + 100  # moved right along the input
-    assert "ANGB(1) = 2.10252 rad" in function["readout"] and "0.573676 rad" in function["readout"]
+    assert "alpha = 2.10252 rad" in function["readout"] and "0.573676 rad" in function["readout"]
     # Clicking a chart's curve moves the slider there; dragging zooms, double-clicking shows everything again.
     click = result["chart_click"]
     assert click["hovered"] == click["want"] == click["slider"] == 18

@@ -18,11 +18,13 @@ from __future__ import annotations
 import mechfem._core as _core
 from mechfem import deckio, loads
 from mechfem.catalogue import DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE
+from mechfem.deck_names import model_unit, names_block
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
 from mechfem.model import By, Dynamic, Element, Free, InputKey, InputMotion, Mechanism, Motion, Storage, Table, To
 from mechfem.motion import check_units
 from mechfem.numbering import Numbering
 from mechfem.storage import check_file_names
+from mechfem.units import Units
 
 
 def build(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> tuple[_core.Model, Numbering]:
@@ -41,6 +43,11 @@ def _builder(
     dynamic = [] if motion is None else [k for k, im in motion.inputs.items() if isinstance(im, Dynamic)]
     simulated = [nb.inputs[nb.dof(k) - 1].name for k in dynamic]
     b = _core.ModelBuilder(f"{mech.name}.mec", loads.mode(mech, simulated))
+    if mech.units.deck_line() is not None:
+        # The fields the deck writer's UNITS line gives: those that differ from a deck without one.
+        default = Units()
+        given = {k: (v if v != default.get(k) else None) for k, v in mech.units.as_dict().items()}
+        b.units(given["length"], given["angle"], given["mass"], given["force"], given["time"])
     coord = nb.coord_number
     element = {e: k for k, e in enumerate(nb.elements, 1)}
     for e in nb.elements:
@@ -60,6 +67,11 @@ def _builder(
     for r in nb.prescribed:
         if r.value is not None:
             b.para(nb.row_dest[r], float(r.value), r.name)
+    for text, _ in names_block(mech, nb):
+        # The NAMES block the deck writer writes, line by line: a keyword, its numbers and the name.
+        if text != "NAMES":
+            kind, *numbers, name = text.split()
+            b.name(kind, [int(n) for n in numbers], name)
     if mech.loads is not None:
         b.dynamics()
         _loads(b, mech, nb, element, tables)
@@ -110,7 +122,7 @@ def _motion(b: _core.ModelBuilder, mech: Mechanism, motion: Motion, nb: Numberin
     n_dof = len(nb.inputs)
     if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
         raise ValueError("free motion needs a mechanism with one input")
-    check_units(motion, nb.inputs)
+    check_units(motion, nb.inputs, mech.units.angle)
     per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
     for key, im in motion.inputs.items():
         j = nb.dof(key)
@@ -121,7 +133,7 @@ def _motion(b: _core.ModelBuilder, mech: Mechanism, motion: Motion, nb: Numberin
         raise ValueError("the motion leaves an input without a motion")
     b.movement(_whole(motion.steps), float(motion.dt))
     for j in range(1, n_dof + 1):
-        im = per_dof[j][1]
+        im = model_unit(per_dof[j][1], nb.inputs[j - 1], mech.units.angle)
         name = nb.inputs[j - 1].name
         if isinstance(im, By):
             b.motion(j, "by", float(im.value), name)
