@@ -17,11 +17,9 @@ from __future__ import annotations
 
 import mechfem._core as _core
 from mechfem import deckio, loads
-from mechfem.catalogue import DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE
-from mechfem.deck_names import model_unit, names_block
+from mechfem.deck_names import names_block
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
-from mechfem.model import By, Dynamic, Element, Free, InputKey, InputMotion, Mechanism, Motion, Storage, Table, To
-from mechfem.motion import check_units
+from mechfem.model import By, Dynamic, Element, Free, Mechanism, Motion, Storage, Table, To
 from mechfem.numbering import Numbering
 from mechfem.storage import check_file_names
 from mechfem.units import Units
@@ -119,21 +117,9 @@ def _loads(
 
 def _motion(b: _core.ModelBuilder, mech: Mechanism, motion: Motion, nb: Numbering, tables: dict[str, str]) -> None:
     """The motion, with the deck writer's checks (:func:`mechfem.deckio.write`)."""
-    n_dof = len(nb.inputs)
-    if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
-        raise ValueError("free motion needs a mechanism with one input")
-    check_units(motion, nb.inputs, mech.units.angle)
-    per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
-    for key, im in motion.inputs.items():
-        j = nb.dof(key)
-        if j in per_dof:
-            raise ValueError(f"input {nb.inputs[j - 1].name!r} is given two motions")
-        per_dof[j] = (key, im)
-    if len(per_dof) != n_dof:
-        raise ValueError("the motion leaves an input without a motion")
+    per_dof = deckio.input_motions(mech, motion, nb)
     b.movement(_whole(motion.steps), float(motion.dt))
-    for j in range(1, n_dof + 1):
-        im = model_unit(per_dof[j][1], nb.inputs[j - 1], mech.units.angle)
+    for j, im in enumerate(per_dof, 1):
         name = nb.inputs[j - 1].name
         if isinstance(im, By):
             b.motion(j, "by", float(im.value), name)
@@ -149,15 +135,9 @@ def _motion(b: _core.ModelBuilder, mech: Mechanism, motion: Motion, nb: Numberin
             b.motion_table(j, file, name)
         else:
             raise TypeError(f"not an input motion: {im!r}")
-    inttol = None
-    if motion.rtol is not None or motion.atol is not None:
-        # The one not given is ACCURACY, as the deck reader's default (with the core's floor).
-        tol = max(motion.accuracy or DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE)
-        rtol, atol = (tol if v is None else v for v in (motion.rtol, motion.atol))
-        inttol = (float(rtol), float(atol))
     accuracy = None if motion.accuracy is None else float(motion.accuracy)
     max_iter = None if motion.max_iter is None else int(motion.max_iter)
-    b.tolerances(accuracy, max_iter, inttol)
+    b.tolerances(accuracy, max_iter, deckio.inttol(motion))
 
 
 def _storage(b: _core.ModelBuilder, mech: Mechanism, storage: Storage, nb: Numbering) -> None:

@@ -150,6 +150,39 @@ def _file_stem(name: str) -> str:
     return re.sub(r"[^A-Za-z0-9_.-]", "_", name) or "mechanism"
 
 
+def input_motions(mech: Mechanism, motion: Motion, nb: Numbering) -> list[InputMotion]:
+    """The motion of each input of ``mech`` (numbered by ``nb``) in DOF order, in the model's units; a ValueError
+    for a motion a deck cannot state (free motion of several inputs, an input given two motions or none)."""
+    n_dof = len(nb.inputs)
+    if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
+        raise ValueError(
+            f"free motion (Motion.free, Free) needs a mechanism with one input, and {mech.name!r} has {n_dof} "
+            f"({', '.join(r.name for r in nb.inputs) or 'none'}): drive them with Motion.by, Motion.to or "
+            "Motion.table"
+        )
+    check_units(motion, nb.inputs, mech.units.angle)
+    per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
+    for key, im in motion.inputs.items():
+        j = nb.dof(key)
+        if j in per_dof:
+            raise ValueError(f"input {nb.inputs[j - 1].name!r} is given two motions ({per_dof[j][0]!r}, {key!r})")
+        per_dof[j] = (key, im)
+    missing = [nb.inputs[j - 1].name for j in range(1, n_dof + 1) if j not in per_dof]
+    if missing:
+        raise ValueError(f"the motion gives no motion for the input(s) {', '.join(map(repr, missing))}")
+    return [model_unit(per_dof[j][1], nb.inputs[j - 1], mech.units.angle) for j in range(1, n_dof + 1)]
+
+
+def inttol(motion: Motion) -> tuple[float, float] | None:
+    """The integrator's tolerances (rtol, atol) the motion sets, or None: INTTOL takes both, and the one not given
+    is ACCURACY, as the deck reader's default (with the core's floor)."""
+    if motion.rtol is None and motion.atol is None:
+        return None
+    tol = max(motion.accuracy or DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE)
+    rtol, atol = (tol if v is None else v for v in (motion.rtol, motion.atol))
+    return float(rtol), float(atol)
+
+
 def write(
     mech: Mechanism,
     motion: Motion | None = None,
@@ -200,26 +233,11 @@ def write(
         for text, note, _ in loads.deck_lines(mech.loads, nb, _file_stem(mech.name), tables):
             out.add(text, note)
     if motion is not None:
-        if n_dof != 1 and any(isinstance(im, Free) for im in motion.inputs.values()):
-            raise ValueError(
-                f"free motion (Motion.free, Free) needs a mechanism with one input, and {mech.name!r} has {n_dof} "
-                f"({', '.join(r.name for r in nb.inputs) or 'none'}): drive them with Motion.by, Motion.to or "
-                "Motion.table"
-            )
-        check_units(motion, nb.inputs, mech.units.angle)
-        per_dof: dict[int, tuple[InputKey, InputMotion]] = {}
-        for key, im in motion.inputs.items():
-            j = nb.dof(key)
-            if j in per_dof:
-                raise ValueError(f"input {nb.inputs[j - 1].name!r} is given two motions ({per_dof[j][0]!r}, {key!r})")
-            per_dof[j] = (key, im)
-        missing = [nb.inputs[j - 1].name for j in range(1, n_dof + 1) if j not in per_dof]
-        if missing:
-            raise ValueError(f"the motion gives no motion for the input(s) {', '.join(map(repr, missing))}")
+        per_dof = input_motions(mech, motion, nb)
         out.add("MOVEMENT")
         out.add(f"TSTEPE {motion.steps} {number(motion.dt)}", ("motion", "steps"))
         for j in range(1, n_dof + 1):
-            im = model_unit(per_dof[j][1], nb.inputs[j - 1], mech.units.angle)
+            im = per_dof[j - 1]
             name = nb.inputs[j - 1].name
             note = ("motion of input", name)
             if isinstance(im, By):
@@ -242,11 +260,9 @@ def write(
             out.add(f"ACCURACY {number(motion.accuracy)}", ("motion", "accuracy"))
         if motion.max_iter is not None:
             out.add(f"MAXITER {int(motion.max_iter)}", ("motion", "max_iter"))
-        if motion.rtol is not None or motion.atol is not None:
-            # INTTOL takes both; the one not given is ACCURACY, as the deck reader's default (with the core's floor).
-            tol = max(motion.accuracy or DEFAULT_ACCURACY, MIN_INTEGRATION_TOLERANCE)
-            rtol, atol = (tol if v is None else v for v in (motion.rtol, motion.atol))
-            out.add(f"INTTOL {number(rtol)} {number(atol)}", ("motion", "rtol and atol"))
+        tolerances = inttol(motion)
+        if tolerances is not None:
+            out.add(f"INTTOL {number(tolerances[0])} {number(tolerances[1])}", ("motion", "rtol and atol"))
 
     if storage is not None:
         out.add("STORAGE")
