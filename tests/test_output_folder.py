@@ -118,26 +118,32 @@ def test_a_deck_name_too_long_for_its_outputs_is_refused_before_the_run(cli: Cli
 # --- two runs into one folder -----------------------------------------------------------------------------------------
 
 
-def test_a_second_run_of_the_same_stem_into_one_folder_is_refused_at_once(tmp_path: Path) -> None:
-    second = fourbar_in(tmp_path / "b", steps=6)
-    out = tmp_path / "out"
-    out.mkdir()
-    (out / "fourbar.prt").write_text("the first run's print file\n")
-    # Another process holds the lock of `fourbar` in the folder, as a run does while it computes and writes, until
-    # it is told to let go: no race with how long a real run takes.
+def hold_lock(out: Path, stem: str) -> subprocess.Popen[str]:
+    """Another process that holds the lock of ``stem`` in ``out``, as a run does while it computes and writes, until
+    its stdin is closed; returned once it holds it."""
     script = textwrap.dedent(
         f"""
         import sys
         from pathlib import Path
         from mechfem.output_folder import locked
-        with locked(Path({str(out)!r}), "fourbar"):
+        with locked(Path({str(out)!r}), {stem!r}):
             print("locked", flush=True)
             sys.stdin.read()
         """
     )
-    holder = subprocess.Popen([sys.executable, "-c", script], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    proc = subprocess.Popen([sys.executable, "-c", script], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert proc.stdout is not None and proc.stdout.readline() == "locked\n"
+    return proc
+
+
+def test_a_second_run_of_the_same_stem_into_one_folder_is_refused_at_once(tmp_path: Path) -> None:
+    second = fourbar_in(tmp_path / "b", steps=6)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "fourbar.prt").write_text("the first run's print file\n")
+    # Another process holds the lock until it is told to let go: no race with how long a real run takes.
+    holder = hold_lock(out, "fourbar")
     try:
-        assert holder.stdout is not None and holder.stdout.readline() == "locked\n"
         refused = subprocess.run(
             [*mechfem_command(), "run", str(second), "-o", str(out)],
             stdin=subprocess.DEVNULL,
@@ -193,18 +199,7 @@ def test_a_folder_made_for_the_lock_is_removed_when_nothing_is_written(tmp_path:
 
 def test_a_run_killed_while_it_holds_the_lock_does_not_block_the_next(tmp_path: Path) -> None:
     out = tmp_path / "out"
-    script = textwrap.dedent(
-        f"""
-        import os, signal, sys
-        from pathlib import Path
-        from mechfem.output_folder import locked
-        with locked(Path({str(out)!r}), "fourbar"):
-            print("locked", flush=True)
-            sys.stdin.read()
-        """
-    )
-    proc = subprocess.Popen([sys.executable, "-c", script], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-    assert proc.stdout is not None and proc.stdout.readline() == "locked\n"
+    proc = hold_lock(out, "fourbar")
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=60)
     assert (out / ".fourbar.lock").exists()

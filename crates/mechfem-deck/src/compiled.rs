@@ -71,22 +71,12 @@ pub struct Compiled {
     pub dynamics: Option<Dynamics>,
     /// The DYNAMICS line each mass and load of [`Compiled::dynamics`]
     /// comes from, by what a [`mechfem_core::DynamicsFault`] calls it
-    /// (see [`Compiled::dynamics_line`]); empty without masses and loads.
+    /// (the deck refuses a second line of one keyword on one thing, so a
+    /// source has one line); empty without masses and loads.
     pub dynamics_lines: Vec<(DynamicSource, usize)>,
     /// The design variables, targets, bounds and objective of the OPTIMISE
     /// block: `Some` exactly for a [`Mode::KinOpt`] deck.
     pub optimise: Option<Optimise>,
-}
-
-impl Compiled {
-    /// The line of the DYNAMICS statement a fault found during the run
-    /// names: `None` for what no single line gives (a row's stress, the
-    /// drives, the free degrees of freedom) and for a model built without
-    /// a deck. The deck refuses a second line of one keyword on one thing,
-    /// so the source names one line.
-    pub fn dynamics_line(&self, source: &DynamicSource) -> Option<usize> {
-        self.dynamics_lines.iter().find(|(s, _)| s == source).map(|&(_, line)| line)
-    }
 }
 
 /// One output buffer: one value per position.
