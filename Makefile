@@ -34,12 +34,22 @@ $(VENV)/.tools-stamp: pyproject.toml
 	$(PY) -m pip install --quiet --disable-pip-version-check "maturin>=1.9.4,<2"
 	touch $@
 
-# The package itself (release build of the Rust module), its dependencies and the dev tools.
-$(VENV)/.build-stamp: $(VENV)/.tools-stamp $(RUST_SOURCES) pyproject.toml
-	VIRTUAL_ENV=$(abspath $(VENV)) PATH="$(BIN):$$PATH" $(BIN)/maturin develop --release --extras dev
-	touch $@
+# The package itself (the Rust module built with the Cargo profile BUILD_PROFILE), its dependencies and
+# the dev tools. The stamp holds the profile it was built with. `make test` asks for the quick profile
+# (Cargo.toml: optimised like release, without whole-program LTO, several minutes less to build) and
+# accepts a release build already there; demo and bench ask for release and rebuild a quick one.
+BUILD_PROFILE ?= release
+STAMP := $(VENV)/.build-stamp
 
-install: $(VENV)/.build-stamp
+$(STAMP): $(VENV)/.tools-stamp $(RUST_SOURCES) pyproject.toml
+	VIRTUAL_ENV=$(abspath $(VENV)) PATH="$(BIN):$$PATH" $(BIN)/maturin develop --profile $(BUILD_PROFILE) --extras dev
+	echo $(BUILD_PROFILE) > $@
+
+install:
+	@built="$$(cat $(STAMP) 2>/dev/null || true)"; \
+	if [ -n "$$built" ] && [ "$$built" != "$(BUILD_PROFILE)" ] && [ "$$built" != release ]; then rm -f $(STAMP); fi; \
+	if [ -f $(STAMP) ] && [ -z "$$built" ]; then rm -f $(STAMP); fi
+	@$(MAKE) --no-print-directory $(STAMP) BUILD_PROFILE=$(BUILD_PROFILE)
 
 demo: install
 	$(BIN)/mechfem run examples/supply/supply.mec -o out/supply --report
@@ -60,6 +70,7 @@ browser:
 		echo "chromium is missing and cannot be installed here (needs root and apt-get): the browser test will be skipped"; \
 	fi
 
+test: BUILD_PROFILE = quick
 test: install browser
 	cargo test --workspace --exclude mechfem-py
 	cargo clippy --workspace --all-targets -- -D warnings
