@@ -33,6 +33,7 @@
 //! crossing located on the dense output ([`Event`]).
 
 mod advance;
+mod dop853;
 mod eom;
 mod outputs;
 mod stiffness;
@@ -49,6 +50,7 @@ use crate::model::{Mechanism, State};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 use advance::{advance, Next, Run};
+use dop853::Dop853;
 use eom::{Driver, Eom, LIMIT_REASON};
 pub use outputs::Event;
 use outputs::Outputs;
@@ -67,8 +69,9 @@ pub struct SimReport {
     /// Steps it rejected (too large an error estimate, or a position that
     /// could not be found).
     pub rejected: usize,
-    /// Evaluations of the equations of motion (each one Newton position),
-    /// those of the Jacobians included.
+    /// Evaluations of the equations of motion, each one Newton position
+    /// (found or not): the integrator's stages, those of its Jacobians,
+    /// and the positions of the outputs and of a STOPWHEN crossing.
     pub evaluations: usize,
     /// Jacobians of the equations computed by the implicit method (each
     /// `2 nf + 1` evaluations).
@@ -261,7 +264,7 @@ pub fn simulate_within(
     };
     let segments = integrate(&mut run, integration);
     let Run { sys, out, steps, rejected, error, t, .. } = run;
-    let (evaluations, jacobians) = (sys.calls.get(), sys.jacobians.get());
+    let jacobians = sys.jacobians.get();
     let eom = sys.eom.into_inner();
     let mut report = out.report;
     state.clone_from(&out.previous);
@@ -289,7 +292,7 @@ pub fn simulate_within(
         integration: *integration,
         steps,
         rejected,
-        evaluations: evaluations.max(eom.evaluations),
+        evaluations: eom.evaluations,
         jacobians,
         reached,
         segments,
@@ -315,7 +318,7 @@ fn integrate(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
 /// The most free DOFs the implicit method integrates.
 pub const IMPLICIT_MAX_FREE: usize = 3;
 
-fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
+fn integrate_as<Y: system::Free + 'static>(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
     let implicit = run.y.len() <= 2 * IMPLICIT_MAX_FREE;
     let auto = integration.integrator == Integrator::Auto && implicit;
     let mut method = match integration.integrator {
@@ -329,7 +332,7 @@ fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integratio
     let (rtol, atol, span) = (integration.rtol, integration.atol, run.span);
     let mut segments = Vec::new();
     while !run.out.done {
-        let (from, calls, steps) = (run.t, run.sys.calls.get(), run.steps);
+        let (from, calls, steps) = (run.t, run.sys.eom.borrow().evaluations, run.steps);
         let next = match method {
             Integrator::Radau5 => advance::<Y, _>(run, method, auto, |h| {
                 ImplicitRungeKutta::<Ordinary, Radau, f64, Y, 5, 3, 3>::radau5()
@@ -339,14 +342,7 @@ fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integratio
                     .h_max(span)
                     .max_steps(usize::MAX)
             }),
-            Integrator::Dop853 => advance::<Y, _>(run, method, auto, |h| {
-                ExplicitRungeKutta::<Ordinary, DormandPrince, f64, Y, 8, 12, 16>::dop853()
-                    .rtol(rtol)
-                    .atol(atol)
-                    .h0(h)
-                    .h_max(span)
-                    .max_steps(usize::MAX)
-            }),
+            Integrator::Dop853 => advance::<Y, _>(run, method, auto, |h| Dop853::<Y>::new(rtol, atol, h, span)),
             _ => advance::<Y, _>(run, method, auto, |h| {
                 ExplicitRungeKutta::<Ordinary, DormandPrince, f64, Y, 5, 7, 7>::dopri5()
                     .rtol(rtol)
@@ -363,7 +359,7 @@ fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integratio
                 from,
                 to,
                 steps: run.steps - steps,
-                evaluations: run.sys.calls.get() - calls,
+                evaluations: run.sys.eom.borrow().evaluations - calls,
             });
         }
         match next {
