@@ -134,3 +134,16 @@ fn dop853_locates_a_stopwhen_crossing() {
     assert!((event.time - quarter).abs() < 1e-9, "stopped at {}, the quarter period is {quarter}", event.time);
     assert!((data[data.len() - 1] + PI / 2.0).abs() < 1e-9);
 }
+
+/// Without ACCURACY the Newton tolerance follows from INTTOL: a tenth of
+/// it, a thousandth for DOP853 (whose error estimate takes the positions'
+/// residual for error), within [1e-14, 1e-10].
+#[test]
+fn dop853_derives_a_tighter_newton_tolerance() {
+    let mut i = Integration::new(1e-10, 1e-9);
+    assert_eq!(i.newton_tolerance(), 0.1 * 1e-10);
+    i.integrator = Integrator::Dop853;
+    assert!((i.newton_tolerance() - 1e-13).abs() < 1e-27);
+    assert_eq!(Integration { rtol: 1e-6, atol: 1e-6, ..i }.newton_tolerance(), 1e-10);
+    assert_eq!(Integration { rtol: 1e-12, ..i }.newton_tolerance(), 1e-14);
+}
