@@ -10,11 +10,12 @@
 //! no constraint drift to correct: positions are found by Newton at every
 //! evaluation, from a prediction by the first-order transfer functions.
 //!
-//! The free DOFs and their speeds are integrated by the methods of the
-//! crate `differential-equations`, one step at a time ([`advance`]): the
-//! explicit Runge-Kutta methods of Dormand and Prince of order 8 (DOP853)
-//! and 5(4), and the implicit Radau IIA of order 5 with a Jacobian of the
-//! reduced equations by finite differences over the free states. The
+//! The free DOFs and their speeds are integrated one step at a time
+//! ([`advance`]) by the explicit Runge-Kutta methods of Dormand and Prince
+//! of order 8 (DOP853, mechfem's own: [`dop853`]) and 5(4), and the
+//! implicit Radau IIA of order 5 with a Jacobian of the reduced equations
+//! by finite differences over the free states (both of the crate
+//! `differential-equations`). The
 //! default (`INTEGRATOR auto`) integrates with Dormand-Prince 5(4) and goes
 //! over to Radau IIA where the motion is stiff (stiff springs and dampers,
 //! a motion come to rest), and back where it is not, as LSODA does; the
