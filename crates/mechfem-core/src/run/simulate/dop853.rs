@@ -6,8 +6,9 @@
 //! mechfem has its own DOP853 stepper because the integrator library's
 //! (`differential-equations` 0.7) cannot be used for mechanisms: its dense
 //! output alternates `s` and `1 - s` the wrong way round in the terms of
-//! order 4 to 7 (a polynomial of order 3 between steps, where the outputs
-//! need order 7), it evaluates the three stages of that dense output at
+//! order 4 to 7 (its local error between steps falls as h^5, not h^8:
+//! 2.3e-6 against 4e-10 in one step of 0.2 on the equation of this file's
+//! tests, whose steps' ends it matches bit for bit), it evaluates the three stages of that dense output at
 //! every step whether an output falls in it or not, and it keeps them
 //! private. Here the dense output's three stages are evaluated only for a
 //! step that holds an output or a STOPWHEN crossing ([`Dop853::dense`]),
