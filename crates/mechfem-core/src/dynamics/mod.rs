@@ -424,11 +424,14 @@ impl Integration {
 
     /// The Newton tolerance (deck ACCURACY) that keeps the positions'
     /// error out of the integration error: a tenth of the tighter of the
-    /// two tolerances, never looser than the default Newton tolerance and
-    /// not below 1e-14 (about 50 ulp of a co-ordinate of order 1, below
-    /// which Newton meets rounding).
+    /// two tolerances (a thousandth for DOP853, whose error estimate of
+    /// order 5 in long steps takes the positions' residual for error and
+    /// rejects or shortens steps on it), never looser than the default
+    /// Newton tolerance and not below 1e-14 (about 50 ulp of a co-ordinate
+    /// of order 1, below which Newton meets rounding).
     pub fn newton_tolerance(&self) -> f64 {
-        (0.1 * self.rtol.min(self.atol)).clamp(Self::NEWTON_FLOOR, crate::solver::Params::default().tol)
+        let share = if self.integrator == Integrator::Dop853 { 1e-3 } else { 0.1 };
+        (share * self.rtol.min(self.atol)).clamp(Self::NEWTON_FLOOR, crate::solver::Params::default().tol)
     }
 
     /// The smallest Newton tolerance [`Self::newton_tolerance`] gives.

@@ -10,11 +10,12 @@
 //! no constraint drift to correct: positions are found by Newton at every
 //! evaluation, from a prediction by the first-order transfer functions.
 //!
-//! The free DOFs and their speeds are integrated by the methods of the
-//! crate `differential-equations`, one step at a time ([`advance`]): the
-//! explicit Runge-Kutta methods of Dormand and Prince of order 8 (DOP853)
-//! and 5(4), and the implicit Radau IIA of order 5 with a Jacobian of the
-//! reduced equations by finite differences over the free states. The
+//! The free DOFs and their speeds are integrated one step at a time
+//! ([`advance`]) by the explicit Runge-Kutta methods of Dormand and Prince
+//! of order 8 (DOP853, mechfem's own: [`dop853`]) and 5(4), and the
+//! implicit Radau IIA of order 5 with a Jacobian of the reduced equations
+//! by finite differences over the free states (both of the crate
+//! `differential-equations`). The
 //! default (`INTEGRATOR auto`) integrates with Dormand-Prince 5(4) and goes
 //! over to Radau IIA where the motion is stiff (stiff springs and dampers,
 //! a motion come to rest), and back where it is not, as LSODA does; the
@@ -33,6 +34,7 @@
 //! crossing located on the dense output ([`Event`]).
 
 mod advance;
+mod dop853;
 mod eom;
 mod outputs;
 mod stiffness;
@@ -49,6 +51,7 @@ use crate::model::{Mechanism, State};
 use crate::motion::{InputMotion, Motion};
 use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 use advance::{advance, Next, Run};
+use dop853::Dop853;
 use eom::{Driver, Eom, LIMIT_REASON};
 pub use outputs::Event;
 use outputs::Outputs;
@@ -67,8 +70,9 @@ pub struct SimReport {
     /// Steps it rejected (too large an error estimate, or a position that
     /// could not be found).
     pub rejected: usize,
-    /// Evaluations of the equations of motion (each one Newton position),
-    /// those of the Jacobians included.
+    /// Evaluations of the equations of motion, each one Newton position
+    /// (found or not): the integrator's stages, those of its Jacobians,
+    /// and the positions of the outputs and of a STOPWHEN crossing.
     pub evaluations: usize,
     /// Jacobians of the equations computed by the implicit method (each
     /// `2 nf + 1` evaluations).
@@ -261,7 +265,7 @@ pub fn simulate_within(
     };
     let segments = integrate(&mut run, integration);
     let Run { sys, out, steps, rejected, error, t, .. } = run;
-    let (evaluations, jacobians) = (sys.calls.get(), sys.jacobians.get());
+    let jacobians = sys.jacobians.get();
     let eom = sys.eom.into_inner();
     let mut report = out.report;
     state.clone_from(&out.previous);
@@ -289,7 +293,7 @@ pub fn simulate_within(
         integration: *integration,
         steps,
         rejected,
-        evaluations: evaluations.max(eom.evaluations),
+        evaluations: eom.evaluations,
         jacobians,
         reached,
         segments,
@@ -315,7 +319,7 @@ fn integrate(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
 /// The most free DOFs the implicit method integrates.
 pub const IMPLICIT_MAX_FREE: usize = 3;
 
-fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
+fn integrate_as<Y: system::Free + 'static>(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
     let implicit = run.y.len() <= 2 * IMPLICIT_MAX_FREE;
     let auto = integration.integrator == Integrator::Auto && implicit;
     let mut method = match integration.integrator {
@@ -329,7 +333,7 @@ fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integratio
     let (rtol, atol, span) = (integration.rtol, integration.atol, run.span);
     let mut segments = Vec::new();
     while !run.out.done {
-        let (from, calls, steps) = (run.t, run.sys.calls.get(), run.steps);
+        let (from, calls, steps) = (run.t, run.sys.eom.borrow().evaluations, run.steps);
         let next = match method {
             Integrator::Radau5 => advance::<Y, _>(run, method, auto, |h| {
                 ImplicitRungeKutta::<Ordinary, Radau, f64, Y, 5, 3, 3>::radau5()
@@ -339,14 +343,7 @@ fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integratio
                     .h_max(span)
                     .max_steps(usize::MAX)
             }),
-            Integrator::Dop853 => advance::<Y, _>(run, method, auto, |h| {
-                ExplicitRungeKutta::<Ordinary, DormandPrince, f64, Y, 8, 12, 16>::dop853()
-                    .rtol(rtol)
-                    .atol(atol)
-                    .h0(h)
-                    .h_max(span)
-                    .max_steps(usize::MAX)
-            }),
+            Integrator::Dop853 => advance::<Y, _>(run, method, auto, |h| Dop853::<Y>::new(rtol, atol, h, span)),
             _ => advance::<Y, _>(run, method, auto, |h| {
                 ExplicitRungeKutta::<Ordinary, DormandPrince, f64, Y, 5, 7, 7>::dopri5()
                     .rtol(rtol)
@@ -363,7 +360,7 @@ fn integrate_as<Y: system::Free>(run: &mut Run<'_, '_>, integration: &Integratio
                 from,
                 to,
                 steps: run.steps - steps,
-                evaluations: run.sys.calls.get() - calls,
+                evaluations: run.sys.eom.borrow().evaluations - calls,
             });
         }
         match next {

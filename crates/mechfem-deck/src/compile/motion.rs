@@ -102,7 +102,10 @@ pub(crate) fn integration(deck: &Deck, params: &mut Params) -> Integration {
     let mv = deck.movement.as_ref();
     let mut integration = match mv.and_then(|mv| mv.inttol.as_ref()) {
         Some(t) => {
-            let i = Integration::new(t.rtol.value, t.atol.value);
+            let mut i = Integration::new(t.rtol.value, t.atol.value);
+            if let Some(m) = mv.and_then(|mv| mv.integrator) {
+                i.integrator = m.value;
+            }
             if mv.is_some_and(|mv| mv.accuracy.is_none()) {
                 params.tol = i.newton_tolerance();
             }

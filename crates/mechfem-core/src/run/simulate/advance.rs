@@ -18,6 +18,7 @@ use differential_equations::ode::OrdinaryNumericalMethod;
 use differential_equations::status::Status;
 use nalgebra::DMatrix;
 
+use super::dop853::dense_output;
 use super::outputs::{hermite, locate, watched, Event, Outputs};
 use super::stiffness::{Stiffness, STIFF_REASON};
 use super::system::{Free, System};
@@ -72,8 +73,8 @@ const CALM: f64 = 0.5 * 3.25;
 /// the library choose) from where `run` is.
 pub(super) fn advance<Y, M>(run: &mut Run<'_, '_>, method: Integrator, auto: bool, make: impl Fn(f64) -> M) -> Next
 where
-    Y: Free,
-    M: OrdinaryNumericalMethod<f64, Y> + Interpolation<f64, Y>,
+    Y: Free + 'static,
+    M: OrdinaryNumericalMethod<f64, Y> + Interpolation<f64, Y> + 'static,
 {
     let implicit = method == Integrator::Radau5;
     let Some(mut m) = start(run, &make, run.h) else { return Next::Done };
@@ -156,7 +157,10 @@ where
             }
         }
         let y1 = Y::from_slice(m.y().as_ref());
-        step_outputs(run, y1.as_ref(), t0, t1, last, implicit.then_some(&mut m));
+        let out = &run.out;
+        let wanted = out.stop_when.is_some() || (!out.done && (out.time(out.next) <= t1 || last));
+        let own = implicit || (wanted && dense_output::<M, Y>(&mut m, &run.sys));
+        step_outputs(run, y1.as_ref(), t0, t1, last, own.then_some(&mut m));
         run.t = t1;
         run.y.copy_from_slice(m.y().as_ref());
         std::mem::swap(&mut run.a0, &mut run.a1);
@@ -211,20 +215,22 @@ where
 /// free state from a dense output and its position by Newton, from the
 /// position the integration found last; the integration then goes on from
 /// that position, so that the outputs do not change the motion. The dense
-/// output is the implicit method's own collocation polynomial (`implicit`),
-/// else the quintic Hermite interpolant ([`hermite`]): the library's dense
-/// output of Dormand-Prince 5(4) is a hundred times less accurate than its
-/// steps, while the Hermite interpolant through the accelerations is as
-/// accurate; in a stiff motion those accelerations hold the fast transient,
-/// which the collocation polynomial does not.
-fn step_outputs<Y, M>(run: &mut Run<'_, '_>, y1: &[f64], t0: f64, t1: f64, last: bool, mut implicit: Option<&mut M>)
+/// output is the method's own (`own`): the implicit method's collocation
+/// polynomial, DOP853's of order 7; else the quintic Hermite interpolant
+/// ([`hermite`]): the library's dense output of Dormand-Prince 5(4) is a
+/// hundred times less accurate than its steps, while the Hermite
+/// interpolant through the accelerations is as accurate (in a stiff motion
+/// those accelerations hold the fast transient, which the collocation
+/// polynomial does not); it is of order 5 only, too low for DOP853's long
+/// steps.
+fn step_outputs<Y, M>(run: &mut Run<'_, '_>, y1: &[f64], t0: f64, t1: f64, last: bool, mut own: Option<&mut M>)
 where
     Y: Free,
     M: Interpolation<f64, Y>,
 {
     let Run { out, acc, sys, y: y0, a0, a1, yd, tol, .. } = run;
     let (start, end) = ((t0, &y0[..], &a0[..]), (t1, y1, &a1[..]));
-    let mut dense = |t: f64, yd: &mut [f64]| match implicit.as_deref_mut().map(|m| m.interpolate(t.clamp(t0, t1))) {
+    let mut dense = |t: f64, yd: &mut [f64]| match own.as_deref_mut().map(|m| m.interpolate(t.clamp(t0, t1))) {
         Some(Ok(y)) => yd.copy_from_slice(y.as_ref()),
         _ => hermite(start, end, t, yd),
     };

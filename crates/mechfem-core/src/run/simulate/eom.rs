@@ -64,6 +64,9 @@ pub(super) struct Eom<'a> {
     pub(super) m_ff: Vec<f64>,
     pub(super) rhs: Vec<f64>,
     pub(super) saved: State,
+    /// Evaluations of the equations, one Newton position each, whether
+    /// the position was found or not: the integrator's stages, its
+    /// Jacobians, the outputs and the STOPWHEN location.
     pub(super) evaluations: usize,
     /// The time and free state `[q_f, q_f']` of the last position found.
     pub(super) found_t: f64,
@@ -95,6 +98,7 @@ impl Eom<'_> {
     /// `y = [q_f, q_f']`, into `out`; the position found stays in `self.state`.
     pub(super) fn accelerations(&mut self, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), SolveError> {
         let (mech, nf) = (self.mech, self.free.len());
+        self.evaluations += 1;
         for (k, &j) in self.free.iter().enumerate() {
             (self.q[j], self.qd[j], self.qdd[j]) = (y[k], y[nf + k], 0.0);
         }
@@ -145,7 +149,7 @@ impl Eom<'_> {
             return Err(SolveError::Simulation { time: t, reason: LIMIT_REASON });
         }
         self.q_last.copy_from_slice(&self.q);
-        (self.found_t, self.evaluations) = (t, self.evaluations + 1);
+        self.found_t = t;
         self.found_y.copy_from_slice(y);
         let view = PositionView {
             index: 0,
