@@ -49,6 +49,11 @@ pub(super) struct Stiffness {
 /// bound on Andrews' squeezing mechanism after its first steps).
 const AUTO_SHARE: f64 = 0.7;
 
+/// The share for a step of the automatic choice shorter than 1/2000 of the
+/// output interval: such a step is a cost, and within a factor of four of
+/// the bound it is stability that holds it.
+const AUTO_SHARE_COSTLY: f64 = 0.25;
+
 impl Stiffness {
     pub(super) fn new(bound: f64, costly_only: bool) -> Stiffness {
         Stiffness { stiff: 0, calm: 0, bound, costly_only }
@@ -64,8 +69,14 @@ impl Stiffness {
         // automatic choice would integrate a stiff motion explicitly for
         // hundreds of thousands of steps: the automatic choice counts a
         // step from `AUTO_SHARE` of the bound on.
-        let bound = if self.costly_only { self.bound } else { AUTO_SHARE * self.bound };
-        let held = sys.pair_at(t, |a, b| h * distance(&a.dy, &b.dy) > bound * distance(&a.y, &b.y));
+        // A step far below the output interval is counted from a lower
+        // share still: at 1e-12 the step settles at half the bound there.
+        let share = match (self.costly_only, h * 2000.0 < dt) {
+            (true, _) => 1.0,
+            (false, false) => AUTO_SHARE,
+            (false, true) => AUTO_SHARE_COSTLY,
+        };
+        let held = sys.pair_at(t, |a, b| h * distance(&a.dy, &b.dy) > share * self.bound * distance(&a.y, &b.y));
         if held && (!self.costly_only || h * 2000.0 < dt) {
             self.calm = 0;
             self.stiff += 1;
