@@ -6,11 +6,12 @@
 //! evaluation of the equations failed (no position found, a limit
 //! position) is not taken: the method is started again from the end of the
 //! last step with a quarter of the step. Radau IIA is also started again
-//! after every rejected step and before a step whose length mechfem sets
-//! (the last one, which ends at the end time exactly), because the
-//! library's Radau IIA keeps the factorisation of its Newton matrix for
-//! the old step length there; a start costs one evaluation, and the
-//! Jacobian and factorisation that a rejected step needs anyway.
+//! after every rejected step, before a step whose length mechfem sets
+//! (the last one, which ends at the end time exactly) and before a step of
+//! another length after one that kept its length, because the library's
+//! Radau IIA keeps the factorisation of its Newton matrix for the old step
+//! length there; a start costs one evaluation, and the Jacobian and
+//! factorisation that a rejected step needs anyway.
 
 use differential_equations::error::Error as StepError;
 use differential_equations::interpolate::Interpolation;
