@@ -36,6 +36,7 @@
 mod advance;
 mod dop853;
 mod eom;
+mod free_state;
 mod outputs;
 mod stiffness;
 mod system;
@@ -53,6 +54,7 @@ use crate::solver::{adjust, Kinematics, Params, TransferOrder};
 use advance::{advance, Next, Run};
 use dop853::Dop853;
 use eom::{Driver, Eom, LIMIT_REASON};
+use free_state::FreeState;
 pub use outputs::Event;
 use outputs::Outputs;
 use system::System;
@@ -305,40 +307,43 @@ pub fn simulate_within(
 /// Integrates `run` to its end with the method of `integration`, the
 /// automatic choice switching between Dormand-Prince 5(4) and Radau IIA;
 /// the stretches each method integrated. The free state is an array for
-/// up to [`IMPLICIT_MAX_FREE`] free DOFs, a `Vec` beyond, where the
-/// implicit method is not available.
+/// up to three free DOFs, a `Vec` beyond ([`FreeState`] for the implicit
+/// method).
 fn integrate(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
     match run.y.len() {
-        2 => integrate_as::<[f64; 2]>(run, integration),
-        4 => integrate_as::<[f64; 4]>(run, integration),
-        6 => integrate_as::<[f64; 6]>(run, integration),
-        _ => integrate_as::<Vec<f64>>(run, integration),
+        2 => integrate_as::<[f64; 2], [f64; 2]>(run, integration),
+        4 => integrate_as::<[f64; 4], [f64; 4]>(run, integration),
+        6 => integrate_as::<[f64; 6], [f64; 6]>(run, integration),
+        n => {
+            free_state::set_dimension(n);
+            integrate_as::<Vec<f64>, FreeState>(run, integration)
+        }
     }
 }
 
-/// The most free DOFs the implicit method integrates.
-pub const IMPLICIT_MAX_FREE: usize = 3;
-
-fn integrate_as<Y: system::Free + 'static>(run: &mut Run<'_, '_>, integration: &Integration) -> Vec<Segment> {
-    let implicit = run.y.len() <= 2 * IMPLICIT_MAX_FREE;
-    let auto = integration.integrator == Integrator::Auto && implicit;
+/// [`integrate`] with the free state `Y` for the explicit methods and `Z`
+/// for the implicit one.
+fn integrate_as<Y: system::Free + 'static, Z: system::Free + 'static>(
+    run: &mut Run<'_, '_>,
+    integration: &Integration,
+) -> Vec<Segment> {
+    let auto = integration.integrator == Integrator::Auto;
     let mut method = match integration.integrator {
         Integrator::Auto => Integrator::Dopri5,
-        Integrator::Radau5 if !implicit => {
-            run.error = Some(SolveError::Simulation { time: 0.0, reason: TOO_MANY_FOR_IMPLICIT });
-            return Vec::new();
-        }
         m => m,
     };
-    let (rtol, atol, span) = (integration.rtol, integration.atol, run.span);
+    let (rtol, atol, span, n) = (integration.rtol, integration.atol, run.span, run.y.len());
     let mut segments = Vec::new();
     while !run.out.done {
         let (from, calls, steps) = (run.t, run.sys.eom.borrow().evaluations, run.steps);
         let next = match method {
-            Integrator::Radau5 => advance::<Y, _>(run, method, auto, |h| {
-                ImplicitRungeKutta::<Ordinary, Radau, f64, Y, 5, 3, 3>::radau5()
-                    .rtol(rtol)
-                    .atol(atol)
+            Integrator::Radau5 => advance::<Z, _>(run, method, auto, |h| {
+                // One tolerance per state: the library transforms its
+                // tolerances (rtol' = 0.1 rtol^(2/3)) once per state, so a
+                // single scalar would be transformed 2 nf times over.
+                ImplicitRungeKutta::<Ordinary, Radau, f64, Z, 5, 3, 3>::radau5()
+                    .rtol(vec![rtol; n])
+                    .atol(vec![atol; n])
                     .h0(h)
                     .h_max(span)
                     .max_steps(usize::MAX)
@@ -370,9 +375,6 @@ fn integrate_as<Y: system::Free + 'static>(run: &mut Run<'_, '_>, integration: &
     }
     segments
 }
-
-const TOO_MANY_FOR_IMPLICIT: &str = "the implicit integrator takes at most 3 degrees of freedom moving under the \
-                                     forces: integrate this mechanism with `INTEGRATOR explicit`";
 
 /// A simulation without a free DOF: the prescribed motion, run as a
 /// kinematic run through the output times.

@@ -6,11 +6,12 @@
 //! evaluation of the equations failed (no position found, a limit
 //! position) is not taken: the method is started again from the end of the
 //! last step with a quarter of the step. Radau IIA is also started again
-//! after every rejected step and before a step whose length mechfem sets
-//! (the last one, which ends at the end time exactly), because the
-//! library's Radau IIA keeps the factorisation of its Newton matrix for
-//! the old step length there; a start costs one evaluation, and the
-//! Jacobian and factorisation that a rejected step needs anyway.
+//! after every rejected step, before a step whose length mechfem sets
+//! (the last one, which ends at the end time exactly) and before a step of
+//! another length after one that kept its length, because the library's
+//! Radau IIA keeps the factorisation of its Newton matrix for the old step
+//! length there; a start costs one evaluation, and the Jacobian and
+//! factorisation that a rejected step needs anyway.
 
 use differential_equations::error::Error as StepError;
 use differential_equations::interpolate::Interpolation;
@@ -81,6 +82,13 @@ where
     let bound = if method == Integrator::Dopri5 { 3.25 } else { 6.1 };
     let mut stiffness = Stiffness::new(bound, !auto);
     let (mut calm, mut failures) = (0, 0);
+    // The step length the implicit method's Newton matrices may be
+    // factorised for: the library's Radau IIA keeps its factorisation
+    // after a step that kept the step length and its Newton iteration
+    // converged fast, and then uses it for later steps of other lengths
+    // too, where its error estimate is wrong (Hairer's RADAU5 factorises
+    // again). A step of another length starts the method again.
+    let mut factorised: Option<f64> = None;
     loop {
         if run.out.done {
             return Next::Done;
@@ -96,11 +104,16 @@ where
             h = run.span - run.t;
             if implicit && h != m.h() {
                 let Some(fresh) = start(run, &make, h) else { return Next::Done };
-                m = fresh;
+                (m, factorised) = (fresh, None);
             } else {
                 m.set_h(h);
             }
         }
+        if implicit && factorised.is_some_and(|hf| hf != m.h()) {
+            let Some(fresh) = start(run, &make, m.h()) else { return Next::Done };
+            (m, factorised) = (fresh, None);
+        }
+        let taken = m.h();
         let stepped = m.step(&run.sys);
         if let Some(failure) = run.sys.take_failure() {
             // The step is not taken: again from its start, shorter.
@@ -116,7 +129,7 @@ where
                 return Next::Done;
             }
             let Some(fresh) = start(run, &make, shorter) else { return Next::Done };
-            m = fresh;
+            (m, factorised) = (fresh, None);
             continue;
         }
         match stepped {
@@ -139,7 +152,7 @@ where
             run.rejected += 1;
             if implicit {
                 let Some(fresh) = start(run, &make, m.h()) else { return Next::Done };
-                m = fresh;
+                (m, factorised) = (fresh, None);
             }
             continue;
         }
@@ -164,6 +177,9 @@ where
         run.t = t1;
         run.y.copy_from_slice(m.y().as_ref());
         std::mem::swap(&mut run.a0, &mut run.a1);
+        if implicit && (m.h() == taken || factorised.is_some()) {
+            factorised = Some(taken);
+        }
         run.h = m.h();
         if run.out.done {
             return Next::Done;

@@ -82,9 +82,10 @@ impl<'a> System<'a> {
 }
 
 /// A free state as the library holds it: a fixed-size array for the few
-/// free DOFs of most mechanisms (the library's Radau IIA needs one: it
-/// starts its Newton iteration from `State::zeros()`, which is empty for a
-/// `Vec`), a `Vec` beyond.
+/// free DOFs of most mechanisms, a `Vec` beyond for the explicit methods and
+/// a [`super::free_state::FreeState`] for the implicit one (the library's
+/// Radau IIA sizes its work from `State::zeros()`, which is empty for a
+/// `Vec`).
 pub(super) trait Free: State<f64> + AsRef<[f64]> + AsMut<[f64]> {
     fn from_slice(y: &[f64]) -> Self;
 }
