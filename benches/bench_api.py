@@ -16,7 +16,9 @@ read or built and compiled inside each timed call):
 * pylinkage's ``step_fast`` and ``step_fast_with_kinematics`` (numba): compiled once is one linkage, compiled with
   ``Linkage.compile`` and run once before the timing, set back to its start (``set_coords``, untimed) before each
   call; compiled per call is a linkage built before each call (untimed) whose numba state is made in the call;
-* the core's own run of the same four-bar with second order (``examples/throughput.rs``), in the same run;
+* the core's own run of the same four-bar (``examples/throughput.rs``), positions only and second order, nothing
+  recorded: a round of it (its best of repeated runs) in every round of the tools, so that it meets the machine's
+  load as they do;
 * ``mechfem.sweep`` of 360-position variants of the four-bar (its crank length), on 1 and on 2 workers alternated,
   the best of the rounds run between the tools' rounds.
 
@@ -28,7 +30,9 @@ mechfem's at every position, velocities and accelerations included. Nothing here
 from __future__ import annotations
 
 import argparse
+import json
 import math
+import subprocess
 import sys
 import tempfile
 import time
@@ -46,7 +50,6 @@ from bench_peers import (
     agree,
     best_of,
     fourbar_deck,
-    mechfem_core_rates,
     pylinkage_fourbar,
 )
 from benchenv import ROOT, ensure_venv
@@ -66,7 +69,29 @@ def closed_form_check(coords, steps: int) -> None:  # type: ignore[no-untyped-de
     assert np.allclose(cx, ax + P * np.cos(theta), atol=1e-9) and np.allclose(cy, ay + P * np.sin(theta), atol=1e-9)
 
 
-def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_round, core_seconds) -> None:  # type: ignore[no-untyped-def]
+def throughput_example() -> Path:
+    """Builds ``examples/throughput.rs`` in release mode (the workspace's profile) and returns its path."""
+    subprocess.run(
+        ["cargo", "build", "--quiet", "--release", "-p", "mechfem-core", "--example", "throughput"],
+        cwd=ROOT,
+        check=True,
+    )
+    return ROOT / "target" / "release" / "examples" / "throughput"
+
+
+def core_round(example: Path, steps: int, mode: str, min_time: float) -> float:
+    """One round of the core's own run: the best of its repeated runs (at least ``min_time`` seconds of them), in
+    seconds."""
+    out = subprocess.run(
+        [str(example), str(steps), "--mode", mode, "--repeat", "3", "--min-time", str(min_time)],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
+    return float(json.loads(out.splitlines()[-1])["seconds"])
+
+
+def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_round, example: Path) -> None:  # type: ignore[no-untyped-def]
     """Checks, then times every tool at ``steps`` steps, alternating them, and a round of the study after each
     round of the tools."""
     import numpy as np
@@ -162,15 +187,19 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     # memory's state: more calls a round there, so that the best of them is the call's own cost.
     min_time = 0.05 if steps < 10_000 else 0.25
     best: dict[str, float] = {}
+    core_positions = "the core's own run, positions only (throughput example)"
+    core_second = "the core's own run, second order (throughput example)"
     for _ in range(rounds):
         for name, (fn, setup) in tools.items():
             t, _ = best_of(1, fn, setup, min_time)
             best[name] = min(best.get(name, math.inf), t)
+        # The core's own runs in the same round, nothing recorded.
+        for name, mode in ((core_positions, "positions"), (core_second, "second")):
+            best[name] = min(best.get(name, math.inf), core_round(example, steps, mode, min_time))
         study_round()
     for name, t in best.items():
         add(name, steps, t)
-    core = core_seconds[steps]
-    add("the core's own run, second order (throughput example)", steps, core)
+    core = best[core_second]
     once, per = "compiled once", "compiled per call"
     second, with_kin = "run_deck, second order", "pylinkage step_fast_with_kinematics"
     positions, fast = "run_deck, positions only (det=False)", "pylinkage step_fast"
@@ -185,6 +214,12 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     for what, num, den, how in pairs:
         print(f"  ratio {what}: {rates[f'{num}, {how}', steps] / rates[f'{den}, {how}', steps]:.2f}")
     print(f"  ratio Mechanism.run(order=2) time / the core's own run time: {best[f'{named}, {once}'] / core:.2f}")
+    # What a call adds to the core's own run of the same mode (reading the kept deck, recording, the result).
+    for what, name, own in (
+        ("run_deck, positions only", f"{positions}, {once}", core_positions),
+        ("run_deck, second order", f"{second}, {once}", core_second),
+    ):
+        print(f"  ratio {what} time / the core's own run time: {best[name] / best[own]:.2f}")
 
 
 def main() -> None:
@@ -223,14 +258,10 @@ def main() -> None:
             rate = args.variants / (time.perf_counter() - t0)
             study_rates[workers] = max(study_rates.get(workers, 0.0), rate)
 
-    # The core's own run (examples/throughput.rs, second order) in the same run of the bench, before the tools.
-    core_seconds = {
-        int(r["steps"]): float(r["seconds"])  # type: ignore[arg-type]
-        for r in mechfem_core_rates(args.steps, args.repeat, 0.2)
-        if r["mode"] == "second"
-    }
+    # The core's own run (examples/throughput.rs), timed round by round with the tools.
+    example = throughput_example()
     for steps in args.steps:
-        measure(steps, args, tmp, add, rates, study_round, core_seconds)
+        measure(steps, args, tmp, add, rates, study_round, example)
     for w, rate in study_rates.items():
         print(f"  sweep, {args.variants} variants x 360 positions, {w} worker(s): {rate:,.0f} variants/s")
     print(f"  sweep speed-up 1 -> 2 workers: {study_rates[2] / study_rates[1]:.2f}")
