@@ -128,7 +128,10 @@ END
     assert 100.0 < numbers(reached)[0] < 1000.0
     assert numbers(reached)[0] == pytest.approx(float(result.buffers[1][-1]), rel=1e-9)
     stop = line_with(text, "stopped by STOPWHEN")
+    # The value crossed is STOPWHEN's own, in degrees, as are the inputs there.
+    assert "buffer 2 crossed -60 at time" in stop
     assert "ms (inputs" in stop and stop.endswith("deg)")
+    assert result.simulation is not None and result.simulation.reached == pytest.approx(numbers(reached)[0])
     assert numbers(stop.split("inputs")[1])[0] == pytest.approx(-60.0, abs=1e-6)
     assert "T + V:" in text and line_with(text, "T + V:").count("kN·cm") == 3
     assert math.isfinite(numbers(line_with(text, "T + V:"))[0])

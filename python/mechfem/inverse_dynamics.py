@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from mechfem.units import SI, symbol
+from mechfem.units import symbol
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -45,16 +45,6 @@ class Said:
         """`` mm`` (with its space) for a quantity of that kind, "" without a unit."""
         u = symbol(self.units, **exponents)
         return f" {u}" if u else ""
-
-    def scale(self, exponents: Exponents) -> float:
-        """What a number in SI of that kind is multiplied by to be in the deck's units (1 where a kind has no
-        unit: then the core's number is the deck's)."""
-        out = 1.0
-        for kind, e in exponents.items():
-            u = self.units.get(kind)
-            if e and u:
-                out *= SI[kind][u] ** -e
-        return out
 
     def point(self, x: int, y: int) -> str:
         """``K`` for a named point, else ``(x13, y14)``."""
@@ -303,10 +293,10 @@ class Simulation:
         )
 
     def lines(self, series: DynamicSeries | None, time: FloatArray, said: Said | None = None) -> list[str]:
-        """The print file's SIMULATION section: the integrator and its work, and the energy balance at the end, in
-        the deck's units (``said``: the integrator's times are the core's, the series the deck's)."""
+        """The print file's SIMULATION section: the integrator and its work, and the energy balance at the end, with
+        the units of the deck (``said``; the numbers are in them already)."""
         said = said or Said()
-        k, s = said.scale(TIME), said.unit(TIME)
+        s = said.unit(TIME)
         energy = said.unit(ENERGY)
         out = [
             "SIMULATION",
@@ -314,23 +304,20 @@ class Simulation:
             f"  tolerances: relative {self.rtol:.3g}, absolute {self.atol:.3g}",
             f"  steps: {self.steps} accepted, {self.rejected} rejected; {self.evaluations} evaluations of the "
             "equations of motion",
-            f"  time reached: {self.reached * k:.10g}{s}",
+            f"  time reached: {self.reached:.10g}{s}",
         ]
         if self.jacobians:
             out.append(f"  Jacobians of the equations of motion: {self.jacobians}")
         if len(self.segments) > 1 or (self.segments and not self.method.startswith(self.segments[0][0])):
             out.append("  methods by stretch of time:")
             out += [
-                f"    {method}: from {a * k:.10g}{s} to {b * k:.10g}{s}, {n} steps, {e} evaluations"
+                f"    {method}: from {a:.10g}{s} to {b:.10g}{s}, {n} steps, {e} evaluations"
                 for method, a, b, n, e in self.segments
             ]
         if self.event is not None:
             b, v, t, q = self.event
-            at = ", ".join(
-                f"{x * said.scale(e):.10g}{said.unit(e)}"
-                for x, e in zip(q, [*said.inputs, *[{}] * len(q)], strict=False)
-            )
-            out.append(f"  stopped by STOPWHEN: buffer {b} crossed {v:.10g} at time {t * k:.10g}{s} (inputs {at})")
+            at = ", ".join(f"{x:.10g}{said.unit(e)}" for x, e in zip(q, [*said.inputs, *[{}] * len(q)], strict=False))
+            out.append(f"  stopped by STOPWHEN: buffer {b} crossed {v:.10g} at time {t:.10g}{s} (inputs {at})")
         if self.tolerance_warning:
             out.append(f"  warning: {self.tolerance_warning}")
         if series is not None and time.size > 1:

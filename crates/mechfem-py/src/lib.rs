@@ -166,6 +166,7 @@ fn execute(
         // The report and an error speak the deck's units.
         Ok((report, sim)) => {
             let report = c.report_as_written(&report);
+            let sim = sim.map(|s| c.sim_as_written(&s));
             Ok(Ran { compiled: c, given, rec, report, sim, interrupted })
         }
         Err(e) => {

@@ -3,7 +3,7 @@
 //! and loads): the inverse of [`super::scale`] and [`super::tables`].
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
-use mechfem_core::{Dim, ElementError, FormRef, InputMotion, LimitPosition, Motion, RunReport, SolveError};
+use mechfem_core::{Dim, ElementError, FormRef, InputMotion, LimitPosition, Motion, RunReport, SimReport, SolveError};
 
 use super::scale::inertia_on;
 use crate::compiled::Compiled;
@@ -149,5 +149,35 @@ impl Compiled {
             _ => {}
         }
         e
+    }
+}
+
+impl Compiled {
+    /// What a simulation's integrator did, in the deck's units: the time
+    /// reached, the stretches of each method and where STOPWHEN ended it
+    /// (the value crossed in its buffer's unit, the time and the inputs).
+    pub fn sim_as_written(&self, s: &SimReport) -> SimReport {
+        let mut s = s.clone();
+        if self.units.is_identity() {
+            return s;
+        }
+        let (u, d, mech) = (&self.units, &self.dims, &self.mechanism);
+        let time = |t: &mut f64| *t = u.from_core(Dim::TIME, *t);
+        time(&mut s.reached);
+        for g in &mut s.segments {
+            time(&mut g.from);
+            time(&mut g.to);
+        }
+        if let Some(e) = &mut s.event {
+            time(&mut e.time);
+            if let Some(b) = self.buffers.iter().find(|b| b.number == e.buffer) {
+                e.value = u.from_core(d.quantity(mech, b.quantity), e.value);
+            }
+            for (j, v) in e.inputs.iter_mut().enumerate() {
+                *v = u.from_core(d.input(mech, j), *v);
+            }
+        }
+        s.run = self.report_as_written(&s.run);
+        s
     }
 }
