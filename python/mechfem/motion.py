@@ -393,10 +393,10 @@ def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> No
     for row in inputs:
         why = None if row.value is None or not row.is_angle else wrong_angle_unit(row.value, angle)
         if why is not None:
-            unit = "degrees" if angle == "deg" else "radians"
+            words = "degrees" if angle == "deg" else "radians"
             warnings.warn(
-                f"the start value {row.value:g} of the angle input {row.name!r} is in {unit}, the model's angle "
-                f"unit, but {why}: give it in {unit}, or give the model the other angle unit "
+                f"the start value {row.value:g} of the angle input {row.name!r} is in {words}, the model's angle "
+                f"unit, but {why}: give it in {words}, or give the model the other angle unit "
                 "(Mechanism(..., angle=...))",
                 UnitWarning,
                 stacklevel=user_stacklevel(),

@@ -173,7 +173,7 @@ def print_file_lines(result: RunResult) -> list[str]:
     if result.dynamic is not None:
         out += summary_lines(result.dynamic, result.time, said)
     out += table_lines(result)
-    out += limit_lines(result)
+    out += limit_lines(result, said)
     if result.report.warnings:
         out += ["WARNINGS", *(line for w in result.report.warnings for line in paragraph(w)), ""]
     reason = result.report.stop_reason(written=True)
@@ -390,7 +390,7 @@ def shown_coordinates(result: RunResult) -> list[int]:
     return sorted({b.args[0] for b in result.storage.buffers if b.keyword == "BUFX0"})
 
 
-def limit_lines(result: RunResult) -> list[str]:
+def limit_lines(result: RunResult, said: Said | None = None) -> list[str]:
     """The LIMIT POSITIONS section: the range of det(D^c), every located limit position, and the positions
     without transfer functions. Nothing without a motion."""
     report = result.report
@@ -415,6 +415,10 @@ def limit_lines(result: RunResult) -> list[str]:
     if not limits:
         out += ["", "  no limit position met"]
     shown = shown_coordinates(result)
+    said = said or Said()
+    # The co-ordinates' unit, when they share one (in the deck's units, as the core's report gives them).
+    units = {said.unit(said.coords.get(i, {"length": 1})) for i in shown}
+    in_unit = f" [{units.pop().strip()}]" if len(units) == 1 and "" not in units else ""
     for number, limit in enumerate(limits, 1):
         out.append("")
         head = paragraph(f"{limit.where}: {limit.what(report.input_names)}", "      ")
@@ -422,7 +426,7 @@ def limit_lines(result: RunResult) -> list[str]:
         out += paragraph(limit.values(), "      ")
         if shown:
             values = [f"{i:>4d} = {limit.coords[i - 1]:<17.10g}" for i in shown]
-            out.append("      co-ordinates there:")
+            out.append(f"      co-ordinates there{in_unit}:")
             out += [f"      {'  '.join(values[k : k + 4])}".rstrip() for k in range(0, len(values), 4)]
     if report.singular_positions:
         positions = report.singular_positions

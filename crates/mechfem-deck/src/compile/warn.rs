@@ -70,9 +70,7 @@ pub(crate) fn suspicious(
     };
     let row = |r: i64| usize::try_from(r - 1).ok().and_then(|k| dims.prescribed.get(k)).copied();
     let coord = |i: i64| usize::try_from(i - 1).ok().and_then(|k| dims.coords.get(k)).copied();
-    let buffer = |b: i64| {
-        buffers.iter().find(|x| i64::from(x.number) == b).map(|x| dims.quantity(mech, x.quantity))
-    };
+    let buffer = |b: i64| buffers.iter().find(|x| i64::from(x.number) == b).map(|x| dims.quantity(mech, x.quantity));
     for c in &deck.geometry.coords {
         if let Some(d) = coord(c.index.value) {
             check(d, &c.value, "the co-ordinate");
