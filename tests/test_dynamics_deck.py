@@ -113,15 +113,15 @@ def test_the_outputs_show_the_dynamics(tmp_path: Path, cli: Cli) -> None:
     assert proc.returncode == 0, proc.stderr
     prt = (tmp_path / "supply_dyn.prt").read_text()
     assert "masses and loads (DYNAMICS)" in prt
-    assert "MASS      element 5: m 1, centre (u, v) = (0.339, 0), J 0.0384" in prt
-    assert "LOAD      eps(-1): constant -2" in prt
+    assert "MASS      element 5: m 1 kg, centre (u, v) = (0.339, 0) m, J 0.0384 kg·m²" in prt
+    assert "LOAD      delta: constant -2 N·m" in prt
     summary = prt[prt.index("\nDYNAMICS\n") :]
     assert "drive of DOF 1: largest" in summary
     assert "a flywheel's energy swing" in summary
     with open(tmp_path / "supply_dyn.csv", newline="") as f:
         header = next(csv.reader(f))
-    # Named by the deck's NAMES block: ROW for the input alpha, DEP for the output delta.
-    assert header[:3] == ["99 alpha", "100 delta", "110 drive(alpha)"]
+    # Named by the deck's NAMES block (ROW for the input alpha, DEP for the output delta), with its UNITS.
+    assert header[:3] == ["99 alpha [rad]", "100 delta [rad]", "110 drive(alpha) [N·m]"]
     report = (tmp_path / "supply_dyn.html").read_text()
     assert "drive force or torque against alpha" in report
     assert "energies against alpha" in report

@@ -146,7 +146,7 @@ def test_nongrashof_print_file_lists_the_limit_positions(cli: Cli, tmp_path: Pat
     section = text[text.index("LIMIT POSITIONS") :]
     for limit in passed(run("nongrashof")):
         where = f"between positions {limit.after} and {limit.after + 1}"
-        assert f"{where}: free motion passes a limit position of the input of DOF 1 (row 6: ANGB(1))" in section
+        assert f"{where}: free motion passes a limit position of the input of DOF 1 (row 6: beta1)" in section
         assert f"input 1 = {limit.inputs[0]:.12g}" in section
         assert "limit position: free motion passes" in proc.stdout and where in proc.stdout
     listed = [float(v) for v in re.findall(r"input 1 = (\S+),", section)]
@@ -251,12 +251,12 @@ def test_stephenson_limits_driven_run_stops_at_the_first_limit(cli: Cli, tmp_pat
     prt = flat((tmp_path / "stephenson_limits.prt").read_text())
     for text in (message, prt[prt.index("MOTION STOPPED") :]):
         assert f"The motion stopped after position {k} of 73" in text
-        assert f"the input of DOF 1 (row 10: ANGB(1)) reached its limit position at input 1 = {limit:.12g}" in text
+        assert f"the input of DOF 1 (row 10: beta1) reached its limit position at input 1 = {limit:.12g}" in text
         assert f"between positions {k} and {k + 1}" in text
         assert f"Positions 1 to {k} were computed and are all written" in text
         assert "`MOV_FREE 1 " in text
     section = prt[prt.index("LIMIT POSITIONS") : prt.index("MOTION STOPPED")]
-    assert f"between positions {k} and {k + 1}: the input of DOF 1 (row 10: ANGB(1)) reaches its limit" in section
+    assert f"between positions {k} and {k + 1}: the input of DOF 1 (row 10: beta1) reaches its limit" in section
     with (tmp_path / "stephenson_limits.csv").open() as f:
         assert len(list(csv.reader(f))) == 1 + k
 
@@ -311,7 +311,7 @@ def test_slider_driven_stops_at_the_dead_centre(cli: Cli, tmp_path: Path) -> Non
     assert r.positions == k == 13
     assert np.all(r.buffers[1] < SC_FAR)
     message = flat(proc.stderr)
-    assert "the input of DOF 1 (row 3: COOR(3)) reached its limit position at input 1 = 4," in message
+    assert "the input of DOF 1 (row 3: s) reached its limit position at input 1 = 4," in message
     assert f"between positions {k} and {k + 1}" in message
     assert f"Positions 1 to {k} were computed and are all written to the output files" in message
     line, ds = suggested_free_motion(message)

@@ -79,7 +79,7 @@ def kept_model(
         if changes is None:
             return None
         if motion is not None:
-            check_units(motion, last.numbering.inputs)
+            check_units(motion, last.numbering.inputs, mech.units.angle)
         return last.model, last.numbering, changes
     numbering = deckio.number_model(mech)
     key = topology(mech, motion, storage, numbering)
@@ -97,7 +97,7 @@ def kept_model(
     if kept is not None:
         # The deck writer checks the motion's units at every run: so does a kept model.
         if motion is not None:
-            check_units(motion, numbering.inputs)
+            check_units(motion, numbering.inputs, mech.units.angle)
     else:
         try:
             kept, _ = building.build(mech, motion, storage)

@@ -26,8 +26,10 @@ warns with :class:`IncompleteRunWarning` so that a script notices; with
 ``raise_on_stop=True`` it raises :class:`RunStoppedError` instead, which
 carries the positions computed in ``result``.
 
-A motion of an angle input that changes it by more than 100 rad without
-saying its unit warns with :class:`UnitWarning`: degrees were probably meant.
+A number that looks like the wrong unit warns with :class:`UnitWarning`, one class for the deck reader's
+warnings and the Python API's: an angle of 720 where angles are radians (a deck's PARA, co-ordinate, motion,
+VARY range, target, bound or STOPWHEN value; a ``Mechanism``'s input start value or a motion of more than 100 rad
+given without a unit), or 6.2832 where they are degrees.
 
 Ctrl-C during a run raises :class:`RunInterrupted`, a ``KeyboardInterrupt``
 that carries the positions computed before it in ``result``, so a script
@@ -41,7 +43,15 @@ import sys
 import warnings
 from typing import Generic, TypeVar
 
-from mechfem._core import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
+from mechfem._core import (
+    AssemblyError,
+    ConvergenceError,
+    DeckError,
+    LimitPositionError,
+    MechfemError,
+    ResourceError,
+    UnitWarning,
+)
 
 R = TypeVar("R")
 
@@ -72,11 +82,6 @@ class RunStoppedError(MechfemError, Generic[R]):
 
     def __reduce__(self) -> tuple[object, ...]:
         return (type(self), (self.reason, self.result))
-
-
-class UnitWarning(UserWarning):
-    """A motion changes an angle input by more than 100 rad and says nothing of its unit: degrees were probably
-    meant (``unit="deg"``); ``unit="rad"`` says that radians are meant and silences it."""
 
 
 _PACKAGE = os.path.dirname(os.path.abspath(__file__)) + os.sep

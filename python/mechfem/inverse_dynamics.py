@@ -9,13 +9,67 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
+from mechfem.units import symbol
+
 FloatArray = npt.NDArray[np.float64]
+
+Exponents = Mapping[str, int]
+"""A kind of quantity as its exponents of ``length``, ``angle``, ``mass``, ``force`` and ``time``."""
+
+
+@dataclass(frozen=True)
+class Said:
+    """How the print file says a run's numbers: in the deck's units (its echo's ``units``, None where not
+    declared), each with its unit, and a point or a row by its NAMES name."""
+
+    units: Mapping[str, str | None] = field(default_factory=dict)
+    rows: Mapping[int, Exponents] = field(default_factory=dict)
+    """The kind of every row by destination (dependent form parameters negative)."""
+    inputs: list[Exponents] = field(default_factory=list)
+    """The kind of every input, DOF 1 first."""
+    coords: Mapping[int, Exponents] = field(default_factory=dict)
+    """The kind of every co-ordinate by number (a length where not given)."""
+    points: Mapping[tuple[int, int], str] = field(default_factory=dict)
+    """The named points by their co-ordinates ``(x, y)``."""
+    row_names: Mapping[int, str] = field(default_factory=dict)
+    """The named rows by destination."""
+
+    def unit(self, exponents: Exponents) -> str:
+        """`` mm`` (with its space) for a quantity of that kind, "" without a unit."""
+        u = symbol(self.units, **exponents)
+        return f" {u}" if u else ""
+
+    def point(self, x: int, y: int) -> str:
+        """``K`` for a named point, else ``(x13, y14)``."""
+        return self.points.get((x, y)) or f"(x{x}, y{y})"
+
+    def row(self, dest: int) -> str:
+        """``psi`` for a named row, else ``eps(-1)``."""
+        return self.row_names.get(dest) or f"eps({dest})"
+
+
+def over(a: Exponents, b: Exponents) -> dict[str, int]:
+    """The kind ``a / b``."""
+    return {k: a.get(k, 0) - b.get(k, 0) for k in {*a, *b}}
+
+
+def generalised_force(e: Exponents) -> dict[str, int]:
+    """The kind of a generalised force on a quantity of kind ``e``: work over it, an angle not counted (a force
+    on a length, a torque on an angle)."""
+    return over({"force": 1, "length": 1}, {k: v for k, v in e.items() if k != "angle"})
+
+
+LENGTH: Exponents = {"length": 1}
+MASS: Exponents = {"mass": 1}
+TIME: Exponents = {"time": 1}
+ENERGY: Exponents = {"force": 1, "length": 1}
 
 
 @dataclass(frozen=True)
@@ -43,37 +97,52 @@ class DynamicsModel:
             loads=list(d["loads"]),
         )
 
-    def lines(self) -> list[str]:
-        """The echo of the masses and loads in the print file."""
+    def lines(self, said: Said | None = None) -> list[str]:
+        """The echo of the masses and loads in the print file, in the deck's units and with its names (``said``)."""
+        said = said or Said()
+        u = said.unit
+        inertia = {"mass": 1, "length": 2}
         out = ["", "  masses and loads (DYNAMICS)"]
         if self.gravity != (0.0, 0.0):
-            out.append(f"    GRAVITY   ({self.gravity[0]:.10g}, {self.gravity[1]:.10g})")
+            g = u({"length": 1, "time": -2})
+            out.append(f"    GRAVITY   ({self.gravity[0]:.10g}, {self.gravity[1]:.10g}){g}")
         for b in self.bodies:
             out.append(
-                f"    MASS      element {int(b['element'])}: m {b['mass']:.10g}, centre (u, v) = "
-                f"({b['u']:.10g}, {b['v']:.10g}), J {b['inertia']:.10g}"
+                f"    MASS      element {int(b['element'])}: m {b['mass']:.10g}{u(MASS)}, centre (u, v) = "
+                f"({b['u']:.10g}, {b['v']:.10g}){u(LENGTH)}, J {b['inertia']:.10g}{u(inertia)}"
             )
         for p in self.point_masses:
-            out.append(f"    PMASS     point (x{int(p['x'])}, y{int(p['y'])}): m {p['mass']:.10g}")
+            out.append(f"    PMASS     point {said.point(int(p['x']), int(p['y']))}: m {p['mass']:.10g}{u(MASS)}")
         for i in self.inertias:
-            out.append(f"    INERTIA   co-ordinate {int(i['coord'])}: J {i['inertia']:.10g}")
+            lengths = 2 * (1 - said.coords.get(int(i["coord"]), LENGTH).get("length", 0))
+            j = u({"mass": 1, "length": lengths})
+            out.append(f"    INERTIA   co-ordinate {int(i['coord'])}: J {i['inertia']:.10g}{j}")
         for f in self.forces:
-            out.append(f"    FORCE     point (x{int(f['x'])}, y{int(f['y'])}): ({f['fx']:.10g}, {f['fy']:.10g})")
+            out.append(
+                f"    FORCE     point {said.point(int(f['x']), int(f['y']))}: "
+                f"({f['fx']:.10g}, {f['fy']:.10g}){u({'force': 1})}"
+            )
         for ld in self.loads:
-            out.append(f"    {ld['kind']:<9} eps({ld['dest']}): {_load_text(ld)}")
+            dest = int(ld["dest"])
+            out.append(f"    {ld['kind']:<9} {said.row(dest)}: {_load_text(ld, said, said.rows.get(dest, {}))}")
         return out
 
 
-def _load_text(ld: dict[str, Any]) -> str:
+def _load_text(ld: dict[str, Any], said: Said, e: Exponents) -> str:
+    """A load's numbers with their units: ``e`` is the kind of the row it acts on."""
+    q = generalised_force(e)
+    u = said.unit
     match ld["kind"]:
         case "LOAD":
-            return f"constant {ld['value']:.10g}"
+            return f"constant {ld['value']:.10g}{u(q)}"
         case "LOADFUNC":
             return f"table of {len(ld['rows'])} rows, linear in time"
         case "SPRING":
-            return f"stiffness {ld['k']:.10g}, free value {ld['e0']:.10g}, damping {ld['c']:.10g}"
+            k = over(q, e)
+            c = over(k, over({}, TIME))
+            return f"stiffness {ld['k']:.10g}{u(k)}, free value {ld['e0']:.10g}{u(e)}, damping {ld['c']:.10g}{u(c)}"
         case _:
-            return f"stall torque {ld['t0']:.10g}, no-load speed {ld['w0']:.10g}"
+            return f"stall torque {ld['t0']:.10g}{u(q)}, no-load speed {ld['w0']:.10g}{u(over(e, TIME))}"
 
 
 @dataclass(frozen=True)
@@ -117,10 +186,10 @@ def root_mean_square(v: FloatArray) -> float:
     return scale * float(np.sqrt(np.mean((v / scale) ** 2)))
 
 
-def number(v: float) -> str:
-    """A summary number with ten digits; one that overflows a double (a sum or a difference of finite results) is
-    said so instead of printed as an infinity."""
-    return f"{v:.10g}" if math.isfinite(v) else "too large for a double"
+def number(v: float, unit: str = "") -> str:
+    """A summary number with ten digits and its ``unit`` (`` mm``, with its space); one that overflows a double (a
+    sum or a difference of finite results) is said so instead of printed as an infinity."""
+    return f"{v:.10g}{unit}" if math.isfinite(v) else "too large for a double"
 
 
 def energy_fluctuation(time: FloatArray, power: FloatArray) -> float:
@@ -134,11 +203,15 @@ def energy_fluctuation(time: FloatArray, power: FloatArray) -> float:
         return float(excess.max() - excess.min())
 
 
-def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
+def summary_lines(series: DynamicSeries, time: FloatArray, said: Said | None = None) -> list[str]:
     """The print file's DYNAMICS section: the extreme drive forces and where they occur, the drives' work and mean
-    power, the energy a flywheel must absorb, and the range of the kinetic and potential energy."""
+    power, the energy a flywheel must absorb, and the range of the kinetic and potential energy; every number with
+    its unit (``said``; the series are in the deck's units already)."""
     if series.drive.shape[0] == 0:
         return []
+    said = said or Said()
+    u = said.unit
+    energy, power = u(ENERGY), u(over(ENERGY, TIME))
     out = ["DYNAMICS"]
     for j in range(series.drive.shape[1]):
         d = series.drive[:, j]
@@ -146,28 +219,30 @@ def summary_lines(series: DynamicSeries, time: FloatArray) -> list[str]:
         if not ok.any():
             out.append(f"  drive of DOF {j + 1}: not known at any position (limit positions only)")
             continue
+        e = said.inputs[j] if j < len(said.inputs) else {}
+        f, x = u(generalised_force(e)), u(e)
         k_max, k_min = int(np.nanargmax(d)), int(np.nanargmin(d))
         rms = root_mean_square(d[ok])
         out += [
-            f"  drive of DOF {j + 1}: largest {d[k_max]:.10g} at position {k_max + 1} "
-            f"(input {series.inputs[k_max, j]:.10g}),",
-            f"    smallest {d[k_min]:.10g} at position {k_min + 1} (input {series.inputs[k_min, j]:.10g}), "
-            f"root mean square {rms:.10g}",
+            f"  drive of DOF {j + 1}: largest {d[k_max]:.10g}{f} at position {k_max + 1} "
+            f"(input {series.inputs[k_max, j]:.10g}{x}),",
+            f"    smallest {d[k_min]:.10g}{f} at position {k_min + 1} (input {series.inputs[k_min, j]:.10g}{x}), "
+            f"root mean square {rms:.10g}{f}",
         ]
     t, w = drive_work(time, series.power)
     if t.size > 1 and t[-1] > t[0]:
         work = float(w[-1])
         with np.errstate(over="ignore", invalid="ignore"):
             mean = work / float(t[-1] - t[0])
-        out.append(f"  work of the drives: {number(work)}, mean drive power {number(mean)}")
+        out.append(f"  work of the drives: {number(work, energy)}, mean drive power {number(mean, power)}")
         out.append(
             "  largest fluctuation of the drives' work about its mean (a flywheel's energy swing): "
-            f"{number(energy_fluctuation(time, series.power))}"
+            f"{number(energy_fluctuation(time, series.power), energy)}"
         )
     for name, values in (("kinetic", series.kinetic), ("potential", series.potential)):
         v = values[np.isfinite(values)]
         if v.size:
-            out.append(f"  {name} energy: from {v.min():.10g} to {v.max():.10g}")
+            out.append(f"  {name} energy: from {v.min():.10g}{energy} to {v.max():.10g}{energy}")
     out.append("")
     return out
 
@@ -217,28 +292,32 @@ class Simulation:
             None if warning is None else str(warning),
         )
 
-    def lines(self, series: DynamicSeries | None, time: FloatArray) -> list[str]:
-        """The print file's SIMULATION section: the integrator and its work, and the energy balance at the end."""
+    def lines(self, series: DynamicSeries | None, time: FloatArray, said: Said | None = None) -> list[str]:
+        """The print file's SIMULATION section: the integrator and its work, and the energy balance at the end, with
+        the units of the deck (``said``; the numbers are in them already)."""
+        said = said or Said()
+        s = said.unit(TIME)
+        energy = said.unit(ENERGY)
         out = [
             "SIMULATION",
             f"  integrator: {self.method}",
             f"  tolerances: relative {self.rtol:.3g}, absolute {self.atol:.3g}",
             f"  steps: {self.steps} accepted, {self.rejected} rejected; {self.evaluations} evaluations of the "
             "equations of motion",
-            f"  time reached: {self.reached:.10g}",
+            f"  time reached: {self.reached:.10g}{s}",
         ]
         if self.jacobians:
             out.append(f"  Jacobians of the equations of motion: {self.jacobians}")
         if len(self.segments) > 1 or (self.segments and not self.method.startswith(self.segments[0][0])):
             out.append("  methods by stretch of time:")
             out += [
-                f"    {method}: from {a:.10g} to {b:.10g}, {s} steps, {e} evaluations"
-                for method, a, b, s, e in self.segments
+                f"    {method}: from {a:.10g}{s} to {b:.10g}{s}, {n} steps, {e} evaluations"
+                for method, a, b, n, e in self.segments
             ]
         if self.event is not None:
             b, v, t, q = self.event
-            at = ", ".join(f"{x:.10g}" for x in q)
-            out.append(f"  stopped by STOPWHEN: buffer {b} crossed {v:.10g} at time {t:.10g} (inputs {at})")
+            at = ", ".join(f"{x:.10g}{said.unit(e)}" for x, e in zip(q, [*said.inputs, *[{}] * len(q)], strict=False))
+            out.append(f"  stopped by STOPWHEN: buffer {b} crossed {v:.10g} at time {t:.10g}{s} (inputs {at})")
         if self.tolerance_warning:
             out.append(f"  warning: {self.tolerance_warning}")
         if series is not None and time.size > 1:
@@ -250,9 +329,10 @@ class Simulation:
                 rest = change - work
             out += [
                 "  energy balance from the first position to the last:",
-                f"    T + V: {number(float(e[0]))} -> {number(float(e[-1]))} (change {number(change)})",
-                f"    work of the driven inputs (trapezoidal rule over the positions): {number(work)}",
-                f"    work of the other loads (motors, dampers, forces, tables), the remainder: {number(rest)}",
+                f"    T + V: {number(float(e[0]), energy)} -> {number(float(e[-1]), energy)} "
+                f"(change {number(change, energy)})",
+                f"    work of the driven inputs (trapezoidal rule over the positions): {number(work, energy)}",
+                f"    work of the other loads (motors, dampers, forces, tables), the remainder: {number(rest, energy)}",
             ]
         out.append("")
         return out

@@ -79,10 +79,14 @@ class Label:
     base: str = ""
     """The unit in the words of the unit algebra (``length/rad``), whatever the model's units: what decides
     whether two quantities share an axis."""
+    stated: str = ""
+    """The unit the core states for the buffer: the model's units (``mm/deg``, ``-`` for a pure number), "" for a
+    model without units or where a kind the quantity needs has no unit."""
 
     def header(self) -> str:
-        """The data-set header cell: the number, then the name (``101 dANGB(8)/dinput1``)."""
-        return f"{self.number} {self.name}"
+        """The data-set header cell: the number, the name and, for a model with units, the unit in brackets
+        (``101 dpsi/dphi [-]``, ``99 phi [deg]``; ``101 dANGB(8)/dinput1`` without UNITS)."""
+        return with_unit(f"{self.number} {self.name}", self.stated)
 
     def axis(self) -> str:
         """An axis label with the unit: ``dANGB(8)/dinput1 [rad/rad]`` (no brackets without a unit)."""
@@ -311,7 +315,8 @@ class _Namer:
         algebra said in the run's units where the core gives none (an angle in ``rad`` without UNITS)."""
         lab = self._label(b)
         name = lab.name if self.names is not None or not b.name else b.name
-        return dataclasses.replace(lab, name=name, unit=b.unit or shown(lab.unit, self.units), base=lab.unit)
+        unit = b.unit or shown(lab.unit, self.units)
+        return dataclasses.replace(lab, name=name, unit=unit, base=lab.unit, stated=b.unit)
 
     def _label(self, b: Buffer) -> Label:
         a = [*b.args, 0, 0, 0]

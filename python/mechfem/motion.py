@@ -23,7 +23,7 @@ from mechfem.catalogue import MAX_ITER, MAX_STEPS
 from mechfem.checks import finite
 from mechfem.errors import UnitWarning, user_stacklevel
 from mechfem.names import unknown_name
-from mechfem.units import LARGE_ANGLE, Unit, array_to_radians, check_unit, to_radians
+from mechfem.units import LARGE_ANGLE, Unit, array_to_radians, check_unit, to_radians, wrong_angle_unit
 
 if TYPE_CHECKING:
     from mechfem.parts import FormParameter, Row
@@ -387,7 +387,20 @@ def input_dof(key: InputKey, inputs: Sequence[Row]) -> int:
 def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> None:
     """Refuses degrees for an input that is not an angle, and warns with :class:`~mechfem.errors.UnitWarning` when
     a motion given without a unit changes an angle input of a model in radians (``angle``: the model's angle unit)
-    by more than :data:`~mechfem.units.LARGE_ANGLE` radians (``inputs``: the input rows in DOF order)."""
+    by more than :data:`~mechfem.units.LARGE_ANGLE` radians (``inputs``: the input rows in DOF order), when a step
+    or an end of a model in degrees looks like radians, and when an angle input's start value looks like the other
+    unit (:func:`~mechfem.units.wrong_angle_unit`, the deck reader's test)."""
+    for row in inputs:
+        why = None if row.value is None or not row.is_angle else wrong_angle_unit(row.value, angle)
+        if why is not None:
+            words = "degrees" if angle == "deg" else "radians"
+            warnings.warn(
+                f"the start value {row.value:g} of the angle input {row.name!r} is in {words}, the model's angle "
+                f"unit, but {why}: give it in {words}, or give the model the other angle unit "
+                "(Mechanism(..., angle=...))",
+                UnitWarning,
+                stacklevel=user_stacklevel(),
+            )
     for key, im in motion.inputs.items():
         row = inputs[input_dof(key, inputs) - 1]
         unit = getattr(im, "unit", None)
@@ -396,6 +409,17 @@ def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> No
                 f"the motion gives the input {row.name!r} in degrees (unit='deg'), but it is not an angle "
                 f"({row.formula()}): give its motion in its own unit, without unit='deg'"
             )
+        if unit is None and row.is_angle and angle == "deg" and isinstance(im, By | To):
+            value = im.delta if isinstance(im, By) else im.end
+            why = wrong_angle_unit(value, angle)
+            if why is not None:
+                what = "step" if isinstance(im, By) else "end"
+                warnings.warn(
+                    f"the motion's {what} {value:g} of the angle input {row.name!r} is in degrees, the model's angle "
+                    f"unit, but {why}: give it in degrees, or say unit='rad'",
+                    UnitWarning,
+                    stacklevel=user_stacklevel(),
+                )
         change = 0.0 if unit is not None or not row.is_angle or angle != "rad" else _change(im, row.value)
         if change > LARGE_ANGLE:
             warnings.warn(

@@ -22,8 +22,8 @@ import numpy as np
 from mechfem.atomic import atomic_text
 from mechfem.datasets import write_binary
 from mechfem.echo import Model, Storage
-from mechfem.inverse_dynamics import summary_lines
-from mechfem.labels import Label, buffer_labels
+from mechfem.inverse_dynamics import Exponents, Said, summary_lines
+from mechfem.labels import Label, buffer_labels, coordinate_unit, input_unit, row_dest_unit
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
@@ -123,8 +123,9 @@ class FinishOnInterrupt:
 def write_data_set(result: RunResult, path: Path, on_rows: Callable[[int, int], object] | None = None) -> Path:
     """The data set: a header row, then one row per position.
 
-    Each header cell is the buffer's number, a space and its name (``101 dANGB(8)/dinput1``,
-    :meth:`Label.header`), so that a program takes the number as the cell's first word; the csv module quotes a
+    Each header cell is the buffer's number, a space and its name (``101 dANGB(8)/dinput1``), then for a deck with
+    UNITS its unit in brackets (``101 dpsi/dphi [-]``, ``99 phi [deg]``; :meth:`Label.header`), so that a program
+    takes the number as the cell's first word; the csv module quotes a
     cell whose name holds a comma. Values are written with ``repr``, the shortest text that reads back as exactly
     the same double (up to 17 significant digits).
     """
@@ -162,16 +163,17 @@ def print_file_lines(result: RunResult) -> list[str]:
     """The lines of the print file."""
     from mechfem._version import __version__
 
-    out = [f"mechfem {__version__} - print file", f"deck: {result.deck}", ""]
-    out += model_lines(result.model)
-    out += adjustment_lines(result)
+    said = said_of(result)
+    out = [f"mechfem {__version__} - print file", f"deck: {result.deck}", units_line(result.model), ""]
+    out += model_lines(result.model, said)
+    out += adjustment_lines(result, said)
     out += motion_lines(result)
     if result.simulation is not None:
-        out += result.simulation.lines(result.dynamic, result.time)
+        out += result.simulation.lines(result.dynamic, result.time, said)
     if result.dynamic is not None:
-        out += summary_lines(result.dynamic, result.time)
+        out += summary_lines(result.dynamic, result.time, said)
     out += table_lines(result)
-    out += limit_lines(result)
+    out += limit_lines(result, said)
     if result.report.warnings:
         out += ["WARNINGS", *(line for w in result.report.warnings for line in paragraph(w)), ""]
     reason = result.report.stop_reason(written=True)
@@ -180,8 +182,42 @@ def print_file_lines(result: RunResult) -> list[str]:
     return out
 
 
-def model_lines(model: Model) -> list[str]:
-    """The echo of the model: sizes, elements, form parameters, DOFs and co-ordinates."""
+#: The kind of each word of :mod:`mechfem.labels`' unit algebra a row or co-ordinate has.
+KIND_OF_WORD: dict[str, Exponents] = {"length": {"length": 1}, "rad": {"angle": 1}, "": {}}
+
+
+def said_of(result: RunResult) -> Said:
+    """How the print file says ``result``'s numbers: the deck's units, the kinds of its rows, co-ordinates and
+    inputs, its named points and rows."""
+    model = result.model
+    rows = [*model.prescribed, *model.dependent]
+    return Said(
+        units=model.units,
+        rows={r.dest: KIND_OF_WORD.get(row_dest_unit(result, r.dest), {}) for r in rows},
+        inputs=[KIND_OF_WORD.get(input_unit(result, j), {}) for j in range(1, len(model.dofs) + 1)],
+        coords={c.number: KIND_OF_WORD.get(coordinate_unit(result, c.number), {}) for c in model.coordinates},
+        points={(p.x, p.y): p.name for p in model.points},
+        row_names={r.dest: r.name for r in rows if r.name},
+    )
+
+
+def units_line(model: Model) -> str:
+    """The print file's statement of the units its numbers are in."""
+    given = [f"{kind.upper()} {unit}" for kind, unit in model.units.items() if unit]
+    if not given:
+        return "units: none declared (no UNITS line): every number is the deck's own, angles in radians"
+    return f"units: {' '.join(given)} (the UNITS line); every number below is in them"
+
+
+def model_lines(model: Model, said: Said | None = None) -> list[str]:
+    """The echo of the model: sizes, elements, form parameters, DOFs and co-ordinates, each value with its unit
+    (``said``) when the deck has UNITS."""
+    said = said or Said()
+
+    def unit(kind: Exponents) -> str:
+        u = said.unit(kind)
+        return f"{u:<8}" if said.units and any(said.units.values()) else ""
+
     n_fixed = model.n_coords - model.n_moving
     out = [
         "MODEL",
@@ -197,19 +233,22 @@ def model_lines(model: Model) -> list[str]:
         out.append(f"    {e.number:4d}  {e.type:<4}  {coords}{_named(e.name)}")
     out += ["", "  prescribed form parameters (rows of D^c)", "     row  value at position 1  form parameters"]
     for r in model.prescribed:
-        out.append(f"    {r.dest:4d}  {r.value:17.10g}  {r.formula()}{_named(r.name)}")
+        out.append(f"    {r.dest:4d}  {r.value:17.10g}{unit(said.rows.get(r.dest, {}))}  {r.formula()}{_named(r.name)}")
     if model.dependent:
         out += ["", "  dependent form parameters", "    dest  value at position 1  form parameters"]
         for r in model.dependent:
-            out.append(f"    {r.dest:4d}  {r.value:17.10g}  {r.formula()}{_named(r.name)}")
+            out.append(
+                f"    {r.dest:4d}  {r.value:17.10g}{unit(said.rows.get(r.dest, {}))}  {r.formula()}{_named(r.name)}"
+            )
     out += ["", "  degrees of freedom (inputs)"]
     out += [f"    DOF {j}: row {row}{_named(model.prescribed[row - 1].name)}" for j, row in enumerate(model.dofs, 1)]
     out += ["", "  co-ordinates", "      no  kind              given         position 1"]
     for c in model.coordinates:
         kind = "XMOV" if c.moving else "XFIX"
-        out.append(f"    {c.number:4d}  {kind}  {c.given:17.10g}  {c.adjusted:17.10g}{_named(c.name)}")
+        u = unit(said.coords.get(c.number, {"length": 1}))
+        out.append(f"    {c.number:4d}  {kind}  {c.given:17.10g}  {c.adjusted:17.10g}{u}{_named(c.name)}".rstrip())
     if model.dynamics is not None:
-        out += model.dynamics.lines()
+        out += model.dynamics.lines(said)
     out.append("")
     return out
 
@@ -219,8 +258,14 @@ def _named(name: str | None) -> str:
     return f"  = {name}" if name else ""
 
 
-def adjustment_lines(result: RunResult) -> list[str]:
-    """How the initial co-ordinates were adjusted to make position 1."""
+def adjustment_lines(result: RunResult, said: Said | None = None) -> list[str]:
+    """How the initial co-ordinates were adjusted to make position 1; a row's deformation with its unit
+    (``said``)."""
+    said = said or Said()
+
+    def deformation(row: int, e: float, fmt: str) -> str:
+        return f"{e:{fmt}}{said.unit(said.rows.get(row, {}))}"
+
     a = result.report.adjust
     out = ["ADJUSTMENT OF POSITION 1"]
     largest = a.largest()
@@ -229,13 +274,13 @@ def adjustment_lines(result: RunResult) -> list[str]:
     else:
         out.append(f"  Newton iterations: {a.iterations} (in {count(a.stages, 'stage')})")
     if largest is not None:
-        out.append(f"  largest initial deformation: {largest[1]:.6g} (row {largest[0]})")
+        out.append(f"  largest initial deformation: {deformation(largest[0], largest[1], '.6g')} (row {largest[0]})")
     out.append(f"  largest remaining deformation: {a.residual:.3g}")
     out.append(f"  det(D^c) at position 1: {result.det[0]:.10g}")
     moved = [(r, e) for r, e in enumerate(a.initial_deformations, 1) if e != 0.0]
     if moved:
         out += ["  initial deformations (value at the given co-ordinates - prescribed value)"]
-        out += [f"    row {r:4d}: {e:17.10g}" for r, e in moved]
+        out += [f"    row {r:4d}: {deformation(r, e, '17.10g')}" for r, e in moved]
     out.append("")
     return out
 
@@ -284,11 +329,9 @@ COLUMN_WIDTH = 18
 
 
 def legend_lines(result: RunResult, numbers: list[int], labels: dict[int, Label]) -> list[str]:
-    """One line per buffer: number, name, unit (``-`` for none), the deck line that defines it and what it holds."""
-    rows = [
-        (str(n), labels[n].name, labels[n].unit or "-", result.storage.buffer(n).label(), labels[n].text)
-        for n in numbers
-    ]
+    """One line per buffer: number, name, unit (``-`` for a pure number, such as deg/deg; blank where the model
+    gives no unit of a kind the quantity needs), the deck line that defines it and what it holds."""
+    rows = [(str(n), labels[n].name, labels[n].unit, result.storage.buffer(n).label(), labels[n].text) for n in numbers]
     head = ("no", "name", "unit", "deck line", "what it holds")
     widths = [max(len(r[c]) for r in [head, *rows]) for c in range(4)]
     out = []
@@ -347,7 +390,7 @@ def shown_coordinates(result: RunResult) -> list[int]:
     return sorted({b.args[0] for b in result.storage.buffers if b.keyword == "BUFX0"})
 
 
-def limit_lines(result: RunResult) -> list[str]:
+def limit_lines(result: RunResult, said: Said | None = None) -> list[str]:
     """The LIMIT POSITIONS section: the range of det(D^c), every located limit position, and the positions
     without transfer functions. Nothing without a motion."""
     report = result.report
@@ -372,6 +415,10 @@ def limit_lines(result: RunResult) -> list[str]:
     if not limits:
         out += ["", "  no limit position met"]
     shown = shown_coordinates(result)
+    said = said or Said()
+    # The co-ordinates' unit, when they share one (in the deck's units, as the core's report gives them).
+    units = {said.unit(said.coords.get(i, {"length": 1})) for i in shown}
+    in_unit = f" [{units.pop().strip()}]" if len(units) == 1 and "" not in units else ""
     for number, limit in enumerate(limits, 1):
         out.append("")
         head = paragraph(f"{limit.where}: {limit.what(report.input_names)}", "      ")
@@ -379,7 +426,7 @@ def limit_lines(result: RunResult) -> list[str]:
         out += paragraph(limit.values(), "      ")
         if shown:
             values = [f"{i:>4d} = {limit.coords[i - 1]:<17.10g}" for i in shown]
-            out.append("      co-ordinates there:")
+            out.append(f"      co-ordinates there{in_unit}:")
             out += [f"      {'  '.join(values[k : k + 4])}".rstrip() for k in range(0, len(values), 4)]
     if report.singular_positions:
         positions = report.singular_positions

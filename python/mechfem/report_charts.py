@@ -78,7 +78,13 @@ class Columns:
 
     def buffer(self, result: RunResult, lab: Label) -> str:
         return self.add(
-            f"b{lab.number}", lab.name, lab.unit, lab.kind, result.buffers[lab.number], lab.header(), lab.text
+            f"b{lab.number}",
+            lab.name,
+            lab.unit,
+            lab.kind,
+            result.buffers[lab.number],
+            f"{lab.number} {lab.name}",
+            lab.text,
         )
 
     def coordinate(self, result: RunResult, i: int, unit: str = "length") -> str:

@@ -265,7 +265,8 @@ _CONVERTED = Converted()
 def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
     def make(d: _core.ModelDict) -> tuple[Model, list[str]]:
         model = Model.from_core(d)
-        return model, [f"row {row}: {model.prescribed[row - 1].formula()}" for row in model.dofs]
+        rows = [model.prescribed[row - 1] for row in model.dofs]
+        return model, [f"row {r.dest}: {r.name or r.formula()}" for r in rows]
 
     return _CONVERTED.get(d, make)
 

@@ -167,6 +167,63 @@ def angle_in(value: float, given: str | None, model: str) -> float:
     return math.degrees(value) if model == "deg" else math.radians(value)
 
 
+def looks_like_degrees(value: float) -> bool:
+    """Whether ``value``, an angle in radians, looks like degrees: a whole number of at least 90 that is a multiple
+    of 15 (90, 180, 360, 720). The deck reader asks the same of a deck's angles
+    (``crates/mechfem-deck/src/compile/warn.rs``)."""
+    v = float(value)
+    return abs(v) >= 90.0 and v.is_integer() and v % 15.0 == 0.0
+
+
+def looks_like_radians(value: float) -> bool:
+    """Whether ``value``, an angle in degrees, looks like radians: pi/2, pi or 2 pi (or their multiples up to 4)
+    written to at least three decimals, as the deck reader asks."""
+    v = abs(float(value))
+    return v != 0.0 and any(abs(v - k * math.pi / 2.0) < 5e-4 for k in range(1, 9))
+
+
+def wrong_angle_unit(value: float, angle: str) -> str | None:
+    """Why ``value``, an angle in the unit ``angle`` (``"rad"`` or ``"deg"``), looks like the other unit (``"it
+    looks like degrees (720 deg is 12.566371 rad)"``), or None when it does not."""
+    if angle == "deg" and looks_like_radians(value):
+        return f"it looks like radians ({value:g} rad is {math.degrees(value):.4f} deg)"
+    if angle != "deg" and looks_like_degrees(value):
+        return f"it looks like degrees ({value:g} deg is {math.radians(value):.6f} rad)"
+    return None
+
+
+#: The base kinds in the order of a :func:`symbol`'s exponents; force and mass are written first, as in ``N·mm``
+#: and ``kg·mm²``.
+_ORDER = ("force", "mass", "length", "angle", "time")
+_POWER = {2: "²", 3: "³"}
+
+
+def symbol(units: Mapping[str, str | None], **exponents: int) -> str:
+    """The unit of a quantity of the given ``exponents`` of ``length``, ``angle``, ``mass``, ``force`` and
+    ``time`` in a model's ``units`` (its echo's ``units``, None where not declared), written as the core writes a
+    buffer's unit: ``N·mm``, ``kg·mm²``, ``mm/s²``, ``mm/deg``, ``-`` for a pure number (deg/deg); "" when the model
+    declares no units, or no unit of a kind the quantity needs."""
+    if not any(units.values()):
+        return ""
+    if any(e and not units.get(k) for k, e in exponents.items()):
+        return ""
+
+    def part(sign: int) -> str:
+        out = []
+        for k in _ORDER:
+            n = sign * exponents.get(k, 0)
+            if n > 0:
+                out.append(f"{units[k]}{_POWER.get(n, '' if n == 1 else f'^{n}')}")
+        return "·".join(out)
+
+    num, den = part(1), part(-1)
+    if not den:
+        return num or "-"
+    if not num:
+        return f"1/{den}"
+    return f"{num}/({den})" if "·" in den else f"{num}/{den}"
+
+
 __all__ = [
     "FIELD",
     "LARGE_ANGLE",
@@ -181,6 +238,10 @@ __all__ = [
     "factor",
     "from_radians",
     "kind_of",
+    "looks_like_degrees",
+    "looks_like_radians",
     "scale",
+    "symbol",
     "to_radians",
+    "wrong_angle_unit",
 ]

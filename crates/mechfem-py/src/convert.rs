@@ -219,7 +219,7 @@ impl Echo {
         let unbind = |rows: Vec<Bound<'_, PyDict>>| rows.into_iter().map(Bound::unbind).collect();
         // The echo speaks the deck's units (crate::names).
         let [written, written_dependent] = c.rows_as_written();
-        let dynamics = match &c.dynamics {
+        let dynamics = match &c.dynamics_as_written() {
             Some(m) => dynamics(py, m, &[])?.into_any(),
             None => py.None().into_bound(py),
         };

@@ -163,8 +163,16 @@ fn execute(
     c.state = state;
     let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
     match result {
-        Ok((report, sim)) => Ok(Ran { compiled: c, given, rec, report, sim, interrupted }),
-        Err(e) => Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut c.state, &e)),
+        // The report and an error speak the deck's units.
+        Ok((report, sim)) => {
+            let report = c.report_as_written(&report);
+            let sim = sim.map(|s| c.sim_as_written(&s));
+            Ok(Ran { compiled: c, given, rec, report, sim, interrupted })
+        }
+        Err(e) => {
+            let e = c.error_as_written(&e);
+            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut c.state, &e))
+        }
     }
 }
 

@@ -145,11 +145,13 @@ pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> P
 /// A run of deck text ([`crate::rundict::FullRun`]) in the deck's units:
 /// its full layout, its buffers, its co-ordinates and the numbers of its
 /// echo (the co-ordinates as given, the rows at position 1, the PARA
-/// values it ran with).
+/// values it ran with), its report and what its integrator did.
 pub fn full_run(c: &Compiled, r: &mut crate::rundict::FullRun) {
     if c.units.is_identity() {
         return;
     }
+    r.report = c.report_as_written(&r.report);
+    r.sim = r.sim.as_ref().map(|s| c.sim_as_written(s));
     let positions = r.positions;
     let layout = mechfem_core::Layout::full(&c.mechanism, c.dynamics.is_some()).quantities();
     table(c, &layout, &mut r.table, positions, &mut r.coords);

@@ -171,7 +171,7 @@ pub fn outcome_dict<'py>(
         Outcome::BadChange(message) => Err(PyValueError::new_err(message)),
         Outcome::Failed(mut state, e) => {
             let (c, _) = text.ok_or_else(lost)?;
-            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut state, &e))
+            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut state, &c.error_as_written(&e)))
         }
     }
 }

@@ -71,7 +71,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     };
     let counts = [sizes.n_coords, m.elements.len(), sizes.n_prescribed, sizes.n_dependent];
     let names = names::declared(deck, counts, &out.buffers)?;
-    let warnings = warn::suspicious(written, &units, &dims, &m.mechanism);
+    let warnings = warn::suspicious(written, &units, &dims, &m.mechanism, &out.buffers);
     Ok(Compiled {
         mode: deck.mode.value,
         mechanism: m.mechanism,

@@ -3,7 +3,7 @@
 //! and loads): the inverse of [`super::scale`] and [`super::tables`].
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
-use mechfem_core::{Dim, InputMotion, Motion};
+use mechfem_core::{Dim, ElementError, FormRef, InputMotion, LimitPosition, Motion, RunReport, SimReport, SolveError};
 
 use super::scale::inertia_on;
 use crate::compiled::Compiled;
@@ -90,5 +90,94 @@ impl Compiled {
             }
         }
         Some(d)
+    }
+}
+
+impl Compiled {
+    /// A run's report in the deck's units: the initial deformations of the
+    /// adjustment, the inputs, co-ordinates and det(D^c) of every limit
+    /// position and of a stop, and the numbers its error quotes (a belt's
+    /// centre distance, the time a simulation reached), so that what a
+    /// designer reads of the run speaks the deck's numbers.
+    pub fn report_as_written(&self, r: &RunReport) -> RunReport {
+        let mut r = r.clone();
+        if self.units.is_identity() {
+            return r;
+        }
+        let (u, d, mech) = (&self.units, &self.dims, &self.mechanism);
+        for (k, e) in r.adjust.initial_deformations.iter_mut().enumerate() {
+            *e = u.from_core(d.form(FormRef::Prescribed(k)), *e);
+        }
+        let inputs = |values: &mut [f64]| {
+            for (j, v) in values.iter_mut().enumerate() {
+                *v = u.from_core(d.input(mech, j), *v);
+            }
+        };
+        let limit = |l: &mut LimitPosition| {
+            inputs(&mut l.inputs);
+            for (i, x) in l.coords.iter_mut().enumerate() {
+                *x = u.from_core(d.coord(i), *x);
+            }
+            l.det = u.from_core(d.det(mech), l.det);
+        };
+        r.limits.iter_mut().for_each(limit);
+        if let Some(s) = &mut r.stop {
+            inputs(&mut s.inputs);
+            inputs(&mut s.last_inputs);
+            if let Some(l) = &mut s.limit {
+                limit(l);
+            }
+            s.error = self.error_as_written(&s.error);
+        }
+        r
+    }
+
+    /// A failure of the core with the numbers it quotes in the deck's units.
+    pub fn error_as_written(&self, e: &SolveError) -> SolveError {
+        let (u, det) = (&self.units, self.dims.det(&self.mechanism));
+        let mut e = e.clone();
+        match &mut e {
+            SolveError::Element { source: ElementError::NoBeltSpan { l, d }, .. } => {
+                *l = u.from_core(Dim::LENGTH, *l);
+                *d = u.from_core(Dim::LENGTH, *d);
+            }
+            SolveError::Simulation { time, .. } => *time = u.from_core(Dim::TIME, *time),
+            SolveError::DetSignChange { before, after } => {
+                *before = u.from_core(det, *before);
+                *after = u.from_core(det, *after);
+            }
+            _ => {}
+        }
+        e
+    }
+}
+
+impl Compiled {
+    /// What a simulation's integrator did, in the deck's units: the time
+    /// reached, the stretches of each method and where STOPWHEN ended it
+    /// (the value crossed in its buffer's unit, the time and the inputs).
+    pub fn sim_as_written(&self, s: &SimReport) -> SimReport {
+        let mut s = s.clone();
+        if self.units.is_identity() {
+            return s;
+        }
+        let (u, d, mech) = (&self.units, &self.dims, &self.mechanism);
+        let time = |t: &mut f64| *t = u.from_core(Dim::TIME, *t);
+        time(&mut s.reached);
+        for g in &mut s.segments {
+            time(&mut g.from);
+            time(&mut g.to);
+        }
+        if let Some(e) = &mut s.event {
+            time(&mut e.time);
+            if let Some(b) = self.buffers.iter().find(|b| b.number == e.buffer) {
+                e.value = u.from_core(d.quantity(mech, b.quantity), e.value);
+            }
+            for (j, v) in e.inputs.iter_mut().enumerate() {
+                *v = u.from_core(d.input(mech, j), *v);
+            }
+        }
+        s.run = self.report_as_written(&s.run);
+        s
     }
 }
