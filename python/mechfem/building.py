@@ -15,31 +15,69 @@ model (a ``ValueError``, ``KeyError`` or ``TypeError``) for what the deck writer
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import mechfem._core as _core
 from mechfem import deckio, loads
 from mechfem.deck_names import names_block
+from mechfem.errors import DeckError, MechfemError
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
 from mechfem.model import By, Dynamic, Element, Free, Mechanism, Motion, Storage, Table, To
-from mechfem.numbering import Numbering
+from mechfem.numbering import DeckText, Numbering
 from mechfem.storage import check_file_names
 from mechfem.units import Units
 
 
 def build(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> tuple[_core.Model, Numbering]:
     """The compiled model of ``mech`` with ``motion`` and ``storage``, and its numbering."""
+    b = builder(mech, motion, storage)
+    with deckio.tables_dir(b.tables) as base:
+        return b.builder.build(base), b.numbering
+
+
+class Built(NamedTuple):
+    """A mechanism's items handed to the builder, not yet compiled: what compiles them (``build``, ``design``, a
+    study's workers), the deck numbering they are given in, the table files (name: text) they read, the inputs
+    that move under the forces, and the name messages give the model."""
+
+    builder: _core.ModelBuilder
+    numbering: Numbering
+    tables: dict[str, str]
+    simulated: list[str]
+    path: str
+
+
+def builder(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> Built:
+    """``mech`` with ``motion`` and ``storage`` handed to the typed builder (see :class:`Built`)."""
     nb = deckio.number_model(mech)
     tables: dict[str, str] = {}
-    builder = _builder(mech, motion, storage, nb, tables)
+    b = _builder(mech, motion, storage, nb, tables)
     check_file_names(mech.name, storage, tables)
-    with deckio.tables_dir(tables) as base:
-        return builder.build(base), nb
+    return Built(b, nb, tables, _simulated(motion, nb), f"{mech.name}.mec")
+
+
+def explain(
+    err: MechfemError, built: Built, mech: Mechanism, motion: Motion | None, storage: Storage | None
+) -> MechfemError:
+    """The error of a run of the built model in the model's words (:func:`mechfem.explain.translate`): an error of
+    a run from the numbering; a model the deck reader refused through the deck the mechanism's items make, whose
+    lines are the builder's (the only case that writes deck text)."""
+    if isinstance(err, DeckError):
+        return deckio.translate(err, deckio.write(mech, motion, storage), mech.name)
+    words = DeckText("", built.path, {}, built.numbering, built.tables, built.simulated)
+    return deckio.translate(err, words, mech.name)
+
+
+def _simulated(motion: Motion | None, nb: Numbering) -> list[str]:
+    """The names of the inputs that move under the forces (MOV_DYN)."""
+    dynamic = [] if motion is None else [k for k, im in motion.inputs.items() if isinstance(im, Dynamic)]
+    return [nb.inputs[nb.dof(k) - 1].name for k in dynamic]
 
 
 def _builder(
     mech: Mechanism, motion: Motion | None, storage: Storage | None, nb: Numbering, tables: dict[str, str]
 ) -> _core.ModelBuilder:
-    dynamic = [] if motion is None else [k for k, im in motion.inputs.items() if isinstance(im, Dynamic)]
-    simulated = [nb.inputs[nb.dof(k) - 1].name for k in dynamic]
+    simulated = _simulated(motion, nb)
     b = _core.ModelBuilder(f"{mech.name}.mec", loads.mode(mech, simulated))
     if mech.units.deck_line() is not None:
         # The fields the deck writer's UNITS line gives: those that differ from a deck without one.
@@ -168,4 +206,4 @@ def _whole(v: object) -> int:
     return int(v)
 
 
-__all__ = ["build"]
+__all__ = ["Built", "build", "builder", "explain"]

@@ -3,9 +3,11 @@ model's words.
 
 A mechanism runs on its kept compiled model (:mod:`mechfem.compiled`), built through the typed builder
 (:mod:`mechfem.building`) when its topology is new, and one with table motions or load tables is built for each run:
-no deck text is written or read. Only a mistake is worded through the deck text written for the model: the deck
-reader then names it as it does for that text (coincident points, a zero length), in the model's words
-(:func:`mechfem.explain.translate`), whatever was compiled before.
+no deck text is written or read. A run that fails (position 1 cannot be computed) is worded from the core's typed
+error and the numbering the model was built in (:func:`mechfem.building.explain`). Only a mistake the deck reader or
+writer refuses is worded through the deck text written for the model: the deck reader then names it as it does for
+that text (coincident points, a zero length), in the model's words (:func:`mechfem.explain.translate`), whatever was
+compiled before.
 
 :meth:`Mechanism.run <mechfem.Mechanism.run>` and :meth:`Mechanism.check <mechfem.Mechanism.check>` sit in the model
 layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when it is imported.
@@ -19,7 +21,7 @@ import mechfem._core as _core
 from mechfem import building, compiled, deckio
 from mechfem import model as _model
 from mechfem.deckio import Progress
-from mechfem.errors import MechfemError, RunInterrupted, on_stop
+from mechfem.errors import DeckError, MechfemError, RunInterrupted, on_stop
 from mechfem.explain import translate
 from mechfem.limits import memory_limit
 from mechfem.model import Mechanism
@@ -47,20 +49,37 @@ def run(
     callback = deckio.progress_callback(progress, "positions")
     try:
         d: _core.TextRunDict | None = None
+        failed: tuple[MechfemError, building.Built] | None = None
         try:
             kept = compiled.kept_model(mech, motion, storage)
             if kept is not None:
                 model, numbering, changes = kept
-            else:
-                # A model with tables, or one the builder refuses (which raises).
-                (model, numbering), changes = building.build(mech, motion, storage), []
-            d = model.run(changes, moving, callback, order, memory_limit())
+                try:
+                    d = model.run(changes, moving, callback, order, memory_limit())
+                except MechfemError:
+                    # A kept model that only takes new numbers meets a mistake of them (coincident points, a zero
+                    # length) in the core, where the deck reader checks them when it compiles: the model built
+                    # afresh names it as its deck would.
+                    d = None
+            if d is None:
+                # A model with tables, one the builder refuses (which raises) or a kept one that failed.
+                built = building.builder(mech, motion, storage)
+                with deckio.tables_dir(built.tables) as base:
+                    model, numbering = built.builder.build(base), built.numbering
+                try:
+                    d = model.run([], moving, callback, order, memory_limit())
+                except DeckError:
+                    raise
+                except MechfemError as e:
+                    # The run of the built model failed (position 1 cannot be computed): the core's typed error
+                    # in the model's names, from the numbering the model was built in.
+                    failed = (e, built)
         except (MechfemError, KeyError, ValueError, TypeError):
-            # A mistake in the model: the deck reader checks the given numbers (coincident points, a zero length)
-            # when it compiles, a kept model that only takes new numbers meets them in the core instead, and the
-            # deck writer refuses what no deck can say. The deck written for the model names the mistake in the
-            # model's words, and so does the run of that deck.
+            # A mistake the deck reader or writer refuses: the deck written for the model names the mistake in
+            # the model's words (the line of the deck, its text), and so does the run of that deck.
             d = None
+        if failed is not None:
+            raise building.explain(failed[0], failed[1], mech, motion, storage) from None
         if d is None:
             d, numbering = _run_text(mech, motion, storage, moving, callback, order)
     finally:

@@ -1,0 +1,160 @@
+"""Design, optimisation and studies of a Python model hand it to the typed builder: no deck text is written or
+read on their way (the deck writer and every entry of the compiled module that takes deck text raise here), and the
+results are those of the deck text of the same model, bit for bit."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+import numpy as np
+import pytest
+
+import mechfem
+import mechfem._core as _core
+from mechfem import Driven, Mechanism, Motion, Output, Q, building, deckio
+from test_model_api import supply
+
+MOTION = Motion.by(36, 2 * math.pi)
+
+
+def fourbar(rocker: float = 3.0, ground: float = 4.0) -> Mechanism:
+    m = Mechanism("fourbar")
+    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", ground, 0.0)
+    A, B = m.point("A", 1.0, 0.0), m.point("B", 3.5, 2.5)
+    m.bar("crank", A0, A, length=1.0, angle=Driven(start=0.0, name="phi"))
+    m.bar("coupler", A, B, length=3.5)
+    m.bar("rocker", B0, B, length=rocker, angle=Output("psi"))
+    return m
+
+
+def stroke(a: mechfem.RunResult) -> float:
+    return float(np.ptp(a.output("psi")))
+
+
+@pytest.fixture
+def no_deck_text(monkeypatch: pytest.MonkeyPatch) -> Iterator[None]:
+    """The deck writer, and the compiled module's readers of deck text, raise."""
+
+    def refuse(*args: Any, **kwargs: Any) -> Any:
+        raise AssertionError("deck text was written or read")
+
+    monkeypatch.setattr(deckio, "write", refuse)
+    monkeypatch.setattr(deckio, "write_text", refuse)
+    monkeypatch.setattr(_core, "DesignModel", refuse)
+    monkeypatch.setattr(_core, "run_deck_text", refuse)
+    real = _core.run_deck_variants
+
+    def variants(texts: list[Any], *args: Any, **kwargs: Any) -> Any:
+        assert all(isinstance(t, _core.ModelBuilder) for t in texts), "a study was given deck text"
+        return real(texts, *args, **kwargs)
+
+    monkeypatch.setattr(_core, "run_deck_variants", variants)
+    yield
+
+
+def test_the_deck_writer_is_refused_by_the_fixture(no_deck_text: None) -> None:
+    with pytest.raises(AssertionError, match="deck text"):
+        fourbar().to_deck(MOTION)
+
+
+def test_optimize_and_sensitivity_write_no_deck(no_deck_text: None) -> None:
+    opt = mechfem.optimize(
+        fourbar(),
+        {"rocker.length": (2.5, 3.5), "B0.x": (3.5, 4.5)},
+        targets=[mechfem.TargetAt(Q("psi"), 10, 1.6)],
+        motion=MOTION,
+        steps=4,
+    )
+    assert opt.objective < opt.start_objective and opt.runs > 1
+    r = fourbar().run(MOTION)
+    s = r.sensitivity(Q("psi"), ["rocker.length", "B0.x"])
+    assert s.shape == (r.positions, 2) and np.all(np.isfinite(s))
+
+
+def test_studies_write_no_deck(no_deck_text: None) -> None:
+    one = mechfem.sweep(fourbar(), {"rocker.length": [2.9, 3.1]}, {"stroke": stroke}, motion=MOTION, progress=False)
+    fn = mechfem.sweep(fourbar, {"rocker": [2.9, 3.1]}, {"stroke": stroke}, motion=MOTION, progress=False)
+    with ThreadPoolExecutor(2) as ex:
+        far = mechfem.sweep(
+            fourbar, {"rocker": [2.9, 3.1]}, {"stroke": stroke}, motion=MOTION, progress=False, executor=ex
+        )
+    assert np.array_equal(one["stroke"], fn["stroke"]) and np.array_equal(fn["stroke"], far["stroke"])
+    many = mechfem.run_many([fourbar(2.9), fourbar(3.1)], MOTION, progress=False)
+    assert [stroke(a) for a in many] == list(one["stroke"])  # type: ignore[arg-type]
+    tol = mechfem.tolerance_study(fourbar(), {"rocker.length": 0.01}, {"stroke": stroke}, n=4, seed=1, motion=MOTION)
+    assert len(tol.study["stroke"]) == 4
+
+
+def test_a_failing_variant_is_worded_in_the_models_names_without_a_deck(no_deck_text: None) -> None:
+    # A rocker too short to reach: position 1 cannot be assembled, which the run finds, not the deck reader.
+    study = mechfem.sweep(fourbar, {"rocker": [3.0, 0.1]}, {"stroke": stroke}, motion=MOTION, progress=False)
+    assert list(study["ok"]) == [True, False]
+    assert "fourbar" in study["error"][1] and "B" in study["error"][1]
+
+
+def _evaluations(model: Any, x: list[float]) -> tuple[Any, ...]:
+    d = model.evaluate(x)
+    return d["values"], d["gradient"], d["position_one"]
+
+
+def test_the_built_design_model_is_the_deck_texts_bit_for_bit() -> None:
+    from mechfem.optimise import _Deck, _variable
+
+    m = supply()
+    motion = Motion.by(24, 2 * math.pi)
+    deck = _Deck(m)
+    buffers = [deck.buffer(Q("delta")), deck.buffer(Q("delta", 2)), deck.buffer(Q("B.y"))]
+    built = building.builder(m, motion, deck.storage)
+    written = deckio.write(m, motion, deck.storage)
+    variables = [_variable(m, built.numbering, n)[:2] for n in ["kappa", "B0.x", "rod.length"]]
+    with deckio.tables_dir(written.tables) as base:
+        from_text = _core.DesignModel(written.text, written.path, base, variables, buffers, [])
+        from_items = built.builder.design(base, variables, buffers, [])
+    assert from_text.start() == from_items.start()
+    for x in (from_text.start(), [v * 1.001 for v in from_text.start()]):
+        a, b = _evaluations(from_text, x), _evaluations(from_items, x)
+        assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1]) and a[2] == b[2]
+
+
+def test_a_study_is_the_deck_texts_bit_for_bit() -> None:
+    m = supply()
+    motion = Motion.by(24, 2 * math.pi)
+    built = building.builder(m, motion, None)
+    written = deckio.write(m, motion, None)
+    variants: list[tuple[int, list[tuple[int, int, float]]]] = [(0, []), (0, [(1, 5, -5.2)]), (0, [(0, 1, 0.01)])]
+    with deckio.tables_dir(written.tables) as base:
+        a = _core.run_deck_variants([written.text], variants, "v.mec", base, 1, None, None, 2)
+        b = _core.run_deck_variants([built.builder], variants, "v.mec", base, 1, None, None, 2)
+    for x, y in zip(a, b, strict=True):
+        assert isinstance(x, dict) and isinstance(y, dict)
+        assert x["report"]["stop"] is None and y["report"]["stop"] is None
+        assert np.array_equal(x["table"], y["table"]) and np.array_equal(x["coords"], y["coords"])
+
+
+def _failure(m: Mechanism) -> mechfem.MechfemError:
+    with pytest.raises(mechfem.MechfemError) as info:
+        m.run(MOTION)
+    return info.value
+
+
+def test_a_run_that_fails_is_worded_without_a_deck_as_its_deck_would_word_it(monkeypatch: pytest.MonkeyPatch) -> None:
+    from mechfem import running
+
+    # The rocker cannot reach the coupler: position 1 cannot be assembled.
+    with pytest.raises(mechfem.MechfemError) as by_text:
+        running._run_text(fourbar(0.1), MOTION, None, True, None, 2)
+    kept = fourbar()
+    kept.run(MOTION)
+    kept.set("rocker.length", 0.1)
+
+    def refuse(*args: Any, **kwargs: Any) -> Any:
+        raise AssertionError("deck text was written")
+
+    monkeypatch.setattr(deckio, "write", refuse)
+    # A model built afresh, and a kept one given numbers it cannot assemble.
+    for err in (_failure(fourbar(0.1)), _failure(kept)):
+        assert type(err) is type(by_text.value) and str(err) == str(by_text.value)
+        assert "'fourbar'" in str(err)
