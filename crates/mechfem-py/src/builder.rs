@@ -259,7 +259,7 @@ impl ModelBuilder {
 /// variants run, without the GIL.
 pub enum Source {
     Text(String),
-    Built(DeckBuilder),
+    Built(Box<DeckBuilder>),
 }
 
 impl Source {
@@ -269,7 +269,7 @@ impl Source {
             return Ok(Source::Text(text));
         }
         let b = ob.extract::<PyRef<'_, ModelBuilder>>()?;
-        Ok(Source::Built(b.builder.clone()))
+        Ok(Source::Built(Box::new(b.builder.clone())))
     }
 
     /// The compiled model: the text read as deck `path`, or the items
