@@ -158,3 +158,14 @@ def test_a_run_that_fails_is_worded_without_a_deck_as_its_deck_would_word_it(mon
     for err in (_failure(fourbar(0.1)), _failure(kept)):
         assert type(err) is type(by_text.value) and str(err) == str(by_text.value)
         assert "'fourbar'" in str(err)
+
+
+def test_a_variant_the_deck_reader_refuses_is_worded_as_its_run_words_it() -> None:
+    m = fourbar()
+    m.point("Z", 0.0, 1.0)  # on no element: the deck reader refuses its co-ordinates
+    with pytest.raises(mechfem.DeckError) as single:
+        m.run(MOTION)
+    (out,) = mechfem.run_many([m], MOTION, progress=False)
+    assert isinstance(out, mechfem.DeckError) and str(out) == str(single.value)
+    for field in ("line", "column", "text", "kind", "name", "deck"):
+        assert getattr(out, field) == getattr(single.value, field)

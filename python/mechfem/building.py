@@ -60,10 +60,16 @@ def explain(
     err: MechfemError, built: Built, mech: Mechanism, motion: Motion | None, storage: Storage | None
 ) -> MechfemError:
     """The error of a run of the built model in the model's words (:func:`mechfem.explain.translate`): an error of
-    a run from the numbering; a model the deck reader refused through the deck the mechanism's items make, whose
-    lines are the builder's (the only case that writes deck text)."""
+    a run from the numbering; a model the deck reader refused through the deck written for the mechanism, as the
+    deck reader words it for that text (its line, column and text; the only case that writes deck text)."""
     if isinstance(err, DeckError):
-        return deckio.translate(err, deckio.write(mech, motion, storage), mech.name)
+        deck = deckio.write(mech, motion, storage)
+        try:
+            with deckio.tables_dir(deck.tables) as base:
+                _core.Model(deck.text, deck.path, base)
+        except DeckError as refused:
+            err = refused
+        return deckio.translate(err, deck, mech.name)
     words = DeckText("", built.path, {}, built.numbering, built.tables, built.simulated)
     return deckio.translate(err, words, mech.name)
 
