@@ -611,6 +611,8 @@ class ModelBuilder:
     """A model built item by item in the order of a deck's blocks, compiled by the deck reader's compiler."""
 
     def __new__(cls, path: str | os.PathLike[str], mode: str) -> ModelBuilder: ...
+    @property
+    def item(self) -> int: ...
     def units(
         self,
         length: str | None = None,

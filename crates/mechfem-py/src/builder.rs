@@ -229,6 +229,14 @@ impl ModelBuilder {
         self.builder.picture(title, &plots).map_err(|d| refused(py, &self.path, d))
     }
 
+    /// The number of the last item added: a `DeckError` of this builder or
+    /// of the built model names the item it is about by this number (its
+    /// `line`).
+    #[getter]
+    fn item(&self) -> usize {
+        self.builder.item()
+    }
+
     /// The compiled model (table files read from `base_dir`); the builder
     /// can be built again.
     fn build(&self, py: Python<'_>, base_dir: PathBuf) -> PyResult<Model> {
