@@ -15,6 +15,8 @@ import pytest
 import mechfem
 import mechfem._core as _core
 from mechfem import Driven, Mechanism, Motion, Output, Q, building, deckio
+from mechfem.model import Table
+from mechfem.storage import Storage
 from test_model_api import supply
 
 MOTION = Motion.by(36, 2 * math.pi)
@@ -147,11 +149,13 @@ def _failure(m: Mechanism) -> mechfem.MechfemError:
 
 
 def test_a_run_that_fails_is_worded_without_a_deck_as_its_deck_would_word_it(monkeypatch: pytest.MonkeyPatch) -> None:
-    from mechfem import running
+    from mechfem.explain import translate
 
-    # The rocker cannot reach the coupler: position 1 cannot be assembled.
-    with pytest.raises(mechfem.MechfemError) as by_text:
-        running._run_text(fourbar(0.1), MOTION, None, True, None, 2)
+    # The rocker cannot reach the coupler: position 1 cannot be assembled. Its deck text's run, worded for the model.
+    deck = deckio.write(fourbar(0.1), MOTION, None)
+    with pytest.raises(mechfem.MechfemError) as raw:
+        _core.run_deck_text(deck.text, deck.path, ".", True, None, 2)
+    by_text = translate(raw.value, deck, "fourbar")
     kept = fourbar()
     kept.run(MOTION)
     kept.set("rocker.length", 0.1)
@@ -162,7 +166,7 @@ def test_a_run_that_fails_is_worded_without_a_deck_as_its_deck_would_word_it(mon
     monkeypatch.setattr(deckio, "write", refuse)
     # A model built afresh, and a kept one given numbers it cannot assemble.
     for err in (_failure(fourbar(0.1)), _failure(kept)):
-        assert type(err) is type(by_text.value) and str(err) == str(by_text.value)
+        assert type(err) is type(by_text) and str(err) == str(by_text)
         assert "'fourbar'" in str(err)
 
 
@@ -175,3 +179,69 @@ def test_a_variant_the_deck_reader_refuses_is_worded_as_its_run_words_it() -> No
     assert isinstance(out, mechfem.DeckError) and str(out) == str(single.value)
     for field in ("line", "column", "text", "kind", "name", "deck"):
         assert getattr(out, field) == getattr(single.value, field)
+
+
+def _coincident() -> Mechanism:
+    m = Mechanism("coincident")
+    m.bar("crank", m.fixed("A0", 0.0, 0.0), m.point("A", 0.0, 0.0), length=1.0, angle=Driven())
+    return m
+
+
+def _refused(m: Mechanism, motion: Motion | None = MOTION) -> Any:
+    with pytest.raises(mechfem.DeckError) as info:
+        m.run(motion)
+    e: Any = info.value
+    # Nothing of a deck: no written text, no line of one.
+    assert e.deck is None and e.line is None and e.column is None and e.text is None
+    assert "line" not in str(e) and ".mec" not in str(e)
+    return e
+
+
+def test_a_model_the_compiler_refuses_is_worded_without_a_deck(no_deck_text: None) -> None:
+    unused = fourbar()
+    unused.point("Z", 0.0, 1.0)
+    e = _refused(unused)
+    assert str(e) == (
+        "the point 'Z' of the mechanism 'fourbar' is used by no element; connect it to an element, or leave it out"
+    )
+    assert e.name == "Z.x" and e.what == "co-ordinate" and e.kind == "coordinate_unused"
+
+    e = _refused(_coincident(), None)
+    assert str(e).startswith(
+        "the bar 'crank' (A0, A) cannot be evaluated at the given co-ordinates: its points A0 and A coincide, so the "
+        "direction A0->A is undefined"
+    )
+    assert e.kind == "model" and e.element == 1
+
+    short = fourbar()
+    short.set("crank.length", 0.0)
+    e = _refused(short)
+    assert "'crank.length' prescribes the length of the bar 'crank' (A0, A) as 0, but a length must be" in str(e)
+    assert e.name == "crank.length" and e.what == "prescribed"
+
+
+def test_a_kept_model_given_coincident_points_is_worded_without_a_deck(no_deck_text: None) -> None:
+    m = fourbar()
+    m.run(MOTION)
+    m.set("A", (0.0, 0.0))  # onto A0: the kept model meets it in the core, the model built afresh in its compiler
+    e = _refused(m)
+    assert str(e).startswith("the bar 'crank' (A0, A) cannot be evaluated at the given co-ordinates: its points A0")
+
+
+def test_free_motion_of_a_dynamic_model_names_the_input_without_a_deck(no_deck_text: None) -> None:
+    from test_dynamics_api import pendulum
+
+    e = _refused(pendulum(), Motion.free(10, 0.01))
+    assert "free motion (Motion.free, Free) cannot drive the mechanism 'pendulum'" in str(e)
+    assert e.name == "theta" and e.what == "motion of input"
+
+
+def test_a_value_no_deck_can_state_is_named_without_a_deck(no_deck_text: None) -> None:
+    with pytest.raises(ValueError, match=r"file name \(Table\.file\) cannot hold blanks or ';': 'a b'"):
+        fourbar().run(Motion(2, {None: Table(np.zeros(3), file="a b")}))
+    storage = Storage()
+    storage.printbuf = [1.5]
+    with pytest.raises(ValueError, match=r"Storage.printbuf: 1.5 is not a whole number"):
+        fourbar().run(MOTION, storage=storage)
+    with pytest.raises(KeyError, match="cranck"):
+        fourbar().run(Motion.by(4, {"cranck.angle": 1.0}))
