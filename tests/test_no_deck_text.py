@@ -1,6 +1,7 @@
-"""Design, optimisation and studies of a Python model hand it to the typed builder: no deck text is written or
-read on their way (the deck writer and every entry of the compiled module that takes deck text raise here), and the
-results are those of the deck text of the same model, bit for bit."""
+"""Runs, design, optimisation and studies of a Python model hand it to the typed builder: no deck text is written or
+read on their way (the deck writer and every entry of the compiled module that takes deck text raise here), not even
+for a model the compiler refuses or a value no deck can state, and the results are those of the deck text of the same
+model, bit for bit."""
 
 from __future__ import annotations
 
