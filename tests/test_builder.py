@@ -17,7 +17,7 @@ from tests.conftest import ROOT
 
 import mechfem
 import mechfem._core as _core
-from mechfem import building, deckio, running
+from mechfem import building, deckio
 from mechfem.errors import DeckError
 
 EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*/*.mec") if _core.deck_files(p)["mode"] != "KIN OPT")
@@ -63,7 +63,6 @@ def test_mechanism_run_gives_the_deck_texts_numbers_without_writing_deck_text(
         raise AssertionError("Mechanism.run wrote or read deck text")
 
     monkeypatch.setattr(deckio, "write", no_text)
-    monkeypatch.setattr(running, "_run_text", no_text)
     monkeypatch.setattr(_core, "run_deck_text", no_text)
     result = mech.run(mech.motion, mech.storage)
     assert _same_bits(result._raw["table"], read["table"])
@@ -84,7 +83,7 @@ def test_a_refused_value_is_a_deck_error_naming_the_item() -> None:
         b.coordinate(3, float("nan"), True, "A.x")
 
 
-def test_a_model_the_builder_refuses_runs_its_deck_text_for_the_mistake_in_the_models_words() -> None:
+def test_a_model_the_compiler_refuses_is_worded_in_the_models_words() -> None:
     m = mechfem.Mechanism("coincident")
     m.bar("crank", m.fixed("A0", 0.0, 0.0), m.point("A", 0.0, 0.0), length=1.0, angle=mechfem.Driven())
     with pytest.raises(mechfem.MechfemError) as err:

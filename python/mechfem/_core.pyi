@@ -1,7 +1,7 @@
 """Types of ``mechfem._core`` (crates/mechfem-py); private: use :mod:`mechfem`. Numbers are the deck's, 1-based."""
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any, Literal, NotRequired, TypedDict, final, type_check_only
 
 import numpy as np
@@ -611,6 +611,8 @@ class ModelBuilder:
     """A model built item by item in the order of a deck's blocks, compiled by the deck reader's compiler."""
 
     def __new__(cls, path: str | os.PathLike[str], mode: str) -> ModelBuilder: ...
+    @property
+    def item(self) -> int: ...
     def units(
         self,
         length: str | None = None,
@@ -648,9 +650,16 @@ class ModelBuilder:
     def animate(self, name: str) -> None: ...
     def picture(self, title: str, plots: list[tuple[str, int, int]]) -> None: ...
     def build(self, base_dir: str | os.PathLike[str]) -> Model: ...
+    def design(
+        self,
+        base_dir: str | os.PathLike[str],
+        variables: list[tuple[int, int]],
+        buffers: list[int],
+        extrema: list[tuple[int, int]],
+    ) -> DesignModel: ...
 
 def run_deck_variants(
-    texts: list[str],
+    texts: Sequence[str | ModelBuilder],
     variants: list[tuple[int, list[tuple[int, int, float]]]],
     path: str | os.PathLike[str],
     base_dir: str | os.PathLike[str],
@@ -660,7 +669,8 @@ def run_deck_variants(
     order: int | None = ...,
     memory_limit: int = ...,
 ) -> list[TextRunDict | MechfemError]:
-    """A variant is (index into ``texts``, changes); a change is (0, co-ordinate, value) or (1, row, value)."""
+    """A variant is (index into ``texts``: deck text or a built model, changes); a change is (0, co-ordinate,
+    value) or (1, row, value)."""
 
 @final
 class DesignModel:

@@ -1,9 +1,9 @@
 """Design studies: many variants of a mechanism run on every core, summarised in a table.
 
-A study of one mechanism writes one deck in Python; every variant is a copy of it with some values
-changed, compiled once and run by the compiled module on worker threads without the GIL
-(``_core.run_deck_variants``), so no Python runs per position (a model function writes one deck per
-variant instead). Per
+A study of one mechanism hands it to the typed builder once (:mod:`mechfem.building`, no deck text); every
+variant is a copy of the built model with some values changed, compiled once and run by the compiled module on
+worker threads without the GIL (``_core.run_deck_variants``), so no Python runs per position (a model function's
+mechanisms are built one per variant instead). Per
 variant, the ``measures`` (Python functions of its :class:`~mechfem.RunResult`) give one number each::
 
     study = mechfem.sweep(
@@ -41,7 +41,7 @@ from mechfem.namespace import model_result
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
-    from mechfem import deckio
+    from mechfem import building
 
 FloatArray = npt.NDArray[np.float64]
 Measure = Callable[[RunResult], float]
@@ -163,27 +163,29 @@ def _run_many_here(
     order: int | None,
 ) -> list[RunResult | MechfemError]:
     """:func:`run_many` on the threads of this process."""
-    from mechfem import deckio
+    from mechfem import building
 
-    # One deck per distinct mechanism: the same mechanism given many times is read and compiled once.
+    # One model per distinct mechanism: the same mechanism given many times is built and compiled once.
     written: dict[tuple[int, int, int], int] = {}
-    texts: list[deckio.DeckText] = []
+    built: list[building.Built] = []
+    sources: list[tuple[Motion | None, Storage | None]] = []
     variants: list[Variant] = []
     for m in mechanisms:
         mo, st = motion or m.motion, storage or m.storage
         key = (id(m), id(mo), id(st))
         if key not in written:
-            written[key] = len(texts)
-            texts.append(deckio.write(m, mo, st))
+            written[key] = len(built)
+            built.append(building.builder(m, mo, st))
+            sources.append((mo, st))
         variants.append((written[key], []))
-    decks = [texts[t] for t, _ in variants]
-    outs = _run_variants(texts, variants, workers, progress, order=order)
+    outs = _run_variants(built, variants, workers, progress, order=order)
     results: list[RunResult | MechfemError] = []
-    for m, d, o in zip(mechanisms, decks, outs, strict=True):
+    for m, (t, _), o in zip(mechanisms, variants, outs, strict=True):
+        b = built[t]
         if isinstance(o, MechfemError):
-            results.append(deckio.translate(o, d, m.name))
+            results.append(building.explain(o, b, m, *sources[t]))
         else:
-            results.append(model_result(m, d.numbering, o, d.path))
+            results.append(model_result(m, b.numbering, o, b.path))
     return results
 
 
@@ -261,12 +263,12 @@ def _on_executor(
 
 
 Variant = tuple[int, list[tuple[int, int, float]]]
-"""A deck text (its index) and the changes of one variant: (0, co-ordinate, value) or (1, prescribed row,
-value), numbered as in the deck."""
+"""A built model (its index) and the changes of one variant: (0, co-ordinate, value) or (1, prescribed row,
+value), in the model's deck numbering."""
 
 
 def _run_variants(
-    decks: list[deckio.DeckText],
+    decks: list[building.Built],
     variants: list[Variant],
     workers: int | None,
     progress: Progress,
@@ -281,11 +283,11 @@ def _run_variants(
             if files.setdefault(name, text) != text:
                 raise ValueError(f"the variants use different motion tables under one file name {name!r}")
     callback = deckio.progress_callback(progress, "variants")
-    texts = [d.text for d in decks]
+    models = [d.builder for d in decks]
     try:
         with deckio.tables_dir(files) as base:
             return _core.run_deck_variants(
-                texts, variants, "variant.mec", base, workers, callback, on_result, order, memory_limit()
+                models, variants, "variant.mec", base, workers, callback, on_result, order, memory_limit()
             )
     finally:
         close = getattr(callback, "close", None)
@@ -381,10 +383,12 @@ def default_measures(mech: Mechanism) -> dict[str, Measure]:
 
 @dataclass
 class _Chunk:
-    """The variants of a study that one task runs: the deck texts they change (each once), the mechanism each
-    text was written from, every variant's text (its index here) and changes, its parameters, and the measures."""
+    """The variants of a study that one task runs: the motion and storage of each model they change (each once),
+    the mechanism of each model, every variant's model (its index here) and changes, its parameters, and the
+    measures. ``built`` holds the models handed to the builder when the chunk runs where they were built (a task
+    sent to an executor builds them itself: a builder stays in its process)."""
 
-    texts: list[deckio.DeckText]
+    sources: list[tuple[Motion | None, Storage | None]]
     mechanisms: list[Mechanism]
     variants: list[Variant]
     sets: list[dict[str, Any]]
@@ -394,6 +398,7 @@ class _Chunk:
     keep: bool
     workers: int | None
     raise_on_stop: bool = False
+    built: list[building.Built] | None = None
 
 
 Rows = tuple[list[list[Any]], list["RunResult | MechfemError | None"]]
@@ -405,17 +410,20 @@ def _failed_row(p: dict[str, Any], names: list[str], measures: int, text: str) -
 
 def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
     """Runs a chunk of a study: every variant's row of the table (and its result when ``c.keep``)."""
-    from mechfem import deckio
+    from mechfem import building
 
+    built = c.built
+    if built is None:
+        built = [building.builder(m, mo, st) for m, (mo, st) in zip(c.mechanisms, c.sources, strict=True)]
     rows: list[list[Any]] = [[] for _ in c.sets]
     kept: list[RunResult | MechfemError | None] = [None] * len(c.sets)
 
     def take(k: int, o: _core.TextRunDict | MechfemError) -> None:
         # Called as each variant finishes, while the workers go on with the others.
         p, t = c.sets[k], c.variants[k][0]
-        m, d = c.mechanisms[t], c.texts[t]
+        m, d = c.mechanisms[t], built[t]
         if isinstance(o, MechfemError):
-            err = deckio.translate(o, d, m.name)
+            err = building.explain(o, d, m, *c.sources[t])
             kept[k] = err if c.keep else None
             text = str(err).splitlines()[0] if str(err) else type(err).__name__
             rows[k] = _failed_row(p, c.names, len(c.measures), text)
@@ -441,7 +449,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
         done = [True, report["stop"] is None, a.positions, len(report["limits"]), "; ".join(errors)]
         rows[k] = [*(_plain(p.get(n, math.nan)) for n in c.names), *done, *values]
 
-    _run_variants(c.texts, c.variants, c.workers, progress, take, c.order)
+    _run_variants(built, c.variants, c.workers, progress, take, c.order)
     return rows, kept
 
 
@@ -485,27 +493,31 @@ def sweep(
     a variant fails instead: ``ok`` False, NaN measures, the stop reason in ``error`` (and a
     :class:`~mechfem.RunStoppedError` carrying its :class:`RunResult` in ``results``).
     """
-    from mechfem import deckio
+    from mechfem import building
 
     workers = check_workers(workers)
     sets = _variants(parameters)
     if not sets:
         raise ValueError("a study needs at least one variant")
     mechanisms: list[Mechanism] = []
-    decks: list[deckio.DeckText] = []
+    decks: list[building.Built] = []
+    sources: list[tuple[Motion | None, Storage | None]] = []
     variants: list[Variant] = []
     if isinstance(model, Mechanism):
-        # One deck for the whole study; each variant changes numbers of it.
-        base = deckio.write(model, motion or model.motion, storage or model.storage)
+        # One model for the whole study; each variant changes numbers of it.
+        mo, st = motion or model.motion, storage or model.storage
+        base = building.builder(model, mo, st)
         variants = [(0, compiled.changes_of(model._targets(p), base.numbering)) for p in sets]
-        decks, mechanisms = [base], [model]
+        decks, mechanisms, sources = [base], [model], [(mo, st)]
     else:
         _check_arguments(model, sets)
         for k, p in enumerate(sets):
             m = model(**p)
             if not isinstance(m, Mechanism):
                 raise TypeError(f"the model function returned {m!r}, not a Mechanism")
-            decks.append(deckio.write(m, motion or m.motion, storage or m.storage))
+            mo, st = motion or m.motion, storage or m.storage
+            decks.append(building.builder(m, mo, st))
+            sources.append((mo, st))
             variants.append((k, []))
             mechanisms.append(m)
     chosen = dict(measures) if measures is not None else default_measures(mechanisms[0])
@@ -515,16 +527,18 @@ def sweep(
         if extra in names or (extra in chosen and extra in fixed):
             raise ValueError(f"the column name {extra!r} is used twice")
 
-    def part(r: range, threads: int | None) -> _Chunk:
-        # A chunk carries each deck text it needs once.
+    def part(r: range, threads: int | None, here: bool = False) -> _Chunk:
+        # A chunk carries each model it needs once; here, the models built already.
         some, vs = sets[r.start : r.stop], variants[r.start : r.stop]
         if isinstance(model, Mechanism):
-            return _Chunk(decks, mechanisms, vs, some, names, chosen, order, keep_results, threads, raise_on_stop)
-        ts, ms, vs = decks[r.start : r.stop], mechanisms[r.start : r.stop], [(j, []) for j in range(len(r))]
-        return _Chunk(ts, ms, vs, some, names, chosen, order, keep_results, threads, raise_on_stop)
+            ds = decks if here else None
+            return _Chunk(sources, mechanisms, vs, some, names, chosen, order, keep_results, threads, raise_on_stop, ds)
+        ss, ms, vs = sources[r.start : r.stop], mechanisms[r.start : r.stop], [(j, []) for j in range(len(r))]
+        ds = decks[r.start : r.stop] if here else None
+        return _Chunk(ss, ms, vs, some, names, chosen, order, keep_results, threads, raise_on_stop, ds)
 
     if executor is None:
-        rows, kept = _study_rows(part(range(len(sets)), workers), progress)
+        rows, kept = _study_rows(part(range(len(sets)), workers, here=True), progress)
     else:
         positions = _positions(motion or mechanisms[0].motion)
         parts = cluster.chunks(len(sets), cluster.chunk_size(len(sets), positions, executor, chunk_size))

@@ -1,8 +1,8 @@
 """Decks to and from the Python model: :class:`~mechfem.Mechanism` as deck text, a deck as a mechanism.
 
-A mechanism is compiled from the deck written for it, by the same deck reader and solver as ``mechfem run``, so
-every result of a model is, by construction, the result of a deck (:mod:`mechfem.compiled` keeps the compiled
-model per topology). This module
+A mechanism runs without deck text: :mod:`mechfem.building` hands its items to the deck reader's typed builder in
+the numbering of this module, and the model compiled from them is the one its deck text compiles to, to the last bit
+(:mod:`mechfem.compiled` keeps it per topology). This module
 
 * writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line, its units on
   the ``UNITS`` line and its names in the ``NAMES`` block (:mod:`mechfem.deck_names`), keeping a note of what each

@@ -63,13 +63,34 @@ class ExtremumTerm:
     weight: float = 1.0
 
 
+DesignModelOf = Callable[[list[tuple[int, int]], list[int], list[tuple[int, int]]], _core.DesignModel]
+"""Compiles the model of a problem for its variables, the buffers evaluated and the extrema taken:
+``(variables, buffers, extrema)`` as ``_core.DesignModel`` takes them."""
+
+
+def deck_model(text: str, path: str, base_dir: str) -> DesignModelOf:
+    """The design model of the deck ``text`` (named ``path``, its files read from ``base_dir``)."""
+
+    def of(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> _core.DesignModel:
+        return _core.DesignModel(text, path, base_dir, variables, buffers, extrema)
+
+    return of
+
+
+def built_model(builder: _core.ModelBuilder, base_dir: str) -> DesignModelOf:
+    """The design model built by ``builder`` (a Python model's items, no deck text; table files in ``base_dir``)."""
+
+    def of(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> _core.DesignModel:
+        return builder.design(base_dir, variables, buffers, extrema)
+
+    return of
+
+
 @dataclass
 class Problem:
-    """An optimisation in a deck's numbering: buffers are buffer numbers of ``text``."""
+    """An optimisation in a deck's numbering: buffers are buffer numbers of the model ``model`` compiles."""
 
-    text: str
-    path: str
-    base_dir: str
+    model: DesignModelOf
     variables: list[tuple[int, int]]
     """``(kind, number)``: kind 0 a fixed co-ordinate, 1 a prescribed row."""
     names: list[str]
@@ -174,9 +195,7 @@ class Evaluator:
         self.problem = problem
         buffers = _buffers(problem)
         self._column = {b: k for k, b in enumerate(buffers)}
-        self.model = _core.DesignModel(
-            problem.text, problem.path, problem.base_dir, problem.variables, buffers, _extrema(problem)
-        )
+        self.model = problem.model(problem.variables, buffers, _extrema(problem))
         self._cache: tuple[bytes, Evaluation | str] | None = None
         self.extrema_count: list[int] | None = None
         self.infeasible = 0

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import deckio, design
+from mechfem import building, deckio, design
 from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
@@ -293,8 +293,8 @@ def optimize(
     extra = [deck.buffer(q) for q in quantities]
     if not (terms or goal or objective):
         raise ValueError("nothing to optimise: give targets, minimize, maximize or objective")
-    written = deckio.write(mechanism, motion, deck.storage)
-    variables = [_variable(mechanism, written.numbering, name) for name in vary]
+    built = building.builder(mechanism, motion, deck.storage)
+    variables = [_variable(mechanism, built.numbering, name) for name in vary]
     positions = motion.steps + 1
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
@@ -308,11 +308,9 @@ def optimize(
             raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
         if not a <= start <= b:
             raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
-    with deckio.tables_dir(written.tables) as base:
+    with deckio.tables_dir(built.tables) as base:
         problem = design.Problem(
-            text=written.text,
-            path=written.path,
-            base_dir=base,
+            model=design.built_model(built.builder, base),
             variables=[(k, n) for k, n, _ in variables],
             names=list(vary),
             lo=lo,
@@ -329,7 +327,7 @@ def optimize(
     optimised = copy.deepcopy(mechanism)
     for name, x in zip(vary, sol.x, strict=True):
         optimised.set(name, float(x))
-    _carry_position_one(optimised, written.numbering, sol.position_one)
+    _carry_position_one(optimised, built.numbering, sol.position_one)
     return Optimum(
         mechanism=optimised,
         start=dict(zip(vary, map(float, sol.start), strict=True)),
@@ -431,12 +429,10 @@ def sensitivity(analysis: RunResult, quantity: Quantity, wrt: Sequence[str]) -> 
         raise ValueError("sensitivities need a motion: the analysis computed position 1 only")
     deck = _Deck(mech)
     b = deck.buffer(quantity)
-    written = deckio.write(mech, motion, deck.storage)
-    variables = [_variable(mech, written.numbering, name) for name in wrt]
-    with deckio.tables_dir(written.tables) as base:
-        import mechfem._core as _core
-
-        model = _core.DesignModel(written.text, written.path, base, [(k, n) for k, n, _ in variables], [b], [])
+    built = building.builder(mech, motion, deck.storage)
+    variables = [_variable(mech, built.numbering, name) for name in wrt]
+    with deckio.tables_dir(built.tables) as base:
+        model = built.builder.design(base, [(k, n) for k, n, _ in variables], [b], [])
         d = model.evaluate([v for _, _, v in variables])
     if not d["feasible"]:
         raise design.Infeasible(str(d["reason"]))

@@ -68,9 +68,7 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
             )
     objective = opt["objective"]
     return design.Problem(
-        text=text,
-        path=os.fspath(deck),
-        base_dir=os.fspath(deck_dir(deck)),
+        model=design.deck_model(text, os.fspath(deck), os.fspath(deck_dir(deck))),
         variables=[(v["kind"], v["number"]) for v in opt["vary"]],
         names=[variable_name(v["kind"], v["number"]) for v in opt["vary"]],
         lo=np.array([v["lo"] for v in opt["vary"]], dtype=np.float64),

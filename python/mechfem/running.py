@@ -3,9 +3,10 @@ model's words.
 
 A mechanism runs on its kept compiled model (:mod:`mechfem.compiled`), built through the typed builder
 (:mod:`mechfem.building`) when its topology is new, and one with table motions or load tables is built for each run:
-no deck text is written or read. Only a mistake is worded through the deck text written for the model: the deck
-reader then names it as it does for that text (coincident points, a zero length), in the model's words
-(:func:`mechfem.explain.translate`), whatever was compiled before.
+no deck text is written or read. A run that fails (position 1 cannot be computed) is worded from the core's typed
+error and the numbering the model was built in (:func:`mechfem.building.explain`); so is a mistake the compiler finds
+in the items (coincident points, a zero length), from the note of the item it is about, whatever was compiled
+before. A value no deck can state raises the deck writer's ``ValueError``, ``KeyError`` or ``TypeError``.
 
 :meth:`Mechanism.run <mechfem.Mechanism.run>` and :meth:`Mechanism.check <mechfem.Mechanism.check>` sit in the model
 layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when it is imported.
@@ -13,14 +14,11 @@ layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when i
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import mechfem._core as _core
 from mechfem import building, compiled, deckio
 from mechfem import model as _model
 from mechfem.deckio import Progress
 from mechfem.errors import MechfemError, RunInterrupted, on_stop
-from mechfem.explain import translate
 from mechfem.limits import memory_limit
 from mechfem.model import Mechanism
 from mechfem.motion import Motion
@@ -49,20 +47,31 @@ def run(
         d: _core.TextRunDict | None = None
         try:
             kept = compiled.kept_model(mech, motion, storage)
-            if kept is not None:
-                model, numbering, changes = kept
-            else:
-                # A model with tables, or one the builder refuses (which raises).
-                (model, numbering), changes = building.build(mech, motion, storage), []
-            d = model.run(changes, moving, callback, order, memory_limit())
         except (MechfemError, KeyError, ValueError, TypeError):
-            # A mistake in the model: the deck reader checks the given numbers (coincident points, a zero length)
-            # when it compiles, a kept model that only takes new numbers meets them in the core instead, and the
-            # deck writer refuses what no deck can say. The deck written for the model names the mistake in the
-            # model's words, and so does the run of that deck.
-            d = None
+            # The model built afresh below meets the same mistake and names it.
+            kept = None
+        if kept is not None:
+            model, numbering, changes = kept
+            try:
+                d = model.run(changes, moving, callback, order, memory_limit())
+            except MechfemError:
+                # A kept model that only takes new numbers meets a mistake of them (coincident points, a zero
+                # length) in the core, where the deck reader checks them when it compiles: the model built
+                # afresh names it as its compiler does.
+                d = None
         if d is None:
-            d, numbering = _run_text(mech, motion, storage, moving, callback, order)
+            # A model with tables, a new topology or a kept one that failed. A value no deck can state raises the
+            # deck writer's ValueError, KeyError or TypeError in the builder; an item it refuses, a DeckError.
+            built = building.builder(mech, motion, storage)
+            numbering = built.numbering
+            try:
+                with deckio.tables_dir(built.tables) as base:
+                    model = built.builder.build(base)
+                d = model.run([], moving, callback, order, memory_limit())
+            except MechfemError as e:
+                # The compiler refused an item (coincident points, a point on no element), or the run failed
+                # (position 1 cannot be computed): the core's typed error in the model's names.
+                raise building.explain(e, built, mech, motion, storage) from None
     finally:
         close = getattr(callback, "close", None)
         if close is not None:
@@ -74,24 +83,6 @@ def run(
     if raise_on_stop is None:
         return analysis
     return on_stop(analysis, analysis.stop_reason(), raise_on_stop)
-
-
-def _run_text(
-    mech: Mechanism,
-    motion: Motion | None,
-    storage: Storage | None,
-    moving: bool,
-    callback: Callable[[int, int], object] | None,
-    order: int | None,
-) -> tuple[_core.TextRunDict, deckio.Numbering]:
-    """Runs the deck text written for the mechanism; its errors in the model's words."""
-    deck = deckio.write(mech, motion, storage)
-    with deckio.tables_dir(deck.tables) as base:
-        try:
-            d = _core.run_deck_text(deck.text, deck.path, base, moving, callback, order, memory_limit())
-        except MechfemError as e:
-            raise translate(e, deck, mech.name) from None
-    return d, deck.numbering
 
 
 __all__ = ["run"]

@@ -383,6 +383,14 @@ impl DeckBuilder {
         Ok(())
     }
 
+    /// The number of the last item added (its line in the deck text of the
+    /// same items): the line a diagnostic of this builder or of the built
+    /// model names is the number of the item it is about, which the caller
+    /// maps back to its own object.
+    pub fn item(&self) -> usize {
+        self.line
+    }
+
     /// The typed deck built so far.
     pub fn deck(&self) -> &Deck {
         &self.deck

@@ -20,10 +20,11 @@ use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::builder::Source;
 use crate::observe::Progress;
 use crate::rundict::Outcome;
 use crate::rundict::{outcome_dict, Shared};
-use crate::text::{compile_text, run_variant, Change};
+use crate::text::{run_variant, Change};
 
 /// A change as Python gives it: (kind, number, value); see [`Change::from_triple`].
 type ChangeTriple = (u8, usize, f64);
@@ -33,7 +34,8 @@ const POLL: Duration = Duration::from_millis(100);
 
 /// Runs every variant in `variants` on `workers` threads (default: one per
 /// core), the calling thread one of them. A variant is `(t, changes)`: deck text `texts[t]` (named `path`
-/// in messages; MOV_FUNC files are read from `base_dir`) with `changes`
+/// in messages; MOV_FUNC files are read from `base_dir`) or the model a
+/// `ModelBuilder` `texts[t]` builds, with `changes`
 /// made, each `(kind, number, value)`: kind 0 sets co-ordinate `number`
 /// (its XFIX or XMOV value), kind 1 prescribed row `number` (its PARA
 /// value), as if the deck said so.
@@ -58,7 +60,7 @@ const POLL: Duration = Duration::from_millis(100);
 #[allow(clippy::too_many_arguments)]
 pub fn run_deck_variants(
     py: Python<'_>,
-    texts: Vec<String>,
+    texts: Vec<Bound<'_, PyAny>>,
     variants: Vec<(usize, Vec<ChangeTriple>)>,
     path: PathBuf,
     base_dir: PathBuf,
@@ -68,6 +70,7 @@ pub fn run_deck_variants(
     order: Option<u8>,
     memory_limit: u64,
 ) -> PyResult<Vec<Py<PyAny>>> {
+    let texts = texts.iter().map(Source::extract).collect::<PyResult<Vec<_>>>()?;
     if let Some(k) = order.filter(|k| !(1..=2).contains(k)) {
         return Err(pyo3::exceptions::PyValueError::new_err(format!("order must be 1, 2 or None, not {k}")));
     }
@@ -95,7 +98,7 @@ pub fn run_deck_variants(
     let caller = std::thread::current().id();
     let job = |k: usize| {
         let (t, changes) = &variants[k];
-        let c = compiled[*t].get_or_init(|| compile_text(&texts[*t], &path, &base_dir));
+        let c = compiled[*t].get_or_init(|| texts[*t].compile(&path, &base_dir));
         let watch = (std::thread::current().id() == caller).then(Progress::interrupts);
         run_variant(c, changes, order, &cancel, watch, memory_limit)
     };

@@ -4,13 +4,15 @@
 //! things compiles to, without any text written or parsed
 //! ([`mechfem_deck::DeckBuilder`]).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use mechfem_deck::{DeckBuilder, Diagnostic, Diagnostics, Mode};
+use mechfem_deck::{Compiled, DeckBuilder, Diagnostic, Diagnostics, Mode};
 use pyo3::prelude::*;
 
+use crate::design::DesignModel;
 use crate::errors;
 use crate::model::Model;
+use crate::text::compile_text;
 
 /// A model built item by item, in the order of a deck's blocks:
 /// `ModelBuilder(path, mode)`, `units`, then `element`, `form`, `nrdof`;
@@ -227,11 +229,63 @@ impl ModelBuilder {
         self.builder.picture(title, &plots).map_err(|d| refused(py, &self.path, d))
     }
 
+    /// The number of the last item added: a `DeckError` of this builder or
+    /// of the built model names the item it is about by this number (its
+    /// `line`).
+    #[getter]
+    fn item(&self) -> usize {
+        self.builder.item()
+    }
+
     /// The compiled model (table files read from `base_dir`); the builder
     /// can be built again.
     fn build(&self, py: Python<'_>, base_dir: PathBuf) -> PyResult<Model> {
         let compiled =
             py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
         Model::kept(py, compiled, self.path.clone())
+    }
+
+    /// The compiled model (table files read from `base_dir`) kept for an
+    /// optimiser: a `DesignModel` of the design `variables`, `buffers` and
+    /// `extrema`, as `DesignModel(text, ...)` takes them for deck text.
+    fn design(
+        &self,
+        py: Python<'_>,
+        base_dir: PathBuf,
+        variables: Vec<(u8, usize)>,
+        buffers: Vec<u32>,
+        extrema: Vec<(u32, u32)>,
+    ) -> PyResult<DesignModel> {
+        let compiled =
+            py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
+        DesignModel::of_compiled(compiled, &variables, &buffers, &extrema)
+    }
+}
+
+/// What the variants of a study are made of: deck text, or a model built
+/// item by item (a copy of its builder's items), compiled where the
+/// variants run, without the GIL.
+pub enum Source {
+    Text(String),
+    Built(Box<DeckBuilder>),
+}
+
+impl Source {
+    /// Deck text (a `str`) or a `ModelBuilder`'s items.
+    pub fn extract(ob: &Bound<'_, PyAny>) -> PyResult<Source> {
+        if let Ok(text) = ob.extract::<String>() {
+            return Ok(Source::Text(text));
+        }
+        let b = ob.extract::<PyRef<'_, ModelBuilder>>()?;
+        Ok(Source::Built(Box::new(b.builder.clone())))
+    }
+
+    /// The compiled model: the text read as deck `path`, or the items
+    /// built; table files read from `base_dir`.
+    pub fn compile(&self, path: &Path, base_dir: &Path) -> Result<Compiled, Diagnostics> {
+        match self {
+            Source::Text(text) => compile_text(text, path, base_dir),
+            Source::Built(b) => b.build(base_dir),
+        }
     }
 }

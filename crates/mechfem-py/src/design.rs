@@ -42,24 +42,16 @@ fn buffer(c: &Compiled, number: u32) -> PyResult<Quantity> {
         .ok_or_else(|| PyValueError::new_err(format!("the deck defines no buffer {number}")))
 }
 
-#[pymethods]
 impl DesignModel {
-    /// Compiles the deck `text` (named `path`, its files read from
-    /// `base_dir`). `variables` are `(kind, number)` in the deck's
-    /// numbering: kind 0 a fixed co-ordinate, 1 a prescribed row;
-    /// `buffers` the buffer numbers evaluated; `extrema` pairs of buffer
-    /// numbers `(b, bref)`: b wherever bref has an extremum.
-    #[new]
-    fn new(
-        py: Python<'_>,
-        text: &str,
-        path: PathBuf,
-        base_dir: PathBuf,
-        variables: Vec<(u8, usize)>,
-        buffers: Vec<u32>,
-        extrema: Vec<(u32, u32)>,
+    /// The design model of the compiled model `c`: `variables`, `buffers`
+    /// and `extrema` as for [`DesignModel::new`] (a model built item by item
+    /// comes here from `ModelBuilder.design`, deck text through `new`).
+    pub(crate) fn of_compiled(
+        c: Compiled,
+        variables: &[(u8, usize)],
+        buffers: &[u32],
+        extrema: &[(u32, u32)],
     ) -> PyResult<DesignModel> {
-        let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
         let mech = &c.mechanism;
         if c.motion.is_none() {
             return Err(PyValueError::new_err("an optimisation needs a motion: its positions are where it looks"));
@@ -102,6 +94,28 @@ impl DesignModel {
             })
             .collect::<PyResult<Vec<_>>>()?;
         Ok(DesignModel { compiled: c, vars, quantities, extrema, anchor: None, runs: 0 })
+    }
+}
+
+#[pymethods]
+impl DesignModel {
+    /// Compiles the deck `text` (named `path`, its files read from
+    /// `base_dir`). `variables` are `(kind, number)` in the deck's
+    /// numbering: kind 0 a fixed co-ordinate, 1 a prescribed row;
+    /// `buffers` the buffer numbers evaluated; `extrema` pairs of buffer
+    /// numbers `(b, bref)`: b wherever bref has an extremum.
+    #[new]
+    fn new(
+        py: Python<'_>,
+        text: &str,
+        path: PathBuf,
+        base_dir: PathBuf,
+        variables: Vec<(u8, usize)>,
+        buffers: Vec<u32>,
+        extrema: Vec<(u32, u32)>,
+    ) -> PyResult<DesignModel> {
+        let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+        DesignModel::of_compiled(c, &variables, &buffers, &extrema)
     }
 
     /// The design's values as the deck gives them.

@@ -140,3 +140,37 @@ fn a_value_the_parser_refuses_is_refused_with_the_items_name() {
     d.animate("swing").unwrap();
     assert_eq!(d.animate("again").unwrap_err().kind, DiagnosticKind::DuplicateKeyword);
 }
+
+#[test]
+fn a_mistake_the_compiler_finds_names_the_item_by_its_number() {
+    // A crank whose points coincide, and a co-ordinate on no element: the
+    // compiler's diagnostics carry the numbers the builder gave the items.
+    let mut b = DeckBuilder::new("m.mec", Mode::KinAna).unwrap();
+    b.element("BIN", &[1, 2, 3, 4], Some("crank: A0 A")).unwrap();
+    let crank = b.item();
+    b.form("LENL", 1, 1, 1.0, None).unwrap();
+    b.form("ANGB", 1, 2, 1.0, None).unwrap();
+    b.nrdof(1).unwrap();
+    let mut numbers = Vec::new();
+    for i in 1..=5 {
+        b.coordinate(i, 0.0, i > 2, None).unwrap();
+        numbers.push(b.item());
+    }
+    b.para(1, 1.0, None).unwrap();
+    let unused = numbers[4];
+    let d = b.build(Path::new(".")).unwrap_err();
+    let lines: Vec<(DiagnosticKind, usize)> = d.iter().map(|d| (d.kind, d.line)).collect();
+    assert!(lines.contains(&(DiagnosticKind::CoordinateUnused, unused)), "{lines:?}");
+    let mut b2 = DeckBuilder::new("m.mec", Mode::KinAna).unwrap();
+    b2.element("BIN", &[1, 2, 3, 4], Some("crank: A0 A")).unwrap();
+    b2.form("LENL", 1, 1, 1.0, None).unwrap();
+    b2.form("ANGB", 1, 2, 1.0, None).unwrap();
+    b2.nrdof(1).unwrap();
+    for i in 1..=4 {
+        b2.coordinate(i, 0.0, i > 2, None).unwrap();
+    }
+    b2.para(1, 1.0, None).unwrap();
+    let d = b2.build(Path::new(".")).unwrap_err();
+    let model: Vec<usize> = d.iter().filter(|d| d.kind == DiagnosticKind::Model).map(|d| d.line).collect();
+    assert_eq!(model, vec![crank], "{d:?}");
+}
