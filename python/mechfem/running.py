@@ -46,7 +46,7 @@ def run(
     moving = with_motion and motion is not None
     callback = deckio.progress_callback(progress, "positions")
     try:
-        d: _core.TextRunDict | None = None
+        d: _core.Run | None = None
         try:
             kept = compiled.kept_model(mech, motion, storage)
             if kept is not None:
@@ -69,7 +69,7 @@ def run(
             close()
     analysis = model_result(mech, numbering, d, f"{mech.name}.mec")
     analysis.motion = motion if with_motion else None
-    if d["interrupted"]:
+    if d.interrupted:
         raise RunInterrupted(analysis)
     if raise_on_stop is None:
         return analysis
@@ -83,7 +83,7 @@ def _run_text(
     moving: bool,
     callback: Callable[[int, int], object] | None,
     order: int | None,
-) -> tuple[_core.TextRunDict, deckio.Numbering]:
+) -> tuple[_core.Run, deckio.Numbering]:
     """Runs the deck text written for the mechanism; its errors in the model's words."""
     deck = deckio.write(mech, motion, storage)
     with deckio.tables_dir(deck.tables) as base:

@@ -47,7 +47,7 @@ mod errors;
 mod model;
 mod names;
 mod observe;
-mod rundict;
+mod run;
 mod text;
 
 use std::path::{Path, PathBuf};
@@ -256,7 +256,7 @@ fn run_deck(
     progress: Option<Py<PyAny>>,
     memory_limit: u64,
     det: bool,
-) -> PyResult<Bound<'_, PyDict>> {
+) -> PyResult<run::Run> {
     let (compiled, slot) = load(py, &path)?;
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
         execute(py, compiled, true, progress, memory_limit, det)?;
@@ -264,34 +264,37 @@ fn run_deck(
     let (n, width, positions) = (mech.n_coords(), rec.selection.width(), rec.table.positions());
     let (model, storage) = echo(py, &slot, &c, &given, &rec.coords[..n], &rec)?;
     // The same for every run of the deck: made once, and shared.
-    let [layout, buffer_numbers, hodograph_coords] = slot.shape(py, || {
+    let shape = slot.shape(py, || {
         let layout = convert::layout(py, rec.selection.blocks())?;
         let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
         let coords = hodograph_coords(&c).into_iter().take(hodograph).map(|i| i + 1);
         let numbers = PyList::new(py, c.buffers.iter().map(|b| b.number))?;
         Ok([layout.into_any(), numbers.into_any(), PyList::new(py, coords)?.into_any()])
     })?;
+    let buffers = rec.selection.block("buffers").map_or((0, 0), |b| (b.start, b.width()));
     let (mut table, mut coords) = (rec.table.into_vec(), rec.coords);
     names::table(&c, rec.selection.quantities(), &mut table, positions, &mut coords);
-
-    let d = PyDict::new(py);
-    d.set_item(intern!(py, "coords"), convert::array2(py, coords, positions, n)?)?;
-    d.set_item(intern!(py, "table"), convert::columns(py, table, positions, width)?)?;
-    d.set_item(intern!(py, "layout"), layout)?;
-    d.set_item(intern!(py, "buffer_numbers"), buffer_numbers)?;
-    d.set_item(intern!(py, "hodograph_coords"), hodograph_coords)?;
-    d.set_item(intern!(py, "simulation"), sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &c.dynamics_lines, &report, steps);
     let report_dict = match convert::plain_report_key(&report, steps).filter(|_| sim.is_none()) {
         Some(key) => slot.report(py, key, report_dict)?,
         None => report_dict()?,
     };
-    d.set_item(intern!(py, "report"), report_dict)?;
-    d.set_item(intern!(py, "model"), model)?;
-    d.set_item(intern!(py, "storage"), storage)?;
-    d.set_item(intern!(py, "interrupted"), interrupted)?;
-    Ok(d)
+    let simulation = sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?;
+    let parts = run::DeckRun {
+        table,
+        width,
+        coords,
+        positions,
+        n_coords: n,
+        buffers,
+        shape,
+        dicts: [report_dict, model, storage],
+        simulation,
+        interrupted,
+        stopped: report.stop.is_some(),
+    };
+    run::Run::of_deck(&c, parts)
 }
 
 /// The module `mechfem._core`.
@@ -315,6 +318,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<model::Model>()?;
+    m.add_class::<run::Run>()?;
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;

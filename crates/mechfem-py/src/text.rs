@@ -10,15 +10,15 @@
 //!   in the core's full layout ([`Layout`]), column by column.
 //!
 //! [`execute`] (no GIL) does all of a run but wrapping its results for
-//! Python, which [`crate::rundict`] does; the batch runner
+//! Python, which [`crate::run`] does; the batch runner
 //! ([`crate::batch`]) runs it on worker threads.
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use mechfem_core::run::{Columns, InverseDynamics, Layout, MemoryRefusal};
-use mechfem_core::SolveError;
 use mechfem_core::{record_evaluated, InputMotion, Observer, PositionView, Quantity, State, TransferOrder};
+use mechfem_core::{DesignError, SolveError};
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
@@ -26,7 +26,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::observe::Progress;
-use crate::rundict::{outcome_dict, FullRun, Outcome, Shared};
+use crate::run::{outcome_run, FullRun, Outcome, Run, Shared};
 use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
@@ -164,7 +164,7 @@ pub struct Numbers {
 impl Numbers {
     /// The deck's own numbers with `changes` made; an error names a
     /// co-ordinate or row the deck does not have.
-    pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, String> {
+    pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, DesignError> {
         let mut n = Numbers { state: c.state.clone(), para: c.prescribed.iter().map(|r| r.para).collect() };
         changes.iter().try_for_each(|ch| ch.apply(&mut n))?;
         // What the deck reader derives from the co-ordinates, derived from
@@ -269,7 +269,7 @@ pub fn run_variant(
     };
     let numbers = match Numbers::with(c, changes) {
         Ok(n) => n,
-        Err(message) => return (Outcome::BadChange(message), None),
+        Err(e) => return (Outcome::BadChange(e), None),
     };
     // `order` has been checked by the caller.
     let order = transfer_order(c, order).unwrap_or(TransferOrder::Second);
@@ -299,15 +299,17 @@ impl Change {
 
     /// Makes the change in `n`, as if the deck had said so (the model echo
     /// included); an error when the deck has no such co-ordinate or row.
-    pub fn apply(self, n: &mut Numbers) -> Result<(), String> {
+    pub fn apply(self, n: &mut Numbers) -> Result<(), DesignError> {
+        // Number 0 is said as such (index usize::MAX, see DesignError).
+        let index = |number: usize| number.wrapping_sub(1);
         match self {
             Change::Coord(number, value) => {
-                let x = number.checked_sub(1).and_then(|i| n.state.x.get_mut(i));
-                *x.ok_or_else(|| format!("the deck has no co-ordinate {number}"))? = value;
+                let x = n.state.x.get_mut(index(number));
+                *x.ok_or(DesignError::NoCoordinate(index(number)))? = value;
             }
             Change::Row(number, value) => {
-                let k = number.checked_sub(1).filter(|&k| k < n.para.len() && k < n.state.target.len());
-                let k = k.ok_or_else(|| format!("the deck has no prescribed row {number}"))?;
+                let k = Some(index(number)).filter(|&k| k < n.para.len() && k < n.state.target.len());
+                let k = k.ok_or(DesignError::NoRow(index(number)))?;
                 n.state.target[k] = value;
                 n.para[k] = Some(value);
             }
@@ -332,8 +334,8 @@ impl Change {
 #[pyfunction]
 #[pyo3(signature = (text, path, base_dir, motion=true, progress=None, order=Some(2), memory_limit=u64::MAX))]
 #[allow(clippy::too_many_arguments)]
-pub fn run_deck_text<'py>(
-    py: Python<'py>,
+pub fn run_deck_text(
+    py: Python<'_>,
     text: &str,
     path: PathBuf,
     base_dir: PathBuf,
@@ -341,10 +343,10 @@ pub fn run_deck_text<'py>(
     progress: Option<Py<PyAny>>,
     order: Option<u8>,
     memory_limit: u64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Run> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
     crate::names::warn(py, &c)?;
-    let numbers = Numbers::with(&c, &[]).map_err(PyValueError::new_err)?;
+    let numbers = Numbers::with(&c, &[]).map_err(|e| errors::change_error(&e))?;
     let shared = Shared::new(py, &c)?;
     run_compiled(py, (&c, &shared), numbers, &path, motion, progress, order, memory_limit)
 }
@@ -354,8 +356,8 @@ pub fn run_deck_text<'py>(
 /// a kept `Model` return alike. `text` is the deck with the objects its
 /// runs share ([`Shared`], converted once for a kept `Model`).
 #[allow(clippy::too_many_arguments)]
-pub fn run_compiled<'py>(
-    py: Python<'py>,
+pub fn run_compiled(
+    py: Python<'_>,
     text: (&Compiled, &Shared),
     numbers: Numbers,
     path: &Path,
@@ -363,7 +365,7 @@ pub fn run_compiled<'py>(
     progress: Option<Py<PyAny>>,
     order: Option<u8>,
     memory_limit: u64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Run> {
     let c = text.0;
     let order = transfer_order(c, order)?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
@@ -371,9 +373,7 @@ pub fn run_compiled<'py>(
     let (outcome, raised) =
         py.detach(|| execute(c, numbers, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
     let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
-    let d = outcome_dict(py, outcome, Some(text), path)?;
-    d.set_item("interrupted", interrupted)?;
-    Ok(d)
+    outcome_run(py, outcome, Some(text), path, interrupted)
 }
 
 /// Reads and compiles the deck `text` without solving anything and returns
