@@ -13,7 +13,7 @@ from __future__ import annotations
 import copy
 import functools
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any, cast
 
@@ -57,6 +57,9 @@ class RunResult(ResultTables):
         """The :class:`~mechfem.Motion` a named model's run followed (None: position 1 only, a deck, or not known)."""
         self._raw = raw
         self._namespace = names
+        if raw.simulation is not None:
+            # Converted now: the conversion warns of tolerances that conflict, as the run returns.
+            self.__dict__["simulation"] = Simulation.from_core(cast(dict[str, Any], raw.simulation))
         super().__init__(raw)
 
     # -- what the run was
@@ -72,6 +75,13 @@ class RunResult(ResultTables):
         equations of motion, the time reached); None for a run of a prescribed motion."""
         sim = self._raw.simulation
         return None if sim is None else Simulation.from_core(cast(dict[str, Any], sim))
+
+    def __getstate__(self) -> dict[str, Any]:
+        # The compiled module's run goes into a pickle as its values.
+        state = self.__dict__.copy()
+        if isinstance(state["_raw"], _core.Run):
+            state["_raw"] = PickledRun.of(state["_raw"])
+        return state
 
     @property
     def path(self) -> str:
@@ -232,6 +242,35 @@ class RunResult(ResultTables):
 
 
 Analysis = RunResult
+
+
+@dataclass(frozen=True)
+class PickledRun:
+    """The values of a ``_core.Run`` as plain Python objects, with its attributes: what a pickled
+    :class:`RunResult` holds."""
+
+    positions: int
+    n_coords: int
+    n_dof: int
+    n_prescribed: int
+    n_dependent: int
+    dynamic: bool
+    interrupted: bool
+    stopped: bool
+    table: FloatArray
+    coords: FloatArray
+    buffers: FloatArray
+    layout: dict[str, tuple[int, tuple[int, ...]]]
+    buffer_numbers: list[int]
+    hodograph_coords: list[int]
+    report: _core.ReportDict
+    model: _core.ModelDict
+    storage: _core.StorageDict
+    simulation: _core.SimulationDict | None
+
+    @classmethod
+    def of(cls, run: _core.Run) -> PickledRun:
+        return cls(**{f.name: getattr(run, f.name) for f in fields(cls)})
 """The result of :meth:`Mechanism.run <mechfem.Mechanism.run>`: the same :class:`RunResult` every run returns."""
 
 
