@@ -113,7 +113,7 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     agree("positions-only run", np.column_stack([pos.buffers[1], pos.buffers[2]]), ref_xy, 1e-9)
     an = mech.run(order=2, progress=False)
     agree("Mechanism.run", an.coords, kin.coords, 0.0)
-    agree("compiled handle", np.asarray(handle.run(order=2)["coords"]), kin.coords, 0.0)
+    agree("compiled handle", np.asarray(handle.run(order=2).coords), kin.coords, 0.0)
     _, (p, v, a) = best_of(
         1, lambda lk: lk.step_fast_with_kinematics(iterations=steps), lambda: pylinkage_fourbar(steps)
     )

@@ -137,7 +137,7 @@ class Mechfem(Solver):
     def _read(self, result: Any) -> Run:
         sim, stop = result.simulation, result.report.stop
         # The Jacobians an implicit method formed, where the binding reports them.
-        jacobians = (getattr(result, "_raw", {}).get("simulation") or {}).get("jacobians")
+        jacobians = (getattr(getattr(result, "_raw", None), "simulation", None) or {}).get("jacobians")
         if stop is None:
             values = self.problem.read_mechfem(result.buffers)
             return Run(values, sim.evaluations, sim.steps, jacobians)

@@ -43,10 +43,10 @@ def test_builder_and_deck_reader_make_the_same_model(path: Path) -> None:
     assert built.fingerprint() == text.fingerprint()
     assert nb.coords == deck.numbering.coords
     ran, read = built.run(), text.run()
-    for key in ("table", "buffer_values", "coords"):
-        assert _same_bits(ran[key], read[key]), key
-    assert ran["layout"] == read["layout"]
-    assert ran["report"] == read["report"]
+    for key in ("table", "buffers", "coords"):
+        assert _same_bits(getattr(ran, key), getattr(read, key)), key
+    assert ran.layout == read.layout
+    assert ran.report == read.report
 
 
 @pytest.mark.filterwarnings("ignore::mechfem.IncompleteRunWarning")
@@ -65,8 +65,8 @@ def test_mechanism_run_gives_the_deck_texts_numbers_without_writing_deck_text(
     monkeypatch.setattr(deckio, "write", no_text)
     monkeypatch.setattr(_core, "run_deck_text", no_text)
     result = mech.run(mech.motion, mech.storage)
-    assert _same_bits(result._raw["table"], read["table"])
-    assert _same_bits(result.coords, read["coords"])
+    assert _same_bits(result._raw.table, read.table)
+    assert _same_bits(result.coords, read.coords)
 
 
 def test_a_refused_value_is_a_deck_error_naming_the_item() -> None:
@@ -97,7 +97,7 @@ def test_the_built_model_reads_table_files_from_a_folder_of_its_own() -> None:
     before = set(os.listdir("."))
     built, _ = building.build(mech, mech.motion, mech.storage)
     assert set(os.listdir(".")) == before
-    assert len(built.run()["coords"]) == mech.motion.steps + 1
+    assert len(built.run().coords) == mech.motion.steps + 1
 
 
 def test_the_builder_carries_names_and_units_as_a_decks_names_block_and_units_line() -> None:
@@ -143,7 +143,7 @@ def test_the_builder_carries_names_and_units_as_a_decks_names_block_and_units_li
     built, read = b.build("."), _core.Model(text, "crank.mec", ".")
     assert built.fingerprint() == read.fingerprint()
     assert "crank" in built.fingerprint() and "Deg" in built.fingerprint()
-    assert _same_bits(built.run()["coords"], read.run()["coords"])
+    assert _same_bits(built.run().coords, read.run().coords)
     bad = _core.ModelBuilder("crank.mec", "KIN ANA")
     bad.element("BIN", [1, 2, 3, 4], "crank")
     bad.nrdof(1)

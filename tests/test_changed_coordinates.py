@@ -35,12 +35,12 @@ def crossing(by: float) -> Mechanism:
     return m
 
 
-def text_run(m: Mechanism) -> _core.TextRunDict:
+def text_run(m: Mechanism) -> _core.Run:
     deck = deckio.write(m, m.motion, m.storage)
     return _core.run_deck_text(deck.text, deck.path, ".")
 
 
-def moved_run(m: Mechanism, point: str, xy: tuple[float, float]) -> _core.TextRunDict:
+def moved_run(m: Mechanism, point: str, xy: tuple[float, float]) -> _core.Run:
     """``m`` compiled once, then run with ``point`` at ``xy`` as a change of its co-ordinates."""
     deck = deckio.write(m, m.motion, m.storage)
     number = {c.name: i for i, c in enumerate(deck.numbering.coords, 1)}
@@ -48,18 +48,18 @@ def moved_run(m: Mechanism, point: str, xy: tuple[float, float]) -> _core.TextRu
     return model.run([(0, number[f"{point}.x"], xy[0]), (0, number[f"{point}.y"], xy[1])])
 
 
-def assert_same(a: _core.TextRunDict, b: _core.TextRunDict) -> None:
-    assert np.array_equal(a["coords"], b["coords"])
-    assert np.array_equal(a["table"], b["table"], equal_nan=True)
-    assert a["model"] == b["model"]
+def assert_same(a: _core.Run, b: _core.Run) -> None:
+    assert np.array_equal(a.coords, b.coords)
+    assert np.array_equal(a.table, b.table, equal_nan=True)
+    assert a.model == b.model
 
 
 def test_a_row_without_value_takes_it_from_the_moved_coordinates() -> None:
     moved = moved_run(fourbar(), "B", (3.4, 2.6))
     assert_same(moved, text_run(fourbar((3.4, 2.6))))
     # Row 2 is the coupler's length, which the deck does not give: the one at the moved co-ordinates.
-    assert moved["model"]["prescribed"][1]["para"] is None
-    assert abs(moved["model"]["prescribed"][1]["value"] - math.hypot(2.4, 2.3)) < 1e-12
+    assert moved.model["prescribed"][1]["para"] is None
+    assert abs(moved.model["prescribed"][1]["value"] - math.hypot(2.4, 2.3)) < 1e-12
 
 
 def test_an_element_moved_across_its_branch_tracks_its_angle_from_there() -> None:

@@ -158,10 +158,10 @@ def test_a_compiled_model_run_with_changes_is_the_deck_that_says_so(tmp_path: Pa
     changed = model.run([(1, 1, 1.1), (0, 5, 1.1)])
     text = FOURBAR.replace("PARA 1 1.0", "PARA 1 1.1").replace("XMOV 5 1.0", "XMOV 5 1.1")
     want = _core.run_deck_text(text, "fourbar.mec", str(tmp_path))
-    assert np.array_equal(changed["coords"], want["coords"]) and np.array_equal(changed["table"], want["table"])
+    assert np.array_equal(changed.coords, want.coords) and np.array_equal(changed.table, want.table)
     again = model.run()
     plain = _core.run_deck_text(FOURBAR, "fourbar.mec", str(tmp_path))
-    assert np.array_equal(again["coords"], plain["coords"]) and np.array_equal(again["table"], plain["table"])
+    assert np.array_equal(again.coords, plain.coords) and np.array_equal(again.table, plain.table)
     with pytest.raises(ValueError, match="no prescribed row 99"):
         model.run([(1, 99, 1.0)])
 
@@ -180,7 +180,7 @@ def test_a_named_model_compiles_once_per_topology(tmp_path: Path) -> None:
     assert list(compiled._COMPILED.values()) == [kept]
     text = deckio.write(other, other.motion, other.storage)
     want = mechfem._core.run_deck_text(text.text, text.path, ".")
-    assert np.array_equal(second.coords, want["coords"]) and not np.array_equal(second.coords, first.coords)
+    assert np.array_equal(second.coords, want.coords) and not np.array_equal(second.coords, first.coords)
     # Another deck (one more buffer): compiled anew.
     mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR + "BUFDET 5\n", "det.mec"))).run(progress=False)
     assert len(compiled._COMPILED) == 2

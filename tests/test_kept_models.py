@@ -33,18 +33,18 @@ def fourbar(b0x: float = 4.0, crank: float = 1.0, start: float | None = 0.3, cou
     return m
 
 
-def deck_text_run(m: Mechanism) -> _core.TextRunDict:
+def deck_text_run(m: Mechanism) -> _core.Run:
     """The run of the deck text written for ``m``: what a kept model must give."""
     deck = deckio.write(m, m.motion, m.storage)
     return _core.run_deck_text(deck.text, deck.path, ".")
 
 
-def assert_same(a: mechfem.Analysis, d: _core.TextRunDict) -> None:
-    assert np.array_equal(a.coords, d["coords"])
-    assert np.array_equal(np.asarray(a._raw["table"]), d["table"], equal_nan=True)
-    assert a._raw["model"] == d["model"]
-    assert a._raw["storage"] == d["storage"] and a._raw["buffer_numbers"] == d["buffer_numbers"]
-    assert np.array_equal(np.asarray(a._raw["buffer_values"]), d["buffer_values"], equal_nan=True)
+def assert_same(a: mechfem.Analysis, d: _core.Run) -> None:
+    assert np.array_equal(a.coords, d.coords)
+    assert np.array_equal(np.asarray(a._raw.table), d.table, equal_nan=True)
+    assert a._raw.model == d.model
+    assert a._raw.storage == d.storage and a._raw.buffer_numbers == d.buffer_numbers
+    assert np.array_equal(np.asarray(a._raw.buffers), d.buffers, equal_nan=True)
 
 
 def kept_models() -> list[_core.Model]:

@@ -51,18 +51,18 @@ def test_the_blocks_tile_the_table_once(tmp_path: Path) -> None:
         m = mechanism(deck, tmp_path)
         text = deckio.write(m, m.motion, m.storage)
         d = _core.run_deck_text(text.text, text.path, str(EXAMPLES))
-        table = np.asarray(d["table"])
-        n, nd, nr = d["n_coords"], d["n_dof"], d["n_prescribed"] + d["n_dependent"]
+        table = np.asarray(d.table)
+        n, nd, nr = d.n_coords, d.n_dof, d.n_prescribed + d.n_dependent
         at = 0
-        for name, (start, shape) in sorted(d["layout"].items(), key=lambda item: item[1][0]):
+        for name, (start, shape) in sorted(d.layout.items(), key=lambda item: item[1][0]):
             assert start == at, f"{deck}: block {name} starts where the one before it ends"
             at += math.prod(shape)
         assert at == table.shape[1], deck
-        assert list(d["layout"])[-2:] == ["time", "det"]
-        assert d["layout"]["kx2"][1] == (n, nd, nd) and d["layout"]["ke1"][1] == (nr, nd)
-        assert ("sigma" in d["layout"]) == d["dynamic"]
+        assert list(d.layout)[-2:] == ["time", "det"]
+        assert d.layout["kx2"][1] == (n, nd, nd) and d.layout["ke1"][1] == (nr, nd)
+        assert ("sigma" in d.layout) == d.dynamic
         # Column by column: each quantity's values over the positions are contiguous.
-        assert table.flags.f_contiguous and np.asarray(d["buffer_values"]).flags.f_contiguous
+        assert table.flags.f_contiguous and np.asarray(d.buffers).flags.f_contiguous
 
 
 def test_every_run_of_one_deck_in_a_study_shares_what_does_not_change() -> None:
@@ -74,12 +74,12 @@ def test_every_run_of_one_deck_in_a_study_shares_what_does_not_change() -> None:
     assert not isinstance(first, mechfem.MechfemError)
     for d in out[1:]:
         assert not isinstance(d, mechfem.MechfemError)
-        assert d["layout"] is first["layout"] and d["storage"] is first["storage"]
-        assert d["model"]["elements"] is first["model"]["elements"]
-        assert d["model"]["prescribed"] is not first["model"]["prescribed"]
+        assert d.layout is first.layout and d.storage is first.storage
+        assert d.model["elements"] is first.model["elements"]
+        assert d.model["prescribed"] is not first.model["prescribed"]
     # ... and what does: each variant's own PARA and row values at position 1.
-    assert [d["model"]["prescribed"][0]["para"] for d in out] == [0.99, 1.0, 1.01]  # type: ignore[index]
-    assert len({d["model"]["prescribed"][0]["value"] for d in out}) == 3  # type: ignore[index]
+    assert [d.model["prescribed"][0]["para"] for d in out] == [0.99, 1.0, 1.01]  # type: ignore[index]
+    assert len({d.model["prescribed"][0]["value"] for d in out}) == 3  # type: ignore[index]
 
 
 def storage_of_every_quantity(a: Analysis) -> tuple[str, dict[int, npt.NDArray[np.float64]]]:

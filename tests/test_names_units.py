@@ -321,7 +321,9 @@ def test_an_example_in_si_units_gives_its_results_bit_for_bit(deck: Path, tmp_pa
     si.write_text(text[: mode.end()] + "\nUNITS LENGTH m ANGLE rad MASS kg FORCE N TIME s" + text[mode.end() :])
     a, b = _core.run_deck(deck), _core.run_deck(si)
     for key in ("table", "coords"):
-        assert np.array_equal(np.asarray(a[key]).view(np.uint64), np.asarray(b[key]).view(np.uint64)), key
+        assert np.array_equal(
+            np.asarray(getattr(a, key)).view(np.uint64), np.asarray(getattr(b, key)).view(np.uint64)
+        ), key
 
 
 def test_an_angle_that_looks_like_degrees_is_warned_about(tmp_path: Path) -> None:

@@ -104,7 +104,7 @@ def run_deck(
         refused.__dict__.update(vars(e))
         raise refused from None
     result = run_result(deck, d)
-    if d["interrupted"]:
+    if d.interrupted:
         raise RunInterrupted(result)
     return on_stop(result, result.stop_reason(), raise_on_stop)
 

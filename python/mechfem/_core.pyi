@@ -25,6 +25,7 @@ __all__ = [
     "run_deck_text",
     "describe_deck_text",
     "run_deck_variants",
+    "Run",
     "DesignModel",
     "Model",
     "ModelBuilder",
@@ -334,29 +335,67 @@ class SimulationDict(TypedDict):
     reached: float
     """The time the integration reached."""
 
-@type_check_only
-class RunDict(TypedDict):
-    coords: _F64
-    """positions x co-ordinates."""
-    table: _F64
-    """positions x the columns of ``layout`` (Fortran order: each column contiguous)."""
-    layout: dict[str, tuple[int, tuple[int, ...]]]
-    """The deck's recording, block name -> (first column, shape at one position), for B buffers, H co-ordinates
-    in ``hodograph_coords`` and D inputs: ``buffers`` (B, in the order of ``buffer_numbers``), ``hodograph`` (H: d
-    x_i / d input 1, NaN where D^c is singular); for a DYN deck ``inputs``, ``drive`` (D), ``ekin``, ``epot``,
-    ``power`` (one value each); then ``time`` and ``det`` (one value each). The blocks cover the columns once, in
-    this order. Every run of one deck file shares this dict and the lists ``buffer_numbers`` and
-    ``hodograph_coords``: read them, do not change them."""
-    buffer_numbers: list[int]
-    hodograph_coords: list[int]
-    """The co-ordinates named by PLOTHODO lines (empty without them or without a DOF)."""
-    report: ReportDict
-    model: ModelDict
-    storage: StorageDict
-    simulation: SimulationDict | None
-    """None unless the deck is a DYN SIM one."""
-    interrupted: bool
-    """Ctrl-C stopped the run; the positions before it are here."""
+@final
+class Run:
+    """One run, however it was started (``run_deck``, ``run_deck_text``, ``Model.run``, ``run_deck_variants``):
+    the core's columns as numpy arrays made on first access (owning the core's buffers; the same array on every
+    access: read them, do not change them), the model's sizes, and the report, model echo, storage requests and
+    simulation report."""
+
+    @property
+    def positions(self) -> int: ...
+    @property
+    def n_coords(self) -> int: ...
+    @property
+    def n_dof(self) -> int: ...
+    @property
+    def n_prescribed(self) -> int: ...
+    @property
+    def n_dependent(self) -> int: ...
+    @property
+    def dynamic(self) -> bool:
+        """The deck has masses and loads (DYN ANA, DYN SIM): the table holds the inverse dynamics."""
+    @property
+    def interrupted(self) -> bool:
+        """Ctrl-C stopped the run; the positions before it are here."""
+    @property
+    def stopped(self) -> bool:
+        """The motion stopped before its end (``report["stop"]`` says why)."""
+    @property
+    def table(self) -> _F64:
+        """positions x the columns of ``layout`` (Fortran order: each column contiguous)."""
+    @property
+    def layout(self) -> dict[str, tuple[int, tuple[int, ...]]]:
+        """Block name -> (first column, shape at one position); the blocks cover the columns once, in order.
+        A deck file's run (``run_deck``) records for B buffers, H co-ordinates in ``hodograph_coords`` and D inputs:
+        ``buffers`` (B, in the order of ``buffer_numbers``), ``hodograph`` (H: d x_i / d input 1, NaN where D^c is
+        singular); for a DYN deck ``inputs``, ``drive`` (D), ``ekin``, ``epot``, ``power`` (one value each); then
+        ``time`` and ``det``. A run of deck text or of a kept ``Model`` records the core's full layout, for N
+        co-ordinates, D inputs and R rows (prescribed, then dependent): ``inputs`` (D), ``kx1`` (N, D), ``kx2`` (N,
+        D, D), ``vx``, ``ax`` (N), ``e0`` (R), ``ke1`` (R, D), ``ke2`` (R, D, D), ``ve``, ``ae`` (R); when
+        ``dynamic``, ``sigma`` (prescribed rows), ``drive`` (D), ``reaction`` (N; NaN for a moving co-ordinate),
+        ``ekin``, ``epot``, ``power`` (one value each), ``mass`` (D, D); then ``time`` and ``det``. Every run of one
+        deck shares this dict and the lists ``buffer_numbers`` and ``hodograph_coords``."""
+    @property
+    def coords(self) -> _F64:
+        """positions x co-ordinates."""
+    @property
+    def buffers(self) -> _F64:
+        """positions x the deck's buffers, in the order of ``buffer_numbers``."""
+    @property
+    def buffer_numbers(self) -> list[int]: ...
+    @property
+    def hodograph_coords(self) -> list[int]:
+        """The co-ordinates of the ``hodograph`` block (empty without it)."""
+    @property
+    def report(self) -> ReportDict: ...
+    @property
+    def model(self) -> ModelDict: ...
+    @property
+    def storage(self) -> StorageDict: ...
+    @property
+    def simulation(self) -> SimulationDict | None:
+        """What the integrator did, for a DYN SIM deck whose motion was simulated; None otherwise."""
 
 # --- the element catalogue and the solver's defaults (crates/mechfem-py/src/catalogue.rs) ---
 
@@ -405,39 +444,9 @@ def run_deck(
     progress: Callable[[int, int], object] | None = None,
     memory_limit: int = ...,
     det: bool = True,
-) -> RunDict: ...
+) -> Run: ...
 
 # --- deck text, for the model API (mechfem.Mechanism) and batch runs ---
-
-@type_check_only
-class TextRunDict(TypedDict):
-    buffer_numbers: list[int]
-    buffer_values: _F64
-    """positions x the deck's buffers, in the order of ``buffer_numbers`` (Fortran order: each buffer contiguous)."""
-    layout: dict[str, tuple[int, tuple[int, ...]]]
-    """The core's full layout of ``table``: block name -> (first column, shape at one position), for N co-ordinates,
-    D inputs and R rows (prescribed, then dependent): ``inputs`` (D), ``kx1`` (N, D), ``kx2`` (N, D, D), ``vx``,
-    ``ax`` (N), ``e0`` (R), ``ke1`` (R, D), ``ke2`` (R, D, D), ``ve``, ``ae`` (R); when ``dynamic``, ``sigma``
-    (prescribed rows), ``drive`` (D), ``reaction`` (N; NaN for a moving co-ordinate), ``ekin``, ``epot``, ``power``
-    (one value each), ``mass`` (D, D); then ``time`` and ``det`` (one value each). The blocks cover the columns once,
-    in this order. Every run of one deck shares the same dict."""
-    table: _F64
-    """positions x the columns of ``layout`` (Fortran order: each column contiguous)."""
-    coords: _F64
-    """positions x co-ordinates."""
-    n_coords: int
-    n_dof: int
-    n_prescribed: int
-    n_dependent: int
-    dynamic: bool
-    """The deck has masses and loads (DYN ANA, DYN SIM): the table holds the inverse dynamics."""
-    simulation: SimulationDict | None
-    """What the integrator did, for a DYN SIM deck whose motion was simulated; None otherwise."""
-    report: ReportDict
-    model: ModelDict
-    storage: StorageDict
-    interrupted: bool
-    """Ctrl-C stopped the run; the positions before it are here (absent in batch results)."""
 
 @type_check_only
 class DescribedCoordDict(TypedDict):
@@ -579,7 +588,7 @@ def run_deck_text(
     progress: Callable[[int, int], object] | None = None,
     order: int | None = ...,
     memory_limit: int = ...,
-) -> TextRunDict: ...
+) -> Run: ...
 def describe_deck_text(
     text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
 ) -> DescribedDeckDict: ...
@@ -604,7 +613,7 @@ class Model:
         progress: Callable[[int, int], object] | None = None,
         order: int | None = ...,
         memory_limit: int = ...,
-    ) -> TextRunDict: ...
+    ) -> Run: ...
 
 @final
 class ModelBuilder:
@@ -665,10 +674,10 @@ def run_deck_variants(
     base_dir: str | os.PathLike[str],
     workers: int | None = None,
     progress: Callable[[int, int], object] | None = None,
-    on_result: Callable[[int, TextRunDict | MechfemError], object] | None = None,
+    on_result: Callable[[int, Run | MechfemError], object] | None = None,
     order: int | None = ...,
     memory_limit: int = ...,
-) -> list[TextRunDict | MechfemError]:
+) -> list[Run | MechfemError]:
     """A variant is (index into ``texts``: deck text or a built model, changes); a change is (0, co-ordinate,
     value) or (1, row, value)."""
 

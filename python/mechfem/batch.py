@@ -136,7 +136,7 @@ def check_workers(workers: int | None) -> int | None:
 def _stopped_runs(results: list[RunResult | MechfemError], raise_on_stop: bool) -> list[RunResult | MechfemError]:
     """``results`` with each run that stopped early as a :class:`RunStoppedError` (``raise_on_stop``), or as it
     is after one warning that counts them."""
-    stopped = [k for k, r in enumerate(results) if isinstance(r, RunResult) and r._raw["report"]["stop"] is not None]
+    stopped = [k for k, r in enumerate(results) if isinstance(r, RunResult) and r._raw.stopped]
     for k in stopped if raise_on_stop else ():
         a = results[k]
         assert isinstance(a, RunResult)
@@ -272,9 +272,9 @@ def _run_variants(
     variants: list[Variant],
     workers: int | None,
     progress: Progress,
-    on_result: Callable[[int, _core.TextRunDict | MechfemError], object] | None = None,
+    on_result: Callable[[int, _core.Run | MechfemError], object] | None = None,
     order: int | None = 2,
-) -> list[_core.TextRunDict | MechfemError]:
+) -> list[_core.Run | MechfemError]:
     from mechfem import deckio
 
     files: dict[str, str] = {}
@@ -418,7 +418,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
     rows: list[list[Any]] = [[] for _ in c.sets]
     kept: list[RunResult | MechfemError | None] = [None] * len(c.sets)
 
-    def take(k: int, o: _core.TextRunDict | MechfemError) -> None:
+    def take(k: int, o: _core.Run | MechfemError) -> None:
         # Called as each variant finishes, while the workers go on with the others.
         p, t = c.sets[k], c.variants[k][0]
         m, d = c.mechanisms[t], built[t]
@@ -430,9 +430,9 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
             return
         a = model_result(m, d.numbering, o, d.path, p)
         kept[k] = a if c.keep else None
-        # What the table needs of the report, from the run's own dict (cheaper than the full report).
-        report = o["report"]
-        if report["stop"] is not None and c.raise_on_stop:
+        # What the table needs of the report, from the run's own (cheaper than the full report).
+        report = o.report
+        if o.stopped and c.raise_on_stop:
             # A stopped run counts as failed: its measures would cover part of the motion only.
             reason = a.stop_reason() or ""
             kept[k] = RunStoppedError(reason, a) if c.keep else None
@@ -446,7 +446,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
             except Exception as err:
                 values.append(math.nan)
                 errors.append(f"measure {name!r}: {type(err).__name__}: {err}")
-        done = [True, report["stop"] is None, a.positions, len(report["limits"]), "; ".join(errors)]
+        done = [True, not o.stopped, a.positions, len(report["limits"]), "; ".join(errors)]
         rows[k] = [*(_plain(p.get(n, math.nan)) for n in c.names), *done, *values]
 
     _run_variants(built, c.variants, c.workers, progress, take, c.order)

@@ -143,7 +143,7 @@ class Namespace:
 def model_result(
     mech: Mechanism, numbering: Numbering, d: Any, path: str, parameters: dict[str, Any] | None = None
 ) -> RunResult:
-    """The result of a run of the named model ``mech`` (``d``: the compiled module's dictionary)."""
+    """The result of a run of the named model ``mech`` (``d``: the compiled module's run)."""
     return RunResult(Path(path), d, Namespace(mech, numbering), parameters)
 
 

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import copy
 import functools
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -45,7 +45,7 @@ class RunResult(ResultTables):
     def __init__(
         self,
         deck: Path,
-        raw: Mapping[str, Any],
+        raw: _core.Run,
         names: Names | None = None,
         parameters: dict[str, Any] | None = None,
     ) -> None:
@@ -55,16 +55,33 @@ class RunResult(ResultTables):
         """The values a design study gave this variant."""
         self.motion: Any = None
         """The :class:`~mechfem.Motion` a named model's run followed (None: position 1 only, a deck, or not known)."""
-        self.coords: FloatArray = np.asarray(raw["coords"], dtype=np.float64)
         self._raw = raw
         self._namespace = names
-        sim = raw.get("simulation")
-        self.simulation: Simulation | None = None if sim is None else Simulation.from_core(sim)
-        """What the integrator of a simulation did (method, tolerances, steps, rejected steps, evaluations of the
-        equations of motion, the time reached); None for a run of a prescribed motion."""
+        if raw.simulation is not None:
+            # Converted now: the conversion warns of tolerances that conflict, as the run returns.
+            self.__dict__["simulation"] = Simulation.from_core(cast(dict[str, Any], raw.simulation))
         super().__init__(raw)
 
     # -- what the run was
+
+    @functools.cached_property
+    def coords(self) -> FloatArray:  # type: ignore[override]
+        """Every co-ordinate at every position: positions x co-ordinates (column i - 1 is co-ordinate i)."""
+        return self._raw.coords
+
+    @functools.cached_property
+    def simulation(self) -> Simulation | None:
+        """What the integrator of a simulation did (method, tolerances, steps, rejected steps, evaluations of the
+        equations of motion, the time reached); None for a run of a prescribed motion."""
+        sim = self._raw.simulation
+        return None if sim is None else Simulation.from_core(cast(dict[str, Any], sim))
+
+    def __getstate__(self) -> dict[str, Any]:
+        # The compiled module's run goes into a pickle as its values.
+        state = self.__dict__.copy()
+        if isinstance(state["_raw"], _core.Run):
+            state["_raw"] = PickledRun.of(state["_raw"])
+        return state
 
     @property
     def path(self) -> str:
@@ -96,18 +113,18 @@ class RunResult(ResultTables):
     @functools.cached_property
     def model(self) -> Model:
         """The model as compiled (the print file's echo)."""
-        return _model_and_names(self._raw["model"])[0]
+        return _model_and_names(self._raw.model)[0]
 
     @functools.cached_property
     def storage(self) -> Storage:
         """The storage requests: buffers, tables, data set, pictures, animation."""
-        return _CONVERTED.get(self._raw["storage"], Storage.from_core)
+        return _CONVERTED.get(self._raw.storage, Storage.from_core)
 
     @functools.cached_property
     def report(self) -> RunReport:
         """What the run did: the adjustment of position 1, the limit positions met, why it stopped."""
-        d: _core.ReportDict = self._raw["report"]
-        names = _model_and_names(self._raw["model"])[1]
+        d = self._raw.report
+        names = _model_and_names(self._raw.model)[1]
         if d["stop"] is not None:
             return RunReport.from_core(d, names, mean_step(self.coords, self.model))
         return _CONVERTED.get(d, lambda r: RunReport.from_core(r, names))
@@ -128,7 +145,7 @@ class RunResult(ResultTables):
     @property
     def positions(self) -> int:
         """Positions computed."""
-        return int(self.coords.shape[0])
+        return self._raw.positions
 
     @property
     def complete(self) -> bool:
@@ -145,7 +162,7 @@ class RunResult(ResultTables):
         None."""
         # A run that went to its end needs neither its report nor its names converted for that (a report replaced
         # by ``replace`` is asked itself).
-        if "report" not in self.__dict__ and self._raw["report"]["stop"] is None:
+        if "report" not in self.__dict__ and not self._raw.stopped:
             return None
         return self.report.stop_reason(words=self._names.words(self.report))
 
@@ -225,6 +242,37 @@ class RunResult(ResultTables):
 
 
 Analysis = RunResult
+
+
+@dataclass(frozen=True)
+class PickledRun:
+    """The values of a ``_core.Run`` as plain Python objects, with its attributes: what a pickled
+    :class:`RunResult` holds."""
+
+    positions: int
+    n_coords: int
+    n_dof: int
+    n_prescribed: int
+    n_dependent: int
+    dynamic: bool
+    interrupted: bool
+    stopped: bool
+    table: FloatArray
+    coords: FloatArray
+    buffers: FloatArray
+    layout: dict[str, tuple[int, tuple[int, ...]]]
+    buffer_numbers: list[int]
+    hodograph_coords: list[int]
+    report: _core.ReportDict
+    model: _core.ModelDict
+    storage: _core.StorageDict
+    simulation: _core.SimulationDict | None
+
+    @classmethod
+    def of(cls, run: _core.Run) -> PickledRun:
+        return cls(**{f.name: getattr(run, f.name) for f in fields(cls)})
+
+
 """The result of :meth:`Mechanism.run <mechfem.Mechanism.run>`: the same :class:`RunResult` every run returns."""
 
 
@@ -271,9 +319,9 @@ def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
     return _CONVERTED.get(d, make)
 
 
-def run_result(deck: Path, d: Mapping[str, Any]) -> RunResult:
-    """The result of a run of the deck ``deck`` (``d``: the compiled module's dictionary); runs of one deck file
-    share its model echo and storage requests (read them, do not change them)."""
+def run_result(deck: Path, d: _core.Run) -> RunResult:
+    """The result of a run of the deck ``deck`` (``d``: the compiled module's run); runs of one deck file share its
+    model echo and storage requests (read them, do not change them)."""
     return RunResult(deck, d)
 
 

@@ -20,6 +20,7 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 import numpy.typing as npt
 
+import mechfem._core as _core
 from mechfem import optional
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import BUFFER_ARGS, Model, ModelNames, Storage
@@ -134,14 +135,19 @@ class Names(Protocol):
 
 
 class ResultTables:
-    """The value part of :class:`~mechfem.RunResult` (see there); ``_raw`` is the compiled module's dictionary."""
+    """The value part of :class:`~mechfem.RunResult` (see there); ``_raw`` is the compiled module's run, whose
+    arrays are made when first asked for."""
 
     coords: FloatArray
-    _raw: Mapping[str, Any]
+    _raw: _core.Run
 
-    def __init__(self, raw: Mapping[str, Any]) -> None:
-        self._table: FloatArray = np.asarray(raw["table"], dtype=np.float64)
-        self._layout: Mapping[str, tuple[int, Sequence[int]]] = raw["layout"]
+    def __init__(self, raw: _core.Run) -> None:
+        self._layout: Mapping[str, tuple[int, Sequence[int]]] = raw.layout
+
+    @functools.cached_property
+    def _table(self) -> FloatArray:
+        """The run's table: positions x the columns of ``_layout``."""
+        return self._raw.table
 
     # -- what the result class gives
 
@@ -216,7 +222,8 @@ class ResultTables:
         """The table column of each entry of a deck's ``block`` (``buffers``, ``hodograph``), by the number the
         list ``numbers`` of the run gives it (a buffer's, a co-ordinate's)."""
         start = self._layout[block][0]
-        return {n: start + k for k, n in enumerate(self._raw[numbers])}
+        listed: list[int] = getattr(self._raw, numbers)
+        return {n: start + k for k, n in enumerate(listed)}
 
     def _index(self, kind: str, number: int) -> int:
         """The 0-based index in a block of a deck number of ``kind`` (a row's: prescribed rows, then outputs)."""
@@ -257,10 +264,8 @@ class ResultTables:
     @functools.cached_property
     def buffers(self) -> dict[int, FloatArray]:
         """The deck's own buffers by number (from the storage of the run)."""
-        if "buffers" in self._layout:
-            return {n: self._table[:, c] for n, c in self._columns("buffers", "buffer_numbers").items()}
-        values = np.asarray(self._raw["buffer_values"], dtype=np.float64)
-        return {n: values[:, k] for k, n in enumerate(self._raw["buffer_numbers"])}
+        values = self._raw.buffers
+        return {n: values[:, k] for k, n in enumerate(self._raw.buffer_numbers)}
 
     @functools.cached_property
     def kx1(self) -> dict[int, FloatArray]:

@@ -44,7 +44,7 @@ def run(
     moving = with_motion and motion is not None
     callback = deckio.progress_callback(progress, "positions")
     try:
-        d: _core.TextRunDict | None = None
+        d: _core.Run | None = None
         try:
             kept = compiled.kept_model(mech, motion, storage)
         except (MechfemError, KeyError, ValueError, TypeError):
@@ -78,7 +78,7 @@ def run(
             close()
     analysis = model_result(mech, numbering, d, f"{mech.name}.mec")
     analysis.motion = motion if with_motion else None
-    if d["interrupted"]:
+    if d.interrupted:
         raise RunInterrupted(analysis)
     if raise_on_stop is None:
         return analysis

@@ -40,6 +40,7 @@ pub mod names;
 pub mod run;
 pub mod solver;
 pub mod units;
+pub mod worded;
 
 pub use elements::{Dimension, Element, ElementType, FormEval, Order, Slot};
 pub use error::{

@@ -22,8 +22,7 @@ use pyo3::prelude::*;
 
 use crate::builder::Source;
 use crate::observe::Progress;
-use crate::rundict::Outcome;
-use crate::rundict::{outcome_dict, Shared};
+use crate::run::{outcome_run, Outcome, Shared};
 use crate::text::{run_variant, Change};
 
 /// A change as Python gives it: (kind, number, value); see [`Change::from_triple`].
@@ -40,7 +39,7 @@ const POLL: Duration = Duration::from_millis(100);
 /// (its XFIX or XMOV value), kind 1 prescribed row `number` (its PARA
 /// value), as if the deck said so.
 ///
-/// For each variant the result is either the dict `run_deck_text` returns
+/// For each variant the result is either the `Run` `run_deck_text` returns
 /// or the exception it would raise (an instance of `DeckError`,
 /// `AssemblyError`, `ConvergenceError`, `LimitPositionError`,
 /// `ResourceError` or `MechfemError`): one failing variant does not stop the others.
@@ -131,8 +130,8 @@ pub fn run_deck_variants(
                     )),
                     _ => None,
                 };
-                let object = match outcome_dict(py, outcome, text, &path) {
-                    Ok(d) => d.into_any().unbind(),
+                let object = match outcome_run(py, outcome, text, &path, false) {
+                    Ok(run) => Py::new(py, run)?.into_any(),
                     Err(e) => e.into_value(py).into_any(),
                 };
                 match &on_result {

@@ -89,7 +89,7 @@ impl EchoSlot {
         Ok(d)
     }
 
-    /// The objects of a run's dict that depend on the deck alone (its
+    /// The objects of a run that depend on the deck alone (its
     /// layout and numbers of buffers and co-ordinates): those of the last
     /// run, else those `make` builds (then kept). Every run of the deck
     /// shares them, and Python converts them once.

@@ -6,7 +6,7 @@ use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::{Block, SimReport};
 use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
-use numpy::ndarray::{Array2, ShapeBuilder, ShapeError};
+use numpy::ndarray::{Array2, ShapeError};
 use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -17,12 +17,6 @@ use crate::errors;
 /// A row-major `rows x cols` array.
 pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
     owned(py, Array2::from_shape_vec((rows, cols), data))
-}
-
-/// A rows x cols array from `data` given column by column (Fortran order):
-/// one numpy array, whose columns are contiguous.
-pub fn columns<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
-    owned(py, Array2::from_shape_vec((rows, cols).f(), data))
 }
 
 /// The numpy array that owns `array`'s values (made in its own order, not
@@ -75,10 +69,10 @@ fn stop<'py>(py: Python<'py>, mech: &Mechanism, lines: errors::Lines<'_>, s: &St
     d.set_item("last_good", s.last_good + 1)?;
     d.set_item("inputs", s.inputs.clone())?;
     d.set_item("last_inputs", s.last_inputs.clone())?;
-    d.set_item("kind", errors::kind(&s.error))?;
-    let parts = errors::parts(mech, lines, &s.error);
-    d.set_item("message", errors::message(&parts))?;
-    d.set_item("parts", errors::parts_object(py, &parts)?)?;
+    d.set_item("kind", s.error.code())?;
+    let worded = s.error.worded(mech, lines);
+    d.set_item("message", worded.to_string())?;
+    d.set_item("parts", errors::parts_object(py, &worded)?)?;
     d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
     Ok(d)
 }

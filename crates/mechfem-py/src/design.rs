@@ -9,6 +9,7 @@
 use std::path::PathBuf;
 
 use mechfem_core::design::{slopes, Anchor, Design, DesignFailure, DesignRun, ExtremumSpec};
+use mechfem_core::worded;
 use mechfem_core::{DesignVar, Quantity, Sensitivity};
 use mechfem_deck::Compiled;
 use numpy::{PyArray1, PyArrayMethods};
@@ -67,18 +68,7 @@ impl DesignModel {
                 }
             })
             .collect::<PyResult<Vec<_>>>()?;
-        Sensitivity::new(mech, &vars).map_err(|e| {
-            let text = match e {
-                mechfem_core::DesignError::NoRow(r) => format!("the deck has no prescribed row {}", r + 1),
-                mechfem_core::DesignError::NoCoordinate(i) => format!("the deck has no co-ordinate {}", i + 1),
-                mechfem_core::DesignError::Moving(i) => format!(
-                    "co-ordinate {} moves (XMOV): only a fixed co-ordinate is a design variable; vary the row that \
-                     prescribes it instead",
-                    i + 1
-                ),
-            };
-            PyValueError::new_err(text)
-        })?;
+        Sensitivity::new(mech, &vars).map_err(|e| errors::change_error(&e))?;
         let quantities = buffers.iter().map(|&b| buffer(&c, b)).collect::<PyResult<Vec<_>>>()?;
         let extrema = extrema
             .iter()
@@ -180,7 +170,7 @@ impl DesignModel {
                 Some(Err(why)) => why.clone(),
                 _ => unreachable!("set by start_at"),
             };
-            return self.failed(py, "start", format!("the start design is infeasible: {why}"));
+            return self.failed(py, "start", worded::infeasible_start(&why));
         };
         let design = self.design();
         let result = py.detach(|| design.evaluate(anchor, &values));
@@ -226,13 +216,8 @@ impl DesignModel {
         match result {
             Ok(run) => {
                 let stop = run.report.stop.as_ref();
-                let reason = stop.map(|s| {
-                    let at = s.last_good + 2;
-                    format!(
-                        "the motion stopped before position {at}: {}",
-                        errors::describe(&c.mechanism, &c.dynamics_lines, &s.error)
-                    )
-                });
+                let reason =
+                    stop.map(|s| worded::design_stopped(&c.mechanism, &c.dynamics_lines, s.last_good, &s.error));
                 let at_1 = run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec);
                 d.set_item("position_one", at_1)?;
                 d.set_item("feasible", reason.is_none())?;
@@ -286,14 +271,7 @@ impl DesignModel {
 
 /// The kind of a failure (see [`DesignModel::evaluate`]) and its words.
 fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
-    match e {
-        DesignFailure::Solve(e) => (
-            "position_one",
-            format!("position 1 cannot be computed: {}", errors::describe(&c.mechanism, &c.dynamics_lines, e)),
-        ),
-        DesignFailure::OtherBranch { .. } => ("other_branch", e.to_string()),
-        DesignFailure::LeftBranch(_) => ("left_branch", e.to_string()),
-    }
+    worded::design_failure(&c.mechanism, &c.dynamics_lines, e)
 }
 
 /// The deck `text` (named `path` in messages) of the design with the PARA

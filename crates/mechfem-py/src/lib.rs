@@ -11,9 +11,11 @@
 //!   ([`mechfem_core::run::Selection`]: the buffers, d x_i / d input 1 of
 //!   every co-ordinate a PLOTHODO line names, a DYN deck's inputs, drive
 //!   forces and energies, time and det(D^c)) with its block names, and
-//!   the co-ordinates, as numpy arrays; plus the run report, the model
-//!   echo and the storage requests as dicts (`convert`). The run releases
-//!   the GIL; `observe` attaches only to report progress.
+//!   the co-ordinates, as one `run::Run`: numpy arrays made on first
+//!   access, the run report, the model echo and the storage requests
+//!   (`convert`). Every run returns that one type. The run releases the
+//!   GIL; `observe` (the one observer of every run) attaches only to
+//!   report progress.
 //! * `text` runs deck text (a design study's, or a named model's to word its
 //!   mistake) and records
 //!   every quantity of the buffer table; `batch` runs many variants of a
@@ -47,14 +49,14 @@ mod errors;
 mod model;
 mod names;
 mod observe;
-mod rundict;
+mod run;
 mod text;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use mechfem_core::run::{MemoryRefusal, Selection, SimReport};
-use mechfem_core::{InputMotion, Motion, Quantity, RunReport};
+use mechfem_core::{InputMotion, Motion, Quantity, RunReport, TransferOrder};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::intern;
@@ -63,7 +65,7 @@ use pyo3::types::{PyDict, PyList};
 
 use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
-use crate::observe::Recording;
+use crate::observe::{Progress, Recording};
 
 /// Reads and compiles a deck (or takes it from [`cache`]), without the GIL.
 fn load(py: Python<'_>, path: &Path) -> PyResult<(Compiled, Arc<EchoSlot>)> {
@@ -79,7 +81,7 @@ fn echo<'py>(
     c: &Compiled,
     given: &[f64],
     at_1: &[f64],
-    rec: &Recording,
+    rec: &Recording<'_, Selection>,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let (prescribed, dependent) = (&rec.prescribed_at_1, &rec.dependent_at_1);
     if !c.units.is_identity() {
@@ -118,7 +120,7 @@ fn hodograph_coords(c: &Compiled) -> Vec<usize> {
 struct Ran {
     compiled: Compiled,
     given: Vec<f64>,
-    rec: Recording,
+    rec: Recording<'static, Selection>,
     report: RunReport,
     /// What the integrator of a simulation did.
     sim: Option<SimReport>,
@@ -129,7 +131,7 @@ struct Ran {
 /// Runs the compiled deck (its motion only when `with_motion`), without the
 /// GIL; refuses before it starts when the results would take more than
 /// `memory_limit` bytes. `det` asks for det(D^c) at every position (see
-/// [`Recording::new`]).
+/// [`Recording`]).
 fn execute(
     py: Python<'_>,
     mut c: Compiled,
@@ -156,12 +158,19 @@ fn execute(
     let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, c.dynamics.is_some());
     let (total, n) = (motion.map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
     MemoryRefusal::check(total, selection.width() + n, memory_limit).map_err(|r| errors::resource_error(py, &r))?;
-    let mut rec = Recording::new(selection, n, total, progress, det);
-    rec.with_dynamics(&c.mechanism, c.dynamics.as_ref());
+    // With `det`, det(D^c) at every position (and with it the first order,
+    // and the watch for limit positions by its sign); without, its column
+    // holds NaN unless a buffer asks for it, and a run whose quantities are
+    // all positions and values computes positions only.
+    let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
+    let width = selection.width();
+    let progress = Some(Progress::new(progress, total));
+    let mut rec = Recording::new(selection, width, n, total, order, progress, None)
+        .with_dynamics(&c.mechanism, c.dynamics.as_ref());
     let mut state = c.state.clone();
     let result = py.detach(|| c.move_through(&mut state, motion, &mut rec));
     c.state = state;
-    let interrupted = errors::interrupted(py, rec.progress.error.take(), result.is_ok())?;
+    let interrupted = errors::interrupted(py, rec.raised(), result.is_ok())?;
     match result {
         // The report and an error speak the deck's units.
         Ok((report, sim)) => {
@@ -220,7 +229,7 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     d.set_item("n_prescribed", mech.n_prescribed())?;
     d.set_item("n_dependent", mech.n_dependent())?;
     d.set_item("n_dof", mech.n_dof())?;
-    let det = rec.selection.block("det").map_or(f64::NAN, |b| rec.table.get(0, b.start));
+    let det = rec.columns.block("det").map_or(f64::NAN, |b| rec.table.get(0, b.start));
     d.set_item("det", det * c.out_scale(Quantity::Det))?;
     let mut at_1 = at_1;
     names::coords(&c, &mut at_1);
@@ -264,42 +273,45 @@ fn run_deck(
     progress: Option<Py<PyAny>>,
     memory_limit: u64,
     det: bool,
-) -> PyResult<Bound<'_, PyDict>> {
+) -> PyResult<run::Run> {
     let (compiled, slot) = load(py, &path)?;
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
         execute(py, compiled, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
-    let (n, width, positions) = (mech.n_coords(), rec.selection.width(), rec.table.positions());
+    let (n, width, positions) = (mech.n_coords(), rec.columns.width(), rec.table.positions());
     let (model, storage) = echo(py, &slot, &c, &given, &rec.coords[..n], &rec)?;
     // The same for every run of the deck: made once, and shared.
-    let [layout, buffer_numbers, hodograph_coords] = slot.shape(py, || {
-        let layout = convert::layout(py, rec.selection.blocks())?;
-        let hodograph = rec.selection.block("hodograph").map_or(0, |b| b.width());
+    let shape = slot.shape(py, || {
+        let layout = convert::layout(py, rec.columns.blocks())?;
+        let hodograph = rec.columns.block("hodograph").map_or(0, |b| b.width());
         let coords = hodograph_coords(&c).into_iter().take(hodograph).map(|i| i + 1);
         let numbers = PyList::new(py, c.buffers.iter().map(|b| b.number))?;
         Ok([layout.into_any(), numbers.into_any(), PyList::new(py, coords)?.into_any()])
     })?;
+    let buffers = rec.columns.block("buffers").map_or((0, 0), |b| (b.start, b.width()));
     let (mut table, mut coords) = (rec.table.into_vec(), rec.coords);
-    names::table(&c, rec.selection.quantities(), &mut table, positions, &mut coords);
-
-    let d = PyDict::new(py);
-    d.set_item(intern!(py, "coords"), convert::array2(py, coords, positions, n)?)?;
-    d.set_item(intern!(py, "table"), convert::columns(py, table, positions, width)?)?;
-    d.set_item(intern!(py, "layout"), layout)?;
-    d.set_item(intern!(py, "buffer_numbers"), buffer_numbers)?;
-    d.set_item(intern!(py, "hodograph_coords"), hodograph_coords)?;
-    d.set_item(intern!(py, "simulation"), sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?)?;
+    names::table(&c, rec.columns.quantities(), &mut table, positions, &mut coords);
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &c.dynamics_lines, &report, steps);
     let report_dict = match convert::plain_report_key(&report, steps).filter(|_| sim.is_none()) {
         Some(key) => slot.report(py, key, report_dict)?,
         None => report_dict()?,
     };
-    d.set_item(intern!(py, "report"), report_dict)?;
-    d.set_item(intern!(py, "model"), model)?;
-    d.set_item(intern!(py, "storage"), storage)?;
-    d.set_item(intern!(py, "interrupted"), interrupted)?;
-    Ok(d)
+    let simulation = sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?;
+    let parts = run::DeckRun {
+        table,
+        width,
+        coords,
+        positions,
+        n_coords: n,
+        buffers,
+        shape,
+        dicts: [report_dict, model, storage],
+        simulation,
+        interrupted,
+        stopped: report.stop.is_some(),
+    };
+    run::Run::of_deck(&c, parts)
 }
 
 /// The module `mechfem._core`.
@@ -323,6 +335,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<model::Model>()?;
+    m.add_class::<run::Run>()?;
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;

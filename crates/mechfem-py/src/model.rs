@@ -5,11 +5,9 @@
 use std::path::PathBuf;
 
 use mechfem_deck::Compiled;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::rundict::Shared;
+use crate::run::{Run, Shared};
 use crate::text::{compile_text, run_compiled, Change, Numbers};
 use crate::{cache, errors};
 
@@ -20,7 +18,7 @@ use crate::{cache, errors};
 pub struct Model {
     compiled: Compiled,
     path: PathBuf,
-    /// What every run's dict holds alike, converted for Python once.
+    /// What every run holds alike, converted for Python once.
     shared: Shared,
 }
 
@@ -66,24 +64,24 @@ impl Model {
     /// for deck text that says so. `motion`, `progress`, `order` and
     /// `memory_limit` are `run_deck_text`'s.
     #[pyo3(signature = (changes=Vec::new(), motion=true, progress=None, order=Some(2), memory_limit=u64::MAX))]
-    fn run<'py>(
+    fn run(
         &self,
-        py: Python<'py>,
+        py: Python<'_>,
         changes: Vec<(u8, usize, f64)>,
         motion: bool,
         progress: Option<Py<PyAny>>,
         order: Option<u8>,
         memory_limit: u64,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<Run> {
         let changes = changes.into_iter().map(Change::from_triple).collect::<PyResult<Vec<_>>>()?;
-        let numbers = Numbers::with(&self.compiled, &changes).map_err(PyValueError::new_err)?;
+        let numbers = Numbers::with(&self.compiled, &changes).map_err(|e| errors::change_error(&e))?;
         let text = (&self.compiled, &self.shared);
         run_compiled(py, text, numbers, &self.path, motion, progress, order, memory_limit)
     }
 }
 
 impl Model {
-    /// A model kept for Python: its runs share what every run's dict holds alike.
+    /// A model kept for Python: its runs share what every run holds alike.
     pub fn kept(py: Python<'_>, compiled: Compiled, path: PathBuf) -> PyResult<Model> {
         let shared = Shared::new(py, &compiled)?;
         Ok(Model { compiled, path, shared })

@@ -142,11 +142,11 @@ pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> P
     Ok(())
 }
 
-/// A run of deck text ([`crate::rundict::FullRun`]) in the deck's units:
+/// A run of deck text ([`crate::run::FullRun`]) in the deck's units:
 /// its full layout, its buffers, its co-ordinates and the numbers of its
 /// echo (the co-ordinates as given, the rows at position 1, the PARA
 /// values it ran with), its report and what its integrator did.
-pub fn full_run(c: &Compiled, r: &mut crate::rundict::FullRun) {
+pub fn full_run(c: &Compiled, r: &mut crate::run::FullRun) {
     if c.units.is_identity() {
         return;
     }

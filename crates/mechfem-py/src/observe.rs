@@ -1,23 +1,146 @@
-//! The observer of a run: records the quantities of a deck's
-//! [`Selection`] (its buffers, the hodographs, a DYN deck's dynamics, time
-//! and det(D^c)) and every co-ordinate per position, keeps
-//! the row values of position 1 for the model echo, and reports progress to
-//! Python about every 1% of positions ([`Progress`], which the observer of
-//! deck-text runs shares).
+//! The observer of every run ([`Recording`]): records what a run keeps
+//! ([`Record`]: a deck's [`Selection`], or the full [`Layout`] with the
+//! deck's buffers beside it) and every co-ordinate per position, keeps
+//! the row values of position 1 for the model echo, stops on request, and
+//! reports progress to Python about every 1% of positions ([`Progress`]).
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
-use mechfem_core::run::{Columns, InverseDynamics, Selection};
-use mechfem_core::{Mechanism, Observer, PositionView, SolveError, TransferOrder};
+use mechfem_core::run::{Columns, InverseDynamics, Layout, Selection};
+use mechfem_core::{record_evaluated, Mechanism, Observer, PositionView, Quantity, SolveError, TransferOrder};
 use pyo3::prelude::*;
+
+/// What a [`Recording`] keeps of each position, in its table's columns.
+pub trait Record {
+    /// Whether inverse dynamics is evaluated (and checked) at every
+    /// position, before it is recorded.
+    fn is_dynamic(&self) -> bool;
+
+    /// Records the position `v` into `table` (`row`: room for one
+    /// position); `checked` says inverse dynamics has been evaluated at it.
+    fn record(
+        &mut self,
+        v: &PositionView<'_>,
+        dynamics: Option<&mut InverseDynamics>,
+        checked: bool,
+        table: &mut Columns,
+        row: &mut Vec<f64>,
+    );
+}
+
+impl Record for Selection {
+    fn is_dynamic(&self) -> bool {
+        Selection::is_dynamic(self)
+    }
+
+    fn record(
+        &mut self,
+        v: &PositionView<'_>,
+        dynamics: Option<&mut InverseDynamics>,
+        checked: bool,
+        table: &mut Columns,
+        row: &mut Vec<f64>,
+    ) {
+        row.clear();
+        if checked {
+            self.record_evaluated(v, dynamics.as_deref(), row);
+        } else {
+            Selection::record(self, v, dynamics, row);
+        }
+        table.push(row);
+    }
+}
+
+/// The full layout of a run of deck text, and the deck's buffers in a
+/// table of their own (each read from the layout's column of its quantity
+/// where it has one, to the last bit the same value).
+pub struct Full {
+    /// The core's full layout: the table's columns.
+    pub layout: Layout,
+    /// Where each of the deck's buffers is found, in the order of their definitions.
+    buffers: Vec<Source>,
+    /// The deck's buffers, column by column.
+    pub buffer_table: Columns,
+}
+
+impl Full {
+    /// The full layout of `mech` (with inverse dynamics when `dynamic`) and
+    /// the buffers recording `buffers`, for `total` positions.
+    pub fn new(mech: &Mechanism, dynamic: bool, buffers: &[Quantity], total: usize) -> Full {
+        let layout = Layout::full(mech, dynamic);
+        let buffers: Vec<Source> = buffers.iter().map(|&q| Source::of(q, &layout)).collect();
+        Full { buffer_table: Columns::new(buffers.len(), total), buffers, layout }
+    }
+
+    /// Columns of the layout and the buffers together.
+    pub fn width(&self) -> usize {
+        self.layout.width() + self.buffers.len()
+    }
+}
+
+/// Where a buffer's value is found at each position.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    /// In this column of the layout (the same value, to the last bit).
+    Column(usize),
+    /// Co-ordinate i.
+    Coord(usize),
+    /// A quantity the layout does not have, evaluated on its own.
+    Own(Quantity),
+}
+
+impl Source {
+    fn of(q: Quantity, layout: &Layout) -> Source {
+        match (q, layout.column(q)) {
+            (_, Some(c)) => Source::Column(c),
+            (Quantity::X0(i), None) => Source::Coord(i),
+            (q, None) => Source::Own(q),
+        }
+    }
+}
+
+impl Record for Full {
+    /// Inverse dynamics once per position, for the layout and the buffers alike.
+    fn is_dynamic(&self) -> bool {
+        true
+    }
+
+    fn record(
+        &mut self,
+        v: &PositionView<'_>,
+        dynamics: Option<&mut InverseDynamics>,
+        _checked: bool,
+        table: &mut Columns,
+        row: &mut Vec<f64>,
+    ) {
+        let dynamics = dynamics.map(|d| &*d);
+        row.clear();
+        self.layout.record(v, dynamics, row);
+        table.push(row);
+        let width = row.len();
+        for b in &self.buffers {
+            let value = match *b {
+                Source::Column(c) => row[c],
+                Source::Coord(i) => v.state.x[i],
+                Source::Own(q) => {
+                    record_evaluated(&[q], v, dynamics, row);
+                    row.pop().unwrap_or(f64::NAN)
+                }
+            };
+            row.push(value);
+        }
+        self.buffer_table.push(&row[width..]);
+    }
+}
 
 /// Records a run for Python. Runs without the GIL; attaches only to report
 /// progress and to notice Ctrl-C.
-pub struct Recording {
-    /// The named blocks of the table's columns.
-    pub selection: Selection,
-    /// The quantities of `selection` at every position, column by column.
+pub struct Recording<'a, R> {
+    /// What is recorded, in the columns of `table`.
+    pub columns: R,
+    /// The recorded values at every position, column by column.
     pub table: Columns,
     /// Every co-ordinate at every position, row-major (positions x N).
     pub coords: Vec<f64>,
@@ -26,7 +149,9 @@ pub struct Recording {
     /// Values of the dependent form parameters at position 1.
     pub dependent_at_1: Vec<f64>,
     /// Progress reporting; its error stops the run.
-    pub progress: Progress,
+    pub progress: Option<Progress>,
+    /// Set by another thread to stop the run.
+    cancel: Option<&'a AtomicBool>,
     /// The transfer functions the run computes at every position.
     order: Option<TransferOrder>,
     /// One position's values, before they go into their columns.
@@ -152,32 +277,31 @@ impl Progress {
     }
 }
 
-impl Recording {
-    /// Records the quantities of `selection` and the `n_coords`
-    /// co-ordinates over a run of `total` positions, into tables sized for
-    /// them up front. With `det`, det(D^c) is computed at every position
-    /// (and with it the first order, and the watch for limit positions by
-    /// its sign); without, its column holds NaN unless a buffer asks for
-    /// it, and a run whose quantities are all positions and values
-    /// computes positions only.
+impl<'a, R: Record> Recording<'a, R> {
+    /// Records `columns` (`width` of them) and the `n_coords` co-ordinates
+    /// over a run of `total` positions, into tables sized for them up
+    /// front, computing the transfer functions of `order`; stops when
+    /// `cancel` is set or progress reporting failed.
     pub fn new(
-        selection: Selection,
+        columns: R,
+        width: usize,
         n_coords: usize,
         total: usize,
-        progress: Option<Py<PyAny>>,
-        det: bool,
-    ) -> Recording {
-        let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
+        order: Option<TransferOrder>,
+        progress: Option<Progress>,
+        cancel: Option<&'a AtomicBool>,
+    ) -> Recording<'a, R> {
         Recording {
             // Straight into columns: the table Python gets, with no
             // row-major copy to be transposed after the run.
-            table: Columns::new(selection.width(), total),
+            table: Columns::new(width, total),
             coords: Vec::with_capacity(total.saturating_mul(n_coords)),
-            row: Vec::with_capacity(selection.width()),
-            selection,
+            row: Vec::with_capacity(width),
+            columns,
             prescribed_at_1: Vec::new(),
             dependent_at_1: Vec::new(),
-            progress: Progress::new(progress, total),
+            progress,
+            cancel,
             order,
             dynamics: None,
             checked: false,
@@ -186,12 +310,18 @@ impl Recording {
 
     /// Records the dynamic quantities with the mass and load model of a
     /// DYN deck (checked when the deck was compiled).
-    pub fn with_dynamics(&mut self, mech: &Mechanism, dynamics: Option<&Dynamics>) {
+    pub fn with_dynamics(mut self, mech: &Mechanism, dynamics: Option<&Dynamics>) -> Self {
         self.dynamics = dynamics.map(|d| InverseDynamics::new(mech, d.clone()));
+        self
+    }
+
+    /// The error progress reporting met, if any.
+    pub fn raised(&mut self) -> Option<PyErr> {
+        self.progress.as_mut().and_then(|p| p.error.take())
     }
 }
 
-impl Observer for Recording {
+impl<R: Record> Observer for Recording<'_, R> {
     fn position(&mut self, view: &PositionView<'_>) {
         if view.index == 0 {
             let (mech, kin) = (view.mech, view.kin);
@@ -199,22 +329,19 @@ impl Observer for Recording {
             self.prescribed_at_1 = view.state.target.clone();
             self.dependent_at_1 = (0..mech.n_dependent()).map(|d| kin.dep(d)).collect();
         }
-        self.row.clear();
-        if std::mem::take(&mut self.checked) {
-            self.selection.record_evaluated(view, self.dynamics.as_ref(), &mut self.row);
-        } else {
-            self.selection.record(view, self.dynamics.as_mut(), &mut self.row);
-        }
-        self.table.push(&self.row);
+        let checked = std::mem::take(&mut self.checked);
+        self.columns.record(view, self.dynamics.as_mut(), checked, &mut self.table, &mut self.row);
         self.coords.extend_from_slice(&view.state.x);
-        self.progress.report(view.index + 1);
+        if let Some(p) = self.progress.as_mut() {
+            p.report(view.index + 1);
+        }
     }
 
     /// Inverse dynamics of a DYN deck, evaluated here: a position where
     /// it is not finite is refused.
     fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
         match self.dynamics.as_mut() {
-            Some(d) if self.selection.is_dynamic() => {
+            Some(d) if self.columns.is_dynamic() => {
                 self.checked = true;
                 d.evaluate_checked(view)
             }
@@ -223,17 +350,18 @@ impl Observer for Recording {
     }
 
     fn simulated(&mut self, time: f64, end: f64) {
-        let share = if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 };
-        self.progress.report_share(share);
-        self.progress.poll();
+        if let Some(p) = self.progress.as_mut() {
+            p.report_share(if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 });
+            p.poll();
+        }
     }
 
     fn stop_requested(&self) -> bool {
-        self.progress.error.is_some()
+        self.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+            || self.progress.as_ref().is_some_and(|p| p.error.is_some())
     }
 
-    /// What the recorded quantities need, and det(D^c) when asked for (see
-    /// [`Recording::new`]).
+    /// What the recorded quantities need, and det(D^c) when asked for.
     fn transfer_order(&self) -> Option<TransferOrder> {
         self.order
     }

@@ -7,26 +7,27 @@
 //!   declares (co-ordinates, elements, rows, motion, storage) without solving.
 //! * [`run_deck_text`] runs a deck and returns its own buffers plus every
 //!   quantity of the deck's buffer table for every co-ordinate, row and input,
-//!   in the core's full layout ([`Layout`]), column by column.
+//!   in the core's full layout ([`mechfem_core::run::Layout`]), column by
+//!   column.
 //!
 //! [`execute`] (no GIL) does all of a run but wrapping its results for
-//! Python, which [`crate::rundict`] does; the batch runner
+//! Python, which [`crate::run`] does; the batch runner
 //! ([`crate::batch`]) runs it on worker threads.
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::AtomicBool;
 
-use mechfem_core::run::{Columns, InverseDynamics, Layout, MemoryRefusal};
-use mechfem_core::SolveError;
-use mechfem_core::{record_evaluated, InputMotion, Observer, PositionView, Quantity, State, TransferOrder};
+use mechfem_core::run::MemoryRefusal;
+use mechfem_core::DesignError;
+use mechfem_core::{InputMotion, Quantity, State, TransferOrder};
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostics};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::observe::Progress;
-use crate::rundict::{outcome_dict, FullRun, Outcome, Shared};
+use crate::observe::{Full, Progress, Recording};
+use crate::run::{outcome_run, FullRun, Outcome, Run, Shared};
 use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
@@ -34,96 +35,6 @@ use crate::{convert, errors};
 pub fn compile_text(text: &str, path: &Path, base_dir: &Path) -> Result<Compiled, Diagnostics> {
     let deck = mechfem_deck::parse_str(text, path)?;
     mechfem_deck::compile(&deck, base_dir)
-}
-
-/// The observer of [`execute`]: records the deck's buffers and the full
-/// layout column by column, and every co-ordinate, into tables sized for the
-/// whole motion up front; stops when `cancel` is set or progress reporting
-/// failed.
-struct Watch<'a> {
-    /// Where each of the deck's buffers is found, in the order of their definitions.
-    buffers: Vec<Source>,
-    layout: Layout,
-    /// One position, before it is put into its columns.
-    row: Vec<f64>,
-    buffer_table: Columns,
-    table: Columns,
-    /// Row-major, positions x co-ordinates.
-    coords: Vec<f64>,
-    /// Inverse dynamics of a DYN deck.
-    dynamics: Option<InverseDynamics>,
-    /// The transfer functions to compute at every position.
-    order: Option<TransferOrder>,
-    cancel: &'a AtomicBool,
-    progress: Option<Progress>,
-}
-
-/// Where a buffer's value is found at each position.
-#[derive(Debug, Clone, Copy)]
-enum Source {
-    /// In this column of the layout (the same value, to the last bit).
-    Column(usize),
-    /// Co-ordinate i.
-    Coord(usize),
-    /// A quantity the layout does not have, evaluated on its own.
-    Own(Quantity),
-}
-
-impl Source {
-    fn of(q: Quantity, layout: &Layout) -> Source {
-        match (q, layout.column(q)) {
-            (_, Some(c)) => Source::Column(c),
-            (Quantity::X0(i), None) => Source::Coord(i),
-            (q, None) => Source::Own(q),
-        }
-    }
-}
-
-impl Observer for Watch<'_> {
-    /// Inverse dynamics once per position, for the layout and the buffers
-    /// alike: a position where it is not finite is refused.
-    fn check(&mut self, view: &PositionView<'_>) -> Result<(), SolveError> {
-        self.dynamics.as_mut().map_or(Ok(()), |d| d.evaluate_checked(view))
-    }
-
-    fn position(&mut self, view: &PositionView<'_>) {
-        let dynamics = self.dynamics.as_ref();
-        self.row.clear();
-        self.layout.record(view, dynamics, &mut self.row);
-        self.table.push(&self.row);
-        let width = self.row.len();
-        for b in &self.buffers {
-            let value = match *b {
-                Source::Column(c) => self.row[c],
-                Source::Coord(i) => view.state.x[i],
-                Source::Own(q) => {
-                    record_evaluated(&[q], view, dynamics, &mut self.row);
-                    self.row.pop().unwrap_or(f64::NAN)
-                }
-            };
-            self.row.push(value);
-        }
-        self.buffer_table.push(&self.row[width..]);
-        self.coords.extend_from_slice(&view.state.x);
-        if let Some(p) = self.progress.as_mut() {
-            p.report(view.index + 1);
-        }
-    }
-
-    fn stop_requested(&self) -> bool {
-        self.cancel.load(Ordering::Relaxed) || self.progress.as_ref().is_some_and(|p| p.error.is_some())
-    }
-
-    fn transfer_order(&self) -> Option<TransferOrder> {
-        self.order
-    }
-
-    fn simulated(&mut self, time: f64, end: f64) {
-        if let Some(p) = self.progress.as_mut() {
-            p.report_share(if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 });
-            p.poll();
-        }
-    }
 }
 
 /// The transfer functions a run computes: `Some(1)` first order, `Some(2)`
@@ -164,7 +75,7 @@ pub struct Numbers {
 impl Numbers {
     /// The deck's own numbers with `changes` made; an error names a
     /// co-ordinate or row the deck does not have.
-    pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, String> {
+    pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, DesignError> {
         let mut n = Numbers { state: c.state.clone(), para: c.prescribed.iter().map(|r| r.para).collect() };
         changes.iter().try_for_each(|ch| ch.apply(&mut n))?;
         // What the deck reader derives from the co-ordinates, derived from
@@ -204,40 +115,31 @@ pub fn execute(
         // Position 1 alone, as a run would compute it.
         m.apply_initial_inputs(&c.mechanism, &mut state);
     }
-    let layout = Layout::full(&c.mechanism, c.dynamics.is_some());
-    let buffers: Vec<Source> = c.buffers.iter().map(|b| Source::of(b.quantity, &layout)).collect();
+    let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let given = state.x.clone();
     let motion = if with_motion { c.motion.as_ref() } else { None };
     let steps = motion.map_or(0, |m| m.steps);
-    let (width, n) = (buffers.len() + layout.width(), c.mechanism.n_coords());
+    let full = Full::new(&c.mechanism, c.dynamics.is_some(), &quantities, steps + 1);
+    let (width, n) = (full.width(), c.mechanism.n_coords());
     if let Err(refusal) = MemoryRefusal::check(steps + 1, width + n, memory_limit) {
         return (Outcome::Refused(refusal), None);
     }
-    let mut watch = Watch {
-        row: Vec::with_capacity(width),
-        buffer_table: Columns::new(buffers.len(), steps + 1),
-        table: Columns::new(layout.width(), steps + 1),
-        coords: Vec::with_capacity((steps + 1) * n),
-        buffers,
-        layout,
-        dynamics: c.dynamics.as_ref().map(|d| InverseDynamics::new(&c.mechanism, d.clone())),
-        order: Some(order),
-        cancel,
-        progress,
-    };
-    let result = c.move_through(&mut state, motion, &mut watch);
-    let raised = watch.progress.and_then(|p| p.error);
+    let layout_width = full.layout.width();
+    let mut rec = Recording::new(full, layout_width, n, steps + 1, Some(order), progress, Some(cancel))
+        .with_dynamics(&c.mechanism, c.dynamics.as_ref());
+    let result = c.move_through(&mut state, motion, &mut rec);
+    let raised = rec.raised();
     let outcome = match result {
         Ok((report, sim)) => {
-            let (table, positions) = (watch.table, watch.buffer_table.positions());
-            let e0 = watch.layout.block("e0").map_or(0, |b| b.start);
+            let (table, positions) = (rec.table, rec.columns.buffer_table.positions());
+            let e0 = rec.columns.layout.block("e0").map_or(0, |b| b.start);
             let n_rows = c.mechanism.n_prescribed() + c.mechanism.n_dependent();
             let rows_at_1 = (0..n_rows).map(|r| if positions > 0 { table.get(0, e0 + r) } else { f64::NAN }).collect();
             Outcome::Ran(Box::new(FullRun {
-                width: watch.layout.width(),
+                width: layout_width,
                 table: table.into_vec(),
-                buffers: watch.buffer_table.into_vec(),
-                coords: watch.coords,
+                buffers: rec.columns.buffer_table.into_vec(),
+                coords: rec.coords,
                 positions,
                 report,
                 sim,
@@ -269,7 +171,7 @@ pub fn run_variant(
     };
     let numbers = match Numbers::with(c, changes) {
         Ok(n) => n,
-        Err(message) => return (Outcome::BadChange(message), None),
+        Err(e) => return (Outcome::BadChange(e), None),
     };
     // `order` has been checked by the caller.
     let order = transfer_order(c, order).unwrap_or(TransferOrder::Second);
@@ -299,15 +201,17 @@ impl Change {
 
     /// Makes the change in `n`, as if the deck had said so (the model echo
     /// included); an error when the deck has no such co-ordinate or row.
-    pub fn apply(self, n: &mut Numbers) -> Result<(), String> {
+    pub fn apply(self, n: &mut Numbers) -> Result<(), DesignError> {
+        // Number 0 is said as such (index usize::MAX, see DesignError).
+        let index = |number: usize| number.wrapping_sub(1);
         match self {
             Change::Coord(number, value) => {
-                let x = number.checked_sub(1).and_then(|i| n.state.x.get_mut(i));
-                *x.ok_or_else(|| format!("the deck has no co-ordinate {number}"))? = value;
+                let x = n.state.x.get_mut(index(number));
+                *x.ok_or(DesignError::NoCoordinate(index(number)))? = value;
             }
             Change::Row(number, value) => {
-                let k = number.checked_sub(1).filter(|&k| k < n.para.len() && k < n.state.target.len());
-                let k = k.ok_or_else(|| format!("the deck has no prescribed row {number}"))?;
+                let k = Some(index(number)).filter(|&k| k < n.para.len() && k < n.state.target.len());
+                let k = k.ok_or(DesignError::NoRow(index(number)))?;
                 n.state.target[k] = value;
                 n.para[k] = Some(value);
             }
@@ -332,8 +236,8 @@ impl Change {
 #[pyfunction]
 #[pyo3(signature = (text, path, base_dir, motion=true, progress=None, order=Some(2), memory_limit=u64::MAX))]
 #[allow(clippy::too_many_arguments)]
-pub fn run_deck_text<'py>(
-    py: Python<'py>,
+pub fn run_deck_text(
+    py: Python<'_>,
     text: &str,
     path: PathBuf,
     base_dir: PathBuf,
@@ -341,10 +245,10 @@ pub fn run_deck_text<'py>(
     progress: Option<Py<PyAny>>,
     order: Option<u8>,
     memory_limit: u64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Run> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
     crate::names::warn(py, &c)?;
-    let numbers = Numbers::with(&c, &[]).map_err(PyValueError::new_err)?;
+    let numbers = Numbers::with(&c, &[]).map_err(|e| errors::change_error(&e))?;
     let shared = Shared::new(py, &c)?;
     run_compiled(py, (&c, &shared), numbers, &path, motion, progress, order, memory_limit)
 }
@@ -354,8 +258,8 @@ pub fn run_deck_text<'py>(
 /// a kept `Model` return alike. `text` is the deck with the objects its
 /// runs share ([`Shared`], converted once for a kept `Model`).
 #[allow(clippy::too_many_arguments)]
-pub fn run_compiled<'py>(
-    py: Python<'py>,
+pub fn run_compiled(
+    py: Python<'_>,
     text: (&Compiled, &Shared),
     numbers: Numbers,
     path: &Path,
@@ -363,7 +267,7 @@ pub fn run_compiled<'py>(
     progress: Option<Py<PyAny>>,
     order: Option<u8>,
     memory_limit: u64,
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Run> {
     let c = text.0;
     let order = transfer_order(c, order)?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
@@ -371,9 +275,7 @@ pub fn run_compiled<'py>(
     let (outcome, raised) =
         py.detach(|| execute(c, numbers, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
     let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
-    let d = outcome_dict(py, outcome, Some(text), path)?;
-    d.set_item("interrupted", interrupted)?;
-    Ok(d)
+    outcome_run(py, outcome, Some(text), path, interrupted)
 }
 
 /// Reads and compiles the deck `text` without solving anything and returns

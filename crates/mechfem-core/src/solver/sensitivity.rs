@@ -38,17 +38,23 @@ pub enum DesignVar {
     Fixed(usize),
 }
 
-/// Why a list of design variables does not fit a model.
+/// Why a list of design variables (or a change of a model's numbers) does
+/// not fit a model. The indices are 0-based; the words number them as the
+/// deck does, 1-based (an index of `usize::MAX` is said as number 0).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DesignError {
     /// A row index past the prescribed rows.
-    #[error("the model has no prescribed row {0}")]
+    #[error("the deck has no prescribed row {}", .0.wrapping_add(1))]
     NoRow(usize),
     /// A co-ordinate index past the co-ordinates.
-    #[error("the model has no co-ordinate {0}")]
+    #[error("the deck has no co-ordinate {}", .0.wrapping_add(1))]
     NoCoordinate(usize),
     /// A co-ordinate that moves: its value is found, not chosen.
-    #[error("co-ordinate {0} moves: only a fixed co-ordinate is a design variable")]
+    #[error(
+        "co-ordinate {} moves (XMOV): only a fixed co-ordinate is a design variable; vary the row that prescribes it \
+         instead",
+        .0 + 1
+    )]
     Moving(usize),
 }
 

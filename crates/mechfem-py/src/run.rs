@@ -1,0 +1,418 @@
+//! What a run gives Python: one [`Run`], however it was started (a deck
+//! file with `run_deck`, deck text with `run_deck_text`, a kept `Model`, a
+//! variant of `run_deck_variants`).
+//!
+//! A [`Run`] owns the core's columns as the run left them and hands each
+//! as a numpy array made on first access, which owns the column buffer
+//! (no copy) and is handed again on every later access. What is the same
+//! for every run of one compiled deck (the layout, the storage, the
+//! buffer numbers, the model echo's fixed part) is converted once into
+//! [`Shared`], whose Python objects every run holds.
+
+use std::path::Path;
+use std::sync::Mutex;
+
+use mechfem_core::run::{Layout, MemoryRefusal, SimReport};
+use mechfem_core::{RunReport, SolveError, State};
+use mechfem_deck::{Compiled, Diagnostics};
+use numpy::ndarray::{Array2, ShapeBuilder};
+use numpy::PyArray2;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyList, PySlice, PyTuple};
+
+use crate::{convert, errors};
+
+/// A finished run of deck text with everything recorded, ready to be
+/// wrapped for Python.
+pub struct FullRun {
+    /// The full layout ([`Layout`]), column by column: positions x its width.
+    pub table: Vec<f64>,
+    /// The deck's buffers in the order of their definitions, column by column.
+    pub buffers: Vec<f64>,
+    /// Row-major, positions x co-ordinates.
+    pub coords: Vec<f64>,
+    /// Positions computed.
+    pub positions: usize,
+    /// Columns of `table`.
+    pub width: usize,
+    /// What the run did.
+    pub report: RunReport,
+    /// What the integrator of a simulation did.
+    pub sim: Option<SimReport>,
+    /// Steps the motion asked for.
+    pub steps: usize,
+    /// The co-ordinates as the deck gives them (before the adjustment of position 1).
+    pub given: Vec<f64>,
+    /// PARA value of each prescribed row.
+    pub para: Vec<Option<f64>>,
+    /// Value of every row, prescribed then dependent, at position 1.
+    pub rows_at_1: Vec<f64>,
+}
+
+/// What running one deck text gave.
+pub enum Outcome {
+    /// The deck has a mistake.
+    Deck(Diagnostics),
+    /// Position 1 could not be computed (the state where it failed).
+    Failed(Box<State>, SolveError),
+    /// The run (possibly stopped early; see the report).
+    Ran(Box<FullRun>),
+    /// The results would not fit in the memory limit: nothing was run.
+    Refused(MemoryRefusal),
+    /// A change names a co-ordinate or row the deck does not have.
+    BadChange(mechfem_core::DesignError),
+}
+
+/// A rows x cols table of the core, made a numpy array (owning its values)
+/// when Python first asks for it.
+struct Lazy {
+    values: Mutex<Option<Array2<f64>>>,
+    array: PyOnceLock<Py<PyAny>>,
+}
+
+impl Lazy {
+    /// `data` column by column (`columns`) or row by row.
+    fn new(data: Vec<f64>, rows: usize, cols: usize, columns: bool) -> PyResult<Lazy> {
+        let shape = (rows, cols).set_f(columns);
+        let values = Array2::from_shape_vec(shape, data).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(Lazy { values: Mutex::new(Some(values)), array: PyOnceLock::new() })
+    }
+
+    fn get<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let array = self.array.get_or_try_init(py, || {
+            let values = self.values.lock().unwrap_or_else(|e| e.into_inner()).take();
+            let values = values.ok_or_else(|| PyRuntimeError::new_err("a run's table was taken twice"))?;
+            Ok::<_, PyErr>(PyArray2::from_owned_array(py, values).into_any().unbind())
+        })?;
+        Ok(array.bind(py).clone())
+    }
+}
+
+/// Where a run's buffers are.
+enum Buffers {
+    /// Columns `start..start + width` of the table (a deck file's run).
+    Block(usize, usize),
+    /// A table of their own (a run of deck text, whose table is the full layout).
+    Own(Lazy),
+}
+
+/// One run, as every run returns it: the core's columns (`table`, laid
+/// out as `layout` names its blocks, `coords`, `buffers`) as numpy arrays,
+/// the model's sizes, and the run report, model echo, storage requests and
+/// simulation report.
+#[pyclass(module = "mechfem._core", name = "Run", frozen)]
+pub struct Run {
+    positions: usize,
+    n_coords: usize,
+    n_dof: usize,
+    n_prescribed: usize,
+    n_dependent: usize,
+    dynamic: bool,
+    interrupted: bool,
+    stopped: bool,
+    table: Lazy,
+    coords: Lazy,
+    buffers: Buffers,
+    layout: Py<PyDict>,
+    buffer_numbers: Py<PyAny>,
+    hodograph_coords: Py<PyAny>,
+    report: Py<PyDict>,
+    model: Py<PyDict>,
+    storage: Py<PyDict>,
+    simulation: Option<Py<PyDict>>,
+}
+
+#[pymethods]
+impl Run {
+    /// Positions computed.
+    #[getter]
+    fn positions(&self) -> usize {
+        self.positions
+    }
+
+    /// Number of co-ordinates.
+    #[getter]
+    fn n_coords(&self) -> usize {
+        self.n_coords
+    }
+
+    /// Degrees of freedom.
+    #[getter]
+    fn n_dof(&self) -> usize {
+        self.n_dof
+    }
+
+    /// Prescribed rows.
+    #[getter]
+    fn n_prescribed(&self) -> usize {
+        self.n_prescribed
+    }
+
+    /// Dependent form parameters.
+    #[getter]
+    fn n_dependent(&self) -> usize {
+        self.n_dependent
+    }
+
+    /// The deck has masses and loads (DYN ANA, DYN SIM).
+    #[getter]
+    fn dynamic(&self) -> bool {
+        self.dynamic
+    }
+
+    /// Ctrl-C stopped the run; the positions before it are here.
+    #[getter]
+    fn interrupted(&self) -> bool {
+        self.interrupted
+    }
+
+    /// The motion stopped before its end (the report's `stop` says why).
+    #[getter]
+    fn stopped(&self) -> bool {
+        self.stopped
+    }
+
+    /// Positions x the columns of `layout`, each column contiguous.
+    #[getter]
+    fn table<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.table.get(py)
+    }
+
+    /// Positions x co-ordinates.
+    #[getter]
+    fn coords<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        self.coords.get(py)
+    }
+
+    /// Positions x the deck's buffers, in the order of `buffer_numbers`.
+    #[getter]
+    fn buffers<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        match &self.buffers {
+            Buffers::Own(values) => values.get(py),
+            Buffers::Block(start, width) => {
+                let columns = PySlice::new(py, *start as isize, (start + width) as isize, 1);
+                let all = PySlice::full(py);
+                self.table.get(py)?.get_item(PyTuple::new(py, [all, columns])?)
+            }
+        }
+    }
+
+    /// Block name -> (first column, shape at one position).
+    #[getter]
+    fn layout<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+        self.layout.bind(py).clone()
+    }
+
+    /// The deck's buffer numbers, in the order of their definitions.
+    #[getter]
+    fn buffer_numbers<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        self.buffer_numbers.bind(py).clone()
+    }
+
+    /// The co-ordinates (1-based) of the `hodograph` block's columns.
+    #[getter]
+    fn hodograph_coords<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
+        self.hodograph_coords.bind(py).clone()
+    }
+
+    /// What the run did: the adjustment of position 1, limit positions, why it stopped.
+    #[getter]
+    fn report<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+        self.report.bind(py).clone()
+    }
+
+    /// The model as compiled, with its values at position 1.
+    #[getter]
+    fn model<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+        self.model.bind(py).clone()
+    }
+
+    /// The storage requests.
+    #[getter]
+    fn storage<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+        self.storage.bind(py).clone()
+    }
+
+    /// What the integrator of a simulation did (None for a prescribed motion).
+    #[getter]
+    fn simulation<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyDict>> {
+        self.simulation.as_ref().map(|s| s.bind(py).clone())
+    }
+}
+
+/// The parts of a [`Run`] of a deck file (`run_deck`): its table holds the
+/// buffers as one block.
+pub struct DeckRun<'py> {
+    /// The table, column by column, positions x `width`.
+    pub table: Vec<f64>,
+    /// Columns of `table`.
+    pub width: usize,
+    /// Row-major, positions x co-ordinates.
+    pub coords: Vec<f64>,
+    /// Positions computed.
+    pub positions: usize,
+    /// Number of co-ordinates.
+    pub n_coords: usize,
+    /// The buffers block: first column and width.
+    pub buffers: (usize, usize),
+    /// The layout, buffer numbers and hodograph co-ordinates every run of the deck shares.
+    pub shape: [Bound<'py, PyAny>; 3],
+    /// Report, model echo and storage.
+    pub dicts: [Bound<'py, PyDict>; 3],
+    /// The simulation report.
+    pub simulation: Option<Bound<'py, PyDict>>,
+    /// Ctrl-C stopped it.
+    pub interrupted: bool,
+    /// The motion stopped early.
+    pub stopped: bool,
+}
+
+impl Run {
+    /// The run of a deck file of `c` (see [`DeckRun`]).
+    pub fn of_deck(c: &Compiled, r: DeckRun<'_>) -> PyResult<Run> {
+        let mech = &c.mechanism;
+        let [layout, buffer_numbers, hodograph_coords] = r.shape;
+        let [report, model, storage] = r.dicts;
+        Ok(Run {
+            positions: r.positions,
+            n_coords: r.n_coords,
+            n_dof: mech.n_dof(),
+            n_prescribed: mech.n_prescribed(),
+            n_dependent: mech.n_dependent(),
+            dynamic: c.dynamics.is_some(),
+            interrupted: r.interrupted,
+            stopped: r.stopped,
+            table: Lazy::new(r.table, r.positions, r.width, true)?,
+            coords: Lazy::new(r.coords, r.positions, r.n_coords, false)?,
+            buffers: Buffers::Block(r.buffers.0, r.buffers.1),
+            layout: layout.cast_into::<PyDict>()?.unbind(),
+            buffer_numbers: buffer_numbers.unbind(),
+            hodograph_coords: hodograph_coords.unbind(),
+            report: report.unbind(),
+            model: model.unbind(),
+            storage: storage.unbind(),
+            simulation: r.simulation.map(Bound::unbind),
+        })
+    }
+}
+
+/// What every run of one compiled deck text has in common, converted for
+/// Python once. Each run holds these very objects: they are not to be
+/// changed.
+pub struct Shared {
+    /// Block name -> (first column, shape at one position), the core's full layout.
+    layout: Py<PyDict>,
+    storage: Py<PyDict>,
+    buffer_numbers: Py<PyList>,
+    hodograph_coords: Py<PyList>,
+    echo: convert::Echo,
+    /// The model echo and the report of the last run, with the numbers
+    /// they were made from (bit patterns): a run with the same numbers
+    /// hands Python the same dicts, which it converted once.
+    last_echo: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    last_report: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+}
+
+/// The dict kept in `slot` for `key`, else the one `make` builds (then kept).
+fn kept<'py>(
+    py: Python<'py>,
+    slot: &Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    key: Vec<u64>,
+    make: impl FnOnce() -> PyResult<Bound<'py, PyDict>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let lock = || slot.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, d)) = lock().as_ref().filter(|(k, _)| *k == key) {
+        return Ok(d.bind(py).clone());
+    }
+    // Made without the lock held: making it runs Python code.
+    let d = make()?;
+    *lock() = Some((key, d.clone().unbind()));
+    Ok(d)
+}
+
+impl Shared {
+    /// The Python objects of compiled deck `c` that every run of it shares.
+    pub fn new(py: Python<'_>, c: &Compiled) -> PyResult<Shared> {
+        let layout = Layout::full(&c.mechanism, c.dynamics.is_some());
+        Ok(Shared {
+            layout: convert::layout(py, layout.blocks())?.unbind(),
+            storage: convert::storage(py, c)?.unbind(),
+            buffer_numbers: PyList::new(py, c.buffers.iter().map(|b| b.number))?.unbind(),
+            hodograph_coords: PyList::empty(py).unbind(),
+            echo: convert::Echo::new(py, c)?,
+            last_echo: Mutex::new(None),
+            last_report: Mutex::new(None),
+        })
+    }
+
+    /// The run `r` of deck text `c`, whose runs share these objects.
+    fn run(&self, py: Python<'_>, c: &Compiled, mut r: FullRun) -> PyResult<Run> {
+        crate::names::full_run(c, &mut r);
+        let mech = &c.mechanism;
+        let (positions, n, np) = (r.positions, mech.n_coords(), mech.n_prescribed());
+        let at_1 = r.coords.get(..n).unwrap_or(&r.given);
+        let (prescribed, dependent) = r.rows_at_1.split_at(np.min(r.rows_at_1.len()));
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut key = bits(&r.given);
+        key.extend(bits(at_1).into_iter().chain(bits(prescribed)).chain(bits(dependent)));
+        key.extend(r.para.iter().map(|p| p.map_or(u64::MAX, f64::to_bits)));
+        let echo = &self.echo;
+        let model =
+            kept(py, &self.last_echo, key, || echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para)))?;
+        let report = || convert::report(py, mech, &c.dynamics_lines, &r.report, r.steps);
+        let report = match convert::plain_report_key(&r.report, r.steps).filter(|_| r.sim.is_none()) {
+            Some(key) => kept(py, &self.last_report, key, report)?,
+            None => report()?,
+        };
+        Ok(Run {
+            positions,
+            n_coords: n,
+            n_dof: mech.n_dof(),
+            n_prescribed: np,
+            n_dependent: mech.n_dependent(),
+            dynamic: c.dynamics.is_some(),
+            interrupted: false,
+            stopped: r.report.stop.is_some(),
+            table: Lazy::new(r.table, positions, r.width, true)?,
+            coords: Lazy::new(r.coords, positions, n, false)?,
+            buffers: Buffers::Own(Lazy::new(r.buffers, positions, c.buffers.len(), true)?),
+            layout: self.layout.clone_ref(py),
+            buffer_numbers: self.buffer_numbers.clone_ref(py).into_any(),
+            hodograph_coords: self.hodograph_coords.clone_ref(py).into_any(),
+            report: report.unbind(),
+            model: model.unbind(),
+            storage: self.storage.clone_ref(py),
+            simulation: r.sim.as_ref().map(|sim| convert::simulation(py, sim)).transpose()?.map(Bound::unbind),
+        })
+    }
+}
+
+/// The outcome as a [`Run`], or as the exception it amounts to; `text` is
+/// the compiled deck that ran, with its shared objects (None for a deck
+/// that did not compile); `interrupted` is set on the run.
+pub fn outcome_run(
+    py: Python<'_>,
+    outcome: Outcome,
+    text: Option<(&Compiled, &Shared)>,
+    path: &Path,
+    interrupted: bool,
+) -> PyResult<Run> {
+    let lost = || PyRuntimeError::new_err("a run came back without its compiled deck");
+    match outcome {
+        Outcome::Ran(r) => {
+            let (c, s) = text.ok_or_else(lost)?;
+            let mut run = s.run(py, c, *r)?;
+            run.interrupted = interrupted;
+            Ok(run)
+        }
+        Outcome::Deck(d) => Err(errors::deck_error(py, path, &d)),
+        Outcome::Refused(refusal) => Err(errors::resource_error(py, &refusal)),
+        Outcome::BadChange(e) => Err(errors::change_error(&e)),
+        Outcome::Failed(mut state, e) => {
+            let (c, _) = text.ok_or_else(lost)?;
+            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut state, &c.error_as_written(&e)))
+        }
+    }
+}
