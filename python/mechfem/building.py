@@ -68,12 +68,14 @@ def builder(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> 
     b = _core.ModelBuilder(f"{mech.name}.mec", loads.mode(mech, simulated))
     notes = _Notes(b)
     mode = loads.mode(mech, simulated)
+    # The output name first, as the deck writer checks it: the same refusal from run, to_deck and save_deck.
+    check_file_names(mech.name, storage, {})
     try:
         _builder(b, notes, mech, motion, storage, nb, tables)
     except DeckError as e:
         # The builder names the item it refuses by the name it was given.
         raise refused(e, Built(b, nb, tables, simulated, f"{mech.name}.mec", notes.lines(), mode), mech.name) from None
-    check_file_names(mech.name, storage, tables)
+    check_file_names(mech.name, None, tables)
     return Built(b, nb, tables, simulated, f"{mech.name}.mec", notes.lines(), mode)
 
 
