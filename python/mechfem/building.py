@@ -21,6 +21,7 @@ from mechfem.deck_names import names_block
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
 from mechfem.model import By, Dynamic, Element, Free, Mechanism, Motion, Storage, Table, To
 from mechfem.numbering import Numbering
+from mechfem.stopping import stop_buffer
 from mechfem.storage import check_file_names
 from mechfem.units import Units
 
@@ -75,6 +76,8 @@ def _builder(
         _loads(b, mech, nb, element, tables)
     if motion is not None:
         _motion(b, mech, motion, nb, tables)
+        integrator = None if motion.integrator == "auto" else motion.integrator
+        b.simulation(integrator, stop_buffer(motion, storage, mech.name))
     if storage is not None:
         _storage(b, mech, storage, nb)
     return b
