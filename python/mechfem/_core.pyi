@@ -575,6 +575,10 @@ class DescribedDeckDict(TypedDict):
     """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
     inttol: NotRequired[list[float] | None]
     """``[rtol, atol]`` of INTTOL; None (or absent) for a deck without INTTOL."""
+    integrator: NotRequired[str | None]
+    """The method of INTEGRATOR (``auto``, ``dop853``, ``dopri5`` or ``radau5``); None for a deck without it."""
+    stop_when: NotRequired[tuple[int, float] | None]
+    """``(buffer, value)`` of STOPWHEN; None for a deck without it."""
     optimise: NotRequired[OptimiseDict | None]
     """The OPTIMISE block of a KIN OPT deck; None for any other mode."""
 
@@ -652,6 +656,7 @@ class ModelBuilder:
     def tolerances(
         self, accuracy: float | None = None, max_iter: int | None = None, inttol: tuple[float, float] | None = None
     ) -> None: ...
+    def simulation(self, integrator: str | None = None, stop_when: tuple[int, float] | None = None) -> None: ...
     def storage(self) -> None: ...
     def buffer(self, keyword: str, args: list[int], number: int) -> None: ...
     def printbuf(self, buffers: list[int]) -> None: ...

@@ -29,6 +29,7 @@ from mechfem.explain import _DECK_FIELDS, _RULES, _Context, translate, with_attr
 from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring
 from mechfem.model import By, Dynamic, Element, Free, Mechanism, Motion, Storage, Table, To
 from mechfem.numbering import DeckText, Numbering
+from mechfem.stopping import stop_buffer
 from mechfem.storage import check_file_names
 from mechfem.units import Units
 
@@ -208,6 +209,9 @@ def _builder(
         _loads(b, note, mech, nb, element, tables)
     if motion is not None:
         _motion(b, note, mech, motion, nb, tables)
+        integrator = None if motion.integrator == "auto" else motion.integrator
+        note("motion", "", "INTEGRATOR")
+        b.simulation(integrator, stop_buffer(motion, storage, mech.name))
     if storage is not None:
         _storage(b, note, mech, storage, nb)
 

@@ -214,6 +214,8 @@ def _motion(motion: Motion, nb: Numbering) -> tuple[object, ...] | None:
         number(motion.dt),
         *[per_dof[j] for j in range(1, len(inputs) + 1)],
         tuple([None if v is None else number(v) for v in tolerances]),
+        motion.integrator,
+        motion.stop_when,
     )
 
 

@@ -15,6 +15,7 @@ the numbering of this module, and the model compiled from them is the one its de
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import re
 import sys
@@ -57,6 +58,7 @@ from mechfem.model import (
 )
 from mechfem.motion import check_units
 from mechfem.numbering import DeckText, Numbering, number
+from mechfem.stopping import stop_buffer, stop_name
 from mechfem.storage import check_file_names, from_described
 from mechfem.units import Units
 
@@ -263,6 +265,11 @@ def write(
         tolerances = inttol(motion)
         if tolerances is not None:
             out.add(f"INTTOL {number(tolerances[0])} {number(tolerances[1])}", ("motion", "rtol and atol"))
+        if motion.integrator != "auto":
+            out.add(f"INTEGRATOR {motion.integrator}", ("motion", "integrator"))
+        stop = stop_buffer(motion, storage, mech.name)
+        if stop is not None:
+            out.add(f"STOPWHEN {stop[0]} {number(stop[1])}", ("motion", "stop_when"))
 
     if storage is not None:
         out.add("STORAGE")
@@ -517,6 +524,7 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             None if max_iter == DEFAULT_MAX_ITER else max_iter,
             rtol,
             atol,
+            described.get("integrator") or "auto",
         )
 
     def ref_name(kind: str, v: int) -> Ref:
@@ -527,6 +535,9 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
         return nb.inputs[v - 1].name
 
     m.storage = from_described(d["storage"], ref_name)
+    stop = described.get("stop_when")
+    if stop is not None and m.motion is not None:
+        m.motion = dataclasses.replace(m.motion, stop_when=(stop_name(m.storage, int(stop[0])), float(stop[1])))
     read_loads(m, nb, d.get("dynamics"))
     return m
 

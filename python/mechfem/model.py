@@ -443,6 +443,8 @@ class Mechanism(ElementMethods):
         order: int | None = 2,
         raise_on_stop: bool = False,
         unit: Unit | None = None,
+        integrator: str = "auto",
+        stop_when: tuple[int | str, float] | None = None,
     ) -> RunResult:
         """Simulates the motion under the masses and loads from time 0 to ``t_end`` (mode ``DYN SIM``), with results
         at ``steps + 1`` positions ``t_end / steps`` apart: the inputs of ``drive`` (input -> :class:`By`,
@@ -452,9 +454,24 @@ class Mechanism(ElementMethods):
         are the integrator's tolerances (default ``accuracy``, 1e-10); the rest is as for :meth:`run`, whose
         :class:`RunResult` it returns, with :attr:`RunResult.simulation` the integrator's work. A simulation that
         stops early (a limit position, a step size that collapsed) returns the positions it reached and says why,
-        as a run does. The same as ``run(Motion.dynamic(...))`` with every input named."""
+        as a run does. ``integrator`` is the method (one of :data:`~mechfem.motion.INTEGRATORS`: ``"auto"``,
+        ``"explicit"`` = ``"dopri5"``, ``"dop853"``, ``"implicit"`` = ``"radau5"``); ``stop_when`` = ``(buffer,
+        value)`` ends the simulation where that buffer of the storage (by number, or by the name of the one
+        quantity it holds) crosses ``value``, in the mechanism's own units (:attr:`RunResult.simulation` says
+        ``event``). The same as ``run(Motion.dynamic(...))`` with every input named."""
         motion = simulation(
-            self, t_end, steps, v0, drive, rtol=rtol, atol=atol, accuracy=accuracy, max_iter=max_iter, unit=unit
+            self,
+            t_end,
+            steps,
+            v0,
+            drive,
+            rtol=rtol,
+            atol=atol,
+            accuracy=accuracy,
+            max_iter=max_iter,
+            unit=unit,
+            integrator=integrator,
+            stop_when=stop_when,
         )
         return self.run(motion, storage, progress, order, raise_on_stop=raise_on_stop)
 

@@ -161,7 +161,10 @@ class Motion:
     ``inputs`` (input name, DOF number or None for the only input -> :class:`By`, :class:`To`,
     :class:`Free`, :class:`Table` or :class:`Dynamic`). ``accuracy`` and ``max_iter`` set the Newton
     tolerance and iteration limit (deck keywords ACCURACY, MAXITER; default 1e-10 and 25). ``rtol``
-    and ``atol`` are the tolerances of a simulation's integrator (INTTOL; each defaults to ACCURACY).
+    and ``atol`` are the tolerances of a simulation's integrator (INTTOL; each defaults to ACCURACY),
+    ``integrator`` its method (INTEGRATOR, one of :data:`INTEGRATORS`) and ``stop_when`` a ``(buffer, value)``
+    whose crossing ends the simulation (STOPWHEN; the buffer by number or by name, see
+    :func:`mechfem.stopping.stop_buffer`).
     """
 
     steps: int
@@ -171,6 +174,8 @@ class Motion:
     max_iter: int | None = None
     rtol: float | None = None
     atol: float | None = None
+    integrator: str = "auto"
+    stop_when: tuple[int | str, float] | None = None
 
     def __post_init__(self) -> None:
         if int(self.steps) != self.steps or self.steps < 1:
@@ -205,6 +210,14 @@ class Motion:
                 "rtol and atol are the tolerances of a simulation's integrator: give them to a motion in which an "
                 "input moves under the forces (Dynamic, Motion.dynamic or Mechanism.simulate)"
             )
+        elif self.integrator != "auto" or self.stop_when is not None:
+            raise ValueError(
+                "integrator and stop_when set how a simulation is integrated and where it ends: give them to a motion "
+                "in which an input moves under the forces (Dynamic, Motion.dynamic or Mechanism.simulate)"
+            )
+        check_integrator(self.integrator)
+        if self.stop_when is not None:
+            check_stop_when(self.stop_when)
         for what, tol in (("rtol", self.rtol), ("atol", self.atol)):
             if tol is not None and not finite(tol, what) > 0:
                 raise ValueError(f"{what} must be positive, got {tol!r}")
@@ -318,18 +331,50 @@ class Motion:
         accuracy: float | None = None,
         max_iter: int | None = None,
         unit: Unit | None = None,
+        integrator: str = "auto",
+        stop_when: tuple[int | str, float] | None = None,
     ) -> Motion:
         """A simulation from time 0 to ``t_end`` in ``steps`` output steps (``dt = t_end / steps``): the inputs
         of ``v0`` (a number: the only input; a mapping for several) move under the forces from those speeds (an
         angle's in ``unit`` per time, ``"rad"`` or ``"deg"``), the inputs of ``drive`` follow their motion.
-        :meth:`Mechanism.simulate` fills in the inputs left out."""
+        :meth:`Mechanism.simulate` fills in the inputs left out. ``integrator`` and ``stop_when`` are
+        :class:`Motion`'s."""
         dt = _step(t_end, steps)
         inputs: dict[InputKey, InputMotion] = cls._per_input(v0, Dynamic, unit)
         for key, im in (drive or {}).items():
             if key in inputs:
                 raise ValueError(f"input {key!r} is given a speed in v0 and a motion in drive: it can have only one")
             inputs[key] = _driven(key, im)
-        return cls(steps, inputs, dt, accuracy, max_iter, rtol, atol)
+        return cls(steps, inputs, dt, accuracy, max_iter, rtol, atol, integrator, stop_when)
+
+
+INTEGRATORS = ("auto", "explicit", "implicit", "dop853", "dopri5", "radau5")
+"""The integration methods of a simulation (deck INTEGRATOR): ``auto`` (the default) integrates with
+Dormand-Prince 5(4) and goes over to the implicit Radau IIA 5 where the motion is stiff, ``explicit`` (=
+``dopri5``) and ``dop853`` (Dormand-Prince of order 8) never do, ``implicit`` (= ``radau5``) always does."""
+
+
+def check_integrator(integrator: object) -> str:
+    """``integrator`` if it is one of :data:`INTEGRATORS`; a ValueError naming them otherwise."""
+    if not isinstance(integrator, str) or integrator not in INTEGRATORS:
+        raise ValueError(
+            f"integrator {integrator!r} is not an integration method: give one of {', '.join(INTEGRATORS)} "
+            "('auto', the default, switches between the explicit dopri5 and the implicit radau5 as the motion needs)"
+        )
+    return integrator
+
+
+def check_stop_when(stop_when: object) -> tuple[int | str, float]:
+    """``stop_when`` as ``(buffer, value)``: a buffer number or name and a finite value; a ValueError otherwise."""
+    if not (isinstance(stop_when, tuple) and len(stop_when) == 2):
+        raise ValueError(
+            f"stop_when is a (buffer, value) pair, e.g. ('omega', 0.0), got {stop_when!r}: the buffer by its number or "
+            "by the name of the one quantity it holds, the value in the mechanism's own units"
+        )
+    buffer, value = stop_when
+    if isinstance(buffer, bool) or not isinstance(buffer, (int, str)) or (isinstance(buffer, int) and buffer < 1):
+        raise ValueError(f"the buffer of stop_when is a buffer number (1 up) or a name, got {buffer!r}")
+    return buffer, finite(value, "the value of stop_when")
 
 
 def _step(t_end: float, steps: int) -> float:
@@ -455,6 +500,8 @@ def simulation(
     accuracy: float | None = None,
     max_iter: int | None = None,
     unit: Unit | None = None,
+    integrator: str = "auto",
+    stop_when: tuple[int | str, float] | None = None,
 ) -> Motion:
     """The motion of :meth:`Mechanism.simulate` for ``mech``: the inputs of ``drive`` follow their motion, every
     other one moves under the forces from its speed in ``v0`` (a number for the only such input, a mapping by
@@ -498,4 +545,4 @@ def simulation(
         r.name: driven[r.name] if r.name in driven else Dynamic(speeds.get(r.name, 0.0), check_unit(unit))
         for r in inputs
     }
-    return Motion(steps, inputs_motion, dt, accuracy, max_iter, rtol, atol)
+    return Motion(steps, inputs_motion, dt, accuracy, max_iter, rtol, atol, integrator, stop_when)

@@ -28,11 +28,12 @@ mod tests;
 
 use std::path::{Path, PathBuf};
 
+use mechfem_core::dynamics::Integrator;
 use mechfem_core::ElementType;
 
 use crate::ast::{
-    CoordDef, Deck, ElemDef, FormDef, Geometry, IntTolDef, Mode, MotionDef, MotionKind, Movement, ParaDef, Topology,
-    Tstepe,
+    CoordDef, Deck, ElemDef, FormDef, Geometry, IntTolDef, Mode, MotionDef, MotionKind, Movement, ParaDef, StopWhenDef,
+    Topology, Tstepe,
 };
 use crate::compiled::Compiled;
 use crate::diagnostic::{Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned};
@@ -389,6 +390,39 @@ impl DeckBuilder {
     /// maps back to its own object.
     pub fn item(&self) -> usize {
         self.line
+    }
+
+    /// How a simulation is integrated (INTEGRATOR: a word of
+    /// [`Integrator::WORDS`]) and the buffer and value whose crossing ends
+    /// it (STOPWHEN), each if given; after [`Self::tolerances`]. Whether
+    /// the buffer exists is checked when the deck is compiled.
+    pub fn simulation(&mut self, integrator: Option<&str>, stop_when: Option<(i64, f64)>) -> Result<(), Refused> {
+        self.in_block(Keyword::Integrator, Keyword::Accuracy, "the simulation's integrator")?;
+        if let Some(word) = integrator {
+            let line = self.next_line("integrator");
+            checks::motion_mode(self, line, Keyword::Integrator, "the integrator")?;
+            let Some(method) = Integrator::from_word(word) else {
+                let message =
+                    format!("{word:?} is not an integration method: give one of {}", Integrator::WORDS.join(", "));
+                return Err(self.refuse(DiagnosticKind::BadValue, line, message));
+            };
+            if let Some(m) = self.deck.movement.as_mut() {
+                m.integrator = Some(at(method, line));
+            }
+        }
+        if let Some((buffer, value)) = stop_when {
+            let line = self.next_line("stop_when");
+            checks::motion_mode(self, line, Keyword::StopWhen, "the stop condition")?;
+            if !(1..=i64::from(u32::MAX)).contains(&buffer) {
+                let message = format!("the stop condition's buffer is {buffer}: give a buffer number from 1 up");
+                return Err(self.refuse(DiagnosticKind::BadValue, line, message));
+            }
+            let value = checks::finite(self, line, value, "the stop condition's value")?;
+            if let Some(m) = self.deck.movement.as_mut() {
+                m.stop_when = Some(StopWhenDef { line, buffer: at(buffer, line), value: at(value, line) });
+            }
+        }
+        Ok(())
     }
 
     /// The typed deck built so far.

@@ -199,6 +199,12 @@ impl ModelBuilder {
         self.builder.tolerances(accuracy, max_iter, inttol).map_err(|d| refused(py, &self.path, d))
     }
 
+    /// The simulation's integrator (INTEGRATOR) and stop condition (buffer, value) (STOPWHEN), each if given.
+    #[pyo3(signature = (integrator=None, stop_when=None))]
+    fn simulation(&mut self, py: Python<'_>, integrator: Option<&str>, stop_when: Option<(i64, f64)>) -> PyResult<()> {
+        self.builder.simulation(integrator, stop_when).map_err(|d| refused(py, &self.path, d))
+    }
+
     /// Begins the storage.
     fn storage(&mut self, py: Python<'_>) -> PyResult<()> {
         self.builder.storage().map_err(|d| refused(py, &self.path, d))

@@ -17,6 +17,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
+use mechfem_core::dynamics::Integrator;
 use mechfem_core::run::MemoryRefusal;
 use mechfem_core::DesignError;
 use mechfem_core::{InputMotion, Quantity, State, TransferOrder};
@@ -380,6 +381,17 @@ pub fn describe_deck_text<'py>(
     // INTTOL as the deck gives it (None without: the tolerances are then ACCURACY's).
     let inttol = deck.movement.as_ref().and_then(|m| m.inttol.as_ref()).map(|t| vec![t.rtol.value, t.atol.value]);
     d.set_item("inttol", inttol)?;
+    // INTEGRATOR as the deck's word of its method, STOPWHEN as [buffer, value] (each None without).
+    let movement = deck.movement.as_ref();
+    let integrator = movement.and_then(|m| m.integrator.as_ref()).map(|m| match m.value {
+        Integrator::Auto => "auto",
+        Integrator::Dop853 => "dop853",
+        Integrator::Dopri5 => "dopri5",
+        Integrator::Radau5 => "radau5",
+    });
+    d.set_item("integrator", integrator)?;
+    let stop_when = movement.and_then(|m| m.stop_when.as_ref()).map(|s| (s.buffer.value, s.value.value));
+    d.set_item("stop_when", stop_when)?;
     d.set_item("mode", c.mode.name())?;
     d.set_item("dynamics", dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
     let optimise = c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?;

@@ -161,7 +161,7 @@ pub(super) fn motion_mode(b: &DeckBuilder, line: usize, kw: Keyword, what: &str)
     let mode = b.deck.mode.value;
     let refused = match kw {
         Keyword::MovFree => mode.has_dynamics(),
-        Keyword::MovDyn | Keyword::Inttol => mode != crate::ast::Mode::DynSim,
+        Keyword::MovDyn | Keyword::Inttol | Keyword::Integrator | Keyword::StopWhen => mode != crate::ast::Mode::DynSim,
         _ => false,
     };
     if !refused {
