@@ -69,6 +69,23 @@ def test_stop_when_ends_the_pendulum_at_the_bottom_after_a_quarter_period(buffer
     assert r.time[-1] == time and r.positions == math.floor(quarter / 0.01) + 2
 
 
+def test_a_model_in_degrees_stops_at_its_value_in_degrees_and_runs_again_from_its_own_start() -> None:
+    # The same pendulum given in degrees: the start angle and the stop value are read in degrees, by the model
+    # built afresh and by the kept model that a second run reuses.
+    amplitude = 1.2
+    quarter = math.sqrt(L / G) * elliptic_k(math.sin(amplitude / 2))
+    m = pendulum(amplitude, "deg")
+    m.storage = Storage().buffer(2, "BUFE0", "theta")
+    for _ in range(2):
+        r = m.simulate(2.0, 200, stop_when=("theta", -90.0))
+        assert r.input("theta")[0] == pytest.approx(math.degrees(-math.pi / 2 + amplitude), abs=1e-9)
+        sim = r.simulation
+        assert sim is not None and sim.event is not None
+        number, value, time, inputs = sim.event
+        assert (number, value) == (2, -90.0)
+        assert time == pytest.approx(quarter, abs=1e-8) and inputs[0] == pytest.approx(-90.0, abs=1e-6)
+
+
 def test_mistakes_are_named_in_the_models_words() -> None:
     m = pendulum(1.0)
     with pytest.raises(ValueError, match=r"integrator 'rk4' is not an integration method: give one of auto, explicit"):

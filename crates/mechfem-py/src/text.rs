@@ -78,7 +78,7 @@ impl Numbers {
     /// co-ordinate or row the deck does not have.
     pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, DesignError> {
         let mut n = Numbers { state: c.state.clone(), para: c.prescribed.iter().map(|r| r.para).collect() };
-        changes.iter().try_for_each(|ch| ch.apply(&mut n))?;
+        changes.iter().try_for_each(|ch| ch.in_core_units(c).apply(&mut n))?;
         // What the deck reader derives from the co-ordinates, derived from
         // the new ones: the angles each element tracks from its directions,
         // and the value of every row the deck gives none. Co-ordinates at
@@ -197,6 +197,21 @@ impl Change {
             0 => Ok(Change::Coord(number, value)),
             1 => Ok(Change::Row(number, value)),
             _ => Err(PyValueError::new_err(format!("a change is of kind 0 (co-ordinate) or 1 (row), not {kind}"))),
+        }
+    }
+
+    /// The change with its value in the core's SI units: Python gives a
+    /// model's numbers in the model's own units, as its deck does.
+    fn in_core_units(self, c: &Compiled) -> Change {
+        if c.units.is_identity() {
+            return self;
+        }
+        match self {
+            Change::Coord(number, v) => Change::Coord(number, c.units.to_core(c.dims.coord(number.wrapping_sub(1)), v)),
+            Change::Row(number, v) => {
+                let row = c.dims.form(mechfem_core::FormRef::Prescribed(number.wrapping_sub(1)));
+                Change::Row(number, c.units.to_core(row, v))
+            }
         }
     }
 
