@@ -15,26 +15,13 @@ import pytest
 
 import mechfem
 import mechfem._core as _core
-from mechfem import Driven, Mechanism, Motion, Output, Q, building, deckio
+from mechfem import Driven, Mechanism, Motion, Q, building, deckio
 from mechfem.model import Table
 from mechfem.storage import Storage
+from test_batch import fourbar, stroke
 from test_model_api import supply
 
 MOTION = Motion.by(36, 2 * math.pi)
-
-
-def fourbar(rocker: float = 3.0, ground: float = 4.0) -> Mechanism:
-    m = Mechanism("fourbar")
-    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", ground, 0.0)
-    A, B = m.point("A", 1.0, 0.0), m.point("B", 3.5, 2.5)
-    m.bar("crank", A0, A, length=1.0, angle=Driven(start=0.0, name="phi"))
-    m.bar("coupler", A, B, length=3.5)
-    m.bar("rocker", B0, B, length=rocker, angle=Output("psi"))
-    return m
-
-
-def stroke(a: mechfem.RunResult) -> float:
-    return float(np.ptp(a.output("psi")))
 
 
 @pytest.fixture
