@@ -273,7 +273,7 @@ def test_animation_has_one_frame_per_position(supply: RunResult, tmp_path: Path)
         assert max(width, height) == 720
 
 
-def test_a_long_run_is_subsampled_to_at_most_200_frames(tmp_path: Path) -> None:
+def test_a_long_run_is_subsampled_to_at_most_120_frames(tmp_path: Path) -> None:
     deck = supply_variant(tmp_path, "long", {"TSTEPE 72": "TSTEPE 19999"})
     result = mechfem.run_deck(deck)
     assert result.positions == 20000
@@ -283,13 +283,13 @@ def test_a_long_run_is_subsampled_to_at_most_200_frames(tmp_path: Path) -> None:
     with Image.open(tmp_path / "film.gif") as im:
         assert im.n_frames == MAX_FRAMES
     lines = Media(result, tmp_path).print_lines()
-    assert any("200 frames for 20000 positions: subsampled" in line for line in lines)
+    assert any("120 frames for 20000 positions: subsampled" in line for line in lines)
 
 
 def test_frame_plan_spreads_frames_evenly_and_keeps_the_ends() -> None:
     assert list(frame_plan(5).frames) == [0, 1, 2, 3, 4]
     plan = frame_plan(20000)
-    assert len(plan.frames) == 200 and plan.frames[0] == 0 and plan.frames[-1] == 19999
+    assert len(plan.frames) == 120 and plan.frames[0] == 0 and plan.frames[-1] == 19999
     assert np.all(np.diff(plan.frames) > 0)
     steps = np.diff(plan.frames)
     assert steps.max() - steps.min() <= 1

@@ -34,7 +34,7 @@ from mechfem.result import RunResult
 IntArray = npt.NDArray[np.int64]
 
 #: Most frames an animation has; longer runs are subsampled.
-MAX_FRAMES = 200
+MAX_FRAMES = 120
 #: Frames per second.
 FPS = 20
 #: The longer side of a frame, in pixels.
@@ -128,11 +128,23 @@ class GifStream:
         self.duration = max(20, round(1000 / fps))
         self.frames = 0
         self.palette: object | None = None
+        self.previous: npt.NDArray[np.uint8] | None = None
 
     def add(self, rgb: object) -> None:
         from PIL import GifImagePlugin, Image
 
         assert isinstance(rgb, Image.Image)
+        rgb = rgb.convert("RGB")
+        # Only the rectangle that differs from the frame before is stored (the rest stays on screen): the
+        # frame, its fixed parts and the faint whole paths are written once.
+        pixels = np.asarray(rgb)
+        box = (0, 0, rgb.width, rgb.height)
+        if self.previous is not None and self.previous.shape == pixels.shape:
+            changed = np.any(pixels != self.previous, axis=2)
+            rows, cols = np.flatnonzero(changed.any(axis=1)), np.flatnonzero(changed.any(axis=0))
+            box = (int(cols[0]), int(rows[0]), int(cols[-1]) + 1, int(rows[-1]) + 1) if rows.size else (0, 0, 1, 1)
+            rgb = rgb.crop(box)
+        self.previous = pixels.copy()
         if self.palette is not None:
             assert isinstance(self.palette, Image.Image)
             frame = rgb.convert("RGB").quantize(palette=self.palette, dither=Image.Dither.NONE)
@@ -141,7 +153,8 @@ class GifStream:
         if self.frames == 0:
             header, _ = GifImagePlugin.getheader(frame, info={"loop": 0, "duration": self.duration})
             self.f.write(b"".join(header))
-        for chunk in GifImagePlugin.getdata(frame, duration=self.duration, include_color_table=True):
+        chunks = GifImagePlugin.getdata(frame, offset=box[:2], duration=self.duration, include_color_table=True)
+        for chunk in chunks:
             self.f.write(chunk)
         self.frames += 1
 
@@ -173,6 +186,17 @@ class _Mp4Pipe:
         if self.proc.wait() != 0:
             return err.strip().splitlines()[-1] if err.strip() else f"exit status {self.proc.returncode}"
         return None
+
+
+def title_width(text: str) -> int:
+    """The width in pixels of ``text`` as the animation's title draws it (10 points at 100 dpi)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(2.0, 1.0), dpi=100)
+    canvas = FigureCanvasAgg(fig)
+    t = fig.suptitle(text, fontsize=10)
+    return math.ceil(t.get_window_extent(canvas.get_renderer()).width)
 
 
 def _title(result: RunResult, name: str, k: int) -> str:
@@ -241,9 +265,11 @@ def write_animation(
     # Frame size in pixels: the longer side FRAME_SIZE, both even (video encoders need that), room for the title.
     aspect = (y1 - y0) / (x1 - x0)
     title_px = 36
+    titles = [_title(result, name, int(k)) for k in plan.frames]
     if aspect >= 1:
         height = FRAME_SIZE
-        width = max(320, round((height - title_px) / aspect))
+        # A tall mechanism gets a narrow frame, but never narrower than its longest title.
+        width = max(320, round((height - title_px) / aspect), title_width(max(titles, key=len)) + 16)
     else:
         width = FRAME_SIZE
         height = max(240, round(width * aspect) + title_px)
@@ -290,7 +316,7 @@ def write_animation(
                 arrow.set_data([px, px + vx * h.scale], [py, py + vy * h.scale])
             else:
                 arrow.set_data([], [])
-        title.set_text(_title(result, name, int(k)))
+        title.set_text(titles[int(np.searchsorted(plan.frames, k))])
         canvas.restore_region(background)
         for a in moving:
             ax.draw_artist(a)

@@ -403,9 +403,10 @@ def add_draw(commands: argparse._SubParsersAction[argparse.ArgumentParser]) -> N
     draw.add_argument(
         "--format",
         type=draw_formats,
-        default=list(export.FORMATS),
+        default=None,
         metavar="FORMATS",
-        help="dxf, svg or both as dxf,svg (default both; DXF needs ezdxf: pip install 'mechfem[dxf]')",
+        help="dxf, svg or both as dxf,svg (default both, or SVG alone when ezdxf, which DXF needs, is not "
+        "installed: pip install 'mechfem[dxf]')",
     )
     draw.add_argument("--no-paths", action="store_true", help="leave out the paths of the moving points")
     draw.add_argument(
@@ -447,13 +448,22 @@ def cmd_draw(args: argparse.Namespace) -> int:
     deck: Path = args.deck
     outdir: Path = args.outdir if args.outdir is not None else deck.parent
     console: Console = args.console
-    if "dxf" in args.format and not export.dxf_available():
+    formats: list[str] = args.format
+    if formats is None:
+        # Asked for nothing in particular: the SVG needs nothing more, so it is written without the DXF.
+        formats = list(export.FORMATS) if export.dxf_available() else ["svg"]
+        if "dxf" not in formats:
+            console.note(
+                "note: writing the SVG only: the DXF needs ezdxf, which is not installed (pip install "
+                "'mechfem[dxf]', or pip install ezdxf)"
+            )
+    elif "dxf" in formats and not export.dxf_available():
         console.error(
             "error: writing DXF needs ezdxf, which is not installed: pip install 'mechfem[dxf]' (or pip install "
             "ezdxf), or ask for SVG only with --format svg"
         )
         return EXIT_FAILED
-    names = [f"{deck.stem}_pos{args.position}.{fmt}" for fmt in args.format]
+    names = [f"{deck.stem}_pos{args.position}.{fmt}" for fmt in formats]
     plan(deck, outdir, drawings=names).check()
     if optimisation(deck) is not None:
         console.note(
@@ -469,7 +479,7 @@ def cmd_draw(args: argparse.Namespace) -> int:
                 f"so --position must be from 1 to {result.positions}"
             )
             return EXIT_FAILED
-        files = export.draw_files(result, outdir, args.position, args.format, not args.no_paths, args.units)
+        files = export.draw_files(result, outdir, args.position, formats, not args.no_paths, args.units)
     console.say(f"{deck}: {count(result.positions, 'position')} computed")
     for path in files:
         console.say(f"wrote {path}")

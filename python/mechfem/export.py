@@ -179,12 +179,20 @@ def result_drawing(
         Path2D(labels.point_name(result, ix + 1, iy + 1), result.coords[sample, ix], result.coords[sample, iy])
         for ix, iy in keys
     ]
+    # Points the deck names (NAMES) are labelled; an unnamed point's co-ordinate numbers would only clutter.
+    x = result.coords[k]
+    names = []
+    for ix, iy in drawing.points:
+        name = labels.point_name(result, ix + 1, iy + 1)
+        px, py = float(x[ix]), float(x[iy])
+        if not name.startswith("(") and math.isfinite(px) and math.isfinite(py):
+            names.append(Label(name, px, py))
     return ExportDrawing(
         title=f"{result.deck.stem}, position {k + 1}",
         position=k + 1,
         shapes=drawing.shapes(result.coords[k]),
         paths=tracks,
-        labels=[],
+        labels=names,
         unit=drawing.unit,
     )
 
@@ -352,15 +360,16 @@ def svg_text(d: ExportDrawing) -> str:
         "<style>line,polyline,polygon,path,circle{vector-effect:non-scaling-stroke;stroke-linejoin:round}"
         + "".join(styles)
         + "</style>",
-        '<g id="paths">',
+        '<g id="mechanism">',
     ]
+    out += [e for e in map(_svg_shape, d.shapes) if e is not None]
+    # The paths over the mechanism: a coupler point's path runs across its plate.
+    out += ["</g>", '<g id="paths">']
     for k, p in enumerate(d.paths):
         colour = PATH_COLOURS[k % len(PATH_COLOURS)]
         for piece in _pieces(p.x, p.y):
             points = " ".join(_xy(float(a), float(b)) for a, b in piece)
             out.append(f'<polyline class="path" stroke="{colour}" data-point={quoteattr(p.label)} points="{points}"/>')
-    out += ["</g>", '<g id="mechanism">']
-    out += [e for e in map(_svg_shape, d.shapes) if e is not None]
     out += ["</g>", '<g id="names">']
     offset = 0.6 * d.unit
     for lab in d.labels:

@@ -79,7 +79,9 @@ def report_data(result: RunResult) -> dict[str, Any]:
     drawing = MechanismDrawing(result.model, result.coords)
     labels = all_labels(result)
     cols = Columns(frames, run_units(result))
-    table = [cols.buffer(result, labels[b.number]) for b in result.storage.buffers if b.number in labels]
+    # The table's columns in the order of the buffers' numbers, whatever the order of the STORAGE lines.
+    ordered = sorted(result.storage.buffers, key=lambda b: b.number)
+    table = [cols.buffer(result, labels[b.number]) for b in ordered if b.number in labels]
     xkey = main_axis(result, labels, cols)
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
     cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols)

@@ -131,19 +131,23 @@
     ctx.fillStyle = "#ffffff";
     ctx.fillRect(0, 0, mech.canvas.width, mech.canvas.height);
     ctx.lineJoin = "round";
+    // The mechanism first and the paths over it: a coupler point's path runs across its plate.
+    drawScene(ctx, X, Y, mech.s, cur, 1, r);
     for (const p of D.paths) {
       const colour = pathColour(p.x, p.y), xs = cols[p.x].values, ys = cols[p.y].values;
       ctx.strokeStyle = colour;
-      ctx.globalAlpha = 0.3; ctx.lineWidth = 1.5 * r; polyline(ctx, X, Y, xs, ys);
+      ctx.globalAlpha = 0.45; ctx.lineWidth = 1.5 * r; polyline(ctx, X, Y, xs, ys);
       ctx.globalAlpha = 1; ctx.lineWidth = 2.4 * r; polyline(ctx, X, Y, xs, ys, cur);
     }
-    drawScene(ctx, X, Y, mech.s, cur, 1, r);
     for (const p of D.paths) {
       const colour = pathColour(p.x, p.y), x = cols[p.x].values[cur], y = cols[p.y].values[cur];
       if (x === null || y === null) continue;
       const vx = p.vx ? cols[p.vx].values[cur] : null, vy = p.vy ? cols[p.vy].values[cur] : null;
       if (vx !== null && vy !== null && p.scale) C.arrow(ctx, X(x), Y(y), X(x + vx * p.scale), Y(y + vy * p.scale), colour, 2.4 * r);
       C.dot(ctx, X(x), Y(y), 5 * r, colour);
+      ctx.font = 12 * r + "px sans-serif";
+      ctx.fillStyle = "#1f3b57";
+      ctx.fillText(p.name, X(x) + 7 * r, Y(y) - 7 * r);
     }
   }
 
