@@ -55,8 +55,8 @@ mod text;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use mechfem_core::run::{MemoryRefusal, Selection, SimReport};
-use mechfem_core::{InputMotion, Motion, Quantity, RunReport, TransferOrder};
+use mechfem_core::run::{Extent, MemoryRefusal, Selection, SimReport};
+use mechfem_core::{Quantity, RunReport, TransferOrder};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::intern;
@@ -141,22 +141,14 @@ fn execute(
     det: bool,
 ) -> PyResult<Ran> {
     let given = c.state.x.clone();
-    // Position 1 of a free-motion deck is computed as its run computes it:
-    // free motion may start in a limit position of its input.
-    let free_start = c
-        .motion
-        .as_ref()
-        .filter(|m| m.inputs.iter().any(|im| matches!(im, InputMotion::Free { .. })))
-        .map(|m| Motion { steps: 0, ..m.clone() });
-    let motion = if with_motion { c.motion.as_ref() } else { free_start.as_ref() };
-    if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
-        // Position 1 alone, as a run would compute it.
-        m.apply_initial_inputs(&c.mechanism, &mut c.state);
-    }
+    let extent = if with_motion { Extent::Motion } else { Extent::PositionOne };
+    let mut state = c.state.clone();
+    let motion = c.motion_for(&mut state, extent);
     let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let hodograph = if with_motion { hodograph_coords(&c) } else { Vec::new() };
-    let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, c.dynamics.is_some());
-    let (total, n) = (motion.map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
+    let dynamics = c.run_mode().dynamics();
+    let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, dynamics.is_some());
+    let (total, n) = (motion.as_ref().map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
     MemoryRefusal::check(total, selection.width() + n, memory_limit).map_err(|r| errors::resource_error(py, &r))?;
     // With `det`, det(D^c) at every position (and with it the first order,
     // and the watch for limit positions by its sign); without, its column
@@ -165,10 +157,9 @@ fn execute(
     let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
     let width = selection.width();
     let progress = Some(Progress::new(progress, total));
-    let mut rec = Recording::new(selection, width, n, total, order, progress, None)
-        .with_dynamics(&c.mechanism, c.dynamics.as_ref());
-    let mut state = c.state.clone();
-    let result = py.detach(|| c.move_through(&mut state, motion, &mut rec));
+    let mut rec =
+        Recording::new(selection, width, n, total, order, progress, None).with_dynamics(&c.mechanism, dynamics);
+    let result = py.detach(|| c.move_through(&mut state, motion.as_deref(), &mut rec));
     c.state = state;
     let interrupted = errors::interrupted(py, rec.raised(), result.is_ok())?;
     match result {
