@@ -302,3 +302,21 @@ def test_the_last_run_of_a_mechanism_does_not_keep_it_alive() -> None:
     del m
     gc.collect()
     assert gone() is None
+
+
+def test_a_mechanism_keeps_its_compiled_models_and_a_pickle_takes_none_along() -> None:
+    import pickle
+
+    m = fourbar()
+    first = m.run()
+    (kept,) = kept_models(m)
+    # Another mechanism of the same topology compiles its own.
+    other = fourbar()
+    other.run()
+    assert kept_models(other)[-1] is not kept
+    # A pickled mechanism leaves its compiled models behind, and compiles them again when it runs.
+    back = pickle.loads(pickle.dumps(m))
+    assert kept_models(back) == []
+    again = back.run()
+    assert_same(again, first._raw)
+    assert kept_models(back)[-1] is not kept
