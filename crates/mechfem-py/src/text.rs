@@ -121,7 +121,7 @@ pub fn run_variant(
 ///
 /// With `motion=False` only position 1 is computed (as `check_deck` does).
 /// `order` says which transfer functions to compute at every position (see
-/// [`transfer_order`]); quantities made from ones not computed are NaN.
+/// [`Compiled::transfer_order`]); quantities made from ones not computed are NaN.
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
 /// reason in `report["stop"]`; a deck mistake raises `DeckError`, a failure
