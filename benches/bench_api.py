@@ -97,7 +97,7 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     import numpy as np
 
     import mechfem
-    from mechfem import _core, compiled
+    from mechfem import _core
 
     print(f"{steps} steps")
     pos_deck, kin_deck = tmp / f"pos_{steps}.mec", tmp / f"kin_{steps}.mec"
@@ -147,9 +147,8 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
     kept_lk = kept_linkage()
 
     def forget_compiled() -> object:
-        # Mechanism.run keeps its compiled model per topology and per mechanism: both forgotten, untimed.
-        compiled._COMPILED.clear()
-        compiled._LAST.clear()
+        # The mechanism keeps its compiled models: forgotten, untimed.
+        vars(mech).pop("_kept", None)
         return mech
 
     kin_text = fourbar_deck(steps, True)

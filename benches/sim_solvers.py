@@ -136,8 +136,8 @@ class Mechfem(Solver):
 
     def _read(self, result: Any) -> Run:
         sim, stop = result.simulation, result.report.stop
-        # The Jacobians an implicit method formed, where the binding reports them.
-        jacobians = (getattr(getattr(result, "_raw", None), "simulation", None) or {}).get("jacobians")
+        # The Jacobians an implicit method formed.
+        jacobians = None if sim is None else sim.jacobians
         if stop is None:
             values = self.problem.read_mechfem(result.buffers)
             return Run(values, sim.evaluations, sim.steps, jacobians)

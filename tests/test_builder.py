@@ -20,7 +20,7 @@ import mechfem._core as _core
 from mechfem import building, deckio
 from mechfem.errors import DeckError
 
-EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*/*.mec") if _core.deck_files(p)["mode"] != "KIN OPT")
+EXAMPLES = sorted(p for p in (ROOT / "examples").glob("*/*.mec") if _core.deck_files(p).mode != "KIN OPT")
 
 
 def _same_bits(a: object, b: object) -> bool:

@@ -170,17 +170,19 @@ def test_a_named_model_compiles_once_per_topology(tmp_path: Path) -> None:
     from mechfem import compiled, deckio
 
     mech = mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR)))
-    compiled._COMPILED.clear()
+    assert compiled.kept(mech).models() == []
     first = mech.run(progress=False)
-    assert len(compiled._COMPILED) == 1
-    (kept,) = compiled._COMPILED.values()
+    (kept,) = compiled.kept(mech).models()
     # Other numbers: the same compiled model, and to the last bit the results of the deck text path.
     other = mech.variant({"E1.length": 1.1})
     second = other.run(progress=False)
-    assert list(compiled._COMPILED.values()) == [kept]
+    # The variant (a copy of the mechanism) starts with its original's compiled model.
+    assert compiled.kept(other).models() == [kept]
     text = deckio.write(other, other.motion, other.storage)
     want = mechfem._core.run_deck_text(text.text, text.path, ".")
     assert np.array_equal(second.coords, want.coords) and not np.array_equal(second.coords, first.coords)
     # Another deck (one more buffer): compiled anew.
-    mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR + "BUFDET 5\n", "det.mec"))).run(progress=False)
-    assert len(compiled._COMPILED) == 2
+    det = mechfem.Mechanism.from_deck(str(deck(tmp_path, FOURBAR + "BUFDET 5\n", "det.mec")))
+    det.run(progress=False)
+    (det_kept,) = compiled.kept(det).models()
+    assert det_kept is not kept

@@ -1,5 +1,6 @@
 """A named mechanism runs on its compiled model, kept per topology (mechfem.compiled): a run after a change of its
-numbers gives to the last bit what the deck text written for it gives, a change of its topology compiles it again,
+numbers gives to the last bit what the deck text written for it gives, a change of its topology compiles it again
+(the mechanism keeps its compiled models),
 and the type Mechanism.run declares is the result it gives (mechfem.RunResult)."""
 
 from __future__ import annotations
@@ -47,15 +48,16 @@ def assert_same(a: mechfem.Analysis, d: _core.Run) -> None:
     assert np.array_equal(np.asarray(a._raw.buffers), d.buffers, equal_nan=True)
 
 
-def kept_models() -> list[_core.Model]:
-    return list(compiled._COMPILED.values())
+def kept_models(m: Mechanism) -> list[_core.Model]:
+    """The compiled models ``m`` keeps, the most recently used last."""
+    return compiled.kept(m).models()
 
 
 def test_a_changed_value_runs_as_a_fresh_mechanism_with_it(monkeypatch: pytest.MonkeyPatch) -> None:
     m = fourbar()
     first = m.run()
     assert_same(first, deck_text_run(m))
-    kept = kept_models()[-1]
+    kept = kept_models(m)[-1]
 
     # No deck text is written for the same topology: the numbers go to the kept model.
     def no_text(*args: object, **kwargs: object) -> None:
@@ -67,7 +69,7 @@ def test_a_changed_value_runs_as_a_fresh_mechanism_with_it(monkeypatch: pytest.M
     m.set("B", (3.6, 2.4))
     m.set("crank.angle", 0.5)
     again = m.run()
-    assert kept_models()[-1] is kept
+    assert kept_models(m)[-1] is kept
     monkeypatch.undo()
 
     fresh = fourbar(b0x=4.2, crank=1.1, start=0.5)
@@ -81,8 +83,8 @@ def test_a_changed_value_runs_as_a_fresh_mechanism_with_it(monkeypatch: pytest.M
 def test_a_topology_change_compiles_again() -> None:
     m = fourbar()
     m.run()
-    before = len(compiled._COMPILED)
-    kept = kept_models()[-1]
+    before = len(kept_models(m))
+    kept = kept_models(m)[-1]
     storage = m.storage
     assert storage is not None
     changes = [
@@ -95,10 +97,10 @@ def test_a_topology_change_compiles_again() -> None:
     for change in changes:
         change()
         r = m.run()
-        assert kept_models()[-1] is not kept
-        kept = kept_models()[-1]
+        assert kept_models(m)[-1] is not kept
+        kept = kept_models(m)[-1]
         assert_same(r, deck_text_run(m))
-    assert len(compiled._COMPILED) == min(before + len(changes), compiled._KEEP)
+    assert len(kept_models(m)) == min(before + len(changes), compiled._KEEP)
 
 
 def test_a_row_without_value_takes_it_from_the_coordinates_it_has_now() -> None:
@@ -106,15 +108,15 @@ def test_a_row_without_value_takes_it_from_the_coordinates_it_has_now() -> None:
     # the same compiled model serves, and gives what the deck text with the new co-ordinates gives.
     m = fourbar(start=None, coupler=Keep())
     m.run()
-    kept = kept_models()[-1]
+    kept = kept_models(m)[-1]
     m.set("B", (3.4, 2.6))
     r = m.run()
-    assert kept_models()[-1] is kept
+    assert kept_models(m)[-1] is kept
     assert_same(r, deck_text_run(m))
     assert r.output("coupler.length")[0] == pytest.approx(math.hypot(2.4, 2.3))
     m.set("B0", (4.1, 0.0))
     assert_same(m.run(), deck_text_run(m))
-    assert kept_models()[-1] is kept
+    assert kept_models(m)[-1] is kept
 
 
 def crossing(by: float) -> Mechanism:
@@ -134,10 +136,10 @@ def test_an_element_turned_across_its_branch_tracks_its_angle_from_there() -> No
     # angle it tracks starts from its direction at the co-ordinates of the run, with the same compiled model.
     m = crossing(0.1)
     assert_same(m.run(), deck_text_run(m))
-    kept = kept_models()[-1]
+    kept = kept_models(m)[-1]
     m.set("B", (1.6, -0.1))
     r = m.run()
-    assert kept_models()[-1] is kept
+    assert kept_models(m)[-1] is kept
     assert_same(r, deck_text_run(m))
     assert_same(crossing(-0.1).run(), deck_text_run(m))
 
@@ -300,3 +302,21 @@ def test_the_last_run_of_a_mechanism_does_not_keep_it_alive() -> None:
     del m
     gc.collect()
     assert gone() is None
+
+
+def test_a_mechanism_keeps_its_compiled_models_and_a_pickle_takes_none_along() -> None:
+    import pickle
+
+    m = fourbar()
+    first = m.run()
+    (kept,) = kept_models(m)
+    # Another mechanism of the same topology compiles its own.
+    other = fourbar()
+    other.run()
+    assert kept_models(other)[-1] is not kept
+    # A pickled mechanism leaves its compiled models behind, and compiles them again when it runs.
+    back = pickle.loads(pickle.dumps(m))
+    assert kept_models(back) == []
+    again = back.run()
+    assert_same(again, first._raw)
+    assert kept_models(back)[-1] is not kept

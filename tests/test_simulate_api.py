@@ -154,6 +154,19 @@ def test_simulate_is_a_run_of_a_dynamic_motion() -> None:
     assert r.velocity("theta")[0] == -1.0
 
 
+def test_a_simulation_record_is_the_cores_and_survives_a_pickle() -> None:
+    import pickle
+
+    r = pendulum().simulate(1.0, 20, v0={"theta": -1.0}, atol=1e-9)
+    sim = r.simulation
+    assert isinstance(sim, Simulation) and isinstance(sim._run, mechfem._core.Simulation)
+    assert sim.steps > 0 and sim.evaluations >= sim.steps and sim.reached == pytest.approx(1.0)
+    assert sim.segments[0][1:3] == (0.0, pytest.approx(1.0)) and sim.event is None
+    back = pickle.loads(pickle.dumps(r))
+    assert back.simulation == sim and back.simulation is not sim
+    assert np.array_equal(back.coords, r.coords)
+
+
 def test_a_deck_read_back_keeps_the_simulation(tmp_path: Path) -> None:
     m = pendulum()
     motion = Motion.dynamic(PERIOD, 100, v0=0.25, rtol=1e-9, atol=1e-11, accuracy=1e-11)

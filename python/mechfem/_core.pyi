@@ -26,6 +26,9 @@ __all__ = [
     "describe_deck_text",
     "run_deck_variants",
     "Run",
+    "Check",
+    "DeckFiles",
+    "Simulation",
     "DesignModel",
     "Model",
     "ModelBuilder",
@@ -308,32 +311,90 @@ class StorageDict(TypedDict):
     animate: str | None
     pictures: list[PictureDict]
 
-@type_check_only
-class CheckDict(TypedDict):
-    n_coords: int
-    n_moving: int
-    n_prescribed: int
-    n_dependent: int
-    n_dof: int
-    det: float
-    coords: _F64
-    adjust: AdjustDict
-    model: ModelDict
+@final
+class Check:
+    """Position 1 of a deck, computed without its motion (``check_deck``)."""
 
-@type_check_only
-class SimulationDict(TypedDict):
+    @property
+    def n_coords(self) -> int: ...
+    @property
+    def n_moving(self) -> int: ...
+    @property
+    def n_prescribed(self) -> int: ...
+    @property
+    def n_dependent(self) -> int: ...
+    @property
+    def n_dof(self) -> int: ...
+    @property
+    def det(self) -> float:
+        """det(D^c) at position 1."""
+    @property
+    def coords(self) -> _F64:
+        """Every co-ordinate at position 1, in the deck's units."""
+    @property
+    def adjust(self) -> AdjustDict: ...
+    @property
+    def model(self) -> ModelDict: ...
+
+@final
+class Simulation:
     """What the integrator of a DYN SIM run did."""
 
-    method: str
-    rtol: float
-    atol: float
-    steps: int
-    """Steps accepted."""
-    rejected: int
-    evaluations: int
-    """Evaluations of the equations of motion (one Newton position each)."""
-    reached: float
-    """The time the integration reached."""
+    def __new__(
+        cls,
+        method: str,
+        rtol: float,
+        atol: float,
+        steps: int,
+        rejected: int,
+        evaluations: int,
+        jacobians: int,
+        reached: float,
+        segments: list[tuple[str, float, float, int, int]],
+        event: tuple[int, float, float, list[float]] | None,
+        tolerance_warning: str | None,
+    ) -> Simulation: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[
+        str,
+        float,
+        float,
+        int,
+        int,
+        int,
+        int,
+        float,
+        list[tuple[str, float, float, int, int]],
+        tuple[int, float, float, list[float]] | None,
+        str | None,
+    ]: ...
+    def __eq__(self, value: object, /) -> bool: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def rtol(self) -> float: ...
+    @property
+    def atol(self) -> float: ...
+    @property
+    def steps(self) -> int:
+        """Steps accepted."""
+    @property
+    def rejected(self) -> int: ...
+    @property
+    def evaluations(self) -> int:
+        """Evaluations of the equations of motion (one Newton position each)."""
+    @property
+    def jacobians(self) -> int: ...
+    @property
+    def reached(self) -> float:
+        """The time the integration reached."""
+    @property
+    def segments(self) -> list[tuple[str, float, float, int, int]]: ...
+    @property
+    def event(self) -> tuple[int, float, float, list[float]] | None: ...
+    @property
+    def tolerance_warning(self) -> str | None: ...
 
 @final
 class Run:
@@ -394,7 +455,7 @@ class Run:
     @property
     def storage(self) -> StorageDict: ...
     @property
-    def simulation(self) -> SimulationDict | None:
+    def simulation(self) -> Simulation | None:
         """What the integrator did, for a DYN SIM deck whose motion was simulated; None otherwise."""
 
 # --- the element catalogue and the solver's defaults (crates/mechfem-py/src/catalogue.rs) ---
@@ -420,19 +481,26 @@ class DefaultsDict(TypedDict):
 DEFAULTS: DefaultsDict
 
 def catalogue() -> list[CatalogueDict]: ...
-def check_deck(path: str | os.PathLike[str]) -> CheckDict: ...
+def check_deck(path: str | os.PathLike[str]) -> Check: ...
 
-@type_check_only
-class DeckFilesDict(TypedDict):
-    mode: str
-    """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
-    tables: list[str]
-    """The files of MOV_FUNC, LOADFUNC and TARGET tables as the deck names them (relative to its folder)."""
-    savedata: bool
-    pictures: int
-    animate: str | None
+@final
+class DeckFiles:
+    """What a deck reads and writes, from its text alone (``deck_files``)."""
 
-def deck_files(path: str | os.PathLike[str]) -> DeckFilesDict:
+    @property
+    def mode(self) -> str:
+        """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
+    @property
+    def tables(self) -> list[str]:
+        """The files of MOV_FUNC, LOADFUNC and TARGET tables as the deck names them (relative to its folder)."""
+    @property
+    def savedata(self) -> bool: ...
+    @property
+    def pictures(self) -> int: ...
+    @property
+    def animate(self) -> str | None: ...
+
+def deck_files(path: str | os.PathLike[str]) -> DeckFiles:
     """What the deck reads and writes, from its text alone (nothing compiled, no table read)."""
 
 def read_deck_text(path: str | os.PathLike[str]) -> str:

@@ -1,4 +1,4 @@
-"""The compiled model of a named :class:`~mechfem.Mechanism`, kept per topology.
+"""The compiled models of a named :class:`~mechfem.Mechanism`, kept by the mechanism per topology.
 
 A mechanism is built into the core's model (:func:`mechfem.building.build`, no deck text) once per *topology*:
 everything its deck would say apart from the numbers a compiled model takes anew at every run, the values of the
@@ -15,6 +15,10 @@ core), so a kept model gives to the last bit what the deck text gives whatever i
 
 A model that needs files beside it (a table motion, a load table) has no kept model: it is built for each run.
 
+The compiled models belong to the mechanism (:class:`Kept`, held in its ``_kept`` attribute): they go with it, a
+variant (a deep copy) starts with its original's, and a pickled mechanism takes none along (the other process
+compiles its own).
+
 Working out the topology walks the whole model, which costs about as much as a short run. So each mechanism also
 remembers what its last run read (:func:`_shape`): the same objects, with the attributes the numbering and the
 topology read from them. While that is unchanged, so are the numbering and the topology, and the run takes the model
@@ -25,9 +29,9 @@ from __future__ import annotations
 
 import math
 import threading
-import weakref
 from collections.abc import Hashable, Mapping
 from dataclasses import dataclass, fields
+from typing import Any
 
 import mechfem._core as _core
 from mechfem import building, deckio
@@ -43,10 +47,9 @@ Change = tuple[int, int, float]
 value) for PARA."""
 
 
-_COMPILED: dict[Hashable, _core.Model] = {}
-"""The kept models by topology, the least recently used first."""
-_KEEP = 16
-# Runs on several threads share the kept models.
+_KEEP = 4
+"""How many topologies a mechanism keeps compiled models for."""
+# Runs on several threads share a mechanism's kept models.
 _LOCK = threading.Lock()
 
 
@@ -59,7 +62,38 @@ class _Last:
     numbering: Numbering
 
 
-_LAST: weakref.WeakKeyDictionary[Mechanism, _Last] = weakref.WeakKeyDictionary()
+class Kept:
+    """The compiled models of one mechanism by topology (the least recently used first), and what its last run
+    read. A compiled model is immutable: copies of the mechanism share it."""
+
+    __slots__ = ("by_topology", "last")
+
+    def __init__(self, by_topology: dict[Hashable, _core.Model] | None = None) -> None:
+        self.by_topology: dict[Hashable, _core.Model] = {} if by_topology is None else by_topology
+        self.last: _Last | None = None
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> Kept:
+        # A variant has other objects, so what the last run read is not its own.
+        with _LOCK:
+            return Kept(dict(self.by_topology))
+
+    def __reduce__(self) -> tuple[type[Kept], tuple[()]]:
+        return (Kept, ())
+
+    def models(self) -> list[_core.Model]:
+        """The kept models, the least recently used first."""
+        with _LOCK:
+            return list(self.by_topology.values())
+
+
+def kept(mech: Mechanism) -> Kept:
+    """The compiled models ``mech`` keeps (none yet for a mechanism never run)."""
+    attributes = vars(mech)
+    with _LOCK:
+        out = attributes.get("_kept")
+        if not isinstance(out, Kept):
+            out = attributes["_kept"] = Kept()
+    return out
 
 
 def kept_model(
@@ -72,8 +106,9 @@ def kept_model(
     Building raises the deck reader's :class:`~mechfem.DeckError` (deck numbers, as ``_core.ModelBuilder`` gives
     it)."""
     shape = _shape(mech, motion, storage)
+    models = kept(mech)
     with _LOCK:
-        last = _LAST.get(mech)
+        last = models.last
     if last is not None and last.shape == shape:
         changes = _changes(last.numbering)
         if changes is None:
@@ -88,29 +123,29 @@ def kept_model(
     changes = _changes(numbering)
     if changes is None:
         return None
+    by_topology = models.by_topology
     with _LOCK:
-        kept = _COMPILED.get(key)
-        # The most recently used last; a key is compared once more only when it moves.
-        if kept is not None and next(reversed(_COMPILED.values())) is not kept:
-            _COMPILED.pop(key, None)
-            _COMPILED[key] = kept
-    if kept is not None:
+        model = by_topology.pop(key, None)
+        if model is not None:
+            # The most recently used last.
+            by_topology[key] = model
+    if model is not None:
         # The deck writer checks the motion's units at every run: so does a kept model.
         if motion is not None:
             check_units(motion, numbering.inputs, mech.units.angle)
     else:
         try:
-            kept, _ = building.build(mech, motion, storage)
+            model, _ = building.build(mech, motion, storage)
         except (KeyError, ValueError, TypeError):
             return None
         with _LOCK:
-            _COMPILED.pop(key, None)
-            while len(_COMPILED) >= _KEEP:
-                _COMPILED.pop(next(iter(_COMPILED)))
-            _COMPILED[key] = kept
+            by_topology.pop(key, None)
+            while len(by_topology) >= _KEEP:
+                by_topology.pop(next(iter(by_topology)))
+            by_topology[key] = model
     with _LOCK:
-        _LAST[mech] = _Last(shape, kept, numbering)
-    return kept, numbering, changes
+        models.last = _Last(shape, model, numbering)
+    return model, numbering, changes
 
 
 def _shape(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> tuple[object, ...]:
@@ -259,4 +294,4 @@ def _changes(nb: Numbering) -> list[Change] | None:
     return changes if math.isfinite(sum([v for _, _, v in changes])) else None
 
 
-__all__ = ["Change", "changes_of", "kept_model", "topology"]
+__all__ = ["Change", "Kept", "changes_of", "kept", "kept_model", "topology"]

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+import mechfem._core as _core
 from mechfem.units import symbol
 
 FloatArray = npt.NDArray[np.float64]
@@ -247,50 +248,88 @@ def summary_lines(series: DynamicSeries, time: FloatArray, said: Said | None = N
     return out
 
 
-@dataclass(frozen=True)
 class Simulation:
-    """What the integrator of a DYN SIM run did."""
+    """What the integrator of a DYN SIM run did: the compiled module's record (``_core.Simulation``, owned by Rust),
+    read through its attributes, with the print file's section (:meth:`lines`). Made, it warns of tolerances that
+    conflict (ACCURACY and INTTOL)."""
 
-    method: str
-    rtol: float
-    atol: float
-    steps: int
-    """Steps accepted."""
-    rejected: int
-    """Steps rejected (error estimate too large, or no position found)."""
-    evaluations: int
-    """Evaluations of the equations of motion (each one Newton position)."""
-    reached: float
-    """The time the simulation reached."""
-    jacobians: int = 0
-    """Jacobians the implicit method computed (each ``2 nf + 1`` of the evaluations, nf the inputs moving under the
-    forces)."""
-    segments: list[tuple[str, float, float, int, int]] = field(default_factory=list)
-    """Which method integrated which stretch: ``(method, from, to, steps, evaluations)`` in order."""
-    event: tuple[int, float, float, list[float]] | None = None
-    """Where STOPWHEN ended the simulation: ``(buffer, value, time, inputs)``; None when it did not."""
-    tolerance_warning: str | None = None
-    """Why ACCURACY and INTTOL conflict, if they do."""
+    __slots__ = ("_run",)
 
-    @classmethod
-    def from_core(cls, d: dict[str, Any]) -> Simulation:
-        warning = d.get("tolerance_warning")
-        if warning:
-            warnings.warn(warning, UserWarning, stacklevel=3)
-        event = d.get("event")
-        return cls(
-            str(d["method"]),
-            float(d["rtol"]),
-            float(d["atol"]),
-            int(d["steps"]),
-            int(d["rejected"]),
-            int(d["evaluations"]),
-            float(d["reached"]),
-            int(d.get("jacobians", 0)),
-            [(str(m), float(a), float(b), int(s), int(e)) for m, a, b, s, e in d.get("segments", [])],
-            None if event is None else (int(event[0]), float(event[1]), float(event[2]), [float(x) for x in event[3]]),
-            None if warning is None else str(warning),
+    def __init__(self, run: _core.Simulation) -> None:
+        self._run = run
+        if run.tolerance_warning:
+            warnings.warn(run.tolerance_warning, UserWarning, stacklevel=3)
+
+    def __repr__(self) -> str:
+        return (
+            f"Simulation(method={self.method!r}, rtol={self.rtol!r}, atol={self.atol!r}, steps={self.steps}, "
+            f"rejected={self.rejected}, evaluations={self.evaluations}, reached={self.reached!r})"
         )
+
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Simulation) and self._run == other._run
+
+    def __getstate__(self) -> _core.Simulation:
+        return self._run
+
+    def __setstate__(self, run: _core.Simulation) -> None:
+        self._run = run
+
+    @property
+    def method(self) -> str:
+        """The integrator, e.g. ``auto (Dormand-Prince 8(5,3) ...)``."""
+        return self._run.method
+
+    @property
+    def rtol(self) -> float:
+        """The relative tolerance."""
+        return self._run.rtol
+
+    @property
+    def atol(self) -> float:
+        """The absolute tolerance."""
+        return self._run.atol
+
+    @property
+    def steps(self) -> int:
+        """Steps accepted."""
+        return self._run.steps
+
+    @property
+    def rejected(self) -> int:
+        """Steps rejected (error estimate too large, or no position found)."""
+        return self._run.rejected
+
+    @property
+    def evaluations(self) -> int:
+        """Evaluations of the equations of motion (each one Newton position)."""
+        return self._run.evaluations
+
+    @property
+    def reached(self) -> float:
+        """The time the simulation reached."""
+        return self._run.reached
+
+    @property
+    def jacobians(self) -> int:
+        """Jacobians the implicit method computed (each ``2 nf + 1`` of the evaluations, nf the inputs moving under
+        the forces)."""
+        return self._run.jacobians
+
+    @property
+    def segments(self) -> list[tuple[str, float, float, int, int]]:
+        """Which method integrated which stretch: ``(method, from, to, steps, evaluations)`` in order."""
+        return self._run.segments
+
+    @property
+    def event(self) -> tuple[int, float, float, list[float]] | None:
+        """Where STOPWHEN ended the simulation: ``(buffer, value, time, inputs)``; None when it did not."""
+        return self._run.event
+
+    @property
+    def tolerance_warning(self) -> str | None:
+        """Why ACCURACY and INTTOL conflict, if they do."""
+        return self._run.tolerance_warning
 
     def lines(self, series: DynamicSeries | None, time: FloatArray, said: Said | None = None) -> list[str]:
         """The print file's SIMULATION section: the integrator and its work, and the energy balance at the end, with

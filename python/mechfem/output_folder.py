@@ -89,7 +89,7 @@ def plan(
     folder = deck.parent
     inputs = [
         (deck, "the deck itself"),
-        *((folder / name, f"the table file `{name}` the deck names") for name in files["tables"]),
+        *((folder / name, f"the table file `{name}` the deck names") for name in files.tables),
     ]
     stem = deck.stem
     outputs: list[tuple[Path, str]] = []
@@ -98,15 +98,15 @@ def plan(
         return Plan(deck, outdir, inputs, outputs)
     if data_format is not None:
         outputs.append((outdir / f"{stem}.prt", "print file"))
-        if files["savedata"]:
+        if files.savedata:
             outputs += [(outdir / f"{stem}.{data_format}", "data set"), (outdir / f"{stem}.notes.txt", "notes")]
-        if files["mode"] == "KIN OPT":
+        if files.mode == "KIN OPT":
             outputs.append((outdir / f"{stem}_opt.mec", "deck of the final design"))
     if media:
-        for k in range(1, files["pictures"] + 1):
+        for k in range(1, files.pictures + 1):
             outputs += [(outdir / f"{stem}_pic{k}.png", "picture"), (outdir / f"{stem}_pic{k}.svg", "picture")]
-        if files["animate"]:
-            outputs += [(outdir / f"{files['animate']}.{ext}", "animation") for ext in ("gif", "mp4")]
+        if files.animate:
+            outputs += [(outdir / f"{files.animate}.{ext}", "animation") for ext in ("gif", "mp4")]
     if report:
         outputs.append((outdir / f"{stem}.html", "report"))
     return Plan(deck, outdir, inputs, outputs)

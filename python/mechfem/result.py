@@ -15,7 +15,7 @@ import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -59,7 +59,7 @@ class RunResult(ResultTables):
         self._namespace = names
         if raw.simulation is not None:
             # Converted now: the conversion warns of tolerances that conflict, as the run returns.
-            self.__dict__["simulation"] = Simulation.from_core(cast(dict[str, Any], raw.simulation))
+            self.__dict__["simulation"] = Simulation(raw.simulation)
         super().__init__(raw)
 
     # -- what the run was
@@ -74,7 +74,7 @@ class RunResult(ResultTables):
         """What the integrator of a simulation did (method, tolerances, steps, rejected steps, evaluations of the
         equations of motion, the time reached); None for a run of a prescribed motion."""
         sim = self._raw.simulation
-        return None if sim is None else Simulation.from_core(cast(dict[str, Any], sim))
+        return None if sim is None else Simulation(sim)
 
     def __getstate__(self) -> dict[str, Any]:
         # The compiled module's run goes into a pickle as its values.
@@ -266,7 +266,7 @@ class PickledRun:
     report: _core.ReportDict
     model: _core.ModelDict
     storage: _core.StorageDict
-    simulation: _core.SimulationDict | None
+    simulation: _core.Simulation | None
 
     @classmethod
     def of(cls, run: _core.Run) -> PickledRun:
@@ -325,19 +325,19 @@ def run_result(deck: Path, d: _core.Run) -> RunResult:
     return RunResult(deck, d)
 
 
-def check_result(deck: Path, d: _core.CheckDict) -> CheckResult:
-    """Builds a :class:`CheckResult` from the compiled module's dictionary."""
+def check_result(deck: Path, d: _core.Check) -> CheckResult:
+    """The :class:`CheckResult` of the deck ``deck`` checked by the compiled module (``d``)."""
     return CheckResult(
         deck=deck,
-        n_coords=d["n_coords"],
-        n_moving=d["n_moving"],
-        n_prescribed=d["n_prescribed"],
-        n_dependent=d["n_dependent"],
-        n_dof=d["n_dof"],
-        det=d["det"],
-        coords=np.asarray(d["coords"], dtype=np.float64),
-        adjust=AdjustInfo.from_core(d["adjust"]),
-        model=_model_and_names(d["model"])[0],
+        n_coords=d.n_coords,
+        n_moving=d.n_moving,
+        n_prescribed=d.n_prescribed,
+        n_dependent=d.n_dependent,
+        n_dof=d.n_dof,
+        det=d.det,
+        coords=d.coords,
+        adjust=AdjustInfo.from_core(d.adjust),
+        model=_model_and_names(d.model)[0],
     )
 
 

@@ -16,16 +16,18 @@ use std::sync::OnceLock;
 use std::time::Duration;
 
 use mechfem_core::batch;
-use mechfem_deck::{Compiled, Diagnostics};
-use pyo3::exceptions::PyValueError;
+use mechfem_core::run::transfer_order_of;
+use mechfem_deck::{Change, Compiled, Diagnostics};
+use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
 
 use crate::builder::Source;
+use crate::errors;
 use crate::observe::Progress;
 use crate::run::{outcome_run, Outcome, Shared};
-use crate::text::{run_variant, Change};
+use crate::text::run_variant;
 
-/// A change as Python gives it: (kind, number, value); see [`Change::from_triple`].
+/// A change as Python gives it: (kind, number, value); see [`Change::of_kind`].
 type ChangeTriple = (u8, usize, f64);
 
 /// How often the calling thread looks for Ctrl-C while it waits for the others.
@@ -70,16 +72,16 @@ pub fn run_deck_variants(
     memory_limit: u64,
 ) -> PyResult<Vec<Py<PyAny>>> {
     let texts = texts.iter().map(Source::extract).collect::<PyResult<Vec<_>>>()?;
-    if let Some(k) = order.filter(|k| !(1..=2).contains(k)) {
-        return Err(pyo3::exceptions::PyValueError::new_err(format!("order must be 1, 2 or None, not {k}")));
-    }
+    transfer_order_of(order).map_err(|e| errors::value_error(&e))?;
     let variants = variants
         .into_iter()
         .map(|(t, changes)| {
+            // Python's batch runner numbers the texts it passes.
             if t >= texts.len() {
-                return Err(PyValueError::new_err(format!("variant of text {t}, but there are {} texts", texts.len())));
+                return Err(PyIndexError::new_err(t));
             }
-            Ok((t, changes.into_iter().map(Change::from_triple).collect::<PyResult<Vec<_>>>()?))
+            let changes = changes.into_iter().map(|(kind, number, value)| Change::of_kind(kind, number, value));
+            Ok((t, changes.collect::<Result<Vec<_>, _>>().map_err(|e| errors::value_error(&e))?))
         })
         .collect::<PyResult<Vec<_>>>()?;
     let compiled: Vec<OnceLock<Result<Compiled, Diagnostics>>> = texts.iter().map(|_| OnceLock::new()).collect();

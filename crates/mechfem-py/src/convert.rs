@@ -3,7 +3,7 @@
 //! deck's 1-based numbering here.
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
-use mechfem_core::run::{Block, SimReport};
+use mechfem_core::run::Block;
 use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
 use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
 use numpy::ndarray::{Array2, ShapeError};
@@ -449,25 +449,6 @@ pub fn storage<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyDict
         })
         .collect::<PyResult<Vec<_>>>()?;
     d.set_item("pictures", pictures)?;
-    Ok(d)
-}
-
-/// What a simulation's integrator did.
-pub fn simulation<'py>(py: Python<'py>, s: &SimReport) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("method", s.integration.integrator.name())?;
-    d.set_item("rtol", s.integration.rtol)?;
-    d.set_item("atol", s.integration.atol)?;
-    d.set_item("steps", s.steps)?;
-    d.set_item("rejected", s.rejected)?;
-    d.set_item("evaluations", s.evaluations)?;
-    d.set_item("jacobians", s.jacobians)?;
-    d.set_item("reached", s.reached)?;
-    let segments: Vec<(&str, f64, f64, usize, usize)> =
-        s.segments.iter().map(|g| (g.method.name(), g.from, g.to, g.steps, g.evaluations)).collect();
-    d.set_item("segments", segments)?;
-    d.set_item("event", s.event.as_ref().map(|e| (e.buffer, e.value, e.time, e.inputs.clone())))?;
-    d.set_item("tolerance_warning", s.tolerance_warning.as_deref())?;
     Ok(d)
 }
 

@@ -8,12 +8,11 @@
 
 use std::path::PathBuf;
 
-use mechfem_core::design::{slopes, Anchor, Design, DesignFailure, DesignRun, ExtremumSpec};
+use mechfem_core::design::{Anchor, Design, DesignFailure, DesignRun};
 use mechfem_core::worded;
-use mechfem_core::{DesignVar, Quantity, Sensitivity};
-use mechfem_deck::Compiled;
+use mechfem_core::DesignVar;
+use mechfem_deck::{Compiled, DesignSetup};
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -25,22 +24,12 @@ use crate::{convert, errors};
 #[pyclass(module = "mechfem._core")]
 pub struct DesignModel {
     compiled: Compiled,
-    vars: Vec<DesignVar>,
-    quantities: Vec<Quantity>,
-    extrema: Vec<ExtremumSpec>,
+    /// The design variables, the quantities read and the extrema.
+    setup: DesignSetup,
     /// The start design: its branch and position 1, once evaluated, or why
     /// it could not be.
     anchor: Option<Result<Anchor, String>>,
     runs: usize,
-}
-
-/// The quantity of buffer `number` of the deck.
-fn buffer(c: &Compiled, number: u32) -> PyResult<Quantity> {
-    c.buffers
-        .iter()
-        .find(|b| b.number == number)
-        .map(|b| b.quantity)
-        .ok_or_else(|| PyValueError::new_err(format!("the deck defines no buffer {number}")))
 }
 
 impl DesignModel {
@@ -53,37 +42,8 @@ impl DesignModel {
         buffers: &[u32],
         extrema: &[(u32, u32)],
     ) -> PyResult<DesignModel> {
-        let mech = &c.mechanism;
-        if c.motion.is_none() {
-            return Err(PyValueError::new_err("an optimisation needs a motion: its positions are where it looks"));
-        }
-        let vars = variables
-            .iter()
-            .map(|&(kind, number)| {
-                let k = number.checked_sub(1).ok_or_else(|| PyValueError::new_err("deck numbers start at 1"))?;
-                match kind {
-                    0 => Ok(DesignVar::Fixed(k)),
-                    1 => Ok(DesignVar::Row(k)),
-                    _ => Err(PyValueError::new_err(format!("a variable is of kind 0 or 1, not {kind}"))),
-                }
-            })
-            .collect::<PyResult<Vec<_>>>()?;
-        Sensitivity::new(mech, &vars).map_err(|e| errors::change_error(&e))?;
-        let quantities = buffers.iter().map(|&b| buffer(&c, b)).collect::<PyResult<Vec<_>>>()?;
-        let extrema = extrema
-            .iter()
-            .map(|&(b, r)| {
-                let reference = buffer(&c, r)?;
-                if slopes(reference).is_none() || mech.n_dof() != 1 {
-                    return Err(PyValueError::new_err(format!(
-                        "buffer {r} cannot locate extrema: it must be a position (BUFX0 of a co-ordinate or BUFE0 of \
-                         a dependent form parameter) of a mechanism with one degree of freedom"
-                    )));
-                }
-                Ok(ExtremumSpec { quantity: buffer(&c, b)?, reference })
-            })
-            .collect::<PyResult<Vec<_>>>()?;
-        Ok(DesignModel { compiled: c, vars, quantities, extrema, anchor: None, runs: 0 })
+        let setup = c.design_setup(variables, buffers, extrema).map_err(|e| errors::value_error(&e))?;
+        Ok(DesignModel { compiled: c, setup, anchor: None, runs: 0 })
     }
 }
 
@@ -111,7 +71,8 @@ impl DesignModel {
     /// The design's values as the deck gives them.
     fn start(&self) -> Vec<f64> {
         let s = &self.compiled.state;
-        self.vars
+        self.setup
+            .vars
             .iter()
             .map(|v| match *v {
                 DesignVar::Row(r) => s.target[r],
@@ -181,17 +142,7 @@ impl DesignModel {
 
 impl DesignModel {
     fn check(&self, values: &[f64]) -> PyResult<()> {
-        if values.len() != self.vars.len() {
-            return Err(PyValueError::new_err(format!(
-                "{} values for {} design variables",
-                values.len(),
-                self.vars.len()
-            )));
-        }
-        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-            return Err(PyValueError::new_err(format!("design value {k} is {}", values[k])));
-        }
-        Ok(())
+        self.setup.check(values).map_err(|e| errors::value_error(&e))
     }
 
     fn design(&self) -> Design<'_> {
@@ -201,9 +152,9 @@ impl DesignModel {
             base: &c.state,
             motion: c.motion.as_ref().expect("checked in new"),
             params: &c.params,
-            vars: &self.vars,
-            quantities: &self.quantities,
-            extrema: &self.extrema,
+            vars: &self.setup.vars,
+            quantities: &self.setup.quantities,
+            extrema: &self.setup.extrema,
         }
     }
 
@@ -211,7 +162,7 @@ impl DesignModel {
     fn dict<'py>(&self, py: Python<'py>, result: Result<DesignRun, DesignFailure>) -> PyResult<Bound<'py, PyDict>> {
         let c = &self.compiled;
         let motion = c.motion.as_ref().expect("checked in new");
-        let (nq, nv) = (self.quantities.len(), self.vars.len());
+        let (nq, nv) = (self.setup.quantities.len(), self.setup.vars.len());
         let d = PyDict::new(py);
         match result {
             Ok(run) => {
@@ -254,7 +205,7 @@ impl DesignModel {
 
     /// The dict of an infeasible design without positions.
     fn failed<'py>(&self, py: Python<'py>, kind: &str, why: String) -> PyResult<Bound<'py, PyDict>> {
-        let (nq, nv) = (self.quantities.len(), self.vars.len());
+        let (nq, nv) = (self.setup.quantities.len(), self.setup.vars.len());
         let d = PyDict::new(py);
         d.set_item("feasible", false)?;
         d.set_item("reason", why)?;

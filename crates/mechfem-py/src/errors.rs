@@ -157,10 +157,17 @@ pub fn parts_object<'py>(py: Python<'py>, worded: &Worded) -> PyResult<Bound<'py
     PyList::new(py, items)
 }
 
-/// The `ValueError` of a change of a model's numbers (or a design
-/// variable) that the model does not have, worded by the core.
-pub fn change_error(e: &DesignError) -> PyErr {
+/// The `ValueError` of an argument the core or the deck reader refuses
+/// (a change of a model's numbers, a design variable, an order of transfer
+/// functions), worded by them.
+pub fn value_error(e: &dyn std::error::Error) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// The `ValueError` of a change of a model's numbers that the model does
+/// not have, worded by the core.
+pub fn change_error(e: &DesignError) -> PyErr {
+    value_error(e)
 }
 
 /// Why element `element` (deck number) cannot be evaluated, as a dict:

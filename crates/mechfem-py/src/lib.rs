@@ -42,6 +42,7 @@ mod batch;
 mod builder;
 mod cache;
 mod catalogue;
+mod checked;
 mod convert;
 mod described_names;
 mod design;
@@ -50,16 +51,16 @@ mod model;
 mod names;
 mod observe;
 mod run;
+mod simulated;
 mod text;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use mechfem_core::run::{MemoryRefusal, Selection, SimReport};
-use mechfem_core::{InputMotion, Motion, Quantity, RunReport, TransferOrder};
+use mechfem_core::run::{Extent, MemoryRefusal, Selection, SimReport};
+use mechfem_core::{Quantity, RunReport, TransferOrder};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
-use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -141,22 +142,14 @@ fn execute(
     det: bool,
 ) -> PyResult<Ran> {
     let given = c.state.x.clone();
-    // Position 1 of a free-motion deck is computed as its run computes it:
-    // free motion may start in a limit position of its input.
-    let free_start = c
-        .motion
-        .as_ref()
-        .filter(|m| m.inputs.iter().any(|im| matches!(im, InputMotion::Free { .. })))
-        .map(|m| Motion { steps: 0, ..m.clone() });
-    let motion = if with_motion { c.motion.as_ref() } else { free_start.as_ref() };
-    if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
-        // Position 1 alone, as a run would compute it.
-        m.apply_initial_inputs(&c.mechanism, &mut c.state);
-    }
+    let extent = if with_motion { Extent::Motion } else { Extent::PositionOne };
+    let mut state = c.state.clone();
+    let motion = c.motion_for(&mut state, extent);
     let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let hodograph = if with_motion { hodograph_coords(&c) } else { Vec::new() };
-    let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, c.dynamics.is_some());
-    let (total, n) = (motion.map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
+    let dynamics = c.run_mode().dynamics();
+    let selection = Selection::deck(&c.mechanism, &buffers, &hodograph, dynamics.is_some());
+    let (total, n) = (motion.as_ref().map_or(0, |m| m.steps) + 1, c.mechanism.n_coords());
     MemoryRefusal::check(total, selection.width() + n, memory_limit).map_err(|r| errors::resource_error(py, &r))?;
     // With `det`, det(D^c) at every position (and with it the first order,
     // and the watch for limit positions by its sign); without, its column
@@ -165,10 +158,9 @@ fn execute(
     let order = selection.transfer_order().max(det.then_some(TransferOrder::First));
     let width = selection.width();
     let progress = Some(Progress::new(progress, total));
-    let mut rec = Recording::new(selection, width, n, total, order, progress, None)
-        .with_dynamics(&c.mechanism, c.dynamics.as_ref());
-    let mut state = c.state.clone();
-    let result = py.detach(|| c.move_through(&mut state, motion, &mut rec));
+    let mut rec =
+        Recording::new(selection, width, n, total, order, progress, None).with_dynamics(&c.mechanism, dynamics);
+    let result = py.detach(|| c.move_through(&mut state, motion.as_deref(), &mut rec));
     c.state = state;
     let interrupted = errors::interrupted(py, rec.raised(), result.is_ok())?;
     match result {
@@ -199,16 +191,16 @@ fn read_deck_text(py: Python<'_>, path: PathBuf) -> PyResult<String> {
 /// it saves a data set), `pictures` (how many) and `animate` (the ANIMATE
 /// name or None). A deck that cannot be read is a `DeckError`.
 #[pyfunction]
-fn deck_files(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+fn deck_files(py: Python<'_>, path: PathBuf) -> PyResult<checked::DeckFiles> {
     let deck = py.detach(|| mechfem_deck::parse_file(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
-    let d = PyDict::new(py);
-    d.set_item("mode", deck.mode.value.name())?;
-    d.set_item("tables", deck.table_files().iter().map(|f| f.value.as_str()).collect::<Vec<_>>())?;
     let storage = deck.storage.as_ref();
-    d.set_item("savedata", storage.is_some_and(|s| !s.savedata.is_empty()))?;
-    d.set_item("pictures", storage.map_or(0, |s| s.pictures.len()))?;
-    d.set_item("animate", storage.and_then(|s| s.animate.as_ref()).map(|a| a.value.as_str()))?;
-    Ok(d)
+    Ok(checked::DeckFiles {
+        mode: deck.mode.value.name(),
+        tables: deck.table_files().iter().map(|f| f.value.clone()).collect(),
+        savedata: storage.is_some_and(|s| !s.savedata.is_empty()),
+        pictures: storage.map_or(0, |s| s.pictures.len()),
+        animate: storage.and_then(|s| s.animate.as_ref()).map(|a| a.value.clone()),
+    })
 }
 
 /// Reads the deck at `path`, compiles it and computes position 1 only.
@@ -216,27 +208,26 @@ fn deck_files(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
 /// Returns the sizes of the model, det(D^c) and the co-ordinates at
 /// position 1, the adjustment that led there, and the model echo.
 #[pyfunction]
-fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<checked::Check> {
     let (compiled, slot) = load(py, &path)?;
     let Ran { compiled: c, given, rec, report, .. } = execute(py, compiled, false, None, u64::MAX, true)?;
     let mech = &c.mechanism;
     let n = mech.n_coords();
-    let at_1 = rec.coords[..n].to_vec();
+    let mut at_1 = rec.coords[..n].to_vec();
     let (model, _) = echo(py, &slot, &c, &given, &at_1, &rec)?;
-    let d = PyDict::new(py);
-    d.set_item("n_coords", n)?;
-    d.set_item("n_moving", mech.n_moving())?;
-    d.set_item("n_prescribed", mech.n_prescribed())?;
-    d.set_item("n_dependent", mech.n_dependent())?;
-    d.set_item("n_dof", mech.n_dof())?;
     let det = rec.columns.block("det").map_or(f64::NAN, |b| rec.table.get(0, b.start));
-    d.set_item("det", det * c.out_scale(Quantity::Det))?;
-    let mut at_1 = at_1;
     names::coords(&c, &mut at_1);
-    d.set_item("coords", PyArray1::from_vec(py, at_1))?;
-    d.set_item("adjust", convert::adjust(py, &report.adjust)?)?;
-    d.set_item(intern!(py, "model"), model)?;
-    Ok(d)
+    Ok(checked::Check {
+        n_coords: n,
+        n_moving: mech.n_moving(),
+        n_prescribed: mech.n_prescribed(),
+        n_dependent: mech.n_dependent(),
+        n_dof: mech.n_dof(),
+        det: det * c.out_scale(Quantity::Det),
+        coords: PyArray1::from_vec(py, at_1).unbind(),
+        adjust: convert::adjust(py, &report.adjust)?.unbind(),
+        model: model.unbind(),
+    })
 }
 
 /// Reads the deck at `path` and runs its whole motion.
@@ -297,7 +288,7 @@ fn run_deck(
         Some(key) => slot.report(py, key, report_dict)?,
         None => report_dict()?,
     };
-    let simulation = sim.as_ref().map(|s| convert::simulation(py, s)).transpose()?;
+    let simulation = sim.as_ref().map(|s| Py::new(py, simulated::Simulation::of(s))).transpose()?;
     let parts = run::DeckRun {
         table,
         width,
@@ -336,6 +327,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<model::Model>()?;
     m.add_class::<run::Run>()?;
+    m.add_class::<checked::Check>()?;
+    m.add_class::<checked::DeckFiles>()?;
+    m.add_class::<simulated::Simulation>()?;
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;

@@ -4,11 +4,11 @@
 
 use std::path::PathBuf;
 
-use mechfem_deck::Compiled;
+use mechfem_deck::{Change, Compiled};
 use pyo3::prelude::*;
 
 use crate::run::{Run, Shared};
-use crate::text::{compile_text, run_compiled, Change, Numbers};
+use crate::text::{compile_text, run_compiled};
 use crate::{cache, errors};
 
 /// A deck compiled once, to be run many times: `Model(text, path, base_dir)`
@@ -73,8 +73,9 @@ impl Model {
         order: Option<u8>,
         memory_limit: u64,
     ) -> PyResult<Run> {
-        let changes = changes.into_iter().map(Change::from_triple).collect::<PyResult<Vec<_>>>()?;
-        let numbers = Numbers::with(&self.compiled, &changes).map_err(|e| errors::change_error(&e))?;
+        let changes = changes.into_iter().map(|(kind, number, value)| Change::of_kind(kind, number, value));
+        let changes = changes.collect::<Result<Vec<_>, _>>().map_err(|e| errors::value_error(&e))?;
+        let numbers = self.compiled.numbers(&changes).map_err(|e| errors::change_error(&e))?;
         let text = (&self.compiled, &self.shared);
         run_compiled(py, text, numbers, &self.path, motion, progress, order, memory_limit)
     }

@@ -22,6 +22,7 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PySlice, PyTuple};
 
+use crate::simulated::Simulation;
 use crate::{convert, errors};
 
 /// A finished run of deck text with everything recorded, ready to be
@@ -121,7 +122,7 @@ pub struct Run {
     report: Py<PyDict>,
     model: Py<PyDict>,
     storage: Py<PyDict>,
-    simulation: Option<Py<PyDict>>,
+    simulation: Option<Py<Simulation>>,
 }
 
 #[pymethods]
@@ -237,8 +238,8 @@ impl Run {
 
     /// What the integrator of a simulation did (None for a prescribed motion).
     #[getter]
-    fn simulation<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyDict>> {
-        self.simulation.as_ref().map(|s| s.bind(py).clone())
+    fn simulation(&self, py: Python<'_>) -> Option<Py<Simulation>> {
+        self.simulation.as_ref().map(|s| s.clone_ref(py))
     }
 }
 
@@ -262,7 +263,7 @@ pub struct DeckRun<'py> {
     /// Report, model echo and storage.
     pub dicts: [Bound<'py, PyDict>; 3],
     /// The simulation report.
-    pub simulation: Option<Bound<'py, PyDict>>,
+    pub simulation: Option<Py<Simulation>>,
     /// Ctrl-C stopped it.
     pub interrupted: bool,
     /// The motion stopped early.
@@ -293,7 +294,7 @@ impl Run {
             report: report.unbind(),
             model: model.unbind(),
             storage: storage.unbind(),
-            simulation: r.simulation.map(Bound::unbind),
+            simulation: r.simulation,
         })
     }
 }
@@ -384,7 +385,7 @@ impl Shared {
             report: report.unbind(),
             model: model.unbind(),
             storage: self.storage.clone_ref(py),
-            simulation: r.sim.as_ref().map(|sim| convert::simulation(py, sim)).transpose()?.map(Bound::unbind),
+            simulation: r.sim.as_ref().map(|sim| Py::new(py, Simulation::of(sim))).transpose()?,
         })
     }
 }

@@ -18,12 +18,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
 use mechfem_core::dynamics::Integrator;
-use mechfem_core::run::MemoryRefusal;
-use mechfem_core::DesignError;
-use mechfem_core::{InputMotion, Quantity, State, TransferOrder};
+use mechfem_core::run::{Extent, MemoryRefusal};
+use mechfem_core::{InputMotion, Quantity, TransferOrder};
 use mechfem_deck::ast::{LoadDefKind, MotionKind};
-use mechfem_deck::{Compiled, Diagnostics};
-use pyo3::exceptions::PyValueError;
+use mechfem_deck::{Change, Compiled, Diagnostics, Numbers};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -36,65 +34,6 @@ use crate::{convert, errors};
 pub fn compile_text(text: &str, path: &Path, base_dir: &Path) -> Result<Compiled, Diagnostics> {
     let deck = mechfem_deck::parse_str(text, path)?;
     mechfem_deck::compile(&deck, base_dir)
-}
-
-/// The transfer functions a run computes: `Some(1)` first order, `Some(2)`
-/// first and second order, `None` what the deck's own buffers need (and
-/// det(D^c), so at least the first order), as `run_deck` computes them.
-///
-/// The solver predicts each position differently when it computes no second
-/// order (for one input), so only runs that compute the same orders give the
-/// same numbers to the last bit.
-pub fn transfer_order(c: &Compiled, order: Option<u8>) -> PyResult<TransferOrder> {
-    // Inverse dynamics is made from the second order.
-    if c.dynamics.is_some() && matches!(order, None | Some(1 | 2)) {
-        return Ok(TransferOrder::Second);
-    }
-    match order {
-        None => Ok(c
-            .buffers
-            .iter()
-            .filter_map(|b| b.quantity.transfer_order())
-            .fold(TransferOrder::First, TransferOrder::max)),
-        Some(1) => Ok(TransferOrder::First),
-        Some(2) => Ok(TransferOrder::Second),
-        Some(k) => Err(PyValueError::new_err(format!("order must be 1, 2 or None, not {k}"))),
-    }
-}
-
-/// The numbers of one run of a compiled deck: its state (co-ordinates and
-/// prescribed values) and the PARA value of each prescribed row, as the
-/// deck gives them with a variant's changes made. Everything else of the
-/// compiled deck is the same for every run of it, and shared.
-pub struct Numbers {
-    /// Co-ordinates and prescribed values to start from.
-    pub state: State,
-    /// PARA value of each prescribed row (None for an input without one).
-    pub para: Vec<Option<f64>>,
-}
-
-impl Numbers {
-    /// The deck's own numbers with `changes` made; an error names a
-    /// co-ordinate or row the deck does not have.
-    pub fn with(c: &Compiled, changes: &[Change]) -> Result<Numbers, DesignError> {
-        let mut n = Numbers { state: c.state.clone(), para: c.prescribed.iter().map(|r| r.para).collect() };
-        changes.iter().try_for_each(|ch| ch.in_core_units(c).apply(&mut n))?;
-        // What the deck reader derives from the co-ordinates, derived from
-        // the new ones: the angles each element tracks from its directions,
-        // and the value of every row the deck gives none. Co-ordinates at
-        // which an element cannot be evaluated are left for the run, which
-        // says so at position 1. Co-ordinates equal to the deck's own (a
-        // named model run again with its points unmoved) keep what the
-        // reader derived from them.
-        let moved = n.state.x.iter().zip(&c.state.x).any(|(a, b)| a.to_bits() != b.to_bits());
-        if moved {
-            if let Ok(mut start) = c.mechanism.start_state(n.state.x.clone()) {
-                start.set_given(&n.para);
-                n.state = start;
-            }
-        }
-        Ok(n)
-    }
 }
 
 /// Runs a compiled deck with `numbers` (its motion only when
@@ -112,23 +51,21 @@ pub fn execute(
     memory_limit: u64,
 ) -> (Outcome, Option<PyErr>) {
     let Numbers { mut state, para } = numbers;
-    if let (false, Some(m)) = (with_motion, c.motion.as_ref()) {
-        // Position 1 alone, as a run would compute it.
-        m.apply_initial_inputs(&c.mechanism, &mut state);
-    }
+    let extent = if with_motion { Extent::Motion } else { Extent::PositionOne };
+    let motion = c.motion_for(&mut state, extent);
     let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let given = state.x.clone();
-    let motion = if with_motion { c.motion.as_ref() } else { None };
-    let steps = motion.map_or(0, |m| m.steps);
-    let full = Full::new(&c.mechanism, c.dynamics.is_some(), &quantities, steps + 1);
+    let steps = motion.as_ref().map_or(0, |m| m.steps);
+    let dynamics = c.run_mode().dynamics();
+    let full = Full::new(&c.mechanism, dynamics.is_some(), &quantities, steps + 1);
     let (width, n) = (full.width(), c.mechanism.n_coords());
     if let Err(refusal) = MemoryRefusal::check(steps + 1, width + n, memory_limit) {
         return (Outcome::Refused(refusal), None);
     }
     let layout_width = full.layout.width();
     let mut rec = Recording::new(full, layout_width, n, steps + 1, Some(order), progress, Some(cancel))
-        .with_dynamics(&c.mechanism, c.dynamics.as_ref());
-    let result = c.move_through(&mut state, motion, &mut rec);
+        .with_dynamics(&c.mechanism, dynamics);
+    let result = c.move_through(&mut state, motion.as_deref(), &mut rec);
     let raised = rec.raised();
     let outcome = match result {
         Ok((report, sim)) => {
@@ -170,70 +107,13 @@ pub fn run_variant(
         Ok(c) => c,
         Err(d) => return (Outcome::Deck(d.clone()), None),
     };
-    let numbers = match Numbers::with(c, changes) {
+    let numbers = match c.numbers(changes) {
         Ok(n) => n,
         Err(e) => return (Outcome::BadChange(e), None),
     };
     // `order` has been checked by the caller.
-    let order = transfer_order(c, order).unwrap_or(TransferOrder::Second);
+    let order = c.transfer_order(order).unwrap_or(TransferOrder::Second);
     execute(c, numbers, true, order, cancel, progress, memory_limit)
-}
-
-/// A change of one number of a compiled deck, as a variant of a design
-/// study makes it: the value of a co-ordinate (its XFIX or XMOV value) or of
-/// a prescribed row (its PARA value), both numbered as in the deck.
-#[derive(Debug, Clone, Copy)]
-pub enum Change {
-    /// Co-ordinate `number` gets `value`.
-    Coord(usize, f64),
-    /// Prescribed row `number` gets `value`.
-    Row(usize, f64),
-}
-
-impl Change {
-    /// From the Python triple (kind, number, value): kind 0 a co-ordinate, 1 a prescribed row.
-    pub fn from_triple((kind, number, value): (u8, usize, f64)) -> PyResult<Change> {
-        match kind {
-            0 => Ok(Change::Coord(number, value)),
-            1 => Ok(Change::Row(number, value)),
-            _ => Err(PyValueError::new_err(format!("a change is of kind 0 (co-ordinate) or 1 (row), not {kind}"))),
-        }
-    }
-
-    /// The change with its value in the core's SI units: Python gives a
-    /// model's numbers in the model's own units, as its deck does.
-    fn in_core_units(self, c: &Compiled) -> Change {
-        if c.units.is_identity() {
-            return self;
-        }
-        match self {
-            Change::Coord(number, v) => Change::Coord(number, c.units.to_core(c.dims.coord(number.wrapping_sub(1)), v)),
-            Change::Row(number, v) => {
-                let row = c.dims.form(mechfem_core::FormRef::Prescribed(number.wrapping_sub(1)));
-                Change::Row(number, c.units.to_core(row, v))
-            }
-        }
-    }
-
-    /// Makes the change in `n`, as if the deck had said so (the model echo
-    /// included); an error when the deck has no such co-ordinate or row.
-    pub fn apply(self, n: &mut Numbers) -> Result<(), DesignError> {
-        // Number 0 is said as such (index usize::MAX, see DesignError).
-        let index = |number: usize| number.wrapping_sub(1);
-        match self {
-            Change::Coord(number, value) => {
-                let x = n.state.x.get_mut(index(number));
-                *x.ok_or(DesignError::NoCoordinate(index(number)))? = value;
-            }
-            Change::Row(number, value) => {
-                let k = Some(index(number)).filter(|&k| k < n.para.len() && k < n.state.target.len());
-                let k = k.ok_or(DesignError::NoRow(index(number)))?;
-                n.state.target[k] = value;
-                n.para[k] = Some(value);
-            }
-        }
-        Ok(())
-    }
 }
 
 /// Runs the deck `text` (named `path` in messages; MOV_FUNC files are read
@@ -241,7 +121,7 @@ impl Change {
 ///
 /// With `motion=False` only position 1 is computed (as `check_deck` does).
 /// `order` says which transfer functions to compute at every position (see
-/// [`transfer_order`]); quantities made from ones not computed are NaN.
+/// [`Compiled::transfer_order`]); quantities made from ones not computed are NaN.
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
 /// reason in `report["stop"]`; a deck mistake raises `DeckError`, a failure
@@ -264,7 +144,7 @@ pub fn run_deck_text(
 ) -> PyResult<Run> {
     let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
     crate::names::warn(py, &c)?;
-    let numbers = Numbers::with(&c, &[]).map_err(|e| errors::change_error(&e))?;
+    let numbers = c.numbers(&[]).map_err(|e| errors::value_error(&e))?;
     let shared = Shared::new(py, &c)?;
     run_compiled(py, (&c, &shared), numbers, &path, motion, progress, order, memory_limit)
 }
@@ -285,7 +165,7 @@ pub fn run_compiled(
     memory_limit: u64,
 ) -> PyResult<Run> {
     let c = text.0;
-    let order = transfer_order(c, order)?;
+    let order = c.transfer_order(order).map_err(|e| errors::value_error(&e))?;
     let total = if motion { c.motion.as_ref().map_or(0, |m| m.steps) + 1 } else { 1 };
     let cancel = AtomicBool::new(false);
     let (outcome, raised) =

@@ -2,19 +2,24 @@
 //! keep: what every front end (the deck reader's compiled model, the
 //! Python binding, the batch runner) asks before and when it runs.
 
+use std::borrow::Cow;
 use std::fmt;
 
 use crate::dynamics::{Dynamics, Integration};
 use crate::run::{run, simulate, Observer, RunReport, SimReport};
-use crate::{Mechanism, Motion, Params, SolveError, State};
+use crate::{InputMotion, Mechanism, Motion, Params, SolveError, State, TransferOrder};
 
 /// How a model moves through its motion.
 #[derive(Debug, Clone, Copy)]
 pub enum RunMode<'a> {
-    /// Kinematically, the inputs prescribed (modes `KIN ANA`, `KIN OPT`, and
-    /// `DYN ANA`, whose inverse dynamics its observer evaluates at every
-    /// position).
+    /// Kinematically, the inputs prescribed (modes `KIN ANA` and `KIN OPT`).
     Kinematic,
+    /// Kinematically, with the inverse dynamics of `dynamics` at every
+    /// position (mode `DYN ANA`), which the run's observer evaluates.
+    Inverse {
+        /// The masses and loads.
+        dynamics: &'a Dynamics,
+    },
     /// Simulated: the degrees of freedom the motion leaves to the forces
     /// move under `dynamics`, integrated within `integration` (mode `DYN SIM`).
     Simulated {
@@ -23,6 +28,72 @@ pub enum RunMode<'a> {
         /// The integrator's tolerances.
         integration: &'a Integration,
     },
+}
+
+impl<'a> RunMode<'a> {
+    /// The masses and loads whose dynamic quantities the run records (None
+    /// for a kinematic run).
+    pub fn dynamics(&self) -> Option<&'a Dynamics> {
+        match *self {
+            RunMode::Kinematic => None,
+            RunMode::Inverse { dynamics } | RunMode::Simulated { dynamics, .. } => Some(dynamics),
+        }
+    }
+
+    /// The transfer functions a run computes: `asked` (None: `needed`, what
+    /// the recorded quantities need, and at least the first order for
+    /// det(D^c)); a run with dynamics always computes the second order, which
+    /// its accelerations are made from.
+    pub fn transfer_order(&self, asked: Option<TransferOrder>, needed: TransferOrder) -> TransferOrder {
+        if self.dynamics().is_some() {
+            return TransferOrder::Second;
+        }
+        asked.unwrap_or(needed.max(TransferOrder::First))
+    }
+}
+
+/// The transfer functions of `degree`: 1 the first order, 2 also the
+/// second; None for "what the recorded quantities need".
+pub fn transfer_order_of(degree: Option<u8>) -> Result<Option<TransferOrder>, OrderError> {
+    match degree {
+        None => Ok(None),
+        Some(1) => Ok(Some(TransferOrder::First)),
+        Some(2) => Ok(Some(TransferOrder::Second)),
+        Some(k) => Err(OrderError(k)),
+    }
+}
+
+/// An order of transfer functions other than 1 and 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("order must be 1, 2 or None, not {0}")]
+pub struct OrderError(pub u8);
+
+/// How far a run goes: through its whole motion, or to position 1 alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Extent {
+    /// Every position of the motion.
+    Motion,
+    /// Position 1 alone, computed as a run of the motion computes it.
+    PositionOne,
+}
+
+/// The motion a run of `extent` moves through, with `state` made ready for
+/// it: `motion` itself for the whole motion; for position 1 alone the
+/// inputs set to their start values and no motion, except a free motion
+/// (none of its steps), which may start in a limit position of its input.
+pub fn motion_of<'m>(
+    mech: &Mechanism,
+    state: &mut State,
+    motion: Option<&'m Motion>,
+    extent: Extent,
+) -> Option<Cow<'m, Motion>> {
+    let m = motion?;
+    if extent == Extent::Motion {
+        return Some(Cow::Borrowed(m));
+    }
+    m.apply_initial_inputs(mech, state);
+    let free = m.inputs.iter().any(|im| matches!(im, InputMotion::Free { .. }));
+    free.then(|| Cow::Owned(Motion { steps: 0, ..m.clone() }))
 }
 
 /// Moves the mechanism through `motion` (position 1 alone without one) as

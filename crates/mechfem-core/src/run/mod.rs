@@ -10,7 +10,8 @@
 //!   run with the design sensitivities and the extrema of chosen quantities,
 //!   on the assembly branch of the start design (`branch.rs`).
 //!
-//! [`move_through`] (`dispatch.rs`) runs or simulates as a [`RunMode`] says,
+//! [`move_through`] (`dispatch.rs`) runs or simulates as a [`RunMode`] says
+//! (over the motion [`motion_of`] gives for an [`Extent`]),
 //! and [`MemoryRefusal`] refuses a run whose results would not fit in memory.
 //!
 //! Every mode hands its positions to an [`Observer`] and ends with a
@@ -31,7 +32,7 @@ mod record;
 mod selection;
 mod simulate;
 
-pub use dispatch::{move_through, MemoryRefusal, RunMode};
+pub use dispatch::{motion_of, move_through, transfer_order_of, Extent, MemoryRefusal, OrderError, RunMode};
 pub use inverse::InverseDynamics;
 pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
