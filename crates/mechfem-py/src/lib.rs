@@ -51,6 +51,7 @@ mod names;
 mod observe;
 mod run;
 mod text;
+mod tolerance;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -339,5 +340,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
+    m.add_function(wrap_pyfunction!(tolerance::deck_tolerance, m)?)?;
     Ok(())
 }
