@@ -16,6 +16,9 @@ returns one number) is summarised over the variants that ran through the whole m
     )
     tol.spread["swing"].std, tol.spread["swing"].percentiles[95]
     print(tol)
+
+The linear bands of the same tolerances from the exact design sensitivities, in one run, are
+:func:`~mechfem.tolerance_bands.tolerance_bands` (re-exported here).
 """
 
 from __future__ import annotations
@@ -29,6 +32,7 @@ import numpy as np
 
 from mechfem.batch import Measure, Progress, Study, sweep
 from mechfem.model import Coordinate, Mechanism, Motion, Point, Row
+from mechfem.tolerance_bands import Band, Share, ToleranceBands, tolerance_bands
 
 
 @dataclass
@@ -169,4 +173,4 @@ def tolerance_study(
     return ToleranceStudy(table, spread, int(n - complete.sum()), dict(tolerances), distribution)
 
 
-__all__ = ["Spread", "ToleranceStudy", "tolerance_study"]
+__all__ = ["Band", "Share", "Spread", "ToleranceBands", "ToleranceStudy", "tolerance_bands", "tolerance_study"]

@@ -146,8 +146,11 @@ class ToleranceBands:
         return "\n".join(lines)
 
     def to_pandas(self) -> Any:
-        """One row per position: the inputs, then for every quantity its value, worst-case and RSS band."""
-        import pandas as pd
+        """One row per position: the inputs, then for every quantity its value, worst-case and RSS band. Needs pandas
+        (``pip install 'mechfem[pandas]'``)."""
+        from mechfem import optional
+
+        pd = optional.pandas()
 
         columns: dict[str, FloatArray] = {n: self.inputs[:, j] for j, n in enumerate(self.input_names)}
         for name, b in self.bands.items():
@@ -239,7 +242,9 @@ def _dimension(mech: Mechanism, nb: Any, name: str) -> tuple[str, int]:
     if isinstance(obj, FormParameter):
         rows = [r for r in nb.prescribed if r.terms == ((1.0, obj),)]
         if not rows:
-            raise ValueError(f"{name!r} is not prescribed: only a prescribed value or a fixed co-ordinate has a tolerance")
+            raise ValueError(
+                f"{name!r} is not prescribed: only a prescribed value or a fixed co-ordinate has a tolerance"
+            )
         obj = rows[0]
     if isinstance(obj, Coordinate):
         if not obj.fixed:
@@ -303,9 +308,9 @@ def tolerance_bands(
     out = _of_core(d, list(dims), [str(n) for n in names])
     inputs = nb.inputs
     out.input_names = [r.name for r in inputs]
-    for b in out.bands.values():
-        b.source = None
-        b.buffer = None
+    for band in out.bands.values():
+        band.source = None
+        band.buffer = None
     out.tolerances = dims
     return out
 
