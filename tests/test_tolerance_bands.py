@@ -15,8 +15,8 @@ import pytest
 import mechfem
 from conftest import ROOT
 from mechfem import Driven, Mechanism, Motion, Output
+from mechfem.bands import deck_bands, tolerance_bands
 from mechfem.output import print_file_lines
-from mechfem.tolerance_bands import deck_bands, tolerance_bands
 
 DECK = ROOT / "crates/mechfem-deck/tests/decks/valid/tolerance_fourbar.mec"
 MOTION = Motion.by(24, 2 * math.pi)
@@ -158,3 +158,27 @@ def test_linear_bands_against_the_monte_carlo_study() -> None:
     assert deviation <= psi.worst[k] * 1.01
     # 400 draws estimate a standard deviation to about 3%.
     assert spread.std * math.sqrt(3) == pytest.approx(psi.rss[k], rel=0.1)
+
+
+def test_dyn_ana_bands_are_those_of_its_kinematics(tmp_path: Path) -> None:
+    text = DECK.read_text()
+    dyn = tmp_path / "dyn.mec"
+    dyn.write_text(text.replace("KIN ANA", "DYN ANA", 1).replace("MOVEMENT", "DYNAMICS\nMASS 1 1.0 5 0\nMOVEMENT", 1))
+    kin, dyn_bands = deck_bands(mechfem.run_deck(DECK)), deck_bands(mechfem.run_deck(dyn))
+    assert kin is not None and dyn_bands is not None
+    for name, band in kin.bands.items():
+        assert np.array_equal(band.sensitivity, dyn_bands[name].sensitivity)
+        assert np.array_equal(band.worst, dyn_bands[name].worst)
+
+
+def test_a_failed_band_run_leaves_the_print_file_standing(monkeypatch: pytest.MonkeyPatch) -> None:
+    from mechfem import bands as module
+    from mechfem.errors import MechfemError
+
+    def fail(*_: object) -> None:
+        raise MechfemError("no sensitivities here")
+
+    monkeypatch.setattr(module._core, "deck_tolerance", fail)
+    lines = print_file_lines(mechfem.run_deck(DECK))
+    at = lines.index("TOLERANCE BANDS")
+    assert lines[at + 2] == "  no sensitivities here" and "LIMIT POSITIONS" in lines

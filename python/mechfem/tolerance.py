@@ -18,7 +18,7 @@ returns one number) is summarised over the variants that ran through the whole m
     print(tol)
 
 The linear bands of the same tolerances from the exact design sensitivities, in one run, are
-:func:`~mechfem.tolerance_bands.tolerance_bands` (re-exported here).
+:func:`~mechfem.bands.tolerance_bands` (re-exported here).
 """
 
 from __future__ import annotations
@@ -30,9 +30,9 @@ from typing import Any, Literal
 
 import numpy as np
 
+from mechfem.bands import Band, Share, ToleranceBands, tolerance_bands
 from mechfem.batch import Measure, Progress, Study, sweep
 from mechfem.model import Coordinate, Mechanism, Motion, Point, Row
-from mechfem.tolerance_bands import Band, Share, ToleranceBands, tolerance_bands
 
 
 @dataclass

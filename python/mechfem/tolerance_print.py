@@ -1,12 +1,12 @@
 """The TOLERANCE BANDS section of a deck run's print file: for every BUFTOL, the largest band over the motion,
 where it occurs (the inputs there, in the deck's names and units) and every toleranced dimension's share of it
-at that position, largest first (:mod:`mechfem.tolerance_bands`)."""
+at that position, largest first (:mod:`mechfem.bands`)."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mechfem.tolerance_bands import ToleranceBands, bands_of
+from mechfem.bands import ToleranceBands, bands_of
 
 if TYPE_CHECKING:
     from mechfem.result import RunResult
@@ -48,8 +48,14 @@ def band_lines(bands: ToleranceBands) -> list[str]:
 
 
 def tolerance_lines(result: RunResult) -> list[str]:
-    """The section for a deck run with a TOLERANCE block; nothing for any other run."""
-    bands = bands_of(result)
+    """The section for a deck run with a TOLERANCE block; nothing for any other run. The bands take one more run
+    of the motion; when it fails, the section says why and the rest of the print file stands."""
+    from mechfem.errors import MechfemError
+
+    try:
+        bands = bands_of(result)
+    except MechfemError as e:
+        return ["TOLERANCE BANDS", "  not computed: the run with the design sensitivities failed:", f"  {e}", ""]
     return [] if bands is None or not bands.bands else band_lines(bands)
 
 

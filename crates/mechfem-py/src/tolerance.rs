@@ -2,7 +2,7 @@
 //! every BUFTOL's buffer to every toleranced dimension at every position,
 //! from one run of [`mechfem_core::design::evaluate`], in the deck's units.
 //! The bands themselves (worst case, root sum of squares, shares) are
-//! Python's arithmetic on these (`mechfem.tolerance_bands`).
+//! Python's arithmetic on these (`mechfem.bands`).
 
 use std::path::PathBuf;
 
