@@ -49,9 +49,8 @@ pub fn deck_tolerance<'py>(
     let nj = c.mechanism.n_dof();
     quantities.extend((0..nj).map(Quantity::Input));
     let mut state = c.state.clone();
-    let run = py
-        .detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, &vars, &quantities, &[]))
-        .map_err(|e| {
+    let run =
+        py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, &vars, &quantities, &[])).map_err(|e| {
             let mut at = c.state.clone();
             errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut at, &c.error_as_written(&e))
         })?;
