@@ -182,3 +182,23 @@ def test_a_failed_band_run_leaves_the_print_file_standing(monkeypatch: pytest.Mo
     lines = print_file_lines(mechfem.run_deck(DECK))
     at = lines.index("TOLERANCE BANDS")
     assert lines[at + 2] == "  no sensitivities here" and "LIMIT POSITIONS" in lines
+
+
+def test_a_mechanism_that_cannot_assemble_is_told_in_its_own_words() -> None:
+    from test_python_words import speaks_python
+
+    broken = fourbar()
+    broken.set("rocker.length", 10.0)  # longer than the other three links together
+    with pytest.raises(mechfem.MechfemError) as err:
+        tolerance_bands(broken, {"crank.length": 0.01}, ["psi"], motion=MOTION)
+    speaks_python(str(err.value))
+    with pytest.raises(ValueError, match="moves: its place follows"):
+        tolerance_bands(fourbar(), {"A.x": 0.01}, ["psi"], motion=MOTION)
+
+
+def test_bands_of_a_motion_that_stops_are_those_up_to_there() -> None:
+    short = fourbar()
+    short.set("rocker.length", 0.5)  # not a crank-rocker: the crank meets a limit position
+    with pytest.warns(mechfem.IncompleteRunWarning, match="stopped after position 6 of 25"):
+        bands = tolerance_bands(short, {"crank.length": 0.01}, ["psi"], motion=MOTION)
+    assert bands.positions == 6 and bands["psi"].worst.shape == (6,)

@@ -274,6 +274,7 @@ def tolerance_bands(
     evaluated by the deck reader and the core in one run of the motion (default the mechanism's), with the exact
     first-order design sensitivities at every position; see the module's docstring for the formulas."""
     from mechfem import deckio
+    from mechfem.errors import MechfemError
     from mechfem.optimise import _Deck
 
     motion = motion or mechanism.motion
@@ -290,6 +291,12 @@ def tolerance_bands(
     deck = _Deck(mechanism)
     sources = [deck.buffer(q) for q in quantities]
     written = deckio.write(mechanism, motion, deck.storage)
+    if written.simulated:
+        raise ValueError(
+            "tolerance bands need a prescribed motion: the forces move "
+            + ", ".join(repr(n) for n in written.simulated)
+            + " (a Dynamic motion), and a simulation has no design sensitivities"
+        )
     nb = written.numbering
     lines = ["TOLERANCE"]
     for name, t in dims.items():
@@ -301,9 +308,24 @@ def tolerance_bands(
     head, end = written.text.rsplit("END\n", 1)
     text = head + "\n".join(lines) + "\nEND\n" + end
     with deckio.tables_dir(written.tables) as base:
-        d = _core.deck_tolerance(text, written.path, base)
+        try:
+            d = _core.deck_tolerance(text, written.path, base)
+        except MechfemError as e:
+            # The core names the deck's numbers; the model's names are the user's.
+            raise deckio.translate(e, written, mechanism.name) from None
     if d is None:
         raise ValueError(f"{mechanism.name!r} gave no tolerance bands")
+    if int(d["positions"]) < motion.steps + 1:
+        import warnings
+
+        from mechfem.errors import IncompleteRunWarning
+
+        warnings.warn(
+            f"the motion stopped after position {d['positions']} of {motion.steps + 1} (run the mechanism to see "
+            "why): the bands are those of the positions up to there",
+            IncompleteRunWarning,
+            stacklevel=2,
+        )
     names = [q if isinstance(q, str) else getattr(q, "name", str(q)) for q in quantities]
     out = _of_core(d, list(dims), [str(n) for n in names])
     inputs = nb.inputs
