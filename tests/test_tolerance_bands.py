@@ -202,3 +202,21 @@ def test_bands_of_a_motion_that_stops_are_those_up_to_there() -> None:
     with pytest.warns(mechfem.IncompleteRunWarning, match="stopped after position 6 of 25"):
         bands = tolerance_bands(short, {"crank.length": 0.01}, ["psi"], motion=MOTION)
     assert bands.positions == 6 and bands["psi"].worst.shape == (6,)
+
+
+def test_python_bands_are_in_the_models_units() -> None:
+    # The four-bar in mm and degrees: tolerances in mm, psi and its band in degrees, sensitivities in deg/mm.
+    m = Mechanism("fourbar", units={"length": "mm"}, angle="deg")
+    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 40.0, 0.0)
+    A, B = m.point("A", 10.0, 0.0), m.point("B", 35.0, 25.0)
+    m.bar("crank", A0, A, length=10.0, angle=Driven(start=0.0, name="phi"))
+    m.bar("coupler", A, B, length=35.0)
+    m.bar("rocker", B0, B, length=30.0, angle=Output("psi"))
+    motion = Motion.by(12, 360)
+    bands = tolerance_bands(m, {"crank.length": 0.05}, ["psi"], motion=motion)
+    assert bands.units == {"crank.length": "mm"} and bands["psi"].unit == "deg" and bands.input_units == ["deg"]
+    assert np.allclose(bands.inputs[:, 0], np.linspace(0.0, 360.0, 13))
+    h = 1e-4
+    plus, minus = (m.variant({"crank.length": 10.0 + d}).run(motion).value("psi") for d in (h, -h))
+    assert np.allclose(bands["psi"].sensitivity[:, 0], (plus - minus) / (2 * h), rtol=1e-6, atol=1e-8)
+    assert np.allclose(bands["psi"].worst, np.abs(bands["psi"].sensitivity[:, 0]) * 0.05)
