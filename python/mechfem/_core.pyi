@@ -30,6 +30,7 @@ __all__ = [
     "Model",
     "ModelBuilder",
     "optimised_deck_text",
+    "deck_tolerance",
 ]
 
 _F64 = npt.NDArray[np.float64]
