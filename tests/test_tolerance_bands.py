@@ -220,3 +220,11 @@ def test_python_bands_are_in_the_models_units() -> None:
     plus, minus = (m.variant({"crank.length": 10.0 + d}).run(motion).value("psi") for d in (h, -h))
     assert np.allclose(bands["psi"].sensitivity[:, 0], (plus - minus) / (2 * h), rtol=1e-6, atol=1e-8)
     assert np.allclose(bands["psi"].worst, np.abs(bands["psi"].sensitivity[:, 0]) * 0.05)
+
+
+def test_a_named_models_run_has_no_deck_bands(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # Even with a deck of the same name and a TOLERANCE block in the working folder.
+    shutil.copy(DECK, tmp_path / "fourbar.mec")
+    monkeypatch.chdir(tmp_path)
+    result = fourbar().run(MOTION)
+    assert deck_bands(result) is None and "TOLERANCE BANDS" not in print_file_lines(result)

@@ -203,7 +203,8 @@ def deck_bands(result: RunResult) -> ToleranceBands | None:
     """The bands of the TOLERANCE block of the deck ``result`` ran (None when it has none), named as the deck
     names them. One more run of the motion, with the design sensitivities."""
     deck = Path(result.deck)
-    if not deck.is_file():
+    # A named model's run has no deck file of its own (its ``deck`` is the name of the deck written for it).
+    if result.named or not deck.is_file():
         return None
     text = deck.read_text(encoding="utf-8", errors="replace")
     if "TOLERANCE" not in text.upper():

@@ -30,7 +30,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from mechfem.bands import Band, Share, ToleranceBands, tolerance_bands
+from mechfem.bands import Band, Share, ToleranceBands, deck_bands, tolerance_bands
 from mechfem.batch import Measure, Progress, Study, sweep
 from mechfem.model import Coordinate, Mechanism, Motion, Point, Row
 
@@ -173,4 +173,13 @@ def tolerance_study(
     return ToleranceStudy(table, spread, int(n - complete.sum()), dict(tolerances), distribution)
 
 
-__all__ = ["Band", "Share", "Spread", "ToleranceBands", "ToleranceStudy", "tolerance_bands", "tolerance_study"]
+__all__ = [
+    "Band",
+    "Share",
+    "Spread",
+    "ToleranceBands",
+    "ToleranceStudy",
+    "deck_bands",
+    "tolerance_bands",
+    "tolerance_study",
+]
