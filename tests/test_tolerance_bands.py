@@ -228,3 +228,15 @@ def test_a_named_models_run_has_no_deck_bands(tmp_path: Path, monkeypatch: pytes
     monkeypatch.chdir(tmp_path)
     result = fourbar().run(MOTION)
     assert deck_bands(result) is None and "TOLERANCE BANDS" not in print_file_lines(result)
+
+
+def test_a_transfer_function_is_named_by_its_label() -> None:
+    from mechfem import Q
+
+    bands = tolerance_bands(fourbar(), {"crank.length": 0.01}, ["psi", Q("psi", 1)], motion=MOTION)
+    assert list(bands.bands) == ["psi", "dpsi/dphi"]
+    # d/dp of dpsi/dphi against the central difference of the first-order transfer functions of two runs.
+    h = 1e-6
+    runs = [fourbar().variant({"crank.length": 1.0 + d}).run(MOTION) for d in (h, -h)]
+    fd = (runs[0].transfer("psi", 1) - runs[1].transfer("psi", 1)) / (2 * h)
+    assert np.allclose(bands["dpsi/dphi"].sensitivity[:, 0], fd, rtol=1e-5, atol=1e-6)

@@ -160,8 +160,9 @@ class ToleranceBands:
         return pd.DataFrame(columns, index=pd.RangeIndex(self.positions, name="position"))
 
 
-def _of_core(d: Mapping[str, Any], dim_names: Sequence[str], names: Sequence[str] | None) -> ToleranceBands:
-    """The bands from what :func:`mechfem._core.deck_tolerance` computed."""
+def _of_core(d: Mapping[str, Any], dim_names: Sequence[str], names: Sequence[str | None] | None) -> ToleranceBands:
+    """The bands from what :func:`mechfem._core.deck_tolerance` computed, each named by ``names`` or else by its
+    buffer's label."""
     n, nj = int(d["positions"]), int(d["dofs"])
     dims = [(int(k), int(num), float(t)) for k, num, t, _ in d["dims"]]
     bands = [(int(src), int(b)) for src, b, _ in d["bands"]]
@@ -179,7 +180,7 @@ def _of_core(d: Mapping[str, Any], dim_names: Sequence[str], names: Sequence[str
         positions=n,
     )
     for q, ((src, b), (label, unit)) in enumerate(zip(bands, labels, strict=True)):
-        name = names[q] if names is not None else label
+        name = (names[q] if names is not None else None) or label
         out.bands[name] = Band(name, unit, values[:, q], gradient[:, q, :], t, list(dim_names), b, src)
     return out
 
@@ -327,14 +328,13 @@ def tolerance_bands(
             IncompleteRunWarning,
             stacklevel=2,
         )
-    names = [q if isinstance(q, str) else getattr(q, "name", str(q)) for q in quantities]
-    out = _of_core(d, list(dims), [str(n) for n in names])
+    # A quantity given by name keeps it; an object or a transfer function (Q) takes its buffer's label (dpsi/dphi).
+    out = _of_core(d, list(dims), [q if isinstance(q, str) else None for q in quantities])
     inputs = nb.inputs
     out.input_names = [r.name for r in inputs]
     for band in out.bands.values():
         band.source = None
         band.buffer = None
-    out.tolerances = dims
     return out
 
 
