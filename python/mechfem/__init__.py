@@ -63,7 +63,7 @@ from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
 from mechfem.result import Analysis, CheckResult, RunResult, check_result, run_result
 from mechfem.run_report import AdjustInfo, Limit, RunReport, Stop
-from mechfem.tolerance import Spread, ToleranceStudy, tolerance_study
+from mechfem.tolerance import Spread, ToleranceBands, ToleranceStudy, tolerance_bands, tolerance_study
 
 # Every module that fills a hook of a lower layer (docs/architecture.md), so that `import mechfem` has them all.
 from mechfem import deckio, figures, namespace, notebook, report, running  # noqa: F401  isort: skip
@@ -158,6 +158,7 @@ __all__ = [
     "TargetAt",
     "TargetExtremum",
     "Term",
+    "ToleranceBands",
     "ToleranceStudy",
     "UnitWarning",
     "__version__",
@@ -167,5 +168,6 @@ __all__ = [
     "run_many",
     "run_deck",
     "sweep",
+    "tolerance_bands",
     "tolerance_study",
 ]

@@ -33,6 +33,7 @@ __all__ = [
     "Model",
     "ModelBuilder",
     "optimised_deck_text",
+    "deck_tolerance",
 ]
 
 _F64 = npt.NDArray[np.float64]
@@ -784,3 +785,8 @@ def optimised_deck_text(
     """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value; the core's
     numbers, written in the deck's UNITS where it has them) replaced, in mode KIN ANA without OPTIMISE; MOV_FUNC
     files named from ``file_dir`` (the old deck's folder) when given."""
+
+def deck_tolerance(text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]) -> dict[str, Any] | None:
+    """The TOLERANCE block of the deck evaluated (None without one): ``dims`` ``(kind, number, t, line)``, ``bands``
+    ``(source, b, line)``, ``positions``, ``dofs``, flat ``inputs``, ``values`` and ``gradient`` (positions x bands x
+    dims), ``labels`` ``(label, unit)`` of every band's buffer, ``dim_units``, ``input_units``; the deck's units."""

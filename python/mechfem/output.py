@@ -173,6 +173,9 @@ def print_file_lines(result: RunResult) -> list[str]:
     if result.dynamic is not None:
         out += summary_lines(result.dynamic, result.time, said)
     out += table_lines(result)
+    from mechfem.tolerance_print import tolerance_lines
+
+    out += tolerance_lines(result)
     out += limit_lines(result, said)
     if result.report.warnings:
         out += ["WARNINGS", *(line for w in result.report.warnings for line in paragraph(w)), ""]

@@ -16,6 +16,9 @@ returns one number) is summarised over the variants that ran through the whole m
     )
     tol.spread["swing"].std, tol.spread["swing"].percentiles[95]
     print(tol)
+
+The linear bands of the same tolerances from the exact design sensitivities, in one run, are
+:func:`~mechfem.bands.tolerance_bands` (re-exported here).
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from mechfem.bands import Band, Share, ToleranceBands, deck_bands, tolerance_bands
 from mechfem.batch import Measure, Progress, Study, sweep
 from mechfem.model import Coordinate, Mechanism, Motion, Point, Row
 
@@ -169,4 +173,13 @@ def tolerance_study(
     return ToleranceStudy(table, spread, int(n - complete.sum()), dict(tolerances), distribution)
 
 
-__all__ = ["Spread", "ToleranceStudy", "tolerance_study"]
+__all__ = [
+    "Band",
+    "Share",
+    "Spread",
+    "ToleranceBands",
+    "ToleranceStudy",
+    "deck_bands",
+    "tolerance_bands",
+    "tolerance_study",
+]

@@ -15,10 +15,12 @@ use crate::keywords::Keyword;
 
 mod names;
 mod optimise;
+mod tolerance;
 
 pub(crate) use names::CoreScale;
 pub use names::{NameDef, NameKind, NamesBlock, UnitsDef};
 pub use optimise::{BoundDef, ObjectiveDef, Optimise, TargetDef, TargetDefKind, VaryDef};
+pub use tolerance::{BufTolDef, TolDef, ToleranceBlock};
 
 /// A parsed deck.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,6 +47,8 @@ pub struct Deck {
     pub names: Option<NamesBlock>,
     /// The UNITS line, if given.
     pub units: Option<UnitsDef>,
+    /// The TOLERANCE block, if given (only in `KIN ANA` and `DYN ANA`).
+    pub tolerance: Option<ToleranceBlock>,
     /// Set on the copy in the core's units that compiling works on.
     pub(crate) scale: Option<Box<CoreScale>>,
     /// The raw lines of the file, for diagnostics.

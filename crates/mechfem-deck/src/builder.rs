@@ -94,6 +94,7 @@ impl DeckBuilder {
                 storage: None,
                 names: None,
                 units: None,
+                tolerance: None,
                 scale: None,
                 source: vec![String::new(), mode.name().to_string(), "TOPOLOGY".to_string()],
             },

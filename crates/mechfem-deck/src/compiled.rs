@@ -77,6 +77,9 @@ pub struct Compiled {
     /// The design variables, targets, bounds and objective of the OPTIMISE
     /// block: `Some` exactly for a [`Mode::KinOpt`] deck.
     pub optimise: Option<Optimise>,
+    /// The toleranced dimensions and the bands of the TOLERANCE block:
+    /// `Some` exactly when a `KIN ANA` or `DYN ANA` deck has one.
+    pub tolerance: Option<crate::tolerance::Tolerance>,
 }
 
 /// One output buffer: one value per position.

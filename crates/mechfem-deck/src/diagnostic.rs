@@ -198,6 +198,9 @@ pub enum DiagnosticKind {
     /// A number that looks as if it were written in another unit than the
     /// deck's (a warning, never an error).
     SuspiciousUnit,
+    /// A TOLERANCE block without a toleranced dimension or a band, without
+    /// a motion, or whose band numbers clash with other buffers.
+    Tolerance,
 }
 
 impl DiagnosticKind {
@@ -264,6 +267,7 @@ impl DiagnosticKind {
             DiagnosticKind::BadLabel => "bad_label",
             DiagnosticKind::UnknownUnit => "unknown_unit",
             DiagnosticKind::SuspiciousUnit => "suspicious_unit",
+            DiagnosticKind::Tolerance => "tolerance",
         }
     }
 }

@@ -19,11 +19,14 @@ pub enum Block {
     Optimise,
     /// Output buffers and what to do with them.
     Storage,
+    /// Tolerances of dimensions and the bands of buffers they give (modes
+    /// `KIN ANA` and `DYN ANA`).
+    Tolerance,
 }
 
 impl Block {
     /// Every block, in the order of a deck.
-    pub const ALL: [Block; 7] = [
+    pub const ALL: [Block; 8] = [
         Block::Topology,
         Block::Geometry,
         Block::Names,
@@ -31,6 +34,7 @@ impl Block {
         Block::Movement,
         Block::Optimise,
         Block::Storage,
+        Block::Tolerance,
     ];
 
     /// The header word.
@@ -43,6 +47,7 @@ impl Block {
             Block::Movement => "MOVEMENT",
             Block::Optimise => "OPTIMISE",
             Block::Storage => "STORAGE",
+            Block::Tolerance => "TOLERANCE",
         }
     }
 
@@ -159,6 +164,9 @@ keywords! {
     PlotFunc "PLOTFUNC" Storage 2 Some(2), "bx by";
     PlotCurv "PLOTCURV" Storage 2 Some(2), "bx by";
     PlotHodo "PLOTHODO" Storage 2 Some(2), "ix iy";
+    Tol "TOL" Tolerance 2 Some(2), "r t";
+    TolX "TOLX" Tolerance 2 Some(2), "i t";
+    BufTol "BUFTOL" Tolerance 2 Some(2), "bsrc b";
 }
 
 impl Keyword {

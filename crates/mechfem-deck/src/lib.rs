@@ -115,6 +115,7 @@ mod parse;
 pub mod rewrite;
 mod running;
 mod statements;
+mod tolerance;
 
 use std::path::Path;
 
@@ -132,6 +133,7 @@ pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind
 pub use parse::{parse_file, parse_str};
 pub use statements::names::{MAX_LABEL, MAX_NAME};
 pub use statements::{MAX_ITER, MAX_STEPS};
+pub use tolerance::{BandDef, Tolerance, Toleranced};
 
 /// Reads, checks and compiles the deck at `path`; MOV_FUNC, LOADFUNC and
 /// TARGET files are read from the deck's folder.

@@ -75,6 +75,7 @@ pub(crate) struct Parser<'a> {
     pub dynamics: Dynamics,
     pub movement: MovementParts,
     pub optimise: Optimise,
+    pub tolerance: crate::ast::ToleranceBlock,
     pub storage: Storage,
     pub picture: Option<PictureDef>,
     /// ELEM lines seen so far, refused ones included.
@@ -107,6 +108,7 @@ impl<'a> Parser<'a> {
             dynamics: Dynamics::default(),
             movement: MovementParts::default(),
             optimise: Optimise::default(),
+            tolerance: crate::ast::ToleranceBlock::default(),
             storage: Storage::default(),
             picture: None,
             elem_lines: 0,
@@ -299,6 +301,7 @@ impl<'a> Parser<'a> {
                 Block::Movement => self.movement.line = line.number,
                 Block::Optimise => self.optimise.line = line.number,
                 Block::Storage => self.storage.line = line.number,
+                Block::Tolerance => self.tolerance.line = line.number,
             }
         }
         self.check_block_mode(block, line);
@@ -334,6 +337,15 @@ impl<'a> Parser<'a> {
             let hint = format!(
                 "change the mode line to `KIN OPT` to optimise the design, or remove the OPTIMISE block to run {name} \
                  as it is"
+            );
+            self.error(DiagnosticKind::WrongMode, span, message, hint);
+        }
+        if block == Block::Tolerance && !matches!(mode, Mode::KinAna | Mode::DynAna) {
+            let message = format!(
+                "a {name} deck has no TOLERANCE block: tolerance bands belong to the analyses KIN ANA and DYN ANA"
+            );
+            let hint = format!(
+                "run the design as `KIN ANA` (or `DYN ANA`) with the TOLERANCE block, or remove the block to run {name}"
             );
             self.error(DiagnosticKind::WrongMode, span, message, hint);
         }
@@ -489,6 +501,7 @@ impl<'a> Parser<'a> {
             storage: self.headers[Block::Storage as usize].map(|_| self.storage),
             names: self.headers[Block::Names as usize].map(|_| self.names),
             units: self.units,
+            tolerance: self.headers[Block::Tolerance as usize].map(|_| self.tolerance),
             scale: None,
             source: Vec::new(),
         })

@@ -4,6 +4,7 @@ pub(crate) mod dynamics;
 pub(crate) mod names;
 mod optimise;
 mod simulation;
+mod tolerance;
 
 use mechfem_core::ElementType;
 
@@ -45,6 +46,7 @@ impl Parser<'_> {
         match kw.value.block() {
             Block::Dynamics => return self.dynamics_statement(kw, line, args),
             Block::Optimise => return self.optimise_statement(kw, line, args),
+            Block::Tolerance => return self.tolerance_statement(kw, line, args),
             _ => {}
         }
         // `check_count` guarantees the required arguments; `arg` still

@@ -53,6 +53,7 @@ mod observe;
 mod run;
 mod simulated;
 mod text;
+mod tolerance;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -333,5 +334,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
+    m.add_function(wrap_pyfunction!(tolerance::deck_tolerance, m)?)?;
     Ok(())
 }

@@ -14,6 +14,7 @@ mod scale;
 mod storage;
 mod table;
 mod tables;
+mod tolerance;
 mod warn;
 mod written;
 
@@ -54,6 +55,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     let out = storage::outputs(deck, &sizes)?;
     integration.stop_when = motion::stop_when(deck, &out.buffers)?;
     let mut optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
+    let tolerance = tolerance::tolerance(deck, &m, &sizes, motion.as_ref(), &out.buffers)?;
     let dims = match &deck.scale {
         Some(s) => {
             tables::to_core(
@@ -94,6 +96,7 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
         dynamics,
         dynamics_lines,
         optimise,
+        tolerance,
     })
 }
 

@@ -136,6 +136,16 @@ pub(crate) fn to_core(deck: &Deck, units: Units, mech: &Mechanism) -> Deck {
             scale(u, dim, &mut v.hi);
         }
     }
+    if let Some(t) = &mut d.tolerance {
+        for def in &mut t.dims {
+            let dim = if def.keyword.value == crate::keywords::Keyword::TolX {
+                coord(def.index.value)
+            } else {
+                row(def.index.value)
+            };
+            scale(u, dim, &mut def.t);
+        }
+    }
     d.scale = Some(Box::new(CoreScale { units, dims, inputs }));
     d
 }
