@@ -105,6 +105,38 @@ class Problem:
     """Buffers evaluated for ``custom`` beyond those of the terms."""
     steps: int = 200
     tol: float | None = None
+    """The classic stopping tolerance (OPTTOL): least squares stop when an accepted step changes the sum of squares
+    by less than ``tol`` times it, SLSQP when an iteration changes the objective by less than ``tol`` times the
+    start objective (at least ``tol``)."""
+    stop: Stop | None = None
+    """Stopping tolerances independent of the start objective (OPTFTOL); when given, ``tol`` is not used."""
+
+
+@dataclass(frozen=True)
+class Stop:
+    """Stop when an iteration changes the objective f by less than ``atol + rtol * |f|`` (f at the new iterate):
+    the same test for least squares and SLSQP, whatever the start objective was."""
+
+    rtol: float = 0.0
+    atol: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name, v in (("rtol", self.rtol), ("atol", self.atol)):
+            if not (math.isfinite(v) and v >= 0.0):
+                raise ValueError(f"the stopping tolerance {name} must be zero or positive and finite, not {v}")
+        if self.rtol >= 1.0:
+            raise ValueError(f"rtol must be below 1, not {self.rtol}: the optimiser would stop before its first step")
+        if self.rtol == 0.0 and self.atol == 0.0:
+            raise ValueError("give rtol or atol above zero: with both zero the optimiser never stops on the objective")
+
+    def met(self, before: float, after: float) -> bool:
+        """Whether a step from objective ``before`` to ``after`` is small enough to stop."""
+        return abs(before - after) <= self.atol + self.rtol * abs(after)
+
+
+class _Converged(Exception):
+    """Raised inside an optimiser's call to end it when :class:`Stop` is met (SciPy's own tests know only one
+    tolerance, either relative or absolute)."""
 
 
 @dataclass
@@ -364,6 +396,16 @@ def violation(problem: Problem, e: Evaluation) -> float:
     return float(max(0.0, -c.min())) if c.size else 0.0
 
 
+_EPS = float(np.finfo(np.float64).eps)
+_FEASIBLE = 1e-10
+"""The largest bound violation at which a :class:`Stop` ends SLSQP."""
+
+
+def _stop_message(stop: Stop | None) -> str:
+    assert stop is not None
+    return f"the objective changed by less than atol + rtol |f| (atol {stop.atol:g}, rtol {stop.rtol:g})"
+
+
 # --- solving -------------------------------------------------------------------------------------------------------
 
 
@@ -448,27 +490,39 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             except Infeasible:
                 return 1e3 * (1.0 + np.abs(residuals(problem, best.e)[0]))
             r, _ = residuals(problem, e)
-            if float(r @ r) < best.f:
+            f = float(r @ r)
+            if f < best.f:
+                before = best.f
                 note(x, e)
+                if problem.stop is not None and problem.stop.met(before, f):
+                    raise _Converged
             return r
 
         def jac(x: FloatArray) -> FloatArray:
             return residuals(problem, feasible(x))[1]
 
         tol = problem.tol if problem.tol is not None else 1e-12
-        out = optimize.least_squares(
-            fun,
-            x0,
-            jac=jac,
-            bounds=(problem.lo, problem.hi),
-            method="trf",
-            x_scale="jac",
-            ftol=tol,
-            xtol=1e-12,
-            gtol=1e-12,
-            max_nfev=max(problem.steps, 1),
-        )
-        x, success, message, method = out.x, bool(out.success), str(out.message), "least_squares (trf)"
+        if problem.stop is not None:
+            # SciPy's relative test is the same as Stop's when rtol is above the rounding (below it SciPy warns);
+            # the absolute part is tested in fun.
+            tol = problem.stop.rtol if problem.stop.rtol > _EPS else None  # type: ignore[assignment]
+        method = "least_squares (trf)"
+        try:
+            out = optimize.least_squares(
+                fun,
+                x0,
+                jac=jac,
+                bounds=(problem.lo, problem.hi),
+                method="trf",
+                x_scale="jac",
+                ftol=tol,
+                xtol=1e-12,
+                gtol=1e-12,
+                max_nfev=max(problem.steps, 1),
+            )
+            x, success, message = out.x, bool(out.success), str(out.message)
+        except _Converged:
+            x, success, message = best.x, True, _stop_message(problem.stop)
     else:
         scale = np.maximum(problem.hi - problem.lo, 1e-12)
 
@@ -494,31 +548,48 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             except Infeasible:
                 return -np.ones_like(constraints(problem, best.e)[0])
 
+        last = [f0]
+
         def callback(xk: FloatArray) -> None:
             if np.array_equal(xk, best.x):
-                return  # noted when it was evaluated
-            try:
-                note(np.asarray(xk), ev(xk))
-            except Infeasible:
-                pass
+                e = best.e  # noted when it was evaluated
+            else:
+                try:
+                    e = ev(xk)
+                except Infeasible:
+                    return
+                note(np.asarray(xk), e)
+            if problem.stop is None:
+                return
+            f, _ = objective(problem, e)
+            before, last[0] = last[0], f
+            if problem.stop.met(before, f) and violation(problem, e) <= _FEASIBLE:
+                raise _Converged
 
         def cons_jac(x: FloatArray) -> FloatArray:
             return constraints(problem, feasible(x))[1]
 
         tol = problem.tol if problem.tol is not None else 1e-10
-        # scipy-stubs types a constraint's "fun" as scalar-valued; SLSQP takes a vector of constraints from one
-        # function (and its Jacobian as a matrix), as used here.
-        out = optimize.minimize(  # type: ignore[call-overload]
-            fg,
-            x0,
-            jac=True,
-            method="SLSQP",
-            bounds=list(zip(problem.lo, problem.hi, strict=True)),
-            constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
-            callback=callback,
-            options={"maxiter": max(problem.steps, 1), "ftol": tol * max(1.0, abs(f0))},
-        )
-        x, success, message, method = out.x, bool(out.success), str(out.message), "SLSQP"
+        # SLSQP's own test is absolute (|f_k - f_k-1| < ftol, the bounds met within ftol); OPTTOL scales it by the
+        # start objective. Stop's relative part is tested in the callback, its absolute part is SLSQP's.
+        ftol = tol * max(1.0, abs(f0)) if problem.stop is None else max(problem.stop.atol, 1e-300)
+        method = "SLSQP"
+        try:
+            # scipy-stubs types a constraint's "fun" as scalar-valued; SLSQP takes a vector of constraints from one
+            # function (and its Jacobian as a matrix), as used here.
+            out = optimize.minimize(  # type: ignore[call-overload]
+                fg,
+                x0,
+                jac=True,
+                method="SLSQP",
+                bounds=list(zip(problem.lo, problem.hi, strict=True)),
+                constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
+                callback=callback,
+                options={"maxiter": max(problem.steps, 1), "ftol": ftol},
+            )
+            x, success, message = out.x, bool(out.success), str(out.message)
+        except _Converged:
+            x, success, message = best.x, True, _stop_message(problem.stop)
     try:
         e = ev(x)
     except Infeasible:

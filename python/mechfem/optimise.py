@@ -223,6 +223,8 @@ def optimize(
     tol: float | None = None,
     progress: bool | Callable[[Iteration], object] | None = None,
     starts: int = 1,
+    rtol: float | None = None,
+    atol: float | None = None,
     seed: int | None = None,
     executor: object | None = None,
 ) -> Optimum:
@@ -236,7 +238,10 @@ def optimize(
     variables, reading ``e.value(q)`` and ``e.gradient(q)`` (positions x variables) of the quantities listed in
     ``quantities``. Targets alone are solved by SciPy's trust-region least
     squares (``least_squares``); with ``bounds`` or another term by SLSQP (``minimize``). ``steps`` limits the
-    iterations (least squares: the evaluations), ``tol`` is the relative change of the objective that ends it.
+    iterations (least squares: the evaluations). ``rtol`` and ``atol`` end it when an iteration changes the
+    objective f by less than ``atol + rtol * |f|``, for either method and whatever the start objective (the one not
+    given is 0). Without them, ``tol`` is the classic tolerance: the relative change of the sum of squares for least
+    squares, and for SLSQP a change below ``tol`` times the start objective.
     ``motion`` (default the mechanism's) gives the positions; ``progress`` True prints every iteration on
     stderr, a callable gets every :class:`~mechfem.design.Iteration`.
 
@@ -262,6 +267,8 @@ def optimize(
             "steps": steps,
             "tol": tol,
             "progress": progress,
+            "rtol": rtol,
+            "atol": atol,
         }
         return _multi_start(mechanism, vary, kwargs, starts, seed, executor)
     motion = motion or mechanism.motion
@@ -274,6 +281,11 @@ def optimize(
     if not 1 <= steps <= 2**31 - 1:
         # SciPy's SLSQP counts iterations in 32 bits: a larger limit wraps round to a negative one.
         raise ValueError(f"steps must be from 1 to 2147483647, not {steps}")
+    stop = None
+    if rtol is not None or atol is not None:
+        if tol is not None:
+            raise ValueError("give tol, or rtol and atol, not both")
+        stop = design.Stop(float(rtol or 0.0), float(atol or 0.0))
     deck = _Deck(mechanism)
     terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
     for t in targets:
@@ -322,6 +334,7 @@ def optimize(
             extra_buffers=extra,
             steps=steps,
             tol=tol,
+            stop=stop,
         )
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)

@@ -80,6 +80,7 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
         else (1 if objective["sense"] == "minimise" else -1, objective["reduce"], objective["buffer"]),
         steps=opt["steps"],
         tol=opt["tol"],
+        stop=None if (ftol := opt.get("ftol")) is None else design.Stop(*ftol),
     )
 
 
