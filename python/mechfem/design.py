@@ -110,6 +110,10 @@ class Problem:
     start objective (at least ``tol``)."""
     stop: Stop | None = None
     """Stopping tolerances independent of the start objective (OPTFTOL); when given, ``tol`` is not used."""
+    periodic: list[bool] = field(default_factory=list)
+    """Per variable (empty: none): an angle that wraps. The optimiser sees it without bounds; it is evaluated at
+    the value a whole number of turns away that lies within half a turn of its start value, and reported within
+    ``[lo, lo + 2 pi)``."""
 
 
 @dataclass(frozen=True)
@@ -234,6 +238,17 @@ class Evaluator:
         """How many designs evaluated were infeasible."""
         self.reasons: dict[str, tuple[int, str]] = {}
         """Infeasible designs by kind of reason (see ``DesignModel.evaluate``): how many, and the first one's reason."""
+        self._turns = np.array(problem.periodic, dtype=bool) if any(problem.periodic) else None
+        self._centre: FloatArray | None = None
+
+    def wrapped(self, x: FloatArray) -> FloatArray:
+        """``x`` with every periodic variable moved by whole turns to within half a turn of its start value: the
+        same mechanism, assembled by a continuation from the start design that never goes round the long way."""
+        x = np.asarray(x, dtype=np.float64)
+        if self._turns is None or self._centre is None:
+            return x
+        d = x - self._centre
+        return np.where(self._turns, self._centre + (d - TURN * np.round(d / TURN)), x)
 
     @property
     def runs(self) -> int:
@@ -246,6 +261,7 @@ class Evaluator:
         """Evaluates ``x`` as the start design: its assembly branch is that of every later evaluation, its number of
         extrema that of every TARGETEXT. Raises :class:`Infeasible` with the reason."""
         self._cache = None
+        self._centre = np.array(x, dtype=np.float64)
         d = self.model.start_at([float(v) for v in x])
         if not d["feasible"]:
             raise Infeasible(str(d["reason"]))
@@ -255,7 +271,8 @@ class Evaluator:
 
     def __call__(self, x: FloatArray) -> Evaluation:
         """The evaluation at ``x``; raises :class:`Infeasible` with the reason."""
-        key = np.asarray(x, dtype=np.float64).tobytes()
+        x = self.wrapped(x)
+        key = x.tobytes()
         if self._cache is None or self._cache[0] != key:
             d = self.model.evaluate([float(v) for v in x])
             result: Evaluation | str = str(d["reason"])
@@ -397,6 +414,30 @@ def violation(problem: Problem, e: Evaluation) -> float:
 
 
 _EPS = float(np.finfo(np.float64).eps)
+TURN = 2.0 * math.pi
+
+
+def full_turn(lo: float, hi: float) -> bool:
+    """Whether ``[lo, hi]`` is one whole turn (radians): an angle variable with this range wraps."""
+    return math.isclose(hi - lo, TURN, rel_tol=1e-9, abs_tol=1e-12)
+
+
+def _optimiser_bounds(problem: Problem) -> tuple[FloatArray, FloatArray]:
+    """The ranges the optimiser sees: none for a periodic variable."""
+    if not any(problem.periodic):
+        return problem.lo, problem.hi
+    free = np.array(problem.periodic, dtype=bool)
+    return np.where(free, -np.inf, problem.lo), np.where(free, np.inf, problem.hi)
+
+
+def _reported(problem: Problem, x: FloatArray) -> FloatArray:
+    """``x`` with every periodic variable within ``[lo, lo + 2 pi)``."""
+    if not any(problem.periodic):
+        return x
+    free = np.array(problem.periodic, dtype=bool)
+    return np.where(free, problem.lo + np.mod(x - problem.lo, TURN), x)
+
+
 _FEASIBLE = 1e-10
 """The largest bound violation at which a :class:`Stop` ends SLSQP."""
 
@@ -512,7 +553,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
                 fun,
                 x0,
                 jac=jac,
-                bounds=(problem.lo, problem.hi),
+                bounds=_optimiser_bounds(problem),
                 method="trf",
                 x_scale="jac",
                 ftol=tol,
@@ -524,7 +565,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         except _Converged:
             x, success, message = best.x, True, _stop_message(problem.stop)
     else:
-        scale = np.maximum(problem.hi - problem.lo, 1e-12)
+        scale = np.maximum(problem.hi - problem.lo, 1e-12)  # a turn for a periodic variable
 
         def fg(x: FloatArray) -> tuple[float, FloatArray]:
             try:
@@ -582,7 +623,9 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
                 x0,
                 jac=True,
                 method="SLSQP",
-                bounds=list(zip(problem.lo, problem.hi, strict=True)),
+                bounds=[
+                    (None, None) if math.isinf(a) else (a, b) for a, b in zip(*_optimiser_bounds(problem), strict=True)
+                ],
                 constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
                 callback=callback,
                 options={"maxiter": max(problem.steps, 1), "ftol": ftol},
@@ -599,7 +642,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         note(x, e)
     return Solution(
         start=x0,
-        x=np.asarray(x, dtype=np.float64),
+        x=_reported(problem, np.asarray(x, dtype=np.float64)),
         objective=float(f),
         start_objective=float(f0),
         history=history,

@@ -192,6 +192,26 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
     return 1, numbering.row_dest[obj], float(obj.value)
 
 
+def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> bool:
+    """Whether the variable ``name`` with range ``span`` wraps: an angle without a range or with a range of one
+    whole turn."""
+    obj = _lookup(mech, name)
+    angle = obj.kind == "angle" if isinstance(obj, Coordinate) else obj.is_angle
+    if span is None:
+        if not angle:
+            raise ValueError(f"{name!r} is not an angle: give its range (lo, hi); only an angle may go without one")
+        return True
+    return angle and design.full_turn(float(span[0]), float(span[1]))
+
+
+def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple[float, float]:
+    """A variable's range; for an angle without one, the turn centred on its value."""
+    if span is not None:
+        return float(span[0]), float(span[1])
+    value = float(getattr(mech[name], "value", None) or 0.0)
+    return value - math.pi, value + math.pi
+
+
 def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable[[Iteration], object] | None:
     if callable(progress):
         return progress
@@ -210,7 +230,7 @@ def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable
 
 def optimize(
     mechanism: Mechanism,
-    vary: Mapping[str, tuple[float, float]],
+    vary: Mapping[str, tuple[float, float] | None],
     *,
     targets: Sequence[Target | TargetAt | TargetExtremum] = (),
     bounds: Sequence[Bound] = (),
@@ -313,8 +333,12 @@ def optimize(
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
         if isinstance(term, design.AtTerm) and not 0 <= term.position < positions:
             raise ValueError(f"TargetAt position {term.position} is outside 0..{positions - 1}")
-    lo = np.array([float(v[0]) for v in vary.values()])
-    hi = np.array([float(v[1]) for v in vary.values()])
+    periodic = [_periodic(mechanism, name, span) for name, span in vary.items()]
+    ranges = [
+        (s - math.pi, s + math.pi) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)
+    ]
+    lo = np.array([float(v[0]) for v in ranges])
+    hi = np.array([float(v[1]) for v in ranges])
     for name, (_, _, start), a, b in zip(vary, variables, lo, hi, strict=True):
         if not a < b:
             raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
@@ -335,6 +359,7 @@ def optimize(
             steps=steps,
             tol=tol,
             stop=stop,
+            periodic=periodic if any(periodic) else [],
         )
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)
@@ -373,7 +398,9 @@ def optimize(
 # --- multi-start ---------------------------------------------------------------------------------------------------
 
 
-def _one_start(task: tuple[Mechanism, dict[str, tuple[float, float]], dict[str, Any]]) -> Optimum | tuple[str, float]:
+def _one_start(
+    task: tuple[Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]],
+) -> Optimum | tuple[str, float]:
     """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
     from mechfem.errors import MechfemError
 
@@ -387,7 +414,7 @@ def _one_start(task: tuple[Mechanism, dict[str, tuple[float, float]], dict[str, 
 
 def _multi_start(
     mechanism: Mechanism,
-    vary: Mapping[str, tuple[float, float]],
+    vary: Mapping[str, tuple[float, float] | None],
     kwargs: dict[str, Any],
     starts: int,
     seed: int | None,
@@ -397,8 +424,9 @@ def _multi_start(
 
     if starts < 1:
         raise ValueError(f"starts must be at least 1, got {starts}")
-    lo = np.array([float(v[0]) for v in vary.values()])
-    hi = np.array([float(v[1]) for v in vary.values()])
+    spans = [_span(mechanism, name, span) for name, span in vary.items()]
+    lo = np.array([a for a, _ in spans])
+    hi = np.array([b for _, b in spans])
     draws = lo + (hi - lo) * np.random.default_rng(seed).random((starts - 1, len(vary)))
     begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
     begins += [dict(zip(vary, map(float, x), strict=True)) for x in draws]
