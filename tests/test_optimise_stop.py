@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import mechfem
-from mechfem import design, optimise_deck
+from mechfem import design_rules, optimise_deck
 
 ROOT = Path(__file__).resolve().parent.parent
 SYNTHESIS = ROOT / "examples" / "synthesis"
@@ -66,7 +66,7 @@ def test_a_stop_is_refused_with_tol_or_with_bad_numbers() -> None:
         mechfem.optimize(ps.four_bar(), VARY, targets=ps.targets(), tol=1e-8, rtol=1e-8)
     for rtol, atol in [(-1.0, 0.0), (0.0, 0.0), (1.0, 0.0), (0.0, float("inf"))]:
         with pytest.raises(ValueError):
-            design.Stop(rtol, atol)
+            design_rules.Stop(rtol, atol)
 
 
 def test_optftol_in_a_deck_reaches_the_optimum_with_a_bound(tmp_path: Path) -> None:

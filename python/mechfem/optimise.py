@@ -19,14 +19,16 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import building, deckio, design
+from mechfem import building, deckio, design, design_rules
 from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
+from mechfem.motion import Motion
 from mechfem.storage import Storage
+from mechfem.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
 
 if TYPE_CHECKING:
-    from mechfem.model import Mechanism, Motion
+    from mechfem.model import Mechanism
     from mechfem.result import RunResult
 
 Name: TypeAlias = "str | Coordinate | Row | FormParameter"
@@ -107,6 +109,8 @@ class Optimum:
     motion: Motion | None = field(default=None, repr=False)
     starts: list[Start] = field(default_factory=list, repr=False)
     """Every start's outcome (one for a single start); this optimum is the best of them."""
+    timing: list[float] | None = None
+    """With free timing, the input's value at each target point of the optimised design."""
     reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
     """Those infeasible designs by kind of reason (see :attr:`mechfem.design.Solution.reasons`): how many, and the
     first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
@@ -192,6 +196,17 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
     return 1, numbering.row_dest[obj], float(obj.value)
 
 
+def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
+    """The points' models put together as one model of as many positions (:class:`~mechfem.timing.TimedModel`)."""
+
+    def of(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
+        shared = [v for v in variables if v[0] != 2]
+        points = [b.design(base, [*shared, timed.input_var], buffers, extrema) for b in timed.builders]
+        return TimedModel(points, len(shared), timed.thetas, timed.ordered, timed.angle)
+
+    return of
+
+
 def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> bool:
     """Whether the variable ``name`` with range ``span`` wraps: an angle without a range or with a range of one
     whole turn."""
@@ -201,7 +216,7 @@ def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> b
         if not angle:
             raise ValueError(f"{name!r} is not an angle: give its range (lo, hi); only an angle may go without one")
         return True
-    return angle and design.full_turn(float(span[0]), float(span[1]))
+    return angle and design_rules.full_turn(float(span[0]), float(span[1]))
 
 
 def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple[float, float]:
@@ -247,6 +262,7 @@ def optimize(
     atol: float | None = None,
     seed: int | None = None,
     executor: object | None = None,
+    timing: FreeTiming | None = None,
 ) -> Optimum:
     """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
     start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
@@ -289,9 +305,12 @@ def optimize(
             "progress": progress,
             "rtol": rtol,
             "atol": atol,
+            "timing": timing,
         }
         return _multi_start(mechanism, vary, kwargs, starts, seed, executor)
     motion = motion or mechanism.motion
+    if timing is not None:
+        motion = Motion.by(1, POINT_MOTION_STEP)
     if motion is None:
         raise ValueError("an optimisation needs a motion (its positions are where targets are compared)")
     if not vary:
@@ -305,7 +324,7 @@ def optimize(
     if rtol is not None or atol is not None:
         if tol is not None:
             raise ValueError("give tol, or rtol and atol, not both")
-        stop = design.Stop(float(rtol or 0.0), float(atol or 0.0))
+        stop = design_rules.Stop(float(rtol or 0.0), float(atol or 0.0))
     deck = _Deck(mechanism)
     terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
     for t in targets:
@@ -328,6 +347,12 @@ def optimize(
     built = building.builder(mechanism, motion, deck.storage)
     variables = [_variable(mechanism, built.numbering, name) for name in vary]
     positions = motion.steps + 1
+    timed = None
+    if timing is not None:
+        if any(isinstance(t, design.ExtremumTerm) for t in terms):
+            raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
+        timed = plan(mechanism, timing, deck.storage, built.numbering)
+        positions = len(timed.thetas)
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
@@ -344,11 +369,14 @@ def optimize(
             raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
         if not a <= start <= b:
             raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
+    if timed is not None:
+        lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
+        periodic = (periodic if any(periodic) else [False] * len(vary)) + timed.periodic
     with deckio.tables_dir(built.tables) as base:
         problem = design.Problem(
-            model=design.built_model(built.builder, base),
-            variables=[(k, n) for k, n, _ in variables],
-            names=list(vary),
+            model=design.built_model(built.builder, base) if timed is None else _timed_model(timed, base),
+            variables=[(k, n) for k, n, _ in variables] + ([] if timed is None else [(2, k) for k in range(positions)]),
+            names=list(vary) + ([] if timed is None else timed.names),
             lo=lo,
             hi=hi,
             terms=terms,
@@ -363,6 +391,13 @@ def optimize(
         )
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)
+    thetas = None
+    if timed is not None and timing is not None:
+        n = len(vary)
+        thetas = [float(t) for t in timed_inputs(timed, sol.x[n:])]
+        optimised.set(timing.input, thetas[0])
+        sol.x, sol.start = sol.x[:n], sol.start[:n]
+        motion = None
     for name, x in zip(vary, sol.x, strict=True):
         optimised.set(name, float(x))
     _carry_position_one(optimised, built.numbering, sol.position_one)
@@ -381,6 +416,7 @@ def optimize(
         seconds=sol.seconds,
         method=sol.method,
         motion=motion,
+        timing=thetas,
         starts=[
             Start(
                 dict(zip(vary, map(float, sol.start), strict=True)),

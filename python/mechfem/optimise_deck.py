@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import mechfem._core as _core
-from mechfem import design
+from mechfem import design, design_rules
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import Model
@@ -68,7 +68,7 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
                 design.ExtremumTerm(t["buffer"], int(t["reference"] or 0), float(t["value"] or 0.0), t["weight"])
             )
     objective = opt["objective"]
-    periodic = [design.full_turn(v["lo"], v["hi"]) for v in opt["vary"]]
+    periodic = [design_rules.full_turn(v["lo"], v["hi"]) for v in opt["vary"]]
     if any(periodic):
         angles = angle_variables(_core.describe_deck_text(text, os.fspath(deck), os.fspath(deck_dir(deck))), opt)
         periodic = [p and a for p, a in zip(periodic, angles, strict=True)]
@@ -85,7 +85,7 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
         else (1 if objective["sense"] == "minimise" else -1, objective["reduce"], objective["buffer"]),
         steps=opt["steps"],
         tol=opt["tol"],
-        stop=None if (ftol := opt.get("ftol")) is None else design.Stop(*ftol),
+        stop=None if (ftol := opt.get("ftol")) is None else design_rules.Stop(*ftol),
         periodic=periodic if any(periodic) else [],
     )
 
