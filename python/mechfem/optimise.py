@@ -109,6 +109,8 @@ class Optimum:
     motion: Motion | None = field(default=None, repr=False)
     starts: list[Start] = field(default_factory=list, repr=False)
     """Every start's outcome (one for a single start); this optimum is the best of them."""
+    usable: float = 1.0
+    """The fraction of the starts that could be optimised (assembled, and feasible through the motion)."""
     timing: list[float] | None = None
     """With free timing, the input's value at each target point of the optimised design."""
     reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
@@ -257,12 +259,13 @@ def optimize(
     steps: int = 200,
     tol: float | None = None,
     progress: bool | Callable[[Iteration], object] | None = None,
-    starts: int = 1,
+    starts: int | Sequence[Mapping[str, float]] = 1,
     rtol: float | None = None,
     atol: float | None = None,
     seed: int | None = None,
     executor: object | None = None,
     timing: FreeTiming | None = None,
+    box: Mapping[str, tuple[float, float]] | None = None,
 ) -> Optimum:
     """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
     start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
@@ -285,13 +288,20 @@ def optimize(
     cannot be assembled or moved through the motion. A design met on the way that cannot is reported to the
     optimiser as a very poor one, never raised.
 
-    ``starts`` > 1 is a multi-start: the given design and ``starts - 1`` designs drawn uniformly within the ranges
-    of ``vary`` (a random generator seeded with ``seed``) are each optimised, one after the other or as tasks of
-    an ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``; there ``progress`` is
-    not shown). The best optimum is returned; its ``starts`` holds every start's :class:`Start`, and a start that
-    failed is one of them. :class:`~mechfem.design.Infeasible` is raised only when every start failed.
+    ``starts`` > 1 is a multi-start: the given design and ``starts - 1`` designs drawn within ``box`` (name ->
+    (lo, hi); default the ranges of ``vary``) by a scrambled Halton sequence seeded with ``seed``, or ``starts``
+    a list of start designs (name -> value; the names not given keep the mechanism's values). Every start is
+    assembled afresh by continuation from the mechanism's position 1 (:mod:`mechfem.multistart`); one that cannot
+    be is discarded with the reason. The others are optimised one after the other or as tasks of an
+    ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``; there ``progress`` is not
+    shown). The best optimum is returned; its ``starts`` holds every start's :class:`Start` (a failed one with
+    its reason) and ``usable`` the fraction of starts optimised. :class:`~mechfem.design.Infeasible` is raised
+    only when every start failed.
+
+    ``timing`` (a :class:`~mechfem.timing.FreeTiming`) makes the input's value at each target point a design
+    variable: the positions are then the target points (``Optimum.timing`` the values found).
     """
-    if starts != 1 or executor is not None:
+    if not isinstance(starts, int) or starts != 1 or executor is not None:
         kwargs = {
             "targets": targets,
             "bounds": bounds,
@@ -307,7 +317,9 @@ def optimize(
             "atol": atol,
             "timing": timing,
         }
-        return _multi_start(mechanism, vary, kwargs, starts, seed, executor)
+        if not isinstance(starts, int) and not starts:
+            raise ValueError("starts is an empty list: give at least one start design, or a number of starts")
+        return _multi_start(mechanism, vary, kwargs, starts, seed, executor, box)
     motion = motion or mechanism.motion
     if timing is not None:
         motion = Motion.by(1, POINT_MOTION_STEP)
@@ -452,34 +464,48 @@ def _multi_start(
     mechanism: Mechanism,
     vary: Mapping[str, tuple[float, float] | None],
     kwargs: dict[str, Any],
-    starts: int,
+    starts: int | Sequence[Mapping[str, float]],
     seed: int | None,
     executor: object | None,
+    box: Mapping[str, tuple[float, float]] | None = None,
 ) -> Optimum:
-    from mechfem import cluster
+    from mechfem import cluster, multistart
 
-    if starts < 1:
+    if isinstance(starts, int) and starts < 1:
         raise ValueError(f"starts must be at least 1, got {starts}")
-    spans = [_span(mechanism, name, span) for name, span in vary.items()]
-    lo = np.array([a for a, _ in spans])
-    hi = np.array([b for _, b in spans])
-    draws = lo + (hi - lo) * np.random.default_rng(seed).random((starts - 1, len(vary)))
     begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
-    begins += [dict(zip(vary, map(float, x), strict=True)) for x in draws]
-    designs = [mechanism] + [mechanism.variant(b) for b in begins[1:]]
-    tasks = [(m, dict(vary), kwargs) for m in designs]
+    if isinstance(starts, int):
+        if box is None:
+            box = {name: _span(mechanism, name, span) for name, span in vary.items()}
+        unknown = set(box) - set(vary)
+        if unknown:
+            raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
+        begins += [{**begins[0], **d} for d in multistart.draws(box, starts - 1, seed)]
+    else:
+        begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
+    # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
+    # discarded with the reason.
+    reached: list[Mechanism | str] = [mechanism]
+    reached += [multistart.assembled(mechanism, b) for b in begins[1:]]
+    usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
+    tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
     if executor is None:
         outs: list[Any] = [_one_start(t) for t in tasks]
     else:
         remote = {**kwargs, "progress": None}
         tasks = [(m, v, remote) for m, v, _ in tasks]
         outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
+    by_start = dict(zip(usable, outs, strict=True))
     outcomes: list[Start] = []
-    for begin, out in zip(begins, outs, strict=True):
+    for k, begin in enumerate(begins):
+        out = by_start.get(k, f"start design discarded: {reached[k]}")
         if isinstance(out, Optimum):
             outcomes.append(out.starts[0])
             continue
-        reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
+        if isinstance(out, str):
+            reason, seconds = out, 0.0
+        else:
+            reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
         outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
     found = [out for out in outs if isinstance(out, Optimum)]
     if not found:
@@ -487,7 +513,7 @@ def _multi_start(
             "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
         )
     best = min(found, key=lambda o: o.objective)
-    return dataclasses.replace(best, starts=outcomes)
+    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins))
 
 
 def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequence[float]) -> None:

@@ -29,7 +29,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import mechfem._core as _core
-from mechfem.design import FloatArray
+from mechfem.design import FloatArray, Infeasible
 
 if TYPE_CHECKING:
     from mechfem.model import Mechanism
@@ -230,12 +230,12 @@ def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> 
     try:
         result = copy.deepcopy(mechanism).run(Motion.by(steps, theta - start))
     except MechfemError as e:
-        raise ValueError(
+        raise Infeasible(
             f"target point {k + 1}: the mechanism cannot be moved from its input's value {start:g} to the start "
             f"value {theta:g} of the free timing: {e}"
         ) from None
     if len(result.value(name)) != steps + 1:
-        raise ValueError(
+        raise Infeasible(
             f"target point {k + 1}: the motion from the input's value {start:g} to the start value {theta:g} "
             "of the free timing stops on the way (a limit position): give start values the input reaches"
         )
