@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import copy
 import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -220,7 +221,7 @@ def _range(span: tuple[float, float] | None, theta: float, angle: bool) -> tuple
 
 def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> list[float]:
     """The moving co-ordinates' estimates with the input ``name`` at ``theta``: those of a run from ``start``."""
-    from mechfem.errors import MechfemError
+    from mechfem.errors import IncompleteRunWarning, MechfemError
     from mechfem.motion import Motion
 
     moving = [c for c in mechanism.coordinates if not c.fixed]
@@ -228,7 +229,10 @@ def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> 
         return [c.value for c in moving]
     steps = max(1, math.ceil(abs(theta - start) / math.radians(2.0)))
     try:
-        result = copy.deepcopy(mechanism).run(Motion.by(steps, theta - start))
+        with warnings.catch_warnings():
+            # A motion stopped on the way is said below, as the reason this start cannot be used.
+            warnings.simplefilter("ignore", IncompleteRunWarning)
+            result = copy.deepcopy(mechanism).run(Motion.by(steps, theta - start))
     except MechfemError as e:
         raise Infeasible(
             f"target point {k + 1}: the mechanism cannot be moved from its input's value {start:g} to the start "
