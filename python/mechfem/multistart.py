@@ -16,16 +16,20 @@ design assembled afresh.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
+import time
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechfem.design import Infeasible
 from mechfem.errors import MechfemError
 
 if TYPE_CHECKING:
     from mechfem.model import Mechanism
+    from mechfem.optimise import Optimum
 
 SMALLEST_STAGE = 1.0 / 64.0
 POSITION_ONE_STEP = 1e-9
@@ -94,4 +98,75 @@ def _position_one(mech: Mechanism, moving: Sequence[str], motion: object) -> lis
     return out
 
 
-__all__ = ["assembled", "draws"]
+def _one_start(
+    task: tuple[Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]],
+) -> Optimum | tuple[str, float]:
+    """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
+    from mechfem.optimise import optimize
+
+    mech, vary, kwargs = task
+    t0 = time.perf_counter()
+    try:
+        return optimize(mech, vary, **kwargs)
+    except MechfemError as err:
+        return str(err) or type(err).__name__, time.perf_counter() - t0
+
+
+def multi_start(
+    mechanism: Mechanism,
+    vary: Mapping[str, tuple[float, float] | None],
+    kwargs: dict[str, Any],
+    starts: int | Sequence[Mapping[str, float]],
+    seed: int | None,
+    executor: object | None,
+    box: Mapping[str, tuple[float, float]] | None = None,
+) -> Optimum:
+    from mechfem import cluster
+    from mechfem.optimise import Optimum, Start, _span
+
+    if isinstance(starts, int) and starts < 1:
+        raise ValueError(f"starts must be at least 1, got {starts}")
+    begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
+    if isinstance(starts, int):
+        if box is None:
+            box = {name: _span(mechanism, name, span) for name, span in vary.items()}
+        unknown = set(box) - set(vary)
+        if unknown:
+            raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
+        begins += [{**begins[0], **d} for d in draws(box, starts - 1, seed)]
+    else:
+        begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
+    # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
+    # discarded with the reason.
+    reached: list[Mechanism | str] = [mechanism]
+    reached += [assembled(mechanism, b) for b in begins[1:]]
+    usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
+    tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
+    if executor is None:
+        outs: list[Any] = [_one_start(t) for t in tasks]
+    else:
+        remote = {**kwargs, "progress": None}
+        tasks = [(m, v, remote) for m, v, _ in tasks]
+        outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
+    by_start = dict(zip(usable, outs, strict=True))
+    outcomes: list[Start] = []
+    for k, begin in enumerate(begins):
+        out = by_start.get(k, f"start design discarded: {reached[k]}")
+        if isinstance(out, Optimum):
+            outcomes.append(out.starts[0])
+            continue
+        if isinstance(out, str):
+            reason, seconds = out, 0.0
+        else:
+            reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
+        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
+    found = [out for out in outs if isinstance(out, Optimum)]
+    if not found:
+        raise Infeasible(
+            "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
+        )
+    best = min(found, key=lambda o: o.objective)
+    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins))
+
+
+__all__ = ["assembled", "draws", "multi_start"]

@@ -9,10 +9,8 @@ quantity and evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.d
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
 import sys
-import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
@@ -198,6 +196,18 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
     return 1, numbering.row_dest[obj], float(obj.value)
 
 
+def _model(
+    builder: Any, base: str, timed: Plan | None, full_rotation: bool, mechanism: Mechanism, storage: Storage
+) -> design.DesignModelOf:
+    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if asked."""
+    of = design.built_model(builder, base) if timed is None else _timed_model(timed, base)
+    if not full_rotation:
+        return of
+    from mechfem import full_rotation as _full
+
+    return _full.checked(of, mechanism, storage, base)
+
+
 def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
     """The points' models put together as one model of as many positions (:class:`~mechfem.timing.TimedModel`)."""
 
@@ -266,6 +276,7 @@ def optimize(
     executor: object | None = None,
     timing: FreeTiming | None = None,
     box: Mapping[str, tuple[float, float]] | None = None,
+    full_rotation: bool = False,
 ) -> Optimum:
     """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
     start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
@@ -298,7 +309,9 @@ def optimize(
     its reason) and ``usable`` the fraction of starts optimised. :class:`~mechfem.design.Infeasible` is raised
     only when every start failed.
 
-    ``timing`` (a :class:`~mechfem.timing.FreeTiming`) makes the input's value at each target point a design
+    ``full_rotation`` True: a design is feasible only if its input (one angle) also turns fully, without a limit
+    position, on the start design's branch (:mod:`mechfem.full_rotation`). ``timing`` (a
+    :class:`~mechfem.timing.FreeTiming`) makes the input's value at each target point a design
     variable: the positions are then the target points (``Optimum.timing`` the values found).
     """
     if not isinstance(starts, int) or starts != 1 or executor is not None:
@@ -316,10 +329,13 @@ def optimize(
             "rtol": rtol,
             "atol": atol,
             "timing": timing,
+            "full_rotation": full_rotation,
         }
         if not isinstance(starts, int) and not starts:
             raise ValueError("starts is an empty list: give at least one start design, or a number of starts")
-        return _multi_start(mechanism, vary, kwargs, starts, seed, executor, box)
+        from mechfem import multistart
+
+        return multistart.multi_start(mechanism, vary, kwargs, starts, seed, executor, box)
     motion = motion or mechanism.motion
     if timing is not None:
         motion = Motion.by(1, POINT_MOTION_STEP)
@@ -386,7 +402,7 @@ def optimize(
         periodic = (periodic if any(periodic) else [False] * len(vary)) + timed.periodic
     with deckio.tables_dir(built.tables) as base:
         problem = design.Problem(
-            model=design.built_model(built.builder, base) if timed is None else _timed_model(timed, base),
+            model=_model(built.builder, base, timed, full_rotation, mechanism, deck.storage),
             variables=[(k, n) for k, n, _ in variables] + ([] if timed is None else [(2, k) for k in range(positions)]),
             names=list(vary) + ([] if timed is None else timed.names),
             lo=lo,
@@ -444,76 +460,6 @@ def optimize(
 
 
 # --- multi-start ---------------------------------------------------------------------------------------------------
-
-
-def _one_start(
-    task: tuple[Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]],
-) -> Optimum | tuple[str, float]:
-    """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
-    from mechfem.errors import MechfemError
-
-    mech, vary, kwargs = task
-    t0 = time.perf_counter()
-    try:
-        return optimize(mech, vary, **kwargs)
-    except MechfemError as err:
-        return str(err) or type(err).__name__, time.perf_counter() - t0
-
-
-def _multi_start(
-    mechanism: Mechanism,
-    vary: Mapping[str, tuple[float, float] | None],
-    kwargs: dict[str, Any],
-    starts: int | Sequence[Mapping[str, float]],
-    seed: int | None,
-    executor: object | None,
-    box: Mapping[str, tuple[float, float]] | None = None,
-) -> Optimum:
-    from mechfem import cluster, multistart
-
-    if isinstance(starts, int) and starts < 1:
-        raise ValueError(f"starts must be at least 1, got {starts}")
-    begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
-    if isinstance(starts, int):
-        if box is None:
-            box = {name: _span(mechanism, name, span) for name, span in vary.items()}
-        unknown = set(box) - set(vary)
-        if unknown:
-            raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
-        begins += [{**begins[0], **d} for d in multistart.draws(box, starts - 1, seed)]
-    else:
-        begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
-    # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
-    # discarded with the reason.
-    reached: list[Mechanism | str] = [mechanism]
-    reached += [multistart.assembled(mechanism, b) for b in begins[1:]]
-    usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
-    tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
-    if executor is None:
-        outs: list[Any] = [_one_start(t) for t in tasks]
-    else:
-        remote = {**kwargs, "progress": None}
-        tasks = [(m, v, remote) for m, v, _ in tasks]
-        outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
-    by_start = dict(zip(usable, outs, strict=True))
-    outcomes: list[Start] = []
-    for k, begin in enumerate(begins):
-        out = by_start.get(k, f"start design discarded: {reached[k]}")
-        if isinstance(out, Optimum):
-            outcomes.append(out.starts[0])
-            continue
-        if isinstance(out, str):
-            reason, seconds = out, 0.0
-        else:
-            reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
-        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
-    found = [out for out in outs if isinstance(out, Optimum)]
-    if not found:
-        raise design.Infeasible(
-            "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
-        )
-    best = min(found, key=lambda o: o.objective)
-    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins))
 
 
 def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequence[float]) -> None:
