@@ -63,6 +63,7 @@ from mechfem.model import Driven, Keep, Mechanism, Motion, Output
 from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
 from mechfem.result import Analysis, CheckResult, RunResult, check_result, run_result
 from mechfem.run_report import AdjustInfo, Limit, RunReport, Stop
+from mechfem.timing import FreeTiming
 from mechfem.tolerance import Spread, ToleranceBands, ToleranceStudy, tolerance_bands, tolerance_study
 
 # Every module that fills a hook of a lower layer (docs/architecture.md), so that `import mechfem` has them all.
@@ -157,6 +158,7 @@ __all__ = [
     "Target",
     "TargetAt",
     "TargetExtremum",
+    "FreeTiming",
     "Term",
     "ToleranceBands",
     "ToleranceStudy",

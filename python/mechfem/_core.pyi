@@ -622,6 +622,8 @@ class OptimiseDict(TypedDict):
     objective: ObjectiveDict | None
     steps: int
     tol: float | None
+    ftol: tuple[float, float] | None
+    """OPTFTOL's (rtol, atol)."""
     line: int
     """Line of the OPTIMISE header."""
 

@@ -28,6 +28,7 @@ import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
+from mechfem.design_rules import _EPS, _FEASIBLE, TURN, Stop, _Converged, _optimiser_bounds, _reported, _stop_message
 from mechfem.errors import MechfemError
 
 FloatArray = npt.NDArray[np.float64]
@@ -105,6 +106,15 @@ class Problem:
     """Buffers evaluated for ``custom`` beyond those of the terms."""
     steps: int = 200
     tol: float | None = None
+    """The classic stopping tolerance (OPTTOL): least squares stop when an accepted step changes the sum of squares
+    by less than ``tol`` times it, SLSQP when an iteration changes the objective by less than ``tol`` times the
+    start objective (at least ``tol``)."""
+    stop: Stop | None = None
+    """Stopping tolerances independent of the start objective (OPTFTOL); when given, ``tol`` is not used."""
+    periodic: list[bool] = field(default_factory=list)
+    """Per variable (empty: none): an angle that wraps. The optimiser sees it without bounds; it is evaluated at
+    the value a whole number of turns away that lies within half a turn of its start value, and reported within
+    ``[lo, lo + 2 pi)``."""
 
 
 @dataclass
@@ -202,6 +212,17 @@ class Evaluator:
         """How many designs evaluated were infeasible."""
         self.reasons: dict[str, tuple[int, str]] = {}
         """Infeasible designs by kind of reason (see ``DesignModel.evaluate``): how many, and the first one's reason."""
+        self._turns = np.array(problem.periodic, dtype=bool) if any(problem.periodic) else None
+        self._centre: FloatArray | None = None
+
+    def wrapped(self, x: FloatArray) -> FloatArray:
+        """``x`` with every periodic variable moved by whole turns to within half a turn of its start value: the
+        same mechanism, assembled by a continuation from the start design that never goes round the long way."""
+        x = np.asarray(x, dtype=np.float64)
+        if self._turns is None or self._centre is None:
+            return x
+        d = x - self._centre
+        return np.where(self._turns, self._centre + (d - TURN * np.round(d / TURN)), x)
 
     @property
     def runs(self) -> int:
@@ -214,6 +235,7 @@ class Evaluator:
         """Evaluates ``x`` as the start design: its assembly branch is that of every later evaluation, its number of
         extrema that of every TARGETEXT. Raises :class:`Infeasible` with the reason."""
         self._cache = None
+        self._centre = np.array(x, dtype=np.float64)
         d = self.model.start_at([float(v) for v in x])
         if not d["feasible"]:
             raise Infeasible(str(d["reason"]))
@@ -223,7 +245,8 @@ class Evaluator:
 
     def __call__(self, x: FloatArray) -> Evaluation:
         """The evaluation at ``x``; raises :class:`Infeasible` with the reason."""
-        key = np.asarray(x, dtype=np.float64).tobytes()
+        x = self.wrapped(x)
+        key = x.tobytes()
         if self._cache is None or self._cache[0] != key:
             d = self.model.evaluate([float(v) for v in x])
             result: Evaluation | str = str(d["reason"])
@@ -448,29 +471,41 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             except Infeasible:
                 return 1e3 * (1.0 + np.abs(residuals(problem, best.e)[0]))
             r, _ = residuals(problem, e)
-            if float(r @ r) < best.f:
+            f = float(r @ r)
+            if f < best.f:
+                before = best.f
                 note(x, e)
+                if problem.stop is not None and problem.stop.met(before, f):
+                    raise _Converged
             return r
 
         def jac(x: FloatArray) -> FloatArray:
             return residuals(problem, feasible(x))[1]
 
         tol = problem.tol if problem.tol is not None else 1e-12
-        out = optimize.least_squares(
-            fun,
-            x0,
-            jac=jac,
-            bounds=(problem.lo, problem.hi),
-            method="trf",
-            x_scale="jac",
-            ftol=tol,
-            xtol=1e-12,
-            gtol=1e-12,
-            max_nfev=max(problem.steps, 1),
-        )
-        x, success, message, method = out.x, bool(out.success), str(out.message), "least_squares (trf)"
+        if problem.stop is not None:
+            # SciPy's relative test is the same as Stop's when rtol is above the rounding (below it SciPy warns);
+            # the absolute part is tested in fun.
+            tol = problem.stop.rtol if problem.stop.rtol > _EPS else None  # type: ignore[assignment]
+        method = "least_squares (trf)"
+        try:
+            out = optimize.least_squares(
+                fun,
+                x0,
+                jac=jac,
+                bounds=_optimiser_bounds(problem),
+                method="trf",
+                x_scale="jac",
+                ftol=tol,
+                xtol=1e-12,
+                gtol=1e-12,
+                max_nfev=max(problem.steps, 1),
+            )
+            x, success, message = out.x, bool(out.success), str(out.message)
+        except _Converged:
+            x, success, message = best.x, True, _stop_message(problem.stop)
     else:
-        scale = np.maximum(problem.hi - problem.lo, 1e-12)
+        scale = np.maximum(problem.hi - problem.lo, 1e-12)  # a turn for a periodic variable
 
         def fg(x: FloatArray) -> tuple[float, FloatArray]:
             try:
@@ -494,31 +529,50 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
             except Infeasible:
                 return -np.ones_like(constraints(problem, best.e)[0])
 
+        last = [f0]
+
         def callback(xk: FloatArray) -> None:
             if np.array_equal(xk, best.x):
-                return  # noted when it was evaluated
-            try:
-                note(np.asarray(xk), ev(xk))
-            except Infeasible:
-                pass
+                e = best.e  # noted when it was evaluated
+            else:
+                try:
+                    e = ev(xk)
+                except Infeasible:
+                    return
+                note(np.asarray(xk), e)
+            if problem.stop is None:
+                return
+            f, _ = objective(problem, e)
+            before, last[0] = last[0], f
+            if problem.stop.met(before, f) and violation(problem, e) <= _FEASIBLE:
+                raise _Converged
 
         def cons_jac(x: FloatArray) -> FloatArray:
             return constraints(problem, feasible(x))[1]
 
         tol = problem.tol if problem.tol is not None else 1e-10
-        # scipy-stubs types a constraint's "fun" as scalar-valued; SLSQP takes a vector of constraints from one
-        # function (and its Jacobian as a matrix), as used here.
-        out = optimize.minimize(  # type: ignore[call-overload]
-            fg,
-            x0,
-            jac=True,
-            method="SLSQP",
-            bounds=list(zip(problem.lo, problem.hi, strict=True)),
-            constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
-            callback=callback,
-            options={"maxiter": max(problem.steps, 1), "ftol": tol * max(1.0, abs(f0))},
-        )
-        x, success, message, method = out.x, bool(out.success), str(out.message), "SLSQP"
+        # SLSQP's own test is absolute (|f_k - f_k-1| < ftol, the bounds met within ftol); OPTTOL scales it by the
+        # start objective. Stop's relative part is tested in the callback, its absolute part is SLSQP's.
+        ftol = tol * max(1.0, abs(f0)) if problem.stop is None else max(problem.stop.atol, 1e-300)
+        method = "SLSQP"
+        try:
+            # scipy-stubs types a constraint's "fun" as scalar-valued; SLSQP takes a vector of constraints from one
+            # function (and its Jacobian as a matrix), as used here.
+            out = optimize.minimize(  # type: ignore[call-overload]
+                fg,
+                x0,
+                jac=True,
+                method="SLSQP",
+                bounds=[
+                    (None, None) if math.isinf(a) else (a, b) for a, b in zip(*_optimiser_bounds(problem), strict=True)
+                ],
+                constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
+                callback=callback,
+                options={"maxiter": max(problem.steps, 1), "ftol": ftol},
+            )
+            x, success, message = out.x, bool(out.success), str(out.message)
+        except _Converged:
+            x, success, message = best.x, True, _stop_message(problem.stop)
     try:
         e = ev(x)
     except Infeasible:
@@ -528,7 +582,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         note(x, e)
     return Solution(
         start=x0,
-        x=np.asarray(x, dtype=np.float64),
+        x=_reported(problem, np.asarray(x, dtype=np.float64)),
         objective=float(f),
         start_objective=float(f0),
         history=history,

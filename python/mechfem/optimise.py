@@ -9,24 +9,24 @@ quantity and evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.d
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
 import sys
-import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import building, deckio, design
+from mechfem import building, deckio, design, design_rules
 from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
+from mechfem.motion import Motion
 from mechfem.storage import Storage
+from mechfem.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
 
 if TYPE_CHECKING:
-    from mechfem.model import Mechanism, Motion
+    from mechfem.model import Mechanism
     from mechfem.result import RunResult
 
 Name: TypeAlias = "str | Coordinate | Row | FormParameter"
@@ -107,6 +107,10 @@ class Optimum:
     motion: Motion | None = field(default=None, repr=False)
     starts: list[Start] = field(default_factory=list, repr=False)
     """Every start's outcome (one for a single start); this optimum is the best of them."""
+    usable: float = 1.0
+    """The fraction of the starts that could be optimised (assembled, and feasible through the motion)."""
+    timing: list[float] | None = None
+    """With free timing, the input's value at each target point of the optimised design."""
     reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
     """Those infeasible designs by kind of reason (see :attr:`mechfem.design.Solution.reasons`): how many, and the
     first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
@@ -192,6 +196,49 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
     return 1, numbering.row_dest[obj], float(obj.value)
 
 
+def _model(
+    builder: Any, base: str, timed: Plan | None, full_rotation: bool, mechanism: Mechanism, storage: Storage
+) -> design.DesignModelOf:
+    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if asked."""
+    of = design.built_model(builder, base) if timed is None else _timed_model(timed, base)
+    if not full_rotation:
+        return of
+    from mechfem import full_rotation as _full
+
+    return _full.checked(of, mechanism, storage, base)
+
+
+def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
+    """The points' models put together as one model of as many positions (:class:`~mechfem.timing.TimedModel`)."""
+
+    def of(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
+        shared = [v for v in variables if v[0] != 2]
+        points = [b.design(base, [*shared, timed.input_var], buffers, extrema) for b in timed.builders]
+        return TimedModel(points, len(shared), timed.thetas, timed.ordered, timed.angle)
+
+    return of
+
+
+def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> bool:
+    """Whether the variable ``name`` with range ``span`` wraps: an angle without a range or with a range of one
+    whole turn."""
+    obj = _lookup(mech, name)
+    angle = obj.kind == "angle" if isinstance(obj, Coordinate) else obj.is_angle
+    if span is None:
+        if not angle:
+            raise ValueError(f"{name!r} is not an angle: give its range (lo, hi); only an angle may go without one")
+        return True
+    return angle and design_rules.full_turn(float(span[0]), float(span[1]))
+
+
+def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple[float, float]:
+    """A variable's range; for an angle without one, the turn centred on its value."""
+    if span is not None:
+        return float(span[0]), float(span[1])
+    value = float(getattr(mech[name], "value", None) or 0.0)
+    return value - math.pi, value + math.pi
+
+
 def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable[[Iteration], object] | None:
     if callable(progress):
         return progress
@@ -210,7 +257,7 @@ def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable
 
 def optimize(
     mechanism: Mechanism,
-    vary: Mapping[str, tuple[float, float]],
+    vary: Mapping[str, tuple[float, float] | None],
     *,
     targets: Sequence[Target | TargetAt | TargetExtremum] = (),
     bounds: Sequence[Bound] = (),
@@ -222,9 +269,14 @@ def optimize(
     steps: int = 200,
     tol: float | None = None,
     progress: bool | Callable[[Iteration], object] | None = None,
-    starts: int = 1,
+    starts: int | Sequence[Mapping[str, float]] = 1,
+    rtol: float | None = None,
+    atol: float | None = None,
     seed: int | None = None,
     executor: object | None = None,
+    timing: FreeTiming | None = None,
+    box: Mapping[str, tuple[float, float]] | None = None,
+    full_rotation: bool = False,
 ) -> Optimum:
     """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
     start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
@@ -236,7 +288,10 @@ def optimize(
     variables, reading ``e.value(q)`` and ``e.gradient(q)`` (positions x variables) of the quantities listed in
     ``quantities``. Targets alone are solved by SciPy's trust-region least
     squares (``least_squares``); with ``bounds`` or another term by SLSQP (``minimize``). ``steps`` limits the
-    iterations (least squares: the evaluations), ``tol`` is the relative change of the objective that ends it.
+    iterations (least squares: the evaluations). ``rtol`` and ``atol`` end it when an iteration changes the
+    objective f by less than ``atol + rtol * |f|``, for either method and whatever the start objective (the one not
+    given is 0). Without them, ``tol`` is the classic tolerance: the relative change of the sum of squares for least
+    squares, and for SLSQP a change below ``tol`` times the start objective.
     ``motion`` (default the mechanism's) gives the positions; ``progress`` True prints every iteration on
     stderr, a callable gets every :class:`~mechfem.design.Iteration`.
 
@@ -244,13 +299,22 @@ def optimize(
     cannot be assembled or moved through the motion. A design met on the way that cannot is reported to the
     optimiser as a very poor one, never raised.
 
-    ``starts`` > 1 is a multi-start: the given design and ``starts - 1`` designs drawn uniformly within the ranges
-    of ``vary`` (a random generator seeded with ``seed``) are each optimised, one after the other or as tasks of
-    an ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``; there ``progress`` is
-    not shown). The best optimum is returned; its ``starts`` holds every start's :class:`Start`, and a start that
-    failed is one of them. :class:`~mechfem.design.Infeasible` is raised only when every start failed.
+    ``starts`` > 1 is a multi-start: the given design and ``starts - 1`` designs drawn within ``box`` (name ->
+    (lo, hi); default the ranges of ``vary``) by a scrambled Halton sequence seeded with ``seed``, or ``starts``
+    a list of start designs (name -> value; the names not given keep the mechanism's values). Every start is
+    assembled afresh by continuation from the mechanism's position 1 (:mod:`mechfem.multistart`); one that cannot
+    be is discarded with the reason. The others are optimised one after the other or as tasks of an
+    ``executor`` (a Dask ``distributed.Client`` or a ``concurrent.futures.Executor``; there ``progress`` is not
+    shown). The best optimum is returned; its ``starts`` holds every start's :class:`Start` (a failed one with
+    its reason) and ``usable`` the fraction of starts optimised. :class:`~mechfem.design.Infeasible` is raised
+    only when every start failed.
+
+    ``full_rotation`` True: a design is feasible only if its input (one angle) also turns fully, without a limit
+    position, on the start design's branch (:mod:`mechfem.full_rotation`). ``timing`` (a
+    :class:`~mechfem.timing.FreeTiming`) makes the input's value at each target point a design
+    variable: the positions are then the target points (``Optimum.timing`` the values found).
     """
-    if starts != 1 or executor is not None:
+    if not isinstance(starts, int) or starts != 1 or executor is not None:
         kwargs = {
             "targets": targets,
             "bounds": bounds,
@@ -262,9 +326,19 @@ def optimize(
             "steps": steps,
             "tol": tol,
             "progress": progress,
+            "rtol": rtol,
+            "atol": atol,
+            "timing": timing,
+            "full_rotation": full_rotation,
         }
-        return _multi_start(mechanism, vary, kwargs, starts, seed, executor)
+        if not isinstance(starts, int) and not starts:
+            raise ValueError("starts is an empty list: give at least one start design, or a number of starts")
+        from mechfem import multistart
+
+        return multistart.multi_start(mechanism, vary, kwargs, starts, seed, executor, box)
     motion = motion or mechanism.motion
+    if timing is not None:
+        motion = Motion.by(1, POINT_MOTION_STEP)
     if motion is None:
         raise ValueError("an optimisation needs a motion (its positions are where targets are compared)")
     if not vary:
@@ -274,6 +348,11 @@ def optimize(
     if not 1 <= steps <= 2**31 - 1:
         # SciPy's SLSQP counts iterations in 32 bits: a larger limit wraps round to a negative one.
         raise ValueError(f"steps must be from 1 to 2147483647, not {steps}")
+    stop = None
+    if rtol is not None or atol is not None:
+        if tol is not None:
+            raise ValueError("give tol, or rtol and atol, not both")
+        stop = design_rules.Stop(float(rtol or 0.0), float(atol or 0.0))
     deck = _Deck(mechanism)
     terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
     for t in targets:
@@ -296,23 +375,36 @@ def optimize(
     built = building.builder(mechanism, motion, deck.storage)
     variables = [_variable(mechanism, built.numbering, name) for name in vary]
     positions = motion.steps + 1
+    timed = None
+    if timing is not None:
+        if any(isinstance(t, design.ExtremumTerm) for t in terms):
+            raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
+        timed = plan(mechanism, timing, deck.storage, built.numbering)
+        positions = len(timed.thetas)
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
         if isinstance(term, design.AtTerm) and not 0 <= term.position < positions:
             raise ValueError(f"TargetAt position {term.position} is outside 0..{positions - 1}")
-    lo = np.array([float(v[0]) for v in vary.values()])
-    hi = np.array([float(v[1]) for v in vary.values()])
+    periodic = [_periodic(mechanism, name, span) for name, span in vary.items()]
+    ranges = [
+        (s - math.pi, s + math.pi) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)
+    ]
+    lo = np.array([float(v[0]) for v in ranges])
+    hi = np.array([float(v[1]) for v in ranges])
     for name, (_, _, start), a, b in zip(vary, variables, lo, hi, strict=True):
         if not a < b:
             raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
         if not a <= start <= b:
             raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
+    if timed is not None:
+        lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
+        periodic = (periodic if any(periodic) else [False] * len(vary)) + timed.periodic
     with deckio.tables_dir(built.tables) as base:
         problem = design.Problem(
-            model=design.built_model(built.builder, base),
-            variables=[(k, n) for k, n, _ in variables],
-            names=list(vary),
+            model=_model(built.builder, base, timed, full_rotation, mechanism, deck.storage),
+            variables=[(k, n) for k, n, _ in variables] + ([] if timed is None else [(2, k) for k in range(positions)]),
+            names=list(vary) + ([] if timed is None else timed.names),
             lo=lo,
             hi=hi,
             terms=terms,
@@ -322,9 +414,18 @@ def optimize(
             extra_buffers=extra,
             steps=steps,
             tol=tol,
+            stop=stop,
+            periodic=periodic if any(periodic) else [],
         )
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)
+    thetas = None
+    if timed is not None and timing is not None:
+        n = len(vary)
+        thetas = [float(t) for t in timed_inputs(timed, sol.x[n:])]
+        optimised.set(timing.input, thetas[0])
+        sol.x, sol.start = sol.x[:n], sol.start[:n]
+        motion = None
     for name, x in zip(vary, sol.x, strict=True):
         optimised.set(name, float(x))
     _carry_position_one(optimised, built.numbering, sol.position_one)
@@ -343,6 +444,7 @@ def optimize(
         seconds=sol.seconds,
         method=sol.method,
         motion=motion,
+        timing=thetas,
         starts=[
             Start(
                 dict(zip(vary, map(float, sol.start), strict=True)),
@@ -358,59 +460,6 @@ def optimize(
 
 
 # --- multi-start ---------------------------------------------------------------------------------------------------
-
-
-def _one_start(task: tuple[Mechanism, dict[str, tuple[float, float]], dict[str, Any]]) -> Optimum | tuple[str, float]:
-    """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
-    from mechfem.errors import MechfemError
-
-    mech, vary, kwargs = task
-    t0 = time.perf_counter()
-    try:
-        return optimize(mech, vary, **kwargs)
-    except MechfemError as err:
-        return str(err) or type(err).__name__, time.perf_counter() - t0
-
-
-def _multi_start(
-    mechanism: Mechanism,
-    vary: Mapping[str, tuple[float, float]],
-    kwargs: dict[str, Any],
-    starts: int,
-    seed: int | None,
-    executor: object | None,
-) -> Optimum:
-    from mechfem import cluster
-
-    if starts < 1:
-        raise ValueError(f"starts must be at least 1, got {starts}")
-    lo = np.array([float(v[0]) for v in vary.values()])
-    hi = np.array([float(v[1]) for v in vary.values()])
-    draws = lo + (hi - lo) * np.random.default_rng(seed).random((starts - 1, len(vary)))
-    begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
-    begins += [dict(zip(vary, map(float, x), strict=True)) for x in draws]
-    designs = [mechanism] + [mechanism.variant(b) for b in begins[1:]]
-    tasks = [(m, dict(vary), kwargs) for m in designs]
-    if executor is None:
-        outs: list[Any] = [_one_start(t) for t in tasks]
-    else:
-        remote = {**kwargs, "progress": None}
-        tasks = [(m, v, remote) for m, v, _ in tasks]
-        outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
-    outcomes: list[Start] = []
-    for begin, out in zip(begins, outs, strict=True):
-        if isinstance(out, Optimum):
-            outcomes.append(out.starts[0])
-            continue
-        reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
-        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
-    found = [out for out in outs if isinstance(out, Optimum)]
-    if not found:
-        raise design.Infeasible(
-            "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
-        )
-    best = min(found, key=lambda o: o.objective)
-    return dataclasses.replace(best, starts=outcomes)
 
 
 def _carry_position_one(mech: Mechanism, numbering: deckio.Numbering, x: Sequence[float]) -> None:

@@ -17,8 +17,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import mechfem._core as _core
-from mechfem import design
+from mechfem import design, design_rules
 from mechfem.atomic import atomic_text
+from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import Model
 from mechfem.errors import MechfemError
 from mechfem.labels import coordinate_units, row_unit, shown
@@ -67,6 +68,10 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
                 design.ExtremumTerm(t["buffer"], int(t["reference"] or 0), float(t["value"] or 0.0), t["weight"])
             )
     objective = opt["objective"]
+    periodic = [design_rules.full_turn(v["lo"], v["hi"]) for v in opt["vary"]]
+    if any(periodic):
+        angles = angle_variables(_core.describe_deck_text(text, os.fspath(deck), os.fspath(deck_dir(deck))), opt)
+        periodic = [p and a for p, a in zip(periodic, angles, strict=True)]
     return design.Problem(
         model=design.deck_model(text, os.fspath(deck), os.fspath(deck_dir(deck))),
         variables=[(v["kind"], v["number"]) for v in opt["vary"]],
@@ -80,7 +85,30 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
         else (1 if objective["sense"] == "minimise" else -1, objective["reduce"], objective["buffer"]),
         steps=opt["steps"],
         tol=opt["tol"],
+        stop=None if (ftol := opt.get("ftol")) is None else design_rules.Stop(*ftol),
+        periodic=periodic if any(periodic) else [],
     )
+
+
+def angle_variables(described: DescribedDeckDict, opt: OptimiseDict) -> list[bool]:
+    """Whether each design variable is an angle, as the catalogue says of the form parameters of its row (VARY)
+    or of the elements' slots its co-ordinate fills (VARYX)."""
+    types = {e["number"]: e["type"] for e in described["elements"]}
+    rows = {r["dest"]: r for r in described["prescribed"]}
+    out = []
+    for v in opt["vary"]:
+        if v["kind"] == 1:
+            terms = rows[v["number"]]["terms"] if v["number"] in rows else []
+            out.append(bool(terms) and all(form_dimension(types[t["element"]], t["form"]) == "angle" for t in terms))
+        else:
+            slots = [
+                k
+                for e in described["elements"]
+                for i, k in zip(e["coords"], coordinate_dimensions(e["type"]), strict=False)
+                if i == v["number"]
+            ]
+            out.append(bool(slots) and all(k == "angle" for k in slots))
+    return out
 
 
 def variable_name(kind: int, number: int) -> str:

@@ -136,6 +136,7 @@ keywords! {
     Maximise "MAXIMISE" Optimise 2 Some(2), "kind b";
     OptSteps "OPTSTEPS" Optimise 1 Some(1), "n";
     OptTol "OPTTOL" Optimise 1 Some(1), "tol";
+    OptFTol "OPTFTOL" Optimise 2 Some(2), "rtol atol";
     BufInp "BUFINP" Storage 2 Some(2), "j b";
     BufTime "BUFTIME" Storage 1 Some(1), "b";
     BufX0 "BUFX0" Storage 2 Some(2), "i b";

@@ -25,6 +25,9 @@ pub struct Optimise {
     /// Stop when the objective's relative change is below this (OPTTOL),
     /// if given.
     pub tol: Option<f64>,
+    /// Stop when an iteration changes the objective f by less than
+    /// `atol + rtol |f|` (OPTFTOL rtol atol), if given: `(rtol, atol)`.
+    pub ftol: Option<(f64, f64)>,
     /// Line of the OPTIMISE header.
     pub line: usize,
 }

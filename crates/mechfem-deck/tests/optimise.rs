@@ -152,3 +152,22 @@ fn the_input_of_a_mov_func_motion_is_no_design_variable() {
     let c = compiled(&format!("{text}OPTIMISE\nVARY 1 0.5 1.5\nBUFE0 -1 1\nMINIMISE MAX 1\n")).unwrap();
     assert_eq!(c.optimise.expect("optimise").vary[0].var, DesignVar::Row(0));
 }
+
+#[test]
+fn optftol_gives_a_relative_and_an_absolute_tolerance_and_excludes_opttol() {
+    let block = "OPTIMISE\nVARY 2 3 4\nBUFE0 -1 1\nMINIMISE MAX 1\n";
+    let c = compiled(&format!("{}{block}OPTFTOL 1E-12 0\n", four_bar("KIN OPT"))).unwrap();
+    let o = c.optimise.expect("optimise");
+    assert_eq!((o.tol, o.ftol), (None, Some((1e-12, 0.0))));
+    let c = compiled(&format!("{}{block}OPTTOL 1E-8\n", four_bar("KIN OPT"))).unwrap();
+    assert_eq!(c.optimise.expect("optimise").ftol, None);
+    for (lines, kind) in [
+        ("OPTFTOL 1E-10 1E-14\nOPTTOL 1E-8\n", DiagnosticKind::DuplicateKeyword),
+        ("OPTFTOL 0 0\n", DiagnosticKind::BadValue),
+        ("OPTFTOL -1E-3 0\n", DiagnosticKind::BadValue),
+        ("OPTFTOL 1 0\n", DiagnosticKind::BadValue),
+    ] {
+        let e = compiled(&format!("{}{block}{lines}", four_bar("KIN OPT"))).unwrap_err();
+        assert_eq!(e.iter().map(|d| d.kind).collect::<Vec<_>>(), [kind], "{lines}: {e}");
+    }
+}

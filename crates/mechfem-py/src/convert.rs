@@ -532,6 +532,7 @@ pub fn optimise<'py>(py: Python<'py>, o: &Optimise) -> PyResult<Bound<'py, PyDic
     d.set_item("objective", objective)?;
     d.set_item("steps", o.steps)?;
     d.set_item("tol", o.tol)?;
+    d.set_item("ftol", o.ftol)?;
     d.set_item("line", o.line)?;
     Ok(d)
 }

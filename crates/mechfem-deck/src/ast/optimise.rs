@@ -25,6 +25,9 @@ pub struct Optimise {
     pub steps: Option<Spanned<i64>>,
     /// `OPTTOL tol`, if given (tol > 0).
     pub tol: Option<Spanned<f64>>,
+    /// `OPTFTOL rtol atol`, if given (both >= 0, not both 0, rtol < 1),
+    /// with the keyword (for the message when OPTTOL is given too).
+    pub ftol: Option<(Spanned<Keyword>, f64, f64)>,
 }
 
 /// `VARY r lo hi` or `VARYX i lo hi`.

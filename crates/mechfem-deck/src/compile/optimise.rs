@@ -120,6 +120,7 @@ pub(crate) fn optimise(
         objective,
         steps: block.steps.map_or(Optimise::DEFAULT_STEPS, |n| usize::try_from(n.value).unwrap_or(usize::MAX)),
         tol: block.tol.map(|t| t.value),
+        ftol: block.ftol.map(|(_, rtol, atol)| (rtol, atol)),
         line: block.line,
     }))
 }

@@ -105,6 +105,14 @@ impl Parser<'_> {
                 self.once(kw)?;
                 self.optimise.steps = Some(n);
             }
+            Keyword::OptFTol => {
+                let rtol = src.real(arg(0)?, "the relative tolerance rtol")?;
+                let atol = src.real(arg(1)?, "the absolute tolerance atol")?;
+                ftol_values(src, &rtol, &atol)?;
+                self.once(kw)?;
+                self.both_tolerances(kw, self.optimise.tol.map(|t| t.span.line))?;
+                self.optimise.ftol = Some((kw, rtol.value, atol.value));
+            }
             _ => {
                 let tol = src.real(arg(0)?, "the tolerance")?;
                 if tol.value >= 1.0 {
@@ -133,11 +141,72 @@ impl Parser<'_> {
                         ));
                 }
                 self.once(kw)?;
+                self.both_tolerances(kw, self.optimise.ftol.map(|(k, _, _)| k.span.line))?;
                 self.optimise.tol = Some(tol);
             }
         }
         Ok(())
     }
+}
+
+impl Parser<'_> {
+    /// OPTTOL and OPTFTOL say the same thing in two ways: one of them.
+    fn both_tolerances(&self, kw: Spanned<Keyword>, other: Option<usize>) -> Result<(), Box<Diagnostic>> {
+        let Some(first) = other else { return Ok(()) };
+        let other = if kw.value == Keyword::OptTol { Keyword::OptFTol } else { Keyword::OptTol };
+        Err(self
+            .src
+            .error(
+                DiagnosticKind::DuplicateKeyword,
+                kw.span,
+                format!("{} and {other} (line {first}) are both given", kw.value),
+            )
+            .with_hint(
+                "give one: OPTFTOL rtol atol stops when an iteration changes the objective f by less than \
+                 atol + rtol |f|; OPTTOL tol is the classic relative tolerance (for SLSQP scaled by the start \
+                 objective)",
+            ))
+    }
+}
+
+/// The numbers of `OPTFTOL rtol atol`: both zero or positive and finite,
+/// rtol below 1, not both zero.
+fn ftol_values(src: &Source<'_>, rtol: &Spanned<f64>, atol: &Spanned<f64>) -> Result<(), Box<Diagnostic>> {
+    let hint = "OPTFTOL rtol atol stops the optimiser when an iteration changes the objective f by less than \
+                atol + rtol |f|: give e.g. `OPTFTOL 1E-10 1E-14`";
+    for (v, name) in [(rtol, "rtol"), (atol, "atol")] {
+        if !(v.value >= 0.0 && v.value.is_finite()) {
+            return Err(src
+                .error(
+                    DiagnosticKind::BadValue,
+                    v.span,
+                    format!("OPTFTOL's {name} must be zero or positive and finite, got {}", real(v.value)),
+                )
+                .with_hint(hint));
+        }
+    }
+    if rtol.value >= 1.0 {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                rtol.span,
+                format!(
+                    "OPTFTOL's rtol must be below 1, got {}: the optimiser would stop before its first step",
+                    real(rtol.value)
+                ),
+            )
+            .with_hint(hint));
+    }
+    if rtol.value == 0.0 && atol.value == 0.0 {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                rtol.span.to(atol.span),
+                "OPTFTOL's rtol and atol are both 0: the optimiser would never stop on the objective".to_string(),
+            )
+            .with_hint(hint));
+    }
+    Ok(())
 }
 
 /// `lo hi` of VARY, VARYX or BOUND: two numbers, lo below hi; for a design

@@ -1,0 +1,172 @@
+"""The starts of a multi-start of :func:`mechfem.optimize`: space-filling draws in a start box, and every start
+design assembled afresh.
+
+* **Draws.** A scrambled Halton sequence (``scipy.stats.qmc.Halton``): its points fill the box evenly (a uniform
+  random draw leaves holes and clusters), it takes any number of points (a Sobol sequence wants powers of two),
+  and it is seeded. The box's dimensions are taken in the order of the variables' names, so the same seed gives
+  the same start designs whatever order ``vary`` lists them in.
+* **Assembly.** A start design far from the mechanism's own would assemble, from the mechanism's estimates, on
+  whichever branch Newton's method happens to reach, or not at all. Each start is reached instead by continuation
+  from the mechanism's position 1: its variables move there in stages, each stage's position 1 solved from the
+  last one's (a stage that fails is halved, down to 1/64 of the way). So every start lies on the branch of the
+  mechanism's own estimates, and a start that cannot be reached (a limit position on the way: the design does not
+  exist on that branch) is discarded with that reason before any optimisation.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+import time
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from mechfem.design import Infeasible
+from mechfem.errors import MechfemError
+
+if TYPE_CHECKING:
+    from mechfem.model import Mechanism
+    from mechfem.optimise import Optimum
+
+SMALLEST_STAGE = 1.0 / 64.0
+POSITION_ONE_STEP = 1e-9
+"""The single step of the motion that computes a stage's position 1 (the second position is not used)."""
+
+
+def draws(box: Mapping[str, tuple[float, float]], n: int, seed: int | None) -> list[dict[str, float]]:
+    """``n`` start designs filling ``box`` (name -> (lo, hi)), independent of the order of its names."""
+    from scipy.stats import qmc
+
+    if n <= 0:
+        return []
+    names = sorted(box)
+    lo = np.array([float(box[k][0]) for k in names])
+    hi = np.array([float(box[k][1]) for k in names])
+    if not np.all(lo < hi):
+        raise ValueError(f"the start box {dict(box)} has an empty range")
+    unit = qmc.Halton(d=len(names), scramble=True, seed=np.random.default_rng(seed)).random(n)
+    points = qmc.scale(unit, lo, hi)
+    return [dict(zip(names, map(float, p), strict=True)) for p in points]
+
+
+def assembled(mechanism: Mechanism, values: Mapping[str, float]) -> Mechanism | str:
+    """The mechanism with ``values`` set and its moving co-ordinates at that design's position 1, reached by
+    continuation from the mechanism's own position 1; or why it cannot be reached."""
+    from mechfem.motion import Motion
+
+    motion = Motion.by(1, POSITION_ONE_STEP)
+    moving = [c.name for c in mechanism.coordinates if not c.fixed]
+    start = {name: float(mechanism[name].value) for name in values}
+    try:
+        here = _position_one(mechanism, moving, motion)
+    except MechfemError as e:
+        return f"the mechanism's own position 1 cannot be computed: {e}"
+    at, lam, h = copy.deepcopy(mechanism), 0.0, 0.25
+    last_error = ""
+    while lam < 1.0:
+        nxt = min(1.0, lam + h)
+        trial = copy.deepcopy(at)
+        for name, v in values.items():
+            trial.set(name, start[name] + nxt * (float(v) - start[name]))
+        for name, x in zip(moving, here, strict=True):
+            trial[name].value = x
+        try:
+            here = _position_one(trial, moving, motion)
+        except MechfemError as e:
+            last_error = str(e)
+            h *= 0.5
+            if h < SMALLEST_STAGE:
+                return (
+                    f"cannot be reached from the mechanism's design by continuation (stuck {lam:.0%} of the way: "
+                    f"{last_error})"
+                )
+            continue
+        at, lam, h = trial, nxt, min(2.0 * h, 1.0)
+    for name, x in zip(moving, here, strict=True):
+        at[name].value = x
+    return at
+
+
+def _position_one(mech: Mechanism, moving: Sequence[str], motion: object) -> list[float]:
+    result = mech.run(motion)  # type: ignore[arg-type]
+    out = [float(result.value(name)[0]) for name in moving]
+    if not all(math.isfinite(x) for x in out):
+        raise MechfemError("position 1 is not finite")
+    return out
+
+
+def _one_start(
+    task: tuple[Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]],
+) -> Optimum | tuple[str, float]:
+    """One start of a multi-start: its optimum, or why it failed and the seconds it took."""
+    from mechfem.optimise import optimize
+
+    mech, vary, kwargs = task
+    t0 = time.perf_counter()
+    try:
+        return optimize(mech, vary, **kwargs)
+    except MechfemError as err:
+        return str(err) or type(err).__name__, time.perf_counter() - t0
+
+
+def multi_start(
+    mechanism: Mechanism,
+    vary: Mapping[str, tuple[float, float] | None],
+    kwargs: dict[str, Any],
+    starts: int | Sequence[Mapping[str, float]],
+    seed: int | None,
+    executor: object | None,
+    box: Mapping[str, tuple[float, float]] | None = None,
+) -> Optimum:
+    from mechfem import cluster
+    from mechfem.optimise import Optimum, Start, _span
+
+    if isinstance(starts, int) and starts < 1:
+        raise ValueError(f"starts must be at least 1, got {starts}")
+    begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
+    if isinstance(starts, int):
+        if box is None:
+            box = {name: _span(mechanism, name, span) for name, span in vary.items()}
+        unknown = set(box) - set(vary)
+        if unknown:
+            raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
+        begins += [{**begins[0], **d} for d in draws(box, starts - 1, seed)]
+    else:
+        begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
+    # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
+    # discarded with the reason.
+    reached: list[Mechanism | str] = [mechanism]
+    reached += [assembled(mechanism, b) for b in begins[1:]]
+    usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
+    tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
+    if executor is None:
+        outs: list[Any] = [_one_start(t) for t in tasks]
+    else:
+        remote = {**kwargs, "progress": None}
+        tasks = [(m, v, remote) for m, v, _ in tasks]
+        outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
+    by_start = dict(zip(usable, outs, strict=True))
+    outcomes: list[Start] = []
+    for k, begin in enumerate(begins):
+        out = by_start.get(k, f"start design discarded: {reached[k]}")
+        if isinstance(out, Optimum):
+            outcomes.append(out.starts[0])
+            continue
+        if isinstance(out, str):
+            reason, seconds = out, 0.0
+        else:
+            reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
+        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
+    found = [out for out in outs if isinstance(out, Optimum)]
+    if not found:
+        raise Infeasible(
+            "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
+        )
+    best = min(found, key=lambda o: o.objective)
+    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins))
+
+
+__all__ = ["assembled", "draws", "multi_start"]
