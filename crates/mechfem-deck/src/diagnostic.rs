@@ -198,6 +198,8 @@ pub enum DiagnosticKind {
     /// A number that looks as if it were written in another unit than the
     /// deck's (a warning, never an error).
     SuspiciousUnit,
+    /// BUFPIN names co-ordinates that are not a point of its element.
+    NotAPin,
 }
 
 impl DiagnosticKind {
@@ -264,6 +266,7 @@ impl DiagnosticKind {
             DiagnosticKind::BadLabel => "bad_label",
             DiagnosticKind::UnknownUnit => "unknown_unit",
             DiagnosticKind::SuspiciousUnit => "suspicious_unit",
+            DiagnosticKind::NotAPin => "not_a_pin",
         }
     }
 }

@@ -3,6 +3,7 @@
 
 use super::inverse::InverseDynamics;
 use super::observe::{Observer, PositionView};
+use crate::dynamics::{Component, Frame};
 use crate::error::SolveError;
 use crate::model::{FormRef, Mechanism};
 use crate::solver::{DesignVar, Sensitivity, TransferOrder};
@@ -62,6 +63,24 @@ pub enum Quantity {
     Power,
     /// Entry (j, m) of the mass matrix in the degrees of freedom (BUFMRED).
     Mred(usize, usize),
+    /// Transmission angle between the first sides of two elements with a
+    /// frame, in [0, pi] (BUFTRA e1 e2).
+    Transmission(usize, usize),
+    /// One component of the force the body of an element exerts on the pin
+    /// at co-ordinates `x`, `y` (BUFPIN e i j).
+    Pin {
+        /// The element (0-based).
+        element: usize,
+        /// The pin's x co-ordinate.
+        x: usize,
+        /// The pin's y co-ordinate.
+        y: usize,
+        /// Which component (x or y).
+        component: Component,
+    },
+    /// One component of the shaking force and moment on the frame, inertia
+    /// only (BUFSHAKE).
+    Shaking(Component),
 }
 
 impl Quantity {
@@ -77,6 +96,8 @@ impl Quantity {
                 | Quantity::Epot
                 | Quantity::Power
                 | Quantity::Mred(..)
+                | Quantity::Pin { .. }
+                | Quantity::Shaking(_)
         )
     }
 
@@ -102,6 +123,7 @@ impl Quantity {
             | Quantity::Ke2(FormRef::Prescribed(_), _, _)
             | Quantity::Ve(FormRef::Prescribed(_))
             | Quantity::Ae(FormRef::Prescribed(_))
+            | Quantity::Transmission(..)
             | Quantity::Epot => None,
             Quantity::Kx1 { .. }
             | Quantity::Vx(_)
@@ -117,7 +139,9 @@ impl Quantity {
             | Quantity::Reaction(_)
             | Quantity::Ekin
             | Quantity::Power
-            | Quantity::Mred(..) => Some(TransferOrder::Second),
+            | Quantity::Mred(..)
+            | Quantity::Pin { .. }
+            | Quantity::Shaking(_) => Some(TransferOrder::Second),
         }
     }
 
@@ -154,6 +178,7 @@ impl Quantity {
             Quantity::Ae(FormRef::Prescribed(r)) => mech.input_of(r).map_or(0.0, |j| qdd[j]),
             Quantity::Ae(FormRef::Dependent(d)) => kin.dep_acceleration(d, qd, qdd),
             Quantity::Det => kin.det(),
+            Quantity::Transmission(a, b) => transmission_angle(mech, &v.state.x, a, b),
             _ => f64::NAN,
         }
     }
@@ -246,9 +271,25 @@ impl Quantity {
             Quantity::Epot => d.potential_energy(),
             Quantity::Power => d.drive_power(),
             Quantity::Mred(j, m) => d.mass_matrix_entry(mech, j, m),
+            Quantity::Pin { element, x, y, component } => d.pin_force(element, x, y, component),
+            Quantity::Shaking(c) => d.shaking(c),
             _ => f64::NAN,
         }
     }
+}
+
+/// The transmission angle between the first sides of elements `a` and `b`
+/// at co-ordinates `x`: `arccos(u_a . u_b)` of their unit directions, in
+/// [0, pi]; NaN for an element without a frame or a bar whose ends meet.
+pub fn transmission_angle(mech: &Mechanism, x: &[f64], a: usize, b: usize) -> f64 {
+    let side = |e: usize| {
+        let el = mech.elements().get(e)?;
+        Frame::of(el.ty, el.coords()).map(|f| f.direction(x))
+    };
+    let (Some(ua), Some(ub)) = (side(a), side(b)) else { return f64::NAN };
+    // atan2 of cross and dot keeps full accuracy near 0 and pi, where
+    // arccos of the dot product loses half the digits.
+    (ua[0] * ub[1] - ua[1] * ub[0]).abs().atan2(ua[0] * ub[0] + ua[1] * ub[1])
 }
 
 /// Appends the values of `quantities` at the position `view` to `out`; the
@@ -382,6 +423,12 @@ impl Observer for Recorder {
                 d.evaluate_checked(view)
             }
             _ => Ok(()),
+        }
+    }
+
+    fn moved_by_forces(&mut self, free: &[usize]) {
+        if let Some(d) = self.dynamics.as_deref_mut() {
+            d.set_moved_by_forces(free);
         }
     }
 
