@@ -198,3 +198,55 @@ def test_a_motor_driven_dof_records_the_motor_torque(tmp_path: Path) -> None:
     assert np.ptp(speed) > 0.1  # the crank speeds up or slows down: the torque is not one number
     np.testing.assert_allclose(r.buffers[3], 60.0 * (1.0 - speed / 12.0), rtol=1e-12)
     assert math.isfinite(float(r.buffers[10][-1]))
+
+
+EXAMPLES = Path(__file__).parent.parent / "examples"
+
+
+def test_a_non_grashof_crank_rocks_between_its_limit_positions() -> None:
+    from mechfem.designer import sweep_lines
+
+    r = mechfem.run_deck(EXAMPLES / "limits" / "nongrashof.mec")
+    # Coupler and rocker in line: |A B0| = 1.2 + 1.4 with A on the crank circle (1.5) about A0, |A0 B0| = 2.
+    limit = math.acos((1.5**2 + 2.0**2 - 2.6**2) / (2 * 1.5 * 2.0))
+    (line,) = [x for x in sweep_lines(r) if "rocks" in x]
+    lo, hi = (float(w) for w in line.split("between the limit positions at ")[1].split(" (")[0].split(" and "))
+    assert lo == pytest.approx(-limit, abs=1e-5) and hi == pytest.approx(limit, abs=1e-5)
+
+
+def test_the_print_file_names_the_worst_transmission_angle(run: mechfem.RunResult) -> None:
+    from mechfem.output import print_file_lines
+
+    lines = print_file_lines(run)
+    at = lines.index("TRANSMISSION ANGLES")
+    mu = np.degrees(run.buffers[2])
+    k = int(np.argmax(np.abs(mu - 90.0)))
+    assert f"worst deviation from 90 deg {abs(mu[k] - 90.0):.4g} deg" in lines[at + 1]
+    assert f"at position {k + 1} " in lines[at + 1]
+    assert any("full turn" in x for x in lines[lines.index("INPUT SWEEP") :])
+
+
+def test_pin_forces_shaking_and_angles_by_name(run: mechfem.RunResult) -> None:
+    np.testing.assert_array_equal(run.pin_force("crank", "A"), pair(run, 12))
+    np.testing.assert_array_equal(run.pin_force(3, "B0"), pair(run, 22))
+    assert set(run.pin_forces("B")) == {"coupler", "rocker"}
+    np.testing.assert_array_equal(run.shaking(), np.column_stack([run.buffers[30], run.buffers[31], run.buffers[32]]))
+    np.testing.assert_allclose(run.transmission_angle("coupler", "rocker"), run.buffers[2], atol=1e-12)
+    with pytest.raises(KeyError, match="not a point of crank"):
+        run.pin_force("crank", "B")
+    with pytest.raises(KeyError, match="pin_forces"):
+        run.reaction("A")
+    frame = run.to_pandas()
+    for column in ("drive(phi)", "reaction(A0.x)", "pin(coupler,B).y", "shaking.M", "Ekin", "mu(coupler,rocker)"):
+        assert column in frame.columns
+
+
+def test_a_named_model_records_every_pin_force() -> None:
+    deck = mechfem.Mechanism.from_deck(DECK)
+    r = deck.run()
+    deck_run = mechfem.run_deck(DECK)
+    np.testing.assert_allclose(r.pin_force("coupler", "B"), pair(deck_run, 16), rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(r.shaking()[:, 2], deck_run.buffers[32], rtol=1e-12, atol=1e-9)
+    frame = r.to_pandas()
+    for column in ("drive(phi)", "pin(rocker,B0).x", "shaking.x", "Ekin", "Epot", "power"):
+        assert column in frame.columns, list(frame.columns)
