@@ -31,12 +31,14 @@ mod pins;
 mod record;
 mod selection;
 mod simulate;
+mod transmission;
 
 pub use dispatch::{move_through, MemoryRefusal, RunMode};
 pub use inverse::InverseDynamics;
 pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
-pub use record::{record, record_evaluated, transmission_angle, Quantity, Recorder};
+pub use record::{record, record_evaluated, Quantity, Recorder};
+pub use transmission::transmission_angle;
 pub use selection::Selection;
 pub use simulate::{simulate, simulate_within, Event, Segment, SimReport};

@@ -3,7 +3,8 @@
 
 use super::inverse::InverseDynamics;
 use super::observe::{Observer, PositionView};
-use crate::dynamics::{Component, Frame};
+use super::transmission::{transmission_angle, transmission_sensitivity};
+use crate::dynamics::Component;
 use crate::error::SolveError;
 use crate::model::{FormRef, Mechanism};
 use crate::solver::{DesignVar, Sensitivity, TransferOrder};
@@ -256,6 +257,7 @@ impl Quantity {
                 }
                 a
             }
+            Quantity::Transmission(a, b) => transmission_sensitivity(mech, &v.state.x, s, var, a, b),
             _ => f64::NAN,
         }
     }
@@ -276,20 +278,6 @@ impl Quantity {
             _ => f64::NAN,
         }
     }
-}
-
-/// The transmission angle between the first sides of elements `a` and `b`
-/// at co-ordinates `x`: `arccos(u_a . u_b)` of their unit directions, in
-/// [0, pi]; NaN for an element without a frame or a bar whose ends meet.
-pub fn transmission_angle(mech: &Mechanism, x: &[f64], a: usize, b: usize) -> f64 {
-    let side = |e: usize| {
-        let el = mech.elements().get(e)?;
-        Frame::of(el.ty, el.coords()).map(|f| f.direction(x))
-    };
-    let (Some(ua), Some(ub)) = (side(a), side(b)) else { return f64::NAN };
-    // atan2 of cross and dot keeps full accuracy near 0 and pi, where
-    // arccos of the dot product loses half the digits.
-    (ua[0] * ub[1] - ua[1] * ub[0]).abs().atan2(ua[0] * ub[0] + ua[1] * ub[1])
 }
 
 /// Appends the values of `quantities` at the position `view` to `out`; the
