@@ -63,6 +63,33 @@ def kinematics(r: mechfem.RunResult) -> dict[str, dict[str, np.ndarray]]:
     return out
 
 
+def body(
+    a: np.ndarray,
+    b: np.ndarray,
+    row: int,
+    kb: dict[str, np.ndarray],
+    i: int,
+    forces: list[tuple[int, float, np.ndarray]],
+    torque_col: int | None,
+    torque: float,
+    props: tuple[float, float, float, float],
+) -> None:
+    """The three equations of one link at position i into rows ``row..row+2`` of ``a x = b``: forces (unknown
+    column, sign, point of application) and an unknown (``torque_col``) or known torque on the link."""
+    m, _, _, jg = props
+    g_pt = kb["G"][i]
+    for col, sign, at in forces:
+        a[row, col] += sign
+        a[row + 1, col + 1] += sign
+        arm = at - g_pt
+        a[row + 2, col] += -sign * arm[1]
+        a[row + 2, col + 1] += sign * arm[0]
+    if torque_col is not None:
+        a[row + 2, torque_col] = 1.0
+    b[row : row + 2] = m * kb["aG"][i] - m * G
+    b[row + 2] = jg * kb["alpha"][i] - torque
+
+
 def newton_euler(r: mechfem.RunResult) -> dict[str, np.ndarray]:
     """Pin forces, frame reactions and drive torque by Newton-Euler on each link, nine equations at each position:
     R_A0 (frame on crank), P_A (crank on pin A, = pin on coupler), F_B (coupler on pin B, = pin on rocker),
@@ -70,30 +97,13 @@ def newton_euler(r: mechfem.RunResult) -> dict[str, np.ndarray]:
     k = kinematics(r)
     n = r.positions
     sol = np.zeros((n, 9))
+    ck, kk, rk = k["crank"], k["coupler"], k["rocker"]
     for i in range(n):
         a = np.zeros((9, 9))
         b = np.zeros(9)
-
-        def body(row: int, name: str, forces: list[tuple[int, float, np.ndarray]], torque_col: int | None,
-                 torque: float) -> None:
-            kb = k[name]
-            m, _, _, jg = BODIES[name]
-            g_pt = kb["G"][i]
-            for col, sign, at in forces:
-                a[row, col] += sign
-                a[row + 1, col + 1] += sign
-                arm = at - g_pt
-                a[row + 2, col] += -sign * arm[1]
-                a[row + 2, col + 1] += sign * arm[0]
-            if torque_col is not None:
-                a[row + 2, torque_col] = 1.0
-            b[row : row + 2] = m * kb["aG"][i] - m * G
-            b[row + 2] = jg * kb["alpha"][i] - torque
-
-        ck, kk, rk = k["crank"], k["coupler"], k["rocker"]
-        body(0, "crank", [(0, 1.0, ck["P"][i]), (2, -1.0, ck["Q"][i])], 8, 0.0)
-        body(3, "coupler", [(2, 1.0, kk["P"][i]), (4, -1.0, kk["Q"][i])], None, 0.0)
-        body(6, "rocker", [(4, 1.0, rk["Q"][i]), (6, 1.0, rk["P"][i])], None, BRAKE)
+        body(a, b, 0, k["crank"], i, [(0, 1.0, ck["P"][i]), (2, -1.0, ck["Q"][i])], 8, 0.0, BODIES["crank"])
+        body(a, b, 3, k["coupler"], i, [(2, 1.0, kk["P"][i]), (4, -1.0, kk["Q"][i])], None, 0.0, BODIES["coupler"])
+        body(a, b, 6, k["rocker"], i, [(4, 1.0, rk["Q"][i]), (6, 1.0, rk["P"][i])], None, BRAKE, BODIES["rocker"])
         sol[i] = np.linalg.solve(a, b)
     return {"R_A0": sol[:, 0:2], "P_A": sol[:, 2:4], "F_B": sol[:, 4:6], "R_B0": sol[:, 6:8], "T": sol[:, 8]}
 

@@ -62,7 +62,9 @@ def _point(result: Any, e: Element, point: object) -> tuple[int, int]:
     pins = points_of(e)
     if xy not in pins:
         label = e.name or f"element {e.number}"
-        raise KeyError(f"{t.name!r} is not a point of {label} ({e.type}): a pin force acts where the element meets a pin")
+        raise KeyError(
+            f"{t.name!r} is not a point of {label} ({e.type}): a pin force acts where the element meets a pin"
+        )
     return xy
 
 
@@ -114,8 +116,8 @@ def shaking(result: Any) -> FloatArray:
     result._dynamic_needed("shaking forces")
     if "shaking" in result._layout:
         return np.asarray(result._block("shaking"), dtype=np.float64).copy()
-    parts = [_buffer(result, "BUFSHAKE", (), k) for k in range(3)]
-    if any(p is None for p in parts):
+    parts = [p for p in (_buffer(result, "BUFSHAKE", (), k) for k in range(3)) if p is not None]
+    if len(parts) < 3:
         raise KeyError(f"the run of {result.path} did not record the shaking: add `BUFSHAKE <number>` to STORAGE")
     return np.column_stack(parts)
 
@@ -211,7 +213,9 @@ def sweep_lines(result: Any) -> list[str]:
         if at:
             if len(at) >= 2:
                 span = at[-1] - at[0]
-                out.append(f"  {name}: rocks between the limit positions at {at[0]:.6g} and {at[-1]:.6g} (range {span:.6g})")
+                out.append(
+                    f"  {name}: rocks between the limit positions at {at[0]:.6g} and {at[-1]:.6g} (range {span:.6g})"
+                )
             else:
                 lo, hi = (float(np.min(q)), float(np.max(q))) if q.size else (at[0], at[0])
                 out.append(

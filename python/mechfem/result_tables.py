@@ -462,9 +462,7 @@ class ResultTables:
             fixed = [name for name, m in coords if not m]
             hint = f"; ask for the fixed one, reaction({fixed[0]!r})" if fixed else ""
             pin = f"; the force each element exerts on it is pin_forces({t.name!r})" if t.kind == "point" else ""
-            raise KeyError(
-                f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}{pin}"
-            )
+            raise KeyError(f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}{pin}")
         out = np.column_stack([self._series("reaction", i - 1) for i in t.numbers])
         return out if t.kind == "point" else out[:, 0].copy()
 

@@ -39,6 +39,6 @@ pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
 pub use record::{record, record_evaluated, Quantity, Recorder};
-pub use transmission::transmission_angle;
 pub use selection::Selection;
 pub use simulate::{simulate, simulate_within, Event, Segment, SimReport};
+pub use transmission::transmission_angle;

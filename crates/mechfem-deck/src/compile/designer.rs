@@ -60,7 +60,11 @@ fn framed(deck: &Deck, kw: Keyword, e: &Spanned<i64>) -> Result<usize, Box<Diagn
         .error(
             DiagnosticKind::NoFrame,
             e.span,
-            format!("{kw} names element {}, a {}, which has no side to measure a transmission angle on", e.value, ty.name()),
+            format!(
+                "{kw} names element {}, a {}, which has no side to measure a transmission angle on",
+                e.value,
+                ty.name()
+            ),
         )
         .about_element(index)
         .with_hint(
@@ -126,7 +130,11 @@ pub(super) fn part_number(deck: &Deck, def: &BufDef, k: usize) -> Result<u32, Bo
         .error(
             DiagnosticKind::BadValue,
             def.number.span,
-            format!("{kw} fills buffers {first} to {}, past the largest buffer number {}", u64::from(first) + k as u64, u32::MAX),
+            format!(
+                "{kw} fills buffers {first} to {}, past the largest buffer number {}",
+                u64::from(first) + k as u64,
+                u32::MAX
+            ),
         )
         .with_hint(format!("give {kw} a smaller buffer number")))
 }
@@ -136,7 +144,10 @@ pub(super) fn part_number(deck: &Deck, def: &BufDef, k: usize) -> Result<u32, Bo
 pub(super) fn taken(deck: &Deck, def: &BufDef, k: usize, number: u32, first: usize) -> Box<Diagnostic> {
     let kw = def.keyword.value;
     let (message, hint) = if k == 0 {
-        (format!("buffer {number} is already defined at line {first}"), "give every BUF... keyword its own buffer number".to_string())
+        (
+            format!("buffer {number} is already defined at line {first}"),
+            "give every BUF... keyword its own buffer number".to_string(),
+        )
     } else {
         let b = def.number.value;
         let last = match kw {
