@@ -282,3 +282,14 @@ def test_the_report_says_the_transmission_and_the_sweep(run: mechfem.RunResult) 
 
     lines = report_data(run)["designer"]
     assert lines[0] == "TRANSMISSION ANGLES" and "INPUT SWEEP" in lines
+
+
+def test_a_model_writes_its_designer_buffers_back_and_takes_them_by_name() -> None:
+    m = mechfem.Mechanism.from_deck(DECK)
+    lines = [line for line in m.to_deck().splitlines() if line.startswith(("BUFPIN", "BUFSHAKE", "BUFTRA"))]
+    # One line per keyword: the y of a pin force and the y, moment of the shaking are its line's, not lines.
+    assert lines.count("BUFSHAKE 30") == 1 and len(lines) == 9
+    assert m.storage is not None
+    m.storage.buffer(200, "BUFPIN", "crank", "A.x", "A.y")
+    r = m.run()
+    np.testing.assert_array_equal(np.column_stack([r.buffers[200], r.buffers[201]]), pair(r, 12))
