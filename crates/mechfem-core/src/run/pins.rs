@@ -80,6 +80,9 @@ impl InverseDynamics {
             shaking[2] -= i.inertia * self.xdd[i.coord];
         }
         self.shaking = shaking;
+        // By element, each element's terms in the order they were added
+        // (a stable sort): a pin force reads its element's terms only.
+        self.element_forces.sort_by_key(|t| t.0);
     }
 
     /// One component of the force the body of element `element` exerts on
@@ -95,7 +98,9 @@ impl InverseDynamics {
         if !self.balanced {
             return f64::NAN;
         }
-        self.element_forces.iter().filter(|&&(e, i, _)| e == element && i == coord).map(|t| t.2).sum()
+        let terms = &self.element_forces;
+        let (start, end) = (terms.partition_point(|t| t.0 < element), terms.partition_point(|t| t.0 <= element));
+        terms[start..end].iter().filter(|t| t.1 == coord).map(|t| t.2).sum()
     }
 
     /// One component of the shaking force and moment (about the origin).
