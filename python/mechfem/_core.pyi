@@ -290,6 +290,7 @@ class BufferDict(TypedDict):
     line: int
     label: NotRequired[str]
     unit: NotRequired[str]
+    part: NotRequired[int]
 
 @type_check_only
 class PlotDict(TypedDict):

@@ -116,7 +116,9 @@ def _resolve(mech: Mechanism, numbering: Numbering, ref: Ref, kind: str, where: 
             return [numbering.row_dest[obj]]
     if kind in "jm" and isinstance(obj, Row | FormParameter | str):
         return [numbering.dof(obj)]
-    what = {"i": "a co-ordinate", "r": "a row or output", "j": "an input", "m": "an input"}[kind]
+    if kind == "e" and obj in numbering.elements:
+        return [numbering.elements.index(obj) + 1]
+    what = {"i": "a co-ordinate", "r": "a row or output", "j": "an input", "m": "an input", "e": "an element"}[kind]
     raise ValueError(f"{where}: {ref!r} is not {what} of the mechanism {mech.name!r}")
 
 
@@ -532,6 +534,8 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             return nb.coords[v - 1].name
         if kind == "r":
             return nb.prescribed[v - 1].name if v > 0 else nb.dependent[-v - 1].name
+        if kind == "e":
+            return nb.elements[v - 1].name or v
         return nb.inputs[v - 1].name
 
     m.storage = from_described(d["storage"], ref_name)

@@ -160,12 +160,17 @@ BUFFER_ARGS: dict[str, str] = {
     "BUFEPOT": "",
     "BUFPOW": "",
     "BUFMRED": "jj",
+    "BUFTRA": "ee",
+    "BUFPIN": "eii",
+    "BUFSHAKE": "",
 }
 """The arguments of each BUF keyword before the buffer number.
 
 ``i`` a co-ordinate, ``r`` a row, ``j`` and ``m`` an input (a last ``m`` may be left out: it is then ``j``).
 BUFSIG takes a prescribed row, BUFREA a fixed co-ordinate; they and the other buffers of the dynamics
-(BUFDRV, BUFEKIN, BUFEPOT, BUFPOW, BUFMRED) need masses or loads on the mechanism (mode ``DYN ANA``)."""
+(BUFDRV, BUFEKIN, BUFEPOT, BUFPOW, BUFMRED) need masses or loads on the mechanism (mode ``DYN ANA``).
+``e`` is an element: BUFTRA takes two, BUFPIN an element and its point's two co-ordinates (it fills buffers b and
+b+1 with x and y; BUFSHAKE fills b, b+1 and b+2 with the shaking force's x, y and moment)."""
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ import numpy as np
 
 from mechfem.atomic import atomic_text
 from mechfem.datasets import write_binary
+from mechfem.designer import print_lines as designer_lines
 from mechfem.echo import Model, Storage
 from mechfem.inverse_dynamics import Exponents, Said, summary_lines
 from mechfem.labels import Label, buffer_labels, coordinate_unit, input_unit, row_dest_unit
@@ -173,6 +174,7 @@ def print_file_lines(result: RunResult) -> list[str]:
     if result.dynamic is not None:
         out += summary_lines(result.dynamic, result.time, said)
     out += table_lines(result)
+    out += designer_lines(result)
     from mechfem.tolerance_print import tolerance_lines
 
     out += tolerance_lines(result)

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from mechfem.atomic import atomic_path
+from mechfem.designer import print_lines as designer_lines
 from mechfem.drawing import STYLES, MechanismDrawing
 from mechfem.report_charts import (
     Columns,
@@ -119,6 +120,7 @@ def report_data(result: RunResult) -> dict[str, Any]:
         },
         "scene": _scene(result, drawing, frames),
         "drawing_notes": drawing.notes,
+        "designer": designer_lines(result),
         "paths": paths(result, cols),
         "det": {"x": xkey, "y": det, "limits": limit_markers(result, xkey)},
         "cards": cards,

@@ -21,7 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
-from mechfem import optional
+from mechfem import designer, optional
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import BUFFER_ARGS, Model, ModelNames, Storage
 from mechfem.hooks import Hook
@@ -87,6 +87,9 @@ BLOCK_OF: dict[str, str] = {
     "BUFEPOT": "epot",
     "BUFPOW": "power",
     "BUFMRED": "mass",
+    "BUFTRA": "transmission",
+    "BUFPIN": "pin",
+    "BUFSHAKE": "shaking",
 }
 KEYWORD_OF = {b: k for k, b in BLOCK_OF.items()}
 #: The argument kinds of each block's index, as its buffer keyword takes them: ``i`` a co-ordinate, ``r`` a row, ``j``
@@ -458,9 +461,26 @@ class ResultTables:
         if moving:
             fixed = [name for name, m in coords if not m]
             hint = f"; ask for the fixed one, reaction({fixed[0]!r})" if fixed else ""
+            hint += f"; the force each element exerts on it is pin_forces({t.name!r})" if t.kind == "point" else ""
             raise KeyError(f"{', '.join(moving)} moves: only the frame (fixed co-ordinates) has reactions{hint}")
         out = np.column_stack([self._series("reaction", i - 1) for i in t.numbers])
         return out if t.kind == "point" else out[:, 0].copy()
+
+    def pin_force(self, element: object, point: object) -> FloatArray:
+        """The force ``element`` exerts on the pin at ``point`` (positions x 2), see :mod:`mechfem.designer`."""
+        return designer.pin_force(self, element, point)
+
+    def pin_forces(self, point: object) -> dict[str, FloatArray]:
+        """The force each element meeting at ``point`` exerts on it, by element name."""
+        return designer.pin_forces(self, point)
+
+    def shaking(self) -> FloatArray:
+        """Shaking force x, y and moment about the origin on the frame (positions x 3), inertia only."""
+        return designer.shaking(self)
+
+    def transmission_angle(self, first: object, second: object, unit: str | None = None) -> FloatArray:
+        """The angle between the first sides of two elements at every position, in [0, pi] (or degrees)."""
+        return designer.transmission_angle(self, first, second, unit)
 
     def energy(self) -> Energy:
         """Kinetic, potential (gravity and springs) and total energy at every position."""
@@ -523,6 +543,7 @@ class ResultTables:
             add(r.name, r)
         for c in coords:
             add(c.name, c)
+        out.update(designer.dynamic_columns(self))
         return out
 
     # -- the report

@@ -78,6 +78,8 @@ def from_described(s: _core.StorageDict, name: Callable[[str, int], Ref]) -> Sto
         return None
     buffers: list[tuple[int, str, tuple[Ref, ...]]] = []
     for b in s["buffers"]:
+        if b.get("part", 0):
+            continue  # the y (and moment) of a BUFPIN or BUFSHAKE line: its first buffer stands for the line
         kinds = BUFFER_ARGS[b["keyword"]]
         buffers.append((b["number"], b["keyword"], tuple(name(k, v) for k, v in zip(kinds, b["args"], strict=False))))
     pictures = []

@@ -81,6 +81,17 @@ impl Names {
         name.map_or_else(|| formula(mech, terms), str::to_string)
     }
 
+    /// Element e by name: its name, else its deck number.
+    pub fn element(&self, e: usize) -> String {
+        get(&self.elements, e).map_or_else(|| (e + 1).to_string(), str::to_string)
+    }
+
+    /// The point of co-ordinates `x`, `y` by name: its name, else `x<x+1>,x<y+1>`.
+    pub fn point(&self, x: usize, y: usize) -> String {
+        let named = self.points.iter().find(|p| p.0 == x && p.1 == y);
+        named.map_or_else(|| format!("{},{}", self.coordinate(x), self.coordinate(y)), |p| p.2.clone())
+    }
+
     /// Input j in a derivative: its row's name, else `input<j+1>`.
     pub fn input(&self, mech: &Mechanism, j: usize) -> String {
         let r = (j < mech.n_dof()).then(|| mech.input_row(j));
@@ -141,6 +152,11 @@ impl Names {
                     format!("M({},{})", j + 1, m + 1)
                 }
             }
+            Quantity::Transmission(a, b) => format!("mu({},{})", self.element(a), self.element(b)),
+            Quantity::Pin { element, x, y, component } => {
+                format!("pin({},{}){}", self.element(element), self.point(x, y), component.suffix())
+            }
+            Quantity::Shaking(c) => format!("shaking{}", c.suffix()),
         }
     }
 }

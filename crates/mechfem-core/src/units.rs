@@ -20,6 +20,7 @@
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 
+use crate::dynamics::Component;
 use crate::elements::Dimension;
 use crate::model::{FormRef, Mechanism, Term};
 use crate::run::Quantity;
@@ -437,6 +438,10 @@ impl ModelDims {
                 let lengths = 2 - input(j).0[0] - input(m).0[0];
                 Dim::MASS.times(Dim::LENGTH.pow(lengths))
             }
+            Quantity::Transmission(..) => Dim::ANGLE,
+            Quantity::Pin { x, .. } => self.coord(x).generalised_force(),
+            Quantity::Shaking(Component::Moment) => Dim::ANGLE.generalised_force(),
+            Quantity::Shaking(_) => Dim::LENGTH.generalised_force(),
         }
     }
 

@@ -201,6 +201,8 @@ pub enum DiagnosticKind {
     /// A TOLERANCE block without a toleranced dimension or a band, without
     /// a motion, or whose band numbers clash with other buffers.
     Tolerance,
+    /// BUFPIN names co-ordinates that are not a point of its element.
+    NotAPin,
 }
 
 impl DiagnosticKind {
@@ -268,6 +270,7 @@ impl DiagnosticKind {
             DiagnosticKind::UnknownUnit => "unknown_unit",
             DiagnosticKind::SuspiciousUnit => "suspicious_unit",
             DiagnosticKind::Tolerance => "tolerance",
+            DiagnosticKind::NotAPin => "not_a_pin",
         }
     }
 }

@@ -157,6 +157,9 @@ keywords! {
     BufEpot "BUFEPOT" Storage 1 Some(1), "b";
     BufPow "BUFPOW" Storage 1 Some(1), "b";
     BufMred "BUFMRED" Storage 3 Some(3), "j m b";
+    BufTra "BUFTRA" Storage 3 Some(3), "e1 e2 b";
+    BufPin "BUFPIN" Storage 4 Some(4), "e i j b";
+    BufShake "BUFSHAKE" Storage 1 Some(1), "b";
     PrintBuf "PRINTBUF" Storage 0 None, "[b ...]";
     SaveData "SAVEDATA" Storage 1 None, "b ...";
     Animate "ANIMATE" Storage 1 Some(1), "name";
@@ -198,6 +201,7 @@ impl Keyword {
                 | Keyword::BufVe
                 | Keyword::BufAe
                 | Keyword::BufDet
+                | Keyword::BufTra
         ) || self.is_dynamic_buffer()
     }
 
@@ -220,6 +224,8 @@ impl Keyword {
                 | Keyword::BufEpot
                 | Keyword::BufPow
                 | Keyword::BufMred
+                | Keyword::BufPin
+                | Keyword::BufShake
         )
     }
 
@@ -307,7 +313,7 @@ mod tests {
     #[test]
     fn buffers_may_also_stand_in_optimise() {
         let buffers: Vec<&str> = Keyword::ALL.iter().filter(|k| k.is_buffer()).map(|k| k.name()).collect();
-        assert_eq!(buffers.len(), 20);
+        assert_eq!(buffers.len(), 23);
         assert!(buffers.iter().all(|n| n.starts_with("BUF")));
         assert!(Keyword::BufKe2.allowed_in(Block::Optimise) && Keyword::BufKe2.allowed_in(Block::Storage));
         assert!(!Keyword::PrintBuf.allowed_in(Block::Optimise));

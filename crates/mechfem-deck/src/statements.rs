@@ -458,6 +458,8 @@ fn buffer_argument_names(kw: Keyword) -> &'static [&'static str] {
         Keyword::BufDrv => &[DOF],
         Keyword::BufRea => &[COORD],
         Keyword::BufMred => &[DOF, DOF],
+        Keyword::BufTra => &["the first element", "the second element"],
+        Keyword::BufPin => &["the element", "the pin's x co-ordinate", "the pin's y co-ordinate"],
         _ => &[],
     }
 }

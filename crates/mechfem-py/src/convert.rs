@@ -398,6 +398,9 @@ fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
         Quantity::Epot => ("BUFEPOT", vec![]),
         Quantity::Power => ("BUFPOW", vec![]),
         Quantity::Mred(j, m) => ("BUFMRED", vec![n(j), n(m)]),
+        Quantity::Transmission(a, b) => ("BUFTRA", vec![n(a), n(b)]),
+        Quantity::Pin { element, x, y, .. } => ("BUFPIN", vec![n(element), n(x), n(y)]),
+        Quantity::Shaking(_) => ("BUFSHAKE", vec![]),
     }
 }
 
@@ -410,6 +413,15 @@ fn buffer<'py>(py: Python<'py>, c: &Compiled, b: &Buffer) -> PyResult<Bound<'py,
     d.set_item("keyword", kw)?;
     d.set_item("args", args)?;
     d.set_item("line", b.line)?;
+    // The buffers after the first of a keyword that fills several
+    // (BUFPIN: y; BUFSHAKE: y, moment) say which part they are.
+    let part = match b.quantity {
+        Quantity::Pin { component, .. } | Quantity::Shaking(component) => component as u8,
+        _ => 0,
+    };
+    if part > 0 {
+        d.set_item("part", part)?;
+    }
     Ok(d)
 }
 

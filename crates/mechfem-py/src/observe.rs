@@ -349,6 +349,12 @@ impl<R: Record> Observer for Recording<'_, R> {
         }
     }
 
+    fn moved_by_forces(&mut self, free: &[usize]) {
+        if let Some(d) = self.dynamics.as_mut() {
+            d.set_moved_by_forces(free);
+        }
+    }
+
     fn simulated(&mut self, time: f64, end: f64) {
         if let Some(p) = self.progress.as_mut() {
             p.report_share(if end > 0.0 { (time / end).clamp(0.0, 1.0) } else { 1.0 });

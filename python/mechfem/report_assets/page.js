@@ -167,6 +167,11 @@
     for (const w of D.warnings) st.append(el("p", { className: "warn" }, "Warning: " + w));
     if (!D.stop && !D.warnings.length) st.append(el("p", { className: "ok" }, "Every position asked for was computed; no warnings."));
     $("drawnotes").textContent = D.drawing_notes.join(" ");
+    // Transmission angles and input sweep ranges (mechfem.designer), as the print file says them.
+    if (D.designer && D.designer.length) {
+      $("designer").textContent = D.designer.join("\n");
+      $("designer").hidden = false;
+    }
     const legend = $("pathlegend");
     for (const p of D.paths) {
       legend.append(el("li", {}, el("i", { className: "swatch", style: "background:" + pathColour(p.x, p.y) }), "path of " + p.name));

@@ -118,6 +118,31 @@ impl Frame {
         }
     }
 
+    /// The unit vector of the frame's u-axis at co-ordinates `x`: the
+    /// element's first side (P->Q of BIN and TR2, the angle co-ordinate of
+    /// HLF and TR1); NaN where P and Q of a bar coincide.
+    pub fn direction(&self, x: &[f64]) -> [f64; 2] {
+        self.pose(x, 1.0, 0.0).w
+    }
+
+    /// The generalised forces [`Self::spread`] adds, as `(co-ordinate,
+    /// value)` terms (at most five; unused ones hold `(usize::MAX, 0)`),
+    /// so that the share of one body at one co-ordinate can be kept apart.
+    pub fn spread_terms(&self, x: &[f64], u: f64, v: f64, f: [f64; 2], m: f64) -> [(usize, f64); 5] {
+        let pose = self.pose(x, u, v);
+        let p = self.origin();
+        let moment = m + dot(f, pose.w_perp);
+        let none = (usize::MAX, 0.0);
+        match *self {
+            Frame::Angle { beta, .. } => [(p[0], f[0]), (p[1], f[1]), (beta, moment), none, none],
+            Frame::Bar { p, q } => {
+                let d = Self::bar(p, q, x);
+                let (gx, gy) = (-d[1] / dot(d, d) * moment, d[0] / dot(d, d) * moment);
+                [(p[0], f[0] - gx), (p[1], f[1] - gy), (q[0], gx), (q[1], gy), none]
+            }
+        }
+    }
+
     /// The centre `(u, v)` at co-ordinates `x`.
     pub fn centre(&self, x: &[f64], u: f64, v: f64) -> [f64; 2] {
         let w = self.pose(x, u, v).w;

@@ -461,6 +461,30 @@ impl Default for Integration {
     }
 }
 
+/// One component of a planar force and moment: what each of the
+/// consecutive buffers of a force records (`BUFPIN e i j b`: x into b, y
+/// into b+1; `BUFSHAKE b`: x, y and the moment about the origin).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Component {
+    /// The force's x.
+    X,
+    /// The force's y.
+    Y,
+    /// The moment about the origin (counter-clockwise positive).
+    Moment,
+}
+
+impl Component {
+    /// The component's suffix in a label (`.x`, `.y`, `.M`).
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Component::X => ".x",
+            Component::Y => ".y",
+            Component::Moment => ".M",
+        }
+    }
+}
+
 /// Whether an element type can carry a [`Body`] (it has a frame).
 pub fn has_frame(ty: ElementType) -> bool {
     matches!(ty, ElementType::Bin | ElementType::Hlf | ElementType::Tr1 | ElementType::Tr2)

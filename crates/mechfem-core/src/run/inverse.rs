@@ -53,7 +53,17 @@ pub struct InverseDynamics {
     mred: Vec<f64>,
     /// Whether the last evaluation had the second-order transfer functions
     /// (without them only V is computed, the rest is NaN by design).
-    balanced: bool,
+    pub(super) balanced: bool,
+    /// The balance split by element: `(element, co-ordinate, generalised
+    /// force)` terms of the forces each element exerts (`pins.rs`).
+    pub(super) element_forces: Vec<(usize, usize, f64)>,
+    /// Shaking force x, y and moment about the origin.
+    pub(super) shaking: [f64; 3],
+    /// Per DOF, whether it moves under the forces (a simulation's MOV_DYN).
+    pub(super) moved_by_forces: Vec<bool>,
+    /// Per DOF, the torque of the MOTORs on its input row when it moves
+    /// under the forces (NaN otherwise): its drive.
+    pub(super) motor_drive: Vec<f64>,
 }
 
 impl InverseDynamics {
@@ -88,6 +98,10 @@ impl InverseDynamics {
             load_power: f64::NAN,
             mred: nan(nd * nd),
             balanced: false,
+            element_forces: Vec::new(),
+            shaking: [f64::NAN; 3],
+            moved_by_forces: vec![false; nd],
+            motor_drive: nan(nd),
         }
     }
 
@@ -108,12 +122,16 @@ impl InverseDynamics {
                 b.fill(f64::NAN);
             }
             (self.ekin, self.power, self.load_power) = (f64::NAN, f64::NAN, f64::NAN);
+            self.shaking = [f64::NAN; 3];
+            self.motor_drive.fill(f64::NAN);
             return;
         }
         let (mech, x, qd) = (v.mech, &v.state.x[..], v.input_vel);
         self.stresses(mech, v.kin);
         self.ekin = self.kinetic(x);
         self.power = (0..mech.n_dof()).map(|j| self.sigma[mech.input_row(j)] * qd[j]).sum();
+        self.designer_outputs(v);
+        self.motor_drives(v);
     }
 
     /// [`Self::evaluate`], then [`Self::check`].
@@ -350,9 +368,14 @@ impl InverseDynamics {
         self.sigma[r]
     }
 
-    /// Drive force or torque of DOF j: the stress of its input row.
+    /// Drive force or torque of DOF j: the stress of its input row; for a
+    /// DOF that moves under the forces and carries a MOTOR on its input row
+    /// ([`Self::set_moved_by_forces`]), the motor's torque.
     pub fn drive(&self, mech: &Mechanism, j: usize) -> f64 {
-        self.sigma[mech.input_row(j)]
+        match self.motor_drive.get(j) {
+            Some(&t) if !t.is_nan() => t,
+            _ => self.sigma[mech.input_row(j)],
+        }
     }
 
     /// Reaction on fixed co-ordinate i: the force the frame applies to the

@@ -29,7 +29,28 @@ use std::ops::Range;
 use super::inverse::InverseDynamics;
 use super::observe::PositionView;
 use super::record::Quantity;
+use crate::dynamics::Component;
+use crate::elements::Slot;
 use crate::model::{FormRef, Mechanism, FIXED};
+
+/// Every element's points: (element, x, y) in element order, each
+/// element's points in the order of its co-ordinates.
+pub fn element_points(mech: &Mechanism) -> Vec<(usize, usize, usize)> {
+    let mut out = Vec::new();
+    for (e, el) in mech.elements().iter().enumerate() {
+        let coords = el.coords();
+        let mut at = 0;
+        for slot in el.ty.slots() {
+            if slot == Slot::Point {
+                out.push((e, coords[at], coords[at + 1]));
+                at += 2;
+            } else {
+                at += 1;
+            }
+        }
+    }
+    out
+}
 
 /// One block of a [`Layout`]: the quantity `name` over an array of `shape`
 /// per position (row-major), in the columns `start..start + width()`.
@@ -79,6 +100,8 @@ impl Block {
 /// | `reaction` | N | reaction on each co-ordinate (NaN for a moving one) |
 /// | `ekin`, `epot`, `power` | one value | kinetic and potential energy, drive power |
 /// | `mass` | D x D | the mass matrix in the inputs |
+/// | `pin` | P x 2 | the force each element exerts on each of its points (x, y), elements in order, each one's points in its co-ordinates' order ([`Layout::pins`]) |
+/// | `shaking` | 3 | shaking force x, y and moment about the origin |
 ///
 /// and last `time` and `det` (det(D^c)), one value each. Co-ordinate values
 /// are not in it: a recorder keeps them beside it.
@@ -99,6 +122,8 @@ pub struct Layout {
     prescribed_ke1: Vec<f64>,
     /// The first column of each block, looked up once.
     at: Starts,
+    /// The rows of the `pin` block: element, x and y co-ordinate.
+    pins: Vec<(usize, usize, usize)>,
 }
 
 /// The first column of every block of a [`Layout`] (its width where the
@@ -122,6 +147,8 @@ struct Starts {
     epot: usize,
     power: usize,
     mass: usize,
+    pin: usize,
+    shaking: usize,
     time: usize,
     det: usize,
 }
@@ -131,6 +158,7 @@ impl Layout {
     pub fn full(mech: &Mechanism, dynamic: bool) -> Layout {
         let (nd, n, np, ndep) = (mech.n_dof(), mech.n_coords(), mech.n_prescribed(), mech.n_dependent());
         let nr = np + ndep;
+        let pins = if dynamic { element_points(mech) } else { Vec::new() };
         let mut blocks = Vec::new();
         let mut start = 0;
         let mut add = |name: &'static str, shape: Vec<usize>| {
@@ -156,6 +184,8 @@ impl Layout {
             add("epot", vec![]);
             add("power", vec![]);
             add("mass", vec![nd, nd]);
+            add("pin", vec![pins.len(), 2]);
+            add("shaking", vec![3]);
         }
         add("time", vec![]);
         add("det", vec![]);
@@ -182,6 +212,8 @@ impl Layout {
             epot: start("epot"),
             power: start("power"),
             mass: start("mass"),
+            pin: start("pin"),
+            shaking: start("shaking"),
             time: start("time"),
             det: start("det"),
         };
@@ -197,6 +229,7 @@ impl Layout {
             input_of,
             prescribed_ke1,
             at,
+            pins,
         }
     }
 
@@ -213,6 +246,12 @@ impl Layout {
     /// Number of columns.
     pub fn width(&self) -> usize {
         self.width
+    }
+
+    /// The rows of the `pin` block: every element's points (element, x and
+    /// y co-ordinate, 0-based), elements in order (empty unless dynamic).
+    pub fn pins(&self) -> &[(usize, usize, usize)] {
+        &self.pins
     }
 
     /// Whether the layout has the blocks of inverse dynamics.
@@ -246,6 +285,10 @@ impl Layout {
                 "epot" => q.push(Quantity::Epot),
                 "power" => q.push(Quantity::Power),
                 "mass" => q.extend(pairs().map(|(j, m)| Quantity::Mred(j, m))),
+                "pin" => q.extend(self.pins.iter().flat_map(|&(element, x, y)| {
+                    [Component::X, Component::Y].map(|component| Quantity::Pin { element, x, y, component })
+                })),
+                "shaking" => q.extend([Component::X, Component::Y, Component::Moment].map(Quantity::Shaking)),
                 "time" => q.push(Quantity::Time),
                 "det" => q.push(Quantity::Det),
                 other => unreachable!("a layout has no block {other}"),
@@ -287,6 +330,11 @@ impl Layout {
             Quantity::Epot => dynamic(at.epot),
             Quantity::Power => dynamic(at.power),
             Quantity::Mred(j, m) if j < nd && m < nd => dynamic(at.mass + j * nd + m),
+            Quantity::Pin { element, x, y, component: c @ (Component::X | Component::Y) } => {
+                let k = self.pins.iter().position(|&p| p == (element, x, y))?;
+                dynamic(at.pin + 2 * k + usize::from(c == Component::Y))
+            }
+            Quantity::Shaking(c) => dynamic(at.shaking + c as usize),
             _ => None,
         }
     }
@@ -387,6 +435,13 @@ impl Layout {
             row[at.ekin] = d.kinetic_energy();
             row[at.epot] = d.potential_energy();
             row[at.power] = d.drive_power();
+            for (k, &(e, x, y)) in self.pins.iter().enumerate() {
+                row[at.pin + 2 * k] = d.pin_force(e, x, y, Component::X);
+                row[at.pin + 2 * k + 1] = d.pin_force(e, x, y, Component::Y);
+            }
+            for c in [Component::X, Component::Y, Component::Moment] {
+                row[at.shaking + c as usize] = d.shaking(c);
+            }
         }
         row[at.time] = v.time;
         row[at.det] = kin.det();

@@ -28,9 +28,11 @@ mod inverse;
 mod kinematic;
 mod layout;
 mod observe;
+mod pins;
 mod record;
 mod selection;
 mod simulate;
+mod transmission;
 
 pub use dispatch::{motion_of, move_through, transfer_order_of, Extent, MemoryRefusal, OrderError, RunMode};
 pub use inverse::InverseDynamics;
@@ -40,3 +42,4 @@ pub use observe::{Observer, PositionView, RunReport, Stop};
 pub use record::{record, record_evaluated, Quantity, Recorder};
 pub use selection::Selection;
 pub use simulate::{simulate, simulate_within, Event, Segment, SimReport};
+pub use transmission::transmission_angle;

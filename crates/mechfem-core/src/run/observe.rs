@@ -73,6 +73,14 @@ pub trait Observer {
     fn simulated(&mut self, time: f64, end: f64) {
         let _ = (time, end);
     }
+
+    /// Called by a simulation before its first position with the DOFs
+    /// that move under the forces (MOV_DYN, 0-based): an observer that
+    /// evaluates inverse dynamics records a MOTOR's torque as the drive of
+    /// such a DOF ([`InverseDynamics::set_moved_by_forces`](super::InverseDynamics::set_moved_by_forces)).
+    fn moved_by_forces(&mut self, free: &[usize]) {
+        let _ = free;
+    }
 }
 
 /// Why a motion stopped before its last position.

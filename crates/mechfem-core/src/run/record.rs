@@ -3,6 +3,8 @@
 
 use super::inverse::InverseDynamics;
 use super::observe::{Observer, PositionView};
+use super::transmission::{transmission_angle, transmission_sensitivity};
+use crate::dynamics::Component;
 use crate::error::SolveError;
 use crate::model::{FormRef, Mechanism};
 use crate::solver::{DesignVar, Sensitivity, TransferOrder};
@@ -62,6 +64,24 @@ pub enum Quantity {
     Power,
     /// Entry (j, m) of the mass matrix in the degrees of freedom (BUFMRED).
     Mred(usize, usize),
+    /// Transmission angle between the first sides of two elements with a
+    /// frame, in [0, pi] (BUFTRA e1 e2).
+    Transmission(usize, usize),
+    /// One component of the force the body of an element exerts on the pin
+    /// at co-ordinates `x`, `y` (BUFPIN e i j).
+    Pin {
+        /// The element (0-based).
+        element: usize,
+        /// The pin's x co-ordinate.
+        x: usize,
+        /// The pin's y co-ordinate.
+        y: usize,
+        /// Which component (x or y).
+        component: Component,
+    },
+    /// One component of the shaking force and moment on the frame, inertia
+    /// only (BUFSHAKE).
+    Shaking(Component),
 }
 
 impl Quantity {
@@ -77,6 +97,8 @@ impl Quantity {
                 | Quantity::Epot
                 | Quantity::Power
                 | Quantity::Mred(..)
+                | Quantity::Pin { .. }
+                | Quantity::Shaking(_)
         )
     }
 
@@ -102,6 +124,7 @@ impl Quantity {
             | Quantity::Ke2(FormRef::Prescribed(_), _, _)
             | Quantity::Ve(FormRef::Prescribed(_))
             | Quantity::Ae(FormRef::Prescribed(_))
+            | Quantity::Transmission(..)
             | Quantity::Epot => None,
             Quantity::Kx1 { .. }
             | Quantity::Vx(_)
@@ -117,7 +140,9 @@ impl Quantity {
             | Quantity::Reaction(_)
             | Quantity::Ekin
             | Quantity::Power
-            | Quantity::Mred(..) => Some(TransferOrder::Second),
+            | Quantity::Mred(..)
+            | Quantity::Pin { .. }
+            | Quantity::Shaking(_) => Some(TransferOrder::Second),
         }
     }
 
@@ -154,6 +179,7 @@ impl Quantity {
             Quantity::Ae(FormRef::Prescribed(r)) => mech.input_of(r).map_or(0.0, |j| qdd[j]),
             Quantity::Ae(FormRef::Dependent(d)) => kin.dep_acceleration(d, qd, qdd),
             Quantity::Det => kin.det(),
+            Quantity::Transmission(a, b) => transmission_angle(mech, &v.state.x, a, b),
             _ => f64::NAN,
         }
     }
@@ -231,6 +257,7 @@ impl Quantity {
                 }
                 a
             }
+            Quantity::Transmission(a, b) => transmission_sensitivity(mech, &v.state.x, s, var, a, b),
             _ => f64::NAN,
         }
     }
@@ -246,6 +273,8 @@ impl Quantity {
             Quantity::Epot => d.potential_energy(),
             Quantity::Power => d.drive_power(),
             Quantity::Mred(j, m) => d.mass_matrix_entry(mech, j, m),
+            Quantity::Pin { element, x, y, component } => d.pin_force(element, x, y, component),
+            Quantity::Shaking(c) => d.shaking(c),
             _ => f64::NAN,
         }
     }
@@ -382,6 +411,12 @@ impl Observer for Recorder {
                 d.evaluate_checked(view)
             }
             _ => Ok(()),
+        }
+    }
+
+    fn moved_by_forces(&mut self, free: &[usize]) {
+        if let Some(d) = self.dynamics.as_deref_mut() {
+            d.set_moved_by_forces(free);
         }
     }
 

@@ -179,6 +179,7 @@ pub fn simulate_within(
     if free.is_empty() {
         return prescribed(mech, state, motion, params, integration, &driven, observer);
     }
+    observer.moved_by_forces(&free);
     let mut kin = Kinematics::new(mech);
     let adjusted = adjust(mech, state, &mut kin, params)?;
     kin.transfer(mech, state, TransferOrder::Second)?;
@@ -212,6 +213,7 @@ pub fn simulate_within(
         det_last: 0.0,
         kept_det: 0.0,
     };
+    eom.inverse.set_moved_by_forces(&eom.free);
     // The free DOFs' accelerations at the start: a model they cannot move
     // in is refused here, before anything is integrated.
     let mut acc0 = vec![0.0; nf];

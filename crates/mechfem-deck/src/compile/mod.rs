@@ -3,6 +3,7 @@
 
 mod coordinates;
 mod design;
+mod designer;
 mod dynamics;
 mod model;
 mod motion;

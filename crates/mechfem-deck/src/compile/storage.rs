@@ -98,19 +98,18 @@ fn buffers(deck: &Deck, sizes: &Sizes) -> Result<Vec<Buffer>, Box<Diagnostic>> {
     let mut defined: BTreeMap<u32, usize> = BTreeMap::new();
     let mut buffers = Vec::with_capacity(defs.len());
     for def in defs {
-        let quantity = quantity(deck, sizes, def)?;
-        let number = buffer_number(&def.number);
-        if let Some(first) = defined.get(&number) {
-            return Err(deck
-                .error(
-                    DiagnosticKind::DuplicateBuffer,
-                    def.number.span,
-                    format!("buffer {number} is already defined at line {first}"),
-                )
-                .with_hint("give every BUF... keyword its own buffer number"));
+        let parts = match super::designer::parts(deck, sizes, def)? {
+            Some(parts) => parts,
+            None => vec![quantity(deck, sizes, def)?],
+        };
+        for (k, quantity) in parts.into_iter().enumerate() {
+            let number = super::designer::part_number(deck, def, k)?;
+            if let Some(first) = defined.get(&number) {
+                return Err(super::designer::taken(deck, def, k, number, *first));
+            }
+            defined.insert(number, def.line);
+            buffers.push(Buffer { number, quantity, line: def.line });
         }
-        defined.insert(number, def.line);
-        buffers.push(Buffer { number, quantity, line: def.line });
     }
     Ok(buffers)
 }
