@@ -271,6 +271,8 @@ class ModelDict(TypedDict):
     """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
     points: NotRequired[list[PointDict]]
     """The points the NAMES block names."""
+    labels: NotRequired[Labels]
+    """The names and units of the model's things, as the core decides them."""
 
 @type_check_only
 class PointDict(TypedDict):
@@ -716,3 +718,18 @@ def optimised_deck_text(
     """The deck with the PARA values of ``rows`` and the XFIX/XMOV values of ``coords`` (number, value; the core's
     numbers, written in the deck's UNITS where it has them) replaced, in mode KIN ANA without OPTIMISE; MOV_FUNC
     files named from ``file_dir`` (the old deck's folder) when given."""
+
+Dims = tuple[int, int, int, int, int]
+"""Exponents of length, angle, mass, force and time."""
+Named = tuple[str, str, str, Dims]
+"""A name, the unit the model states ("" without UNITS), the unit an axis shows, the exponents."""
+
+class Labels:
+    """The names and units of a compiled model's things (crates/mechfem-py/src/labels.rs)."""
+
+    def coordinate(self, i: int) -> Named: ...
+    def row(self, r: int) -> Named: ...
+    def input(self, j: int) -> tuple[str, str, int, str, str, Dims]: ...
+    def buffer(self, number: int) -> Named: ...
+    def unit(self, dim: Dims) -> tuple[str, str]: ...
+    def renamed(self, coordinates: list[str], prescribed: list[str], dependent: list[str]) -> Labels: ...
