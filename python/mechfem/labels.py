@@ -20,6 +20,7 @@ a unit with :func:`shown`.
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import mechfem._core as _core
@@ -49,7 +50,7 @@ KINDS = (
     "mass",
 )
 
-Dims = tuple[int, int, int, int, int]
+Dims = Sequence[int]
 """The exponents of length, angle, mass, force and time of a quantity, as the core gives them."""
 
 _BASE = ("length", "rad", "mass", "force", "s")
@@ -426,6 +427,37 @@ def input_unit(result: RunResult, j: int) -> str:
 def display_unit(result: RunResult, unit: str) -> str:
     """``unit`` (in the words of the unit algebra) in the run's units (:func:`shown`)."""
     return shown(unit, run_units(result))
+
+
+def buffer_name(model: Model | None, number: int) -> str:
+    """Buffer ``number`` of ``model`` by its label (``d2delta/dalpha^2``), ``buffer N`` where the model has none."""
+    labels = None if model is None else model.labels
+    try:
+        return labels.buffer(number)[0] if labels is not None else f"buffer {number}"
+    except IndexError:
+        return f"buffer {number}"
+
+
+def core_value(model: Model | None, number: int, value: float, digits: str = ".6g") -> str:
+    """``value``, a number of the core's of buffer ``number`` (an optimiser's), in the units of ``model`` with its
+    unit: ``-296.5 deg``; as it is, without a unit, where the model has no such buffer."""
+    labels = None if model is None else model.labels
+    try:
+        _, stated, _, dims = labels.buffer(number) if labels is not None else ("", "", "", (0, 0, 0, 0, 0))
+    except IndexError:
+        stated, dims = "", (0, 0, 0, 0, 0)
+    v = value * labels.scale(dims) if labels is not None else value
+    return f"{v:{digits}} {stated}" if stated and stated != "-" else f"{v:{digits}}"
+
+
+def core_input(model: Model | None, j: int, value: float, digits: str = ".12g") -> str:
+    """``name = value unit`` of input ``j`` at ``value``, a number of the core's: ``alpha = -58.2 deg``."""
+    labels = None if model is None else model.labels
+    if labels is None:
+        return f"input {j} = {value:{digits}}"
+    name, _, _, stated, _, dims = labels.input(j)
+    v = value * labels.scale(dims)
+    return f"{name} = {v:{digits}}" + (f" {stated}" if stated and stated != "-" else "")
 
 
 def with_unit(name: str, unit: str) -> str:

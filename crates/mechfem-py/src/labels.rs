@@ -55,6 +55,7 @@ struct Table {
     dependent: Vec<Named>,
     inputs: Vec<Input>,
     buffers: Vec<(u32, Named)>,
+    det: Named,
 }
 
 fn missing(what: &str, n: impl std::fmt::Display) -> PyErr {
@@ -105,6 +106,7 @@ impl Labels {
             dependent: rows(mech.n_dependent(), -1)?,
             inputs: (1..=mech.n_dof()).map(|j| self.input(j)).collect::<PyResult<_>>()?,
             buffers: m.buffers.iter().map(|(n, _)| Ok((*n, self.buffer(*n)?))).collect::<PyResult<_>>()?,
+            det: self.det(),
         })
     }
 
@@ -171,10 +173,26 @@ impl Labels {
         }
     }
 
+    /// det(D^c) and its unit: the product of the rows' units over the
+    /// moving co-ordinates' (each term of the determinant takes one entry
+    /// d row_i / d x_j from every row and every column).
+    fn det(&self) -> Named {
+        match &self.source {
+            Source::Table(t) => t.det.clone(),
+            Source::Model(m) => self.named("det(D^c)".to_string(), m.dims.det(&m.mechanism)),
+        }
+    }
+
     /// The unit of a kind given by its exponents of length, angle, mass,
     /// force and time: `(stated, shown)`.
     fn unit(&self, dim: [i8; 5]) -> (String, String) {
         (Dim(dim).symbol(&self.units), Dim(dim).shown(&self.units))
+    }
+
+    /// What a number of the core of a kind given by its exponents is
+    /// multiplied by to be given in the model's units (1 without UNITS).
+    fn scale(&self, dim: [i8; 5]) -> f64 {
+        Dim(dim).out_scale(&self.units)
     }
 
     /// These labels with a named model's own names for its co-ordinates,
@@ -224,7 +242,7 @@ impl Labels {
         let py = slf.py();
         let me = slf.get();
         let t = me.table()?;
-        let args = (me.unit_symbols(), t.coordinates, t.prescribed, t.dependent, t.inputs, t.buffers);
+        let args = (me.unit_symbols(), t.coordinates, t.prescribed, t.dependent, t.inputs, (t.buffers, t.det));
         Ok((slf.get_type().getattr("_tabulated")?, PyTuple::new(py, [args.into_pyobject(py)?])?))
     }
 
@@ -232,9 +250,9 @@ impl Labels {
     #[staticmethod]
     #[allow(clippy::type_complexity)]
     fn _tabulated(
-        table: ((bool, [String; 5]), Vec<Named>, Vec<Named>, Vec<Named>, Vec<Input>, Vec<(u32, Named)>),
+        table: ((bool, [String; 5]), Vec<Named>, Vec<Named>, Vec<Named>, Vec<Input>, (Vec<(u32, Named)>, Named)),
     ) -> Labels {
-        let ((declared, s), coordinates, prescribed, dependent, inputs, buffers) = table;
+        let ((declared, s), coordinates, prescribed, dependent, inputs, (buffers, det)) = table;
         let units = Units {
             declared,
             length: Length::from_symbol(&s[0]),
@@ -243,7 +261,7 @@ impl Labels {
             force: Force::from_symbol(&s[3]),
             time: Time::from_symbol(&s[4]),
         };
-        let table = Table { coordinates, prescribed, dependent, inputs, buffers };
+        let table = Table { coordinates, prescribed, dependent, inputs, buffers, det };
         Labels { units, source: Source::Table(Box::new(table)) }
     }
 }
