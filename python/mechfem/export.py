@@ -184,7 +184,12 @@ def result_drawing(
         position=k + 1,
         shapes=drawing.shapes(result.coords[k]),
         paths=tracks,
-        labels=[],
+        # The points the deck's NAMES block names, by name.
+        labels=[
+            Label(p.name, float(result.coords[k, p.x - 1]), float(result.coords[k, p.y - 1]))
+            for p in result.model.points
+            if math.isfinite(result.coords[k, p.x - 1]) and math.isfinite(result.coords[k, p.y - 1])
+        ],
         unit=drawing.unit,
     )
 
