@@ -439,11 +439,12 @@ def buffer_name(model: Model | None, number: int) -> str:
 
 
 def core_value(model: Model | None, number: int, value: float, digits: str = ".6g") -> str:
-    """``value``, a number of the core's of buffer ``number`` (an optimiser's), in the units of ``model`` with its
-    unit: ``-296.5 deg``; as it is, without a unit, where the model has no such buffer."""
+    """``value``, a number of the core's of buffer ``number`` (an optimiser's), in the units of ``model`` with the
+    unit it shows: ``-296.5 deg`` (``rad`` without UNITS); as it is, without a unit, where the model has no such
+    buffer."""
     labels = None if model is None else model.labels
     try:
-        _, stated, _, dims = labels.buffer(number) if labels is not None else ("", "", "", (0, 0, 0, 0, 0))
+        _, _, stated, dims = labels.buffer(number) if labels is not None else ("", "", "", (0, 0, 0, 0, 0))
     except IndexError:
         stated, dims = "", (0, 0, 0, 0, 0)
     v = value * labels.scale(dims) if labels is not None else value
@@ -455,7 +456,7 @@ def core_input(model: Model | None, j: int, value: float, digits: str = ".12g") 
     labels = None if model is None else model.labels
     if labels is None:
         return f"input {j} = {value:{digits}}"
-    name, _, _, stated, _, dims = labels.input(j)
+    name, _, _, _, stated, dims = labels.input(j)
     v = value * labels.scale(dims)
     return f"{name} = {v:{digits}}" + (f" {stated}" if stated and stated != "-" else "")
 
