@@ -66,7 +66,6 @@ EXPECTED_KINEMATIC: dict[int, tuple[str, str, str]] = {
     1: ("COOR(3)", "length", "input"),
     2: ("time", "s", "time"),
     3: ("det(D^c)", "length/rad", "det"),  # the rows' units over the moving co-ordinates'
-
     10: ("LENL(2)", "length", "position"),
     11: ("ANGB(2)", "rad", "position"),
     12: ("GEAR(1)", "length", "position"),  # a rack's g is an assembly length

@@ -112,10 +112,10 @@ def test_an_infeasible_start_is_refused_with_its_line(cli: Cli, tmp_path: Path) 
     p = cli("run", deck, "-o", tmp_path / "out")
     assert p.returncode == 1, p.stderr
     assert "Traceback" not in p.stderr
-    assert f"error: {deck}: the optimisation (OPTIMISE, line 107) cannot start: the start design is infeasible" in (
+    assert f"error: {deck}: the optimisation (OPTIMISE, line 97) cannot start: the start design is infeasible" in (
         p.stderr
     )
-    assert "PARA 1 (VARY on line 108)" in p.stderr
+    assert "PARA 1 (VARY on line 98)" in p.stderr
     assert not (tmp_path / "out" / "supply_opt_opt.mec").exists()
 
 

@@ -106,7 +106,7 @@ class Model:
     ``rad`` and ``s``). Every number of a run is in these units."""
     points: list[Point] = field(default_factory=list)
     """The points the NAMES block names (``POINT 9 10 C``)."""
-    labels: _core.Labels | None = None
+    labels: _core.Labels | None = field(default=None, compare=False, repr=False)
     """The names and units of its co-ordinates, rows, inputs and buffers, as the core decides them."""
 
     @classmethod

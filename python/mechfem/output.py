@@ -437,7 +437,7 @@ def limit_lines(result: RunResult, said: Said | None = None) -> list[str]:
         out.append("")
         head = paragraph(f"{limit.where}: {limit.what(report.input_names)}", "      ")
         out += [f"  {number:2d}. {head[0].lstrip()}", *head[1:]]
-        out += paragraph(limit.values(), "      ")
+        out += paragraph(limit.values(report.input_names), "      ")
         if shown:
             values = [f"{i:>4d} = {limit.coords[i - 1]:<17.10g}" for i in shown]
             out.append(f"      co-ordinates there{in_unit}:")

@@ -124,7 +124,10 @@ impl Labels {
         match &self.source {
             Source::Table(t) => nth(&t.coordinates, i, "co-ordinate"),
             Source::Model(m) => {
-                let i = i.checked_sub(1).filter(|&i| i < m.mechanism.n_coords()).ok_or_else(|| missing("co-ordinate", i))?;
+                let i = i
+                    .checked_sub(1)
+                    .filter(|&i| i < m.mechanism.n_coords())
+                    .ok_or_else(|| missing("co-ordinate", i))?;
                 Ok(self.named(m.names.coordinate(i), m.dims.coord(i)))
             }
         }
@@ -152,8 +155,7 @@ impl Labels {
             Source::Model(m) => {
                 let mech = &m.mechanism;
                 let j = j.checked_sub(1).filter(|&j| j < mech.n_dof()).ok_or_else(|| missing("input", j))?;
-                let (value, stated, shown, dim) =
-                    self.named(m.names.input_value(mech, j), m.dims.input(mech, j));
+                let (value, stated, shown, dim) = self.named(m.names.input_value(mech, j), m.dims.input(mech, j));
                 Ok((m.names.input(mech, j), value, mech.input_row(j) + 1, stated, shown, dim))
             }
         }
@@ -163,9 +165,12 @@ impl Labels {
     /// of what it records, else the deck's numbers) and its unit.
     fn buffer(&self, number: u32) -> PyResult<Named> {
         match &self.source {
-            Source::Table(t) => {
-                t.buffers.iter().find(|(n, _)| *n == number).map(|(_, b)| b.clone()).ok_or_else(|| missing("buffer", number))
-            }
+            Source::Table(t) => t
+                .buffers
+                .iter()
+                .find(|(n, _)| *n == number)
+                .map(|(_, b)| b.clone())
+                .ok_or_else(|| missing("buffer", number)),
             Source::Model(m) => {
                 let (_, q) = m.buffers.iter().find(|(n, _)| *n == number).ok_or_else(|| missing("buffer", number))?;
                 Ok(self.named(m.names.label(&m.mechanism, number, *q), m.dims.quantity(&m.mechanism, *q)))
@@ -209,12 +214,8 @@ impl Labels {
                 put(&mut names.coordinates, coordinates);
                 put(&mut names.prescribed, prescribed);
                 put(&mut names.dependent, dependent);
-                let model = Model {
-                    mechanism: m.mechanism.clone(),
-                    names,
-                    dims: m.dims.clone(),
-                    buffers: m.buffers.clone(),
-                };
+                let model =
+                    Model { mechanism: m.mechanism.clone(), names, dims: m.dims.clone(), buffers: m.buffers.clone() };
                 Source::Model(Box::new(model))
             }
             Source::Table(t) => {
