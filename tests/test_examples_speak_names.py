@@ -49,8 +49,12 @@ def texts(result: RunResult) -> list[str]:
     out += [str(c) for c in result.to_pandas().columns]
     lines = print_file_lines(result)
     # The model echo lists each row's form parameters beside its name (``ANGB(1)  = phi``): that is its job.
+    # The buffer table's last column says what each buffer holds in the deck's words (``generalised stress of row 6
+    # (LENL(5))``): its name and unit columns are what must speak names.
     echo_end = next(k for k, line in enumerate(lines) if line.startswith("ADJUSTMENT"))
-    out += lines[echo_end:]
+    table = next((k for k, line in enumerate(lines) if line.startswith("BUFFERS")), echo_end)
+    table_end = lines.index("", table) if table > echo_end else table
+    out += lines[echo_end:table] + [line.split(" BUF")[0] for line in lines[table:table_end]] + lines[table_end:]
     out += [picture_title(result, k) for k in range(len(result.storage.pictures))]
     if result.storage.animate:
         out.append(animation._title(result, result.storage.animate, result.positions - 1))
@@ -72,7 +76,8 @@ def _strings(obj: object) -> list[str]:
     if isinstance(obj, str):
         return [obj]
     if isinstance(obj, dict):
-        return [s for v in obj.values() for s in _strings(v)]
+        # A column's ``text`` says what it holds in the deck's words, as the print file's buffer table does.
+        return [s for k, v in obj.items() if k != "text" for s in _strings(v)]
     if isinstance(obj, (list, tuple)):
         return [s for v in obj for s in _strings(v)]
     return []

@@ -4,7 +4,6 @@ as the deck writes them, not as the core computes with them (metres, radians).""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import pytest
@@ -40,7 +39,6 @@ def test_a_motion_too_fast_to_hold_is_quoted_in_degrees_and_seconds(tmp_path: Pa
     text = fourbar_mm_deg().replace("TSTEPE 144 0.01", "TSTEPE 1 1e-5").replace("MOV_RELE 1 720.0", "MOV_RELE 1 1e308")
     message = deck_error(tmp_path, text)
     assert "to change by 1e308 in a time of 1e-5" in message
-    assert math.isfinite(1e308 * math.pi / 180)
 
 
 def test_a_fault_of_the_dynamics_names_the_point_mass_by_its_point(tmp_path: Path) -> None:
