@@ -305,3 +305,16 @@ def test_the_print_file_has_a_legend_and_named_column_heads(supply: RunResult) -
         assert [m.end() for m in re.finditer(r"\S+", line)][-4:] == ends
     first = lines[head + 2].split()
     assert first[0] == "1" and float(first[1]) == pytest.approx(float(f"{supply.buffers[99][0]:.10g}"), abs=0)
+
+
+def test_labels_survive_a_pickle_as_the_cores_table(supply: RunResult) -> None:
+    import pickle
+
+    named = mechfem.run_deck(SUPPLY_DYN)
+    for result in (supply, named):
+        back = pickle.loads(pickle.dumps(result))
+        assert buffer_labels(back) == buffer_labels(result)
+        labels, table = result.model.labels, back.model.labels
+        assert labels is not None and table is not None
+        assert table.det() == labels.det() and table.input(1) == labels.input(1)
+        assert table.scale([0, 1, 0, 0, 0]) == labels.scale([0, 1, 0, 0, 0])
