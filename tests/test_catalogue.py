@@ -11,7 +11,7 @@ import pytest
 
 import mechfem
 from conftest import ROOT
-from mechfem import _core, catalogue, labels, loads, motion, parts
+from mechfem import _core, catalogue, loads, motion, parts
 
 # What each co-ordinate and form parameter measures, written out from the theory (independent of the code):
 # L a length, A an angle, R a ratio, * whatever its co-ordinate is.
@@ -74,8 +74,6 @@ def test_the_python_tables_are_the_cores() -> None:
     # Every form parameter has a Python name, and no Python name is left for one the core does not have.
     assert set(parts.ATTRIBUTES) == {f for fs in catalogue.FORMS.values() for f in fs}
     assert set(parts.ELEMENT_WORDS) == set(core)
-    units = {"L": "length", "A": "rad", "R": "", "*": None}
-    assert labels.SLOT_UNITS == {t: tuple(units[c] for c in DIMENSIONS[t][0]) for t in core}
 
 
 def test_the_defaults_are_the_documented_ones() -> None:

@@ -147,9 +147,9 @@ def test_nongrashof_print_file_lists_the_limit_positions(cli: Cli, tmp_path: Pat
     for limit in passed(run("nongrashof")):
         where = f"between positions {limit.after} and {limit.after + 1}"
         assert f"{where}: free motion passes a limit position of the input of DOF 1 (row 6: beta1)" in section
-        assert f"input 1 = {limit.inputs[0]:.12g}" in section
+        assert f"beta1 = {limit.inputs[0]:.12g} rad" in section
         assert "limit position: free motion passes" in proc.stdout and where in proc.stdout
-    listed = [float(v) for v in re.findall(r"input 1 = (\S+),", section)]
+    listed = [float(v) for v in re.findall(r"beta1 = (\S+) rad,", section)]
     assert sorted(listed) == pytest.approx([-NG_LIMIT, NG_LIMIT], abs=LOCATED)
     assert "co-ordinates there:" in section
     assert "positions without transfer functions" not in section
@@ -171,7 +171,7 @@ def test_nongrashof_driven_by_its_crank_stops_at_its_limit(tmp_path: Path) -> No
     assert stop is not None and stop.limit is not None and stop.limit.kind == "input_limit"
     assert stop.limit.inputs[0] == pytest.approx(NG_LIMIT, abs=LOCATED)
     reason = flat(r.report.stop_reason() or "")
-    assert f"reached its limit position at input 1 = {stop.limit.inputs[0]:.12g}" in reason
+    assert f"reached its limit position at beta1 = {stop.limit.inputs[0]:.12g} rad" in reason
     assert "kept in the result" in reason
     line, ds = suggested_free_motion(reason)
     assert ds > 0.0  # the crank was turning forward
@@ -251,7 +251,7 @@ def test_stephenson_limits_driven_run_stops_at_the_first_limit(cli: Cli, tmp_pat
     prt = flat((tmp_path / "stephenson_limits.prt").read_text())
     for text in (message, prt[prt.index("MOTION STOPPED") :]):
         assert f"The motion stopped after position {k} of 73" in text
-        assert f"the input of DOF 1 (row 10: beta1) reached its limit position at input 1 = {limit:.12g}" in text
+        assert f"the input of DOF 1 (row 10: beta1) reached its limit position at beta1 = {limit:.12g} rad" in text
         assert f"between positions {k} and {k + 1}" in text
         assert f"Positions 1 to {k} were computed and are all written" in text
         assert "`MOV_FREE 1 " in text
@@ -311,7 +311,7 @@ def test_slider_driven_stops_at_the_dead_centre(cli: Cli, tmp_path: Path) -> Non
     assert r.positions == k == 13
     assert np.all(r.buffers[1] < SC_FAR)
     message = flat(proc.stderr)
-    assert "the input of DOF 1 (row 3: s) reached its limit position at input 1 = 4," in message
+    assert "the input of DOF 1 (row 3: s) reached its limit position at s = 4," in message
     assert f"between positions {k} and {k + 1}" in message
     assert f"Positions 1 to {k} were computed and are all written to the output files" in message
     line, ds = suggested_free_motion(message)
@@ -539,7 +539,7 @@ def test_locked_fourbar_cli_exits_3_at_the_limit(cli: Cli, tmp_path: Path) -> No
     assert proc.returncode == 3, proc.stderr
     message = flat(proc.stderr)
     assert "The motion stopped after position 18 of 37" in message
-    match = re.search(r"reached its limit position at input 1 = (\S+), located between positions 18 and 19", message)
+    match = re.search(r"reached its limit position at theta = (\S+) rad, located between positions 18 and 19", message)
     assert match, message
     assert float(match.group(1)) == pytest.approx(lock_angle(*LK_DIMS), abs=LOCATED)
     with (tmp_path / "locked_fourbar.csv").open() as f:

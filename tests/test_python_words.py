@@ -289,7 +289,7 @@ def test_a_stop_in_the_middle_names_the_element_that_failed() -> None:
     with pytest.warns(mechfem.IncompleteRunWarning) as caught:
         r = Mechanism.from_deck(DECKS / "belt_loses_span.mec").run()
     reason = r.stop_reason() or ""
-    assert "the step from E1.angle = 2.967059728 to E1.angle = 3.141592654 failed" in reason
+    assert "the step from E1.angle = 2.967059728 rad to E1.angle = 3.141592654 rad failed" in reason
     assert "the belt 'E2' (P5, x7, P3, x8, x9, x10): the belt has no free span" in reason
     assert reason in str(caught[0].message)
 

@@ -32,6 +32,7 @@ __all__ = [
     "DesignModel",
     "Model",
     "ModelBuilder",
+    "Labels",
     "optimised_deck_text",
     "deck_tolerance",
 ]
@@ -275,6 +276,8 @@ class ModelDict(TypedDict):
     """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
     points: NotRequired[list[PointDict]]
     """The points the NAMES block names."""
+    labels: NotRequired[Labels]
+    """The names and units of the model's things, as the core decides them."""
 
 @type_check_only
 class PointDict(TypedDict):
@@ -793,3 +796,21 @@ def deck_tolerance(text: str, path: str | os.PathLike[str], base_dir: str | os.P
     """The TOLERANCE block of the deck evaluated (None without one): ``dims`` ``(kind, number, t, line)``, ``bands``
     ``(source, b, line)``, ``positions``, ``dofs``, flat ``inputs``, ``values`` and ``gradient`` (positions x bands x
     dims), ``labels`` ``(label, unit)`` of every band's buffer, ``dim_units``, ``input_units``; the deck's units."""
+
+_Dims = Sequence[int]
+"""Exponents of length, angle, mass, force and time."""
+_Named = tuple[str, str, str, _Dims]
+"""A name, the unit the model states ("" without UNITS), the unit an axis shows, the exponents."""
+
+@final
+class Labels:
+    """The names and units of a compiled model's things (crates/mechfem-py/src/labels.rs)."""
+
+    def coordinate(self, i: int) -> _Named: ...
+    def row(self, r: int) -> _Named: ...
+    def input(self, j: int) -> tuple[str, str, int, str, str, _Dims]: ...
+    def buffer(self, number: int) -> _Named: ...
+    def det(self) -> _Named: ...
+    def unit(self, dim: _Dims) -> tuple[str, str]: ...
+    def scale(self, dim: _Dims) -> float: ...
+    def renamed(self, coordinates: list[str], prescribed: list[str], dependent: list[str]) -> Labels: ...

@@ -55,7 +55,7 @@ from mechfem.errors import (
 )
 from mechfem.limits import DEFAULT_MEMORY_LIMIT, ENV, memory_limit, parse_size
 from mechfem.media import Media
-from mechfem.output import FinishOnInterrupt, count, write_outputs
+from mechfem.output import FinishOnInterrupt, count, det_words, write_outputs
 from mechfem.output_folder import locked, plan
 from mechfem.progress import Console, ProgressBar
 from mechfem.report import write_report
@@ -255,8 +255,9 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
     missed = outcome.unreached()
     if missed is not None:
         console.note(
-            f"note: {deck}: the targets are not all reached: the largest difference left is {missed[0]:.4g} (the "
-            f"target on line {missed[1]}); the design found is the nearest the optimiser could get, and the print "
+            f"note: {deck}: the targets are not all reached: the largest difference left is "
+            f"{optimise_deck.missed_value(outcome, missed, result.model)} (the target on line {missed[1]}); the "
+            "design found is the nearest the optimiser could get, and the print "
             "file lists every target's difference"
         )
     return status
@@ -375,7 +376,7 @@ def cmd_check(args: argparse.Namespace) -> int:
         )
     else:
         print(f"  position 1: the given co-ordinates fit (remaining deformation {a.residual:.3g})")
-    print(f"  det(D^c) at position 1: {c.det:.10g}")
+    print(f"  {det_words(c.model, c.det, 10).replace(' =', ' at position 1:', 1)}")
     # The adjusted position is what a run starts from: show it beside the estimate.
     print("  moving co-ordinates at position 1:")
     print(f"  {'no':>6} {'given':>16} {'position 1':>16}")

@@ -106,6 +106,8 @@ class Model:
     ``rad`` and ``s``). Every number of a run is in these units."""
     points: list[Point] = field(default_factory=list)
     """The points the NAMES block names (``POINT 9 10 C``)."""
+    labels: _core.Labels | None = field(default=None, compare=False, repr=False)
+    """The names and units of its co-ordinates, rows, inputs and buffers, as the core decides them."""
 
     @classmethod
     def from_core(cls, d: _core.ModelDict) -> Model:
@@ -128,6 +130,7 @@ class Model:
             dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
             units=dict(d.get("units", {})),
             points=[Point(p["x"], p["y"], p["name"]) for p in d.get("points", [])],
+            labels=d.get("labels"),
         )
 
     @property

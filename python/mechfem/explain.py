@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, TypeVar
 from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
 from mechfem.names import listing
 from mechfem.parts import ELEMENT_WORDS, Coordinate, Element, Point, Row
-from mechfem.words import Part, Words
+from mechfem.words import Part, Words, with_unit
 
 if TYPE_CHECKING:
     from mechfem.numbering import DeckText, Numbering
@@ -98,16 +98,25 @@ class PythonWords(Words):
         "NaN there"
     )
 
-    def __init__(self, numbering: Numbering) -> None:
+    def __init__(self, numbering: Numbering, inputs: Sequence[str] = ()) -> None:
         super().__init__([r.name for r in numbering.inputs])
         self.numbering = numbering
+        # The units of the inputs and of det(D^c), from the run's inputs (:class:`mechfem.words.InputName`).
+        self.inputs = list(inputs)
 
     def input(self, j: int) -> str:
         return f"the input {self.names[j - 1]!r}" if 1 <= j <= len(self.names) else f"input number {j}"
 
+    def unit(self, j: int) -> str:
+        return getattr(self.inputs[j - 1], "unit", "") if 1 <= j <= len(self.inputs) else ""
+
     def at(self, j: int, value: float, digits: int) -> str:
         name = self.names[j - 1] if 1 <= j <= len(self.names) else f"input number {j}"
-        return f"{name} = {value:.{digits}g}"
+        return f"{name} = {with_unit(f'{value:.{digits}g}', self.unit(j))}"
+
+    def det(self, value: float, digits: int) -> str:
+        unit = getattr(self.inputs[0], "det_unit", "") if self.inputs else ""
+        return f"det(D^c) = {with_unit(f'{value:.{digits}g}', unit)}"
 
     def free_advice(self, ds: float, known: bool, steps: int) -> str:
         step = float(f"{ds:.2g}")

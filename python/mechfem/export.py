@@ -179,20 +179,17 @@ def result_drawing(
         Path2D(labels.point_name(result, ix + 1, iy + 1), result.coords[sample, ix], result.coords[sample, iy])
         for ix, iy in keys
     ]
-    # Points the deck names (NAMES) are labelled; an unnamed point's co-ordinate numbers would only clutter.
-    x = result.coords[k]
-    names = []
-    for ix, iy in drawing.points:
-        name = labels.point_name(result, ix + 1, iy + 1)
-        px, py = float(x[ix]), float(x[iy])
-        if not name.startswith("(") and math.isfinite(px) and math.isfinite(py):
-            names.append(Label(name, px, py))
     return ExportDrawing(
         title=f"{result.deck.stem}, position {k + 1}",
         position=k + 1,
         shapes=drawing.shapes(result.coords[k]),
         paths=tracks,
-        labels=names,
+        # The points the deck's NAMES block names, by name.
+        labels=[
+            Label(p.name, float(result.coords[k, p.x - 1]), float(result.coords[k, p.y - 1]))
+            for p in result.model.points
+            if math.isfinite(result.coords[k, p.x - 1]) and math.isfinite(result.coords[k, p.y - 1])
+        ],
         unit=drawing.unit,
     )
 

@@ -1,29 +1,29 @@
 """The one naming scheme for every quantity a person reads: data-set headers, print-file tables, picture axes,
 legends, the animation's title and the report.
 
-Every buffer gets a :class:`Label`: a compact name (``ANGB(8)``, ``dANGB(8)/dinput1``, ``x13``, ``vx13``), its
-unit, its kind and a sentence in words. A deck's run is named by deck numbers and form parameters; the run of a
-named model (:class:`mechfem.Mechanism`, whose names travel in :attr:`RunResult.names`) by the model's own names
-(``P.x``, ``dcoupler_angle/dcrank``).
+The core decides every name and unit (``_core.Labels``, which a run's model echo carries: crates/mechfem-core's
+``names.rs`` and ``units.rs``); this module asks it and puts the answers in the shapes the outputs use. Every
+buffer gets a :class:`Label`: its name (the NAMES block's ``BUF`` label, else made from the names of what it
+records, ``dpsi/dphi``, ``C.x``, else the deck's numbers, ``dANGB(8)/dinput1``, ``x13``), its unit, its kind and
+a sentence in words. The run of a named model (:class:`mechfem.Mechanism`, whose names travel in
+:attr:`RunResult.names`) is labelled by the model's own names, handed to the core (``Labels.renamed``).
 
-Units. A unit is worked out in the words of its kind: ``length``, ``rad`` for an angle, ``s`` for time, and
-ratios (a gear ratio) have none (``""``). A derivative's unit is the quantity's over the input's (``rad/rad``,
-``length/rad``), a velocity adds ``/s`` and an acceleration ``/s^2``. A stress or reaction is a ``force`` on a
-length, a ``torque`` on an angle and an ``energy`` on a ratio; energies are ``energy``, power ``power``, and the
-mass matrix ``mass`` times one ``length`` for every input that is an angle or a ratio. A label then says it in the
-model's units (:func:`shown`: the deck's ``UNITS``, or a :class:`~mechfem.Mechanism`'s): ``mm/deg``, ``N·mm`` for a
-torque (FORCE x LENGTH), ``kg·mm^2``, a quantity over one of its own unit as ``-``; a unit whose kind the model does
-not give (a length without ``UNITS LENGTH``) is not shown at all.
+Units. The core gives each quantity's kind as the exponents of length, angle, mass, force and time, the unit the
+model states (``mm/deg``, ``-`` for a quantity over one of its own unit, ``N·mm`` for a torque, ``kg·mm²``; none
+without UNITS) and the unit an axis shows (the stated one; without UNITS angles in ``rad`` and time in ``s``, and
+nothing where a length, mass or force takes part, since those numbers are in no unit mechfem knows). The kind is
+also said in the words of the unit algebra (``length``, ``rad``, ``s``, ``force``, ``torque``, ``energy``,
+``power``, ``mass``: :func:`words`), which decide which quantities share an axis and which other modules turn into
+a unit with :func:`shown`.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import re
-from collections.abc import Callable
+from collections.abc import Sequence
 from dataclasses import dataclass
 
-from mechfem.catalogue import CATALOGUE, FORMS, Dimension, coordinate_dimensions, form_dimension
+import mechfem._core as _core
 from mechfem.echo import Buffer, Model, Row
 from mechfem.result import RunResult
 from mechfem.result_tables import run_units
@@ -50,15 +50,10 @@ KINDS = (
     "mass",
 )
 
-UNITS: dict[Dimension, str | None] = {"length": LENGTH, "angle": ANGLE, "ratio": RATIO, "any": None}
-"""The unit of each of the catalogue's dimensions (``any``: the unit comes from the other elements that share the
-co-ordinate)."""
+Dims = Sequence[int]
+"""The exponents of length, angle, mass, force and time of a quantity, as the core gives them."""
 
-#: The unit of each co-ordinate of an element type, in deck order, from the core's catalogue. The ``i`` of a rack
-#: element is the pinion's radius, a length; the ``i`` of a ``GR1`` is a ratio.
-SLOT_UNITS: dict[str, tuple[str | None, ...]] = {
-    t: tuple(UNITS[k] for k in coordinate_dimensions(t)) for t in CATALOGUE
-}
+_BASE = ("length", "rad", "mass", "force", "s")
 
 
 @dataclass(frozen=True)
@@ -68,10 +63,10 @@ class Label:
     number: int
     """The buffer number."""
     name: str
-    """Compact readable name: ``ANGB(8)``, ``dANGB(8)/dinput1``, ``d2ANGB(8)/dinput1^2``, ``x13``, ``vx13``,
-    ``time``, ``det(D^c)``; a named model's own names instead (``dcoupler_angle/dcrank``, ``P.x``)."""
+    """Its name: ``ANGB(8)``, ``dANGB(8)/dinput1``, ``d2ANGB(8)/dinput1^2``, ``x13``, ``vx13``, ``time``,
+    ``det(D^c)``; the deck's names (``dpsi/dphi``, ``C.x``) or a named model's own (``dcoupler.angle/dcrank``)."""
     unit: str
-    """``rad``, ``length``, ``rad/rad``, ``length/s^2``, ``s``, ``torque``, ... (``""``: none)."""
+    """The unit an axis shows: the stated one; without UNITS ``rad``, ``rad/s``, ``-`` (``""``: none)."""
     kind: str
     """One of :data:`KINDS`."""
     text: str
@@ -89,11 +84,11 @@ class Label:
         return with_unit(f"{self.number} {self.name}", self.stated)
 
     def axis(self) -> str:
-        """An axis label with the unit: ``dANGB(8)/dinput1 [rad/rad]`` (no brackets without a unit)."""
+        """An axis label with the unit: ``dANGB(8)/dinput1 [-]`` (no brackets without a unit)."""
         return with_unit(self.name, self.unit)
 
     def legend(self) -> str:
-        """A legend or table entry: the number, the name and the unit (``101 dANGB(8)/dinput1 [rad/rad]``)."""
+        """A legend or table entry: the number, the name and the unit (``101 dANGB(8)/dinput1 [-]``)."""
         return f"{self.number} {self.axis()}"
 
     @property
@@ -126,52 +121,53 @@ def squared(a: str, b: str) -> str:
     return f"{a}^2" if a == b else f"{a}·{b}"
 
 
+def words(dims: Dims, kind: str = "") -> str:
+    """The unit of a quantity with exponents ``dims`` in the words of the unit algebra: ``length``, ``rad``,
+    ``length/rad``, ``rad/s^2``, ``1/length``; a generalised force on an angle is a ``torque`` (``kind``
+    ``force``) and force x length otherwise an ``energy`` (``power`` per second); a pure number is ``""``."""
+    length, angle, mass, force, time = dims
+    if (length, angle, mass, force) == (1, 0, 0, 1) and time in (0, -1):
+        return "power" if time else "torque" if kind == "force" else "energy"
+
+    def part(sign: int) -> str:
+        # Force and mass first, as the core writes N·mm and kg·mm².
+        out = []
+        for k in (3, 2, 0, 1, 4):
+            e = dims[k] * sign
+            if e > 0:
+                out.append(_BASE[k] + (f"^{e}" if e > 1 else ""))
+        return "·".join(out)
+
+    num, den = part(1), part(-1)
+    return over(num, den) if den else num
+
+
+def exponents(dims: Dims) -> dict[str, int]:
+    """``dims`` as a mapping of the kinds that take part to their exponents (``{"length": 1, "angle": -1}``)."""
+    return {k: e for k, e in zip(("length", "angle", "mass", "force", "time"), dims, strict=True) if e}
+
+
+def _core_labels(model: Model) -> _core.Labels:
+    if model.labels is None:
+        raise ValueError("this model echo carries no names and units from the core")
+    return model.labels
+
+
 def coordinate_units(model: Model) -> dict[int, str]:
-    """The unit of every co-ordinate, from the elements that use it (a length when none says)."""
-    out: dict[int, str] = {}
-    for e in model.elements:
-        for i, unit in zip(e.coords, SLOT_UNITS.get(e.type, ()), strict=False):
-            if unit is not None:
-                out.setdefault(i, unit)
-    for c in model.coordinates:
-        out.setdefault(c.number, LENGTH)
-    return out
-
-
-def form_unit(model: Model, form: str, element: int, coords: dict[int, str] | None = None) -> str:
-    """The unit of form parameter ``form`` of element ``element``, from the catalogue's dimension (a gear pair's
-    ``GEAR`` is an assembly angle, a rack's an assembly length; a ``COOR`` has its co-ordinate's unit)."""
-    e = next((x for x in model.elements if x.number == element), None)
-    if e is None or form not in FORMS.get(e.type, ()):
-        return RATIO
-    unit = UNITS[form_dimension(e.type, form)]
-    if unit is not None:
-        return unit
-    if e.coords:
-        return (coords if coords is not None else coordinate_units(model)).get(e.coords[0], LENGTH)
-    return RATIO
+    """The unit of every co-ordinate, in the words of the unit algebra."""
+    labels = _core_labels(model)
+    return {c.number: words(labels.coordinate(c.number)[3]) for c in model.coordinates}
 
 
 def row_unit(model: Model, row: Row, coords: dict[int, str] | None = None) -> str:
-    """The unit of a (possibly combined) row: its terms' unit. Terms of different units have a factor that
-    carries the difference, so the terms with factor +-1 decide; failing them, the first term."""
-    units = [form_unit(model, t.form, t.element, coords) for t in row.terms]
-    plain = {u for u, t in zip(units, row.terms, strict=True) if abs(t.factor) == 1.0}
-    if len(plain) == 1:
-        return plain.pop()
-    return units[0] if units else RATIO
+    """The unit of a (possibly combined) row, in the words of the unit algebra (``coords`` is not needed: the core
+    knows the co-ordinates' units)."""
+    return words(_core_labels(model).row(row.dest)[3])
 
 
 def stress_unit(unit: str) -> str:
     """The unit of a generalised force on a quantity of unit ``unit``: force, torque or energy."""
     return {LENGTH: "force", ANGLE: "torque"}.get(unit, "energy")
-
-
-def inertia_unit(a: str, b: str) -> str:
-    """The unit of the mass-matrix entry for inputs of units ``a`` and ``b``: mass times a length for each input
-    that is an angle or a ratio (a point's move per unit of it is a length)."""
-    lengths = sum(u != LENGTH for u in (a, b))
-    return "mass" + ("·length" if lengths == 1 else "·length^2" if lengths == 2 else "")
 
 
 def _words(units: Units) -> dict[str, str | None]:
@@ -230,185 +226,147 @@ def compact(formula: str) -> str:
     return formula.replace(" ", "")
 
 
-def _wrapped(name: str) -> str:
-    """``name`` bracketed when an operator in it would make a derivative's name ambiguous."""
-    return f"({name})" if any(c in name[1:] for c in "+-*/ ") or name.startswith("-") else name
+_RENAMED: dict[int, tuple[object, object, _core.Labels]] = {}
+"""The core's labels of a named model's runs, renamed once per model echo and names (a few kept)."""
+
+
+def _labels_of(result: RunResult) -> _core.Labels:
+    """The core's labels of ``result``, with a named model's own names."""
+    model, names = result.model, result.names
+    labels = _core_labels(model)
+    if names is None:
+        return labels
+    kept = _RENAMED.get(id(model))
+    if kept is not None and kept[0] is model and kept[1] is names:
+        return kept[2]
+    # An input's name is its row's: the names of the inputs win over the rows' where both are given.
+    prescribed = list(names.prescribed)
+    for j, name in enumerate(names.inputs):
+        r = model.dofs[j] if j < len(model.dofs) else 0
+        if 0 < r <= len(prescribed):
+            prescribed[r - 1] = name
+    renamed = labels.renamed(names.coordinates, prescribed, names.dependent)
+    if len(_RENAMED) > 16:
+        _RENAMED.clear()
+    _RENAMED[id(model)] = (model, names, renamed)
+    return renamed
 
 
 class _Namer:
-    """Names and units of one run's co-ordinates, rows and inputs, computed once for all its buffers."""
+    """Names and units of one run's co-ordinates, rows and inputs, as the core gives them, and the words of
+    each buffer."""
 
     def __init__(self, result: RunResult) -> None:
         self.result = result
-        self.units = run_units(result)
-        self.model = result.model
-        self.names = result.names
-        self.coords = coordinate_units(self.model)
-        self.rows = {r.dest: r for r in [*self.model.prescribed, *self.model.dependent]}
+        self.named = result.names is not None
+        self.core = _labels_of(result)
 
     def coordinate(self, i: int) -> str:
-        n = self.names
-        if n is not None and 0 < i <= len(n.coordinates):
-            return n.coordinates[i - 1]
-        declared = self.model.coordinates[i - 1].name if 0 < i <= len(self.model.coordinates) else None
-        return declared or f"x{i}"
+        return self.core.coordinate(i)[0]
 
     def coordinate_unit(self, i: int) -> str:
-        return self.coords.get(i, LENGTH)
+        return words(self.core.coordinate(i)[3])
 
     def row(self, r: int) -> str:
-        n = self.names
-        if n is not None:
-            names = n.prescribed if r > 0 else n.dependent
-            if 0 < abs(r) <= len(names):
-                return names[abs(r) - 1]
-        row = self.rows.get(r)
-        if row is not None and row.name:
-            return row.name
-        return compact(row.formula()) if row is not None else f"eps({r})"
+        try:
+            return self.core.row(r)[0]
+        except IndexError:
+            return f"eps({r})"
 
     def row_words(self, r: int) -> str:
         """``row 5`` or ``dependent form parameter 1`` (``output`` for a named model's)."""
         if r < 0:
-            return "output" if self.names is not None else f"dependent form parameter {-r}"
+            return "output" if self.named else f"dependent form parameter {-r}"
         return f"row {r}"
 
     def row_unit(self, r: int) -> str:
-        row = self.rows.get(r)
-        return row_unit(self.model, row, self.coords) if row is not None else RATIO
-
-    def input_row(self, j: int) -> int | None:
-        dofs = self.model.dofs
-        return dofs[j - 1] if 0 < j <= len(dofs) else None
+        try:
+            return words(self.core.row(r)[3])
+        except IndexError:
+            return RATIO
 
     def input(self, j: int) -> str:
-        """The input in a derivative: ``input1``, or the model's name for it."""
-        n = self.names
-        if n is not None and 0 < j <= len(n.inputs):
-            return n.inputs[j - 1]
-        r = self.input_row(j)
-        declared = self.rows[r].name if r is not None and r in self.rows else None
-        return declared or f"input{j}"
+        """The input in a derivative: ``input1``, or the name of its row."""
+        try:
+            return self.core.input(j)[0]
+        except IndexError:
+            return f"input{j}"
 
     def input_value(self, j: int) -> str:
-        """The input as a quantity: its row's form parameter (``ANGB(1)``), or the model's name for it."""
-        n = self.names
-        if n is not None and 0 < j <= len(n.inputs):
-            return n.inputs[j - 1]
-        r = self.input_row(j)
-        return self.row(r) if r is not None else f"input{j}"
+        """The input as a quantity: its row by name, else its formula (``ANGB(1)``)."""
+        try:
+            return self.core.input(j)[1]
+        except IndexError:
+            return f"input{j}"
 
     def input_words(self, j: int) -> str:
-        n = self.names
-        if n is not None and 0 < j <= len(n.inputs):
-            return n.inputs[j - 1]
-        declared = self.input(j)
-        return f"input {j} ({declared})" if declared != f"input{j}" else f"input {j}"
+        name = self.input(j)
+        if self.named:
+            return name
+        return f"input {j} ({name})" if name != f"input{j}" else f"input {j}"
 
     def input_unit(self, j: int) -> str:
-        r = self.input_row(j)
-        return self.row_unit(r) if r is not None else RATIO
+        try:
+            return words(self.core.input(j)[5])
+        except IndexError:
+            return RATIO
 
     def label(self, b: Buffer) -> Label:
-        """The label of ``b``: the name and unit the core gives it (the deck's ``BUF`` label or NAMES, its
-        UNITS); a named model's own names (which may hold dots no deck name can); a unit in the words of the
-        algebra said in the run's units where the core gives none (an angle in ``rad`` without UNITS)."""
-        lab = self._label(b)
-        name = lab.name if self.names is not None or not b.name else b.name
-        unit = b.unit or shown(lab.unit, self.units)
-        return dataclasses.replace(lab, name=name, unit=unit, base=lab.unit, stated=b.unit)
+        """The label of ``b``: name and units from the core, kind and words from what it records."""
+        kind, text = self._words(b)
+        try:
+            name, stated, unit, dims = self.core.buffer(b.number)
+        except IndexError:
+            return Label(b.number, b.name or compact(b.label()), b.unit, kind, text, stated=b.unit)
+        return Label(b.number, name, unit, kind, text, base=words(dims, kind), stated=stated)
 
-    def _label(self, b: Buffer) -> Label:
+    def _words(self, b: Buffer) -> tuple[str, str]:
+        """The kind of ``b`` and what it holds in words."""
         a = [*b.args, 0, 0, 0]
         kw = b.keyword
         if kw in ("BUFX0", "BUFKX1", "BUFKX2", "BUFVX", "BUFAX"):
-            q, unit, words = self.coordinate(a[0]), self.coordinate_unit(a[0]), f"co-ordinate {a[0]}"
-            if q != f"x{a[0]}":
-                words = f"{words} ({q})"
-            return self._quantity(b, kw[3:], q, unit, words, a)
+            q = self.coordinate(a[0])
+            words = f"co-ordinate {a[0]}" + (f" ({q})" if q != f"x{a[0]}" else "")
+            return self._quantity(b, kw[3:], words, a)
         if kw in ("BUFE0", "BUFKE1", "BUFKE2", "BUFVE", "BUFAE"):
-            q, unit = self.row(a[0]), self.row_unit(a[0])
-            return self._quantity(b, kw[3:].replace("E", "X", 1), q, unit, f"{q} ({self.row_words(a[0])})", a)
-        n = b.number
-        simple: dict[str, Callable[[], Label]] = {
-            "BUFINP": lambda: Label(
-                n,
-                self.input_value(a[0]),
-                self.input_unit(a[0]),
-                "input",
-                f"value of input {a[0]}" + (f" ({self.input_value(a[0])})" if self.input_row(a[0]) else ""),
-            ),
-            "BUFTIME": lambda: Label(n, "time", TIME, "time", "time"),
-            "BUFDET": lambda: Label(n, "det(D^c)", "", "det", "det(D^c), the measure of transfer quality"),
-            "BUFSIG": lambda: Label(
-                n,
-                f"sigma({self.row(a[0])})",
-                stress_unit(self.row_unit(a[0])),
-                "force",
-                f"generalised stress of {self.row_words(a[0])} ({self.row(a[0])}): the "
-                f"{stress_unit(self.row_unit(a[0]))} its constraint applies, positive as it grows",
-            ),
-            "BUFDRV": lambda: Label(
-                n,
-                f"drive({self.input_value(a[0])})",
-                stress_unit(self.input_unit(a[0])),
-                "force",
-                f"drive {stress_unit(self.input_unit(a[0]))} of input {a[0]} ({self.input_value(a[0])})",
-            ),
-            "BUFREA": lambda: Label(
-                n,
-                f"reaction({self.coordinate(a[0])})",
-                stress_unit(self.coordinate_unit(a[0])),
-                "force",
-                f"reaction of the frame on co-ordinate {a[0]} ({self.coordinate(a[0])})",
-            ),
-            "BUFEKIN": lambda: Label(n, "Ekin", "energy", "energy", "kinetic energy T"),
-            "BUFEPOT": lambda: Label(n, "Epot", "energy", "energy", "potential energy V (gravity and springs)"),
-            "BUFPOW": lambda: Label(n, "power", "power", "power", "power the drives deliver"),
-            "BUFMRED": lambda: self._mass(b, a[0], a[1]),
+            q = self.row(a[0])
+            return self._quantity(b, kw[3:].replace("E", "X", 1), f"{q} ({self.row_words(a[0])})", a)
+        if kw == "BUFINP":
+            value = self.input_value(a[0])
+            return "input", f"value of input {a[0]}" + (f" ({value})" if value != f"input{a[0]}" else "")
+        if kw in ("BUFSIG", "BUFDRV", "BUFREA"):
+            if kw == "BUFSIG":
+                what = stress_unit(self.row_unit(a[0]))
+                text = f"generalised stress of {self.row_words(a[0])} ({self.row(a[0])}): the {what} its "
+                return "force", text + "constraint applies, positive as it grows"
+            if kw == "BUFDRV":
+                what = stress_unit(self.input_unit(a[0]))
+                return "force", f"drive {what} of input {a[0]} ({self.input_value(a[0])})"
+            return "force", f"reaction of the frame on co-ordinate {a[0]} ({self.coordinate(a[0])})"
+        simple = {
+            "BUFTIME": ("time", "time"),
+            "BUFDET": ("det", "det(D^c), the measure of transfer quality"),
+            "BUFEKIN": ("energy", "kinetic energy T"),
+            "BUFEPOT": ("energy", "potential energy V (gravity and springs)"),
+            "BUFPOW": ("power", "power the drives deliver"),
+            "BUFMRED": ("mass", f"entry ({a[0]}, {a[1]}) of the mass matrix in the inputs"),
         }
-        make = simple.get(kw)
-        if make is not None:
-            return make()
-        return Label(n, compact(b.label()), "", "position", b.label())
+        return simple.get(kw, ("position", b.label()))
 
-    def _mass(self, b: Buffer, j: int, m: int) -> Label:
-        names = (str(j), str(m)) if self.names is None else (self.input(j), self.input(m))
-        return Label(
-            b.number,
-            f"M({names[0]},{names[1]})",
-            inertia_unit(self.input_unit(j), self.input_unit(m)),
-            "mass",
-            f"entry ({j}, {m}) of the mass matrix in the inputs",
-        )
-
-    def _quantity(self, b: Buffer, what: str, q: str, unit: str, words: str, a: list[int]) -> Label:
-        """The label of a co-ordinate or row ``q`` (``what``: X0, KX1, KX2, VX or AX of it)."""
-        n = b.number
+    def _quantity(self, b: Buffer, what: str, words: str, a: list[int]) -> tuple[str, str]:
+        """The kind and words of co-ordinate or row ``words`` (``what``: X0, KX1, KX2, VX or AX of it)."""
         if what == "X0":
-            return Label(n, q, unit, "position", words)
+            return "position", words
         if what == "VX":
-            return Label(n, f"v{_wrapped(q)}", over(unit, TIME), "velocity", f"velocity of {words}")
+            return "velocity", f"velocity of {words}"
         if what == "AX":
-            return Label(n, f"a{_wrapped(q)}", over(unit, f"{TIME}^2"), "acceleration", f"acceleration of {words}")
+            return "acceleration", f"acceleration of {words}"
         j = a[1]
         if what == "KX1":
-            return Label(
-                n,
-                f"d{_wrapped(q)}/d{self.input(j)}",
-                over(unit, self.input_unit(j)),
-                "first order",
-                f"first-order transfer function of {words} with respect to {self.input_words(j)}",
-            )
+            return "first order", f"first-order transfer function of {words} with respect to {self.input_words(j)}"
         m = a[2] if len(b.args) > 2 else j
-        if m == j:
-            name = f"d2{_wrapped(q)}/d{self.input(j)}^2"
-            wrt = f"{self.input_words(j)} (twice)"
-        else:
-            name = f"d2{_wrapped(q)}/d{self.input(j)}d{self.input(m)}"
-            wrt = f"{self.input_words(j)} and {self.input_words(m)}"
-        unit2 = over(unit, squared(self.input_unit(j), self.input_unit(m)))
-        return Label(n, name, unit2, "second order", f"second-order transfer function of {words} with respect to {wrt}")
+        wrt = f"{self.input_words(j)} (twice)" if m == j else f"{self.input_words(j)} and {self.input_words(m)}"
+        return "second order", f"second-order transfer function of {words} with respect to {wrt}"
 
 
 def buffer_labels(result: RunResult) -> dict[int, Label]:
@@ -433,8 +391,8 @@ def coordinate_name(result: RunResult, i: int) -> str:
 
 def coordinate_axis(result: RunResult, i: int) -> str:
     """An axis label for co-ordinate i: ``x13 [mm]`` (``x13`` without a unit of length)."""
-    namer = _Namer(result)
-    return with_unit(namer.coordinate(i), shown(namer.coordinate_unit(i), namer.units))
+    name, _, unit, _ = _labels_of(result).coordinate(i)
+    return with_unit(name, unit)
 
 
 def point_name(result: RunResult, ix: int, iy: int) -> str:
@@ -469,6 +427,38 @@ def input_unit(result: RunResult, j: int) -> str:
 def display_unit(result: RunResult, unit: str) -> str:
     """``unit`` (in the words of the unit algebra) in the run's units (:func:`shown`)."""
     return shown(unit, run_units(result))
+
+
+def buffer_name(model: Model | None, number: int) -> str:
+    """Buffer ``number`` of ``model`` by its label (``d2delta/dalpha^2``), ``buffer N`` where the model has none."""
+    labels = None if model is None else model.labels
+    try:
+        return labels.buffer(number)[0] if labels is not None else f"buffer {number}"
+    except IndexError:
+        return f"buffer {number}"
+
+
+def core_value(model: Model | None, number: int, value: float, digits: str = ".6g") -> str:
+    """``value``, a number of the core's of buffer ``number`` (an optimiser's), in the units of ``model`` with the
+    unit it shows: ``-296.5 deg`` (``rad`` without UNITS); as it is, without a unit, where the model has no such
+    buffer."""
+    labels = None if model is None else model.labels
+    try:
+        _, _, stated, dims = labels.buffer(number) if labels is not None else ("", "", "", (0, 0, 0, 0, 0))
+    except IndexError:
+        stated, dims = "", (0, 0, 0, 0, 0)
+    v = value * labels.scale(dims) if labels is not None else value
+    return f"{v:{digits}} {stated}" if stated and stated != "-" else f"{v:{digits}}"
+
+
+def core_input(model: Model | None, j: int, value: float, digits: str = ".12g") -> str:
+    """``name = value unit`` of input ``j`` at ``value``, a number of the core's: ``alpha = -58.2 deg``."""
+    labels = None if model is None else model.labels
+    if labels is None:
+        return f"input {j} = {value:{digits}}"
+    name, _, _, _, stated, dims = labels.input(j)
+    v = value * labels.scale(dims)
+    return f"{name} = {v:{digits}}" + (f" {stated}" if stated and stated != "-" else "")
 
 
 def with_unit(name: str, unit: str) -> str:

@@ -111,7 +111,7 @@ class Namespace:
         return self.numbering.dof(key)  # type: ignore[arg-type]
 
     def words(self, report: RunReport) -> Words:
-        return PythonWords(self.numbering) if self.named else Words(report.input_names)
+        return PythonWords(self.numbering, report.input_names) if self.named else Words(report.input_names)
 
     def model_names(self) -> ModelNames | None:
         if not self.named:

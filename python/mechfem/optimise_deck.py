@@ -22,7 +22,7 @@ from mechfem.atomic import atomic_text
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import Model
 from mechfem.errors import MechfemError
-from mechfem.labels import coordinate_units, row_unit, shown
+from mechfem.labels import buffer_name, coordinate_units, core_input, core_value, row_unit, shown
 from mechfem.output import count
 from mechfem.units import Units
 
@@ -185,6 +185,12 @@ class Outcome:
         return worst
 
 
+def missed_value(outcome: Outcome, missed: tuple[float, int], model: Model | None) -> str:
+    """The largest difference :meth:`Outcome.unreached` gives, in the units of its target's buffer."""
+    buffer = next((int(t["buffer"]) for t in outcome.opt["targets"] if int(t["line"]) == missed[1]), 0)
+    return core_value(model, buffer, missed[0], ".4g")
+
+
 def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Outcome:
     """Solves the deck's OPTIMISE block from its own design; raises :class:`OptimisationError` when it cannot
     start."""
@@ -284,9 +290,12 @@ def print_lines(outcome: Outcome, written: Path | None, model: Model | None = No
     out.append(f"  {'converged' if s.success else 'did not converge'}: {s.message}")
     if outcome.extrema:
         out += ["", "  targets at extrema, at the final design:"]
-        out.append(f"  {'buffer':>8} {'reference':>10} {'input':>18} {'value':>18} {'target':>12}")
         for t, at, value in outcome.extrema:
-            out.append(f"  {t.buffer:>8} {t.reference:>10} {at:>18.12g} {value:>18.6e} {t.value:>12.6g}")
+            out.append(
+                f"    {buffer_name(model, t.buffer)} at an extremum of {buffer_name(model, t.reference)}, "
+                f"{core_input(model, 1, at)}: {core_value(model, t.buffer, value, '.6e')} "
+                f"(target {core_value(model, t.buffer, t.value)})"
+            )
     # A TARGETEXT whose reference has no extremum along the motion adds nothing to the objective: said here.
     found = {id(t) for t, _, _ in outcome.extrema}
     for term in p.terms:
@@ -300,7 +309,8 @@ def print_lines(outcome: Outcome, written: Path | None, model: Model | None = No
         for target, (d, k) in zip(outcome.opt["targets"], outcome.misses, strict=True):
             where = f" at position {k + 1}" if k is not None else ""
             kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[target["kind"]]
-            out.append(f"  {kw} on line {target['line']} (buffer {target['buffer']}): {d:.6g}{where}")
+            b = int(target["buffer"])
+            out.append(f"  {kw} on line {target['line']} ({buffer_name(model, b)}): {core_value(model, b, d)}{where}")
     if written is not None:
         out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
     return [*out, ""]

@@ -26,6 +26,7 @@ from mechfem.echo import Model, Storage
 from mechfem.inverse_dynamics import Exponents, Said, summary_lines
 from mechfem.labels import Label, buffer_labels, coordinate_unit, input_unit, row_dest_unit
 from mechfem.result import RunResult
+from mechfem.words import with_unit
 
 if TYPE_CHECKING:
     from mechfem.progress import ProgressBar
@@ -206,6 +207,17 @@ def said_of(result: RunResult) -> Said:
     )
 
 
+def det_unit(model: Model) -> str:
+    """The unit of det(D^c) of ``model``, as the core gives it: the product of the rows' units over the moving
+    co-ordinates' (``deg/mm`` for a four-bar in mm and degrees); "" where a kind of it has no unit."""
+    return model.labels.det()[1] if model.labels is not None else ""
+
+
+def det_words(model: Model, value: float, digits: int) -> str:
+    """``det(D^c) = value unit``."""
+    return f"det(D^c) = {with_unit(f'{value:.{digits}g}', det_unit(model))}"
+
+
 def units_line(model: Model) -> str:
     """The print file's statement of the units its numbers are in."""
     given = [f"{kind.upper()} {unit}" for kind, unit in model.units.items() if unit]
@@ -281,7 +293,7 @@ def adjustment_lines(result: RunResult, said: Said | None = None) -> list[str]:
     if largest is not None:
         out.append(f"  largest initial deformation: {deformation(largest[0], largest[1], '.6g')} (row {largest[0]})")
     out.append(f"  largest remaining deformation: {a.residual:.3g}")
-    out.append(f"  det(D^c) at position 1: {result.det[0]:.10g}")
+    out.append(f"  {det_words(result.model, float(result.det[0]), 10).replace(' =', ' at position 1:', 1)}")
     moved = [(r, e) for r, e in enumerate(a.initial_deformations, 1) if e != 0.0]
     if moved:
         out += ["  initial deformations (value at the given co-ordinates - prescribed value)"]
@@ -410,11 +422,13 @@ def limit_lines(result: RunResult, said: Said | None = None) -> list[str]:
         )
     else:
         k_min, k_max = int(np.nanargmin(det)), int(np.nanargmax(det))
+        unit = det_unit(result.model)
         out += paragraph(
-            f"det(D^c), the measure of transfer quality, ranges from {np.nanmin(result.det):.6g} to "
-            f"{np.nanmax(result.det):.6g}; its magnitude is smallest at position {k_min + 1} ({det[k_min]:.3g}) "
-            f"and largest at position {k_max + 1} ({det[k_max]:.3g}). Its value depends on units and on the choice "
-            "of rows: compare it only along one run. Where it is zero, an input is in a limit position."
+            f"det(D^c), the measure of transfer quality, ranges from {np.nanmin(result.det):.6g} "
+            f"to {with_unit(f'{np.nanmax(result.det):.6g}', unit)}; its magnitude is smallest at position "
+            f"{k_min + 1} ({det[k_min]:.3g}) and largest at position {k_max + 1} ({det[k_max]:.3g}). Its value "
+            "depends on units and on the choice of rows: compare it only along one run. Where it is zero, an input "
+            "is in a limit position."
         )
     limits = report.located_limits
     if not limits:
@@ -428,7 +442,7 @@ def limit_lines(result: RunResult, said: Said | None = None) -> list[str]:
         out.append("")
         head = paragraph(f"{limit.where}: {limit.what(report.input_names)}", "      ")
         out += [f"  {number:2d}. {head[0].lstrip()}", *head[1:]]
-        out += paragraph(limit.values(), "      ")
+        out += paragraph(limit.values(report.input_names), "      ")
         if shown:
             values = [f"{i:>4d} = {limit.coords[i - 1]:<17.10g}" for i in shown]
             out.append(f"      co-ordinates there{in_unit}:")

@@ -27,6 +27,7 @@ from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, Simulation
 from mechfem.result_tables import Energy, Names, ResultTables
 from mechfem.run_report import AdjustInfo, Limit, RunReport
+from mechfem.words import input_names
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -313,8 +314,7 @@ _CONVERTED = Converted()
 def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
     def make(d: _core.ModelDict) -> tuple[Model, list[str]]:
         model = Model.from_core(d)
-        rows = [model.prescribed[row - 1] for row in model.dofs]
-        return model, [f"row {r.dest}: {r.name or r.formula()}" for r in rows]
+        return model, input_names(model)
 
     return _CONVERTED.get(d, make)
 

@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import mechfem._core as _core
-from mechfem.words import Part, Words, words_of
+from mechfem.words import Part, Words, with_unit, words_of
 
 
 @dataclass(frozen=True)
@@ -78,7 +78,7 @@ class Limit:
     def values(self, names: Sequence[str] | Words = ()) -> str:
         """``input 1 = ..., det(D^c) = ...``."""
         at = [words_of(names).at(j, v, 12) for j, v in enumerate(self.inputs, 1)]
-        return ", ".join([*at, f"det(D^c) = {self.det:.3g}"])
+        return ", ".join([*at, words_of(names).det(self.det, 3)])
 
     def describe(self, names: Sequence[str] | Words = ()) -> str:
         """One sentence: what, where, the input values and det(D^c)."""
@@ -148,10 +148,11 @@ class Stop:
             )
         limit = self.limit
         if limit is not None and limit.kind == "input_limit" and len(self.inputs) == 1 == len(limit.inputs):
+            target = with_unit(f"{self.inputs[0]:.10g}", words.unit(1))
             return (
                 f"The motion stopped after position {k} of {total}: {words.input(1)} reached its limit "
                 f"position at {words.at(1, limit.inputs[0], 12)}, located between positions {k} and {k + 1} "
-                f"(det(D^c) = {limit.det:.2g} there), and cannot be driven on to {self.inputs[0]:.10g}. {kept} A "
+                f"({words.det(limit.det, 2)} there), and cannot be driven on to {target}. {kept} A "
                 "driven input cannot move the mechanism through its limit position; free motion can. "
                 f"{self._free_advice(free_step, words, total)} (At the smallest step the solver reported: "
                 f"{message}.)"

@@ -8,6 +8,11 @@ that of the Python API for a named model.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import mechfem._core as _core
+    from mechfem.echo import Model
 
 Part = str | tuple[str, object, str]
 """A piece of a message of the core (the ``parts`` of a solver error or of a stop): plain words, or a thing the
@@ -22,6 +27,46 @@ message names, as ``(kind, value, deck words)``:
   ``zero_radius`` (with ``radius``, ``R_a`` or ``R_c``).
 
 The deck words are the message's own: joined with the plain words, they give the message as the deck says it."""
+
+
+class InputName(str):
+    """How a sentence names the input of a DOF: its row as the text (``row 6: beta1``, ``row 6: ANGB(1)``), with
+    the row's ``name`` ("" unnamed), the ``unit`` its values are in (``deg``; ``rad`` for an angle of a deck without
+    UNITS, "" for a length of one) and ``det_unit``, the unit of the model's det(D^c)."""
+
+    name: str
+    unit: str
+    det_unit: str
+    labels: _core.Labels | None
+    """The names of the model's co-ordinates and rows, for a message that names them."""
+
+    def __new__(
+        cls, text: str, name: str = "", unit: str = "", det_unit: str = "", labels: _core.Labels | None = None
+    ) -> InputName:
+        self = super().__new__(cls, text)
+        self.name, self.unit, self.det_unit, self.labels = name, unit, det_unit, labels
+        return self
+
+    def __reduce__(self) -> tuple[object, ...]:
+        return (InputName, (str(self), self.name, self.unit, self.det_unit, self.labels))
+
+
+def input_names(model: Model) -> list[str]:
+    """The inputs of ``model`` as sentences name them, with their units from the core (:class:`InputName`)."""
+    labels = model.labels
+    det_unit = labels.det()[2] if labels is not None else ""
+    out: list[str] = []
+    for j, dest in enumerate(model.dofs, 1):
+        row = model.prescribed[dest - 1]
+        unit = labels.input(j)[4] if labels is not None else ""
+        text = f"row {row.dest}: {row.name or row.formula()}"
+        out.append(InputName(text, row.name or "", unit, det_unit, labels))
+    return out
+
+
+def with_unit(value: str, unit: str) -> str:
+    """``value unit``; ``value`` alone without a unit (and for a pure number, ``-``)."""
+    return f"{value} {unit}" if unit and unit != "-" else value
 
 
 def input_name(j: int, names: Sequence[str] = ()) -> str:
@@ -54,9 +99,23 @@ class Words:
         """The input of DOF ``j`` as the subject of a sentence."""
         return input_name(j, self.names)
 
+    def _input(self, j: int) -> str:
+        return self.names[j - 1] if 1 <= j <= len(self.names) else ""
+
+    def unit(self, j: int) -> str:
+        """The unit of the values of the input of DOF ``j`` ("" when not known)."""
+        return getattr(self._input(j), "unit", "")
+
     def at(self, j: int, value: float, digits: int) -> str:
-        """The input of DOF ``j`` at ``value``, e.g. ``input 1 = 2.5``."""
-        return f"input {j} = {value:.{digits}g}"
+        """The input of DOF ``j`` at ``value``, with its unit: ``input 1 = 2.5 rad``, ``beta1 = 94.9 deg`` for a
+        named row."""
+        name = getattr(self._input(j), "name", "") or f"input {j}"
+        return f"{name} = {with_unit(f'{value:.{digits}g}', self.unit(j))}"
+
+    def det(self, value: float, digits: int) -> str:
+        """``det(D^c) = value`` with its unit (the product of the rows' units over the moving co-ordinates')."""
+        unit = getattr(self._input(1), "det_unit", "")
+        return f"det(D^c) = {with_unit(f'{value:.{digits}g}', unit)}"
 
     def free_advice(self, ds: float, known: bool, steps: int) -> str:
         """The free motion to use instead of a driven one through a limit position: step ``ds`` (``known``: about
@@ -76,7 +135,25 @@ class Words:
 
     def thing(self, kind: str, value: object, deck: str) -> str:
         """A thing a message names (see :data:`Part`), in the deck's words: ``element 3 (TR2)``,
-        ``co-ordinates 5, 6``."""
+        ``co-ordinates 5, 6``; with the names the deck gives them: ``point K (co-ordinates 13, 14)``,
+        ``co-ordinate 9 (C.x)``, ``row 6 (phi)``."""
+        labels = getattr(self._input(1), "labels", None)
+        if labels is None:
+            return deck
+        try:
+            if kind == "coords" and isinstance(value, list) and len(value) == 2:
+                x, y = (labels.coordinate(int(i))[0] for i in value)
+                if x.endswith(".x") and y == x[:-2] + ".y":
+                    return f"point {x[:-2]} ({deck})"
+            if kind == "coordinate" and isinstance(value, int):
+                name = labels.coordinate(value)[0]
+                return f"{deck} ({name})" if name != f"x{value}" else deck
+            if kind == "row" and isinstance(value, int):
+                # A row without a name is called by its formula, ANGB(1).
+                name = labels.row(value)[0]
+                return f"{deck} ({name})" if "(" not in name else deck
+        except IndexError:
+            return deck
         return deck
 
 
@@ -85,4 +162,4 @@ def words_of(names: Sequence[str] | Words) -> Words:
     return names if isinstance(names, Words) else Words(names)
 
 
-__all__ = ["Part", "Words", "free_motion_line", "input_name", "words_of"]
+__all__ = ["InputName", "Part", "Words", "free_motion_line", "input_name", "input_names", "with_unit", "words_of"]

@@ -330,6 +330,21 @@ impl Dim {
     }
 }
 
+impl Dim {
+    /// The unit as an axis or a sentence shows it: [`Dim::symbol`] in
+    /// `units`; a model that declares no units shows its angles in radians
+    /// and time in seconds (the core's own), and nothing for a kind that
+    /// needs a length, mass or force (their numbers are as the model gives
+    /// them, in no unit mechfem knows).
+    pub fn shown(self, units: &Units) -> String {
+        if units.declared {
+            self.symbol(units)
+        } else {
+            self.symbol(&Units { declared: true, ..Units::NONE })
+        }
+    }
+}
+
 /// The product of the base factors `s` raised to the exponents of `dim`.
 fn product(dim: Dim, s: [f64; KINDS]) -> f64 {
     let mut out = 1.0;
@@ -489,6 +504,11 @@ mod tests {
         assert_eq!(Dim::ANGLE.symbol(&angle_only), "deg");
         assert_eq!(Dim::LENGTH.over(Dim::ANGLE).symbol(&angle_only), "");
         assert_eq!(Dim::TIME.symbol(&angle_only), "s");
+        // Shown without UNITS: radians and seconds, nothing with a length.
+        assert_eq!(Dim::ANGLE.over(Dim::TIME).shown(&Units::NONE), "rad/s");
+        assert_eq!(Dim::ANGLE.over(Dim::ANGLE).shown(&Units::NONE), "-");
+        assert_eq!(Dim::LENGTH.shown(&Units::NONE), "");
+        assert_eq!(Dim::LENGTH.over(Dim::ANGLE).shown(&u), "mm/deg");
     }
 
     #[test]

@@ -193,6 +193,7 @@ pub struct Echo {
     /// The deck's units and named points ([`crate::names`]).
     units: Py<PyDict>,
     points: Py<PyList>,
+    labels: Py<crate::labels::Labels>,
 }
 
 impl Echo {
@@ -227,6 +228,7 @@ impl Echo {
             coordinates,
             para: written.iter().map(|r| r.para).collect(),
             units: crate::names::units(py, c)?.unbind(),
+            labels: Py::new(py, crate::labels::Labels::of(c))?,
             points: crate::names::points(py, c)?.unbind(),
         })
     }
@@ -266,6 +268,7 @@ impl Echo {
         d.set_item("dynamics", self.dynamics.bind(py))?;
         d.set_item("units", self.units.bind(py))?;
         d.set_item("points", self.points.bind(py))?;
+        d.set_item("labels", self.labels.bind(py))?;
         Ok(d)
     }
 }

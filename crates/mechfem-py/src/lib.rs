@@ -47,6 +47,7 @@ mod convert;
 mod described_names;
 mod design;
 mod errors;
+mod labels;
 mod model;
 mod names;
 mod observe;
@@ -327,6 +328,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(text::describe_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<model::Model>()?;
+    m.add_class::<labels::Labels>()?;
     m.add_class::<run::Run>()?;
     m.add_class::<checked::Check>()?;
     m.add_class::<checked::DeckFiles>()?;

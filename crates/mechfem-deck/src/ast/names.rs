@@ -111,3 +111,12 @@ pub(crate) struct CoreScale {
     /// The kind of each DOF's input.
     pub inputs: Vec<mechfem_core::Dim>,
 }
+
+impl crate::ast::Deck {
+    /// `value`, a number of kind `dim` of the deck [`crate::compile`] works
+    /// on (in the core's units for a deck with UNITS), as the deck's units
+    /// say it: what a message about the deck quotes.
+    pub(crate) fn as_written(&self, dim: mechfem_core::Dim, value: f64) -> f64 {
+        self.scale.as_ref().map_or(value, |s| s.units.from_core(dim, value))
+    }
+}

@@ -40,6 +40,13 @@ pub(crate) fn design_variables(
         }
         if !(def.lo.value..=def.hi.value).contains(&start) {
             let source = if def.keyword.value == Keyword::Vary { "PARA" } else { "XFIX" };
+            // The numbers as the deck writes them, in its UNITS.
+            let dim = match (var, &deck.scale) {
+                (_, None) => mechfem_core::Dim::NONE,
+                (DesignVar::Row(r), Some(s)) => s.dims.form(mechfem_core::FormRef::Prescribed(r)),
+                (DesignVar::Fixed(i), Some(s)) => s.dims.coord(i),
+            };
+            let [start, lo, hi] = [start, def.lo.value, def.hi.value].map(|v| deck.as_written(dim, v));
             return Err(deck
                 .error(
                     DiagnosticKind::DesignVariable,
@@ -47,8 +54,8 @@ pub(crate) fn design_variables(
                     format!(
                         "{what} starts at {} (its {source}), outside its range [{}, {}]",
                         real(start),
-                        real(def.lo.value),
-                        real(def.hi.value)
+                        real(lo),
+                        real(hi)
                     ),
                 )
                 .with_hint(format!(

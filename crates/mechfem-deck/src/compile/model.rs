@@ -111,7 +111,8 @@ fn check_lengths(deck: &Deck, constant: &[Vec<&Resolved>]) -> Result<(), Box<Dia
                          greater than zero",
                         p.row.value,
                         t.element + 1,
-                        t.ty.name()
+                        t.ty.name(),
+                        length = deck.as_written(mechfem_core::Dim::LENGTH, length)
                     ),
                 )
                 .about_element(t.element)
@@ -119,6 +120,17 @@ fn check_lengths(deck: &Deck, constant: &[Vec<&Resolved>]) -> Result<(), Box<Dia
         }
     }
     Ok(())
+}
+
+/// `e` with its lengths as the deck writes them.
+fn written_element_error(deck: &Deck, e: &ElementError) -> ElementError {
+    match *e {
+        ElementError::NoBeltSpan { l, d } => ElementError::NoBeltSpan {
+            l: deck.as_written(mechfem_core::Dim::LENGTH, l),
+            d: deck.as_written(mechfem_core::Dim::LENGTH, d),
+        },
+        other => other,
+    }
 }
 
 /// Points a refusal of the core at the deck line that caused it.
@@ -143,9 +155,10 @@ fn model_error(deck: &Deck, e: ModelError) -> Box<Diagnostic> {
                     DiagnosticKind::Model,
                     span,
                     format!(
-                        "element {} ({}) cannot be evaluated at the initial co-ordinates: {source}",
+                        "element {} ({}) cannot be evaluated at the initial co-ordinates: {}",
                         element + 1,
-                        def.ty.value.name()
+                        def.ty.value.name(),
+                        written_element_error(deck, source)
                     ),
                 )
                 .about_element(*element)

@@ -154,8 +154,11 @@ pub(crate) fn check_rates(
                         "{} asks DOF {} to change by {} in a time of {}, faster than a number can hold",
                         m.keyword.value,
                         j + 1,
-                        real(change),
-                        real(time)
+                        real(deck.as_written(
+                            deck.scale.as_ref().and_then(|s| s.inputs.get(j)).copied().unwrap_or_default(),
+                            change
+                        )),
+                        real(deck.as_written(mechfem_core::Dim::TIME, time))
                     ),
                 )
                 .with_hint("give a longer time step (TSTEPE n dt) or a smaller change"));
