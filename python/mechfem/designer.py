@@ -202,8 +202,15 @@ def transmission_lines(result: Any) -> list[str]:
 def sweep_lines(result: Any) -> list[str]:
     """For every input: the range it can sweep when limit positions bound it (rocking between the located limits),
     or a full turn when an angle input went all the way round."""
+    from mechfem.result_tables import NotRecordedError
+
     limits = result.report.located_limits
-    inputs = result.inputs
+    try:
+        inputs = result.inputs
+    except NotRecordedError:
+        # A deck's run records what its STORAGE asks for: without its inputs, the located limits alone tell.
+        n = max((len(lim.inputs) for lim in limits), default=0)
+        inputs = np.full((0, n), np.nan)
     names = list(getattr(result.report, "input_names", [])) or [f"input{j + 1}" for j in range(inputs.shape[1])]
     out: list[str] = []
     for j in range(inputs.shape[1]):

@@ -48,7 +48,7 @@ struct Model {
 }
 
 /// Every answer of a model's labels, by number.
-#[derive(Clone)]
+#[derive(Clone, PartialEq)]
 struct Table {
     coordinates: Vec<Named>,
     prescribed: Vec<Named>,
@@ -236,6 +236,15 @@ impl Labels {
             }
         };
         Ok(Labels { units: self.units, source })
+    }
+
+    /// Equal labels give the same answers in the same units (a pickled
+    /// copy equals its original), so that two model echoes compare by what
+    /// they say.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> PyResult<bool> {
+        let Ok(other) = other.cast::<Labels>() else { return Ok(false) };
+        let other = other.get();
+        Ok(self.unit_symbols() == other.unit_symbols() && self.table()? == other.table()?)
     }
 
     /// A pickle: the table of every answer and the units' symbols.
