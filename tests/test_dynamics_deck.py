@@ -123,7 +123,9 @@ def test_the_outputs_show_the_dynamics(tmp_path: Path, cli: Cli) -> None:
     # Named by the deck's NAMES block (ROW for the input alpha, DEP for the output delta), with its UNITS.
     assert header[:3] == ["99 alpha [rad]", "100 delta [rad]", "110 drive(alpha) [N·m]"]
     report = (tmp_path / "supply_dyn.html").read_text()
-    assert "drive force or torque against alpha" in report
+    # The deck's first picture charts the drive torque: the report shows it there, not a second time.
+    assert "drive torque against the input angle" in report
+    assert "drive force or torque against alpha" not in report
     assert "energies against alpha" in report
 
 

@@ -186,3 +186,23 @@ def test_report_table_lists_buffers_by_number_whatever_the_storage_order(tmp_pat
         data = report_data(mechfem.run_deck(deck))
     numbers = [int(key[1:]) for key in data["table"]]
     assert len(numbers) > 5 and numbers == sorted(numbers)
+
+
+def test_dynamic_reports_chart_the_drive_once_and_a_simulation_against_time() -> None:
+    import warnings
+
+    import mechfem
+    from conftest import ROOT
+    from mechfem.report import report_data
+
+    supply = ROOT / "examples" / "supply"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        dyn = report_data(mechfem.run_deck(supply / "supply_dyn.mec"))
+        sim = report_data(mechfem.run_deck(supply / "supply_sim.mec"))
+    titles = [c["title"] for c in dyn["cards"]]
+    # The deck's first picture charts the drive torque (BUFDRV 110); the report does not add a second chart of it.
+    assert not any(t.startswith("drive force or torque") for t in titles)
+    assert any(t.startswith("energies against") for t in titles)
+    generated = [c for c in sim["cards"] if c["picture"] is None and c["title"].startswith(("drive", "energies"))]
+    assert generated and all(c["title"].endswith("against time") for c in generated)

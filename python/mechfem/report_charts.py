@@ -351,14 +351,15 @@ def _full(result: RunResult, key: str) -> np.ndarray:
 
 
 def dynamics_cards(result: RunResult, cols: Columns) -> list[dict[str, Any]]:
-    """A DYN deck's report always shows the drive forces and the energies, against input 1 for one input and
-    against time for several."""
+    """A DYN deck's report shows the drive forces (unless its own pictures chart them), the energies and the drive
+    power, against input 1 for one input of DYN ANA and against time for several inputs or a simulation."""
     dyn = result.dynamic
     if dyn is None or dyn.drive.shape[1] == 0:
         return []
     nd = dyn.drive.shape[1]
     model = result.model
-    if nd == 1:
+    simulated = result.simulation is not None
+    if nd == 1 and not simulated:
         unit = row_unit(model, model.prescribed[model.dofs[0] - 1]) if model.dofs else ""
         xkey = cols.add("in1", input_name(result, 1), unit, "input", dyn.inputs[:, 0])
     else:
@@ -373,16 +374,24 @@ def dynamics_cards(result: RunResult, cols: Columns) -> list[dict[str, Any]]:
         cols.add("etot", "T+V", "energy", "energy", dyn.kinetic + dyn.potential, text="T + V"),
     ]
     power = cols.add("power", "drive power", "power", "power", dyn.power)
-    against = "time" if nd > 1 else _input_words(result, 1)
-    return [
-        {
-            "title": f"drive force or torque against {against}",
-            "picture": None,
-            "charts": _function_charts(xkey, drives, cols),
-        },
-        {"title": f"energies against {against}", "picture": None, "charts": _function_charts(xkey, energies, cols)},
-        {"title": f"drive power against {against}", "picture": None, "charts": _function_charts(xkey, [power], cols)},
+    # A simulation is a motion in time: its charts run against time, whatever its inputs do.
+    against = "time" if nd > 1 or simulated else _input_words(result, 1)
+    cards = [
+        (f"energies against {against}", energies),
+        (f"drive power against {against}", [power]),
     ]
+    # The drive torque a picture of the deck charts already is not charted a second time.
+    if "BUFDRV" not in _charted_keywords(result):
+        cards.insert(0, (f"drive force or torque against {against}", drives))
+    return [{"title": title, "picture": None, "charts": _function_charts(xkey, keys, cols)} for title, keys in cards]
+
+
+def _charted_keywords(result: RunResult) -> set[str]:
+    """The buffer keywords whose quantities a picture of the deck charts (PLOTFUNC's ordinate)."""
+    keyword = {b.number: b.keyword for b in result.storage.buffers}
+    return {
+        keyword[p.b] for pic in result.storage.pictures for p in pic.plots if p.keyword == "PLOTFUNC" and p.b in keyword
+    }
 
 
 def _input_words(result: RunResult, j: int) -> str:
