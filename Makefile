@@ -41,9 +41,13 @@ $(VENV)/.tools-stamp: pyproject.toml
 BUILD_PROFILE ?= release
 STAMP := $(VENV)/.build-stamp
 
+# The stamp takes the time the build started, so that a source edited while it ran is newer than the stamp
+# and the next `make install` builds again.
 $(STAMP): $(VENV)/.tools-stamp $(RUST_SOURCES) pyproject.toml
+	touch $@.started
 	VIRTUAL_ENV=$(abspath $(VENV)) PATH="$(BIN):$$PATH" $(BIN)/maturin develop --profile $(BUILD_PROFILE) --extras dev
 	echo $(BUILD_PROFILE) > $@
+	touch -r $@.started $@ && rm -f $@.started
 
 install:
 	@built="$$(cat $(STAMP) 2>/dev/null || true)"; \
