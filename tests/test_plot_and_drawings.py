@@ -149,7 +149,6 @@ def test_gif_stores_only_what_changed_and_shows_every_frame_whole() -> None:
 
 
 def test_animation_of_a_tall_mechanism_is_wide_enough_for_its_title(tmp_path: Path) -> None:
-    import dataclasses
     import warnings
 
     from PIL import Image
@@ -160,7 +159,7 @@ def test_animation_of_a_tall_mechanism_is_wide_enough_for_its_title(tmp_path: Pa
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         result = mechfem.run_deck(SUPPLY)
-    storage = dataclasses.replace(result.storage, animate="tall")
+    storage = result.storage.replace(animate="tall")
     info = write_animation(result.replace(storage=storage), tmp_path, max_frames=4, mp4=False)
     im = Image.open(info.files[0])
     longest = max((_title(result, "tall", int(k)) for k in info.plan.frames), key=len)

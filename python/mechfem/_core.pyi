@@ -29,6 +29,10 @@ __all__ = [
     "Check",
     "DeckFiles",
     "Simulation",
+    "Storage",
+    "Buffer",
+    "Picture",
+    "Plot",
     "DesignModel",
     "Model",
     "ModelBuilder",
@@ -285,36 +289,99 @@ class PointDict(TypedDict):
     y: int
     name: str
 
-@type_check_only
-class BufferDict(TypedDict):
-    number: int
-    keyword: str
-    args: list[int]
-    line: int
-    label: NotRequired[str]
-    unit: NotRequired[str]
-    part: NotRequired[int]
+@final
+class Buffer:
+    """One BUF... line: buffer ``number`` holds the quantity ``keyword args``."""
 
-@type_check_only
-class PlotDict(TypedDict):
-    keyword: str
-    a: int
-    b: int
+    def __new__(
+        cls, number: int, keyword: str, args: list[int], line: int, name: str = ..., unit: str = ..., part: int = 0
+    ) -> Buffer: ...
+    def __getnewargs__(self) -> tuple[int, str, list[int], int, str, str, int]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def number(self) -> int: ...
+    @property
+    def keyword(self) -> str: ...
+    @property
+    def args(self) -> list[int]: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def name(self) -> str:
+        """Its label: the NAMES block's ``BUF b label``, else from the names of what it records (``psi``,
+        ``dpsi/dphi``, ``C.x``), else the deck's numbers (``x9``, ``ANGB(8)``, ``dANGB(3)/dinput1``)."""
+    @property
+    def unit(self) -> str:
+        """The unit its values are in: ``mm``, ``deg``, ``mm/deg``, ``-`` (deg/deg), ``N·mm``, ``kg·mm²``; "" without
+        UNITS (or where the deck declares no unit of a kind it needs)."""
+    @property
+    def part(self) -> int:
+        """Which buffer of a BUFPIN (1: y) or BUFSHAKE (1: y, 2: moment) line it is; 0 for the first."""
+    def label(self) -> str:
+        """The definition as written in a deck, e.g. ``BUFKE1 -1 1``."""
 
-@type_check_only
-class PictureDict(TypedDict):
-    title: str
-    line: int
-    plots: list[PlotDict]
+@final
+class Plot:
+    """One PLOTFUNC, PLOTCURV or PLOTHODO line."""
 
-@type_check_only
-class StorageDict(TypedDict):
-    buffers: list[BufferDict]
-    printbuf: list[int] | None
-    """None without PRINTBUF; empty for a PRINTBUF naming no buffers (all of them)."""
-    savedata: list[int]
-    animate: str | None
-    pictures: list[PictureDict]
+    def __new__(cls, keyword: str, a: int, b: int) -> Plot: ...
+    def __getnewargs__(self) -> tuple[str, int, int]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def keyword(self) -> str: ...
+    @property
+    def a(self) -> int: ...
+    @property
+    def b(self) -> int: ...
+
+@final
+class Picture:
+    """One BEGINPIC ... ENDPIC block."""
+
+    def __new__(cls, title: str, line: int, plots: list[Plot]) -> Picture: ...
+    def __getnewargs__(self) -> tuple[str, int, list[Plot]]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def title(self) -> str: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def plots(self) -> list[Plot]: ...
+
+@final
+class Storage:
+    """What the STORAGE block asks to be done with the buffers."""
+
+    def __new__(
+        cls,
+        buffers: list[Buffer],
+        printbuf: list[int] | None,
+        savedata: list[int],
+        animate: str | None,
+        pictures: list[Picture],
+    ) -> Storage: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[list[Buffer], list[int] | None, list[int], str | None, list[Picture]]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def buffers(self) -> list[Buffer]: ...
+    @property
+    def printbuf(self) -> list[int] | None:
+        """Buffers to tabulate in the print file (all of them for a PRINTBUF without numbers); None without
+        PRINTBUF."""
+    @property
+    def savedata(self) -> list[int]:
+        """Buffers of the data set, in column order (empty: no data set)."""
+    @property
+    def animate(self) -> str | None: ...
+    @property
+    def pictures(self) -> list[Picture]: ...
+    def replace(self, **changes: Any) -> Storage:
+        """This storage with the requests named changed (``buffers``, ``printbuf``, ``savedata``, ``animate``,
+        ``pictures``)."""
+    def buffer(self, number: int) -> Buffer:
+        """The definition of buffer ``number`` (KeyError when there is none)."""
 
 @final
 class Check:
@@ -458,7 +525,7 @@ class Run:
     @property
     def model(self) -> ModelDict: ...
     @property
-    def storage(self) -> StorageDict: ...
+    def storage(self) -> Storage: ...
     @property
     def simulation(self) -> Simulation | None:
         """What the integrator did, for a DYN SIM deck whose motion was simulated; None otherwise."""
@@ -641,7 +708,7 @@ class DescribedDeckDict(TypedDict):
     tol: float
     max_iter: int
     motion: DescribedMotionDict | None
-    storage: StorageDict
+    storage: Storage
     mode: str
     """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None

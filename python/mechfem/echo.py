@@ -1,5 +1,6 @@
-"""The model and the storage requests of a run as the deck declares them (the echo of the print file), built
-from the compiled module's dictionaries.
+"""The model and the storage requests of a run as the deck declares them (the echo of the print file). The storage
+requests are the compiled module's own objects (:class:`Storage`, :class:`Buffer`, :class:`Picture`, :class:`Plot`:
+owned by Rust, read through their attributes, equal when they hold the same, picklable).
 
 Numbers that name things (co-ordinates, elements, rows, buffers) are the deck's own, 1-based and signed.
 """
@@ -9,6 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import mechfem._core as _core
+from mechfem._core import Buffer as Buffer
+from mechfem._core import Picture as Picture
+from mechfem._core import Plot as Plot
+from mechfem._core import Storage as Storage
 from mechfem.inverse_dynamics import DynamicsModel
 
 
@@ -174,84 +179,6 @@ BUFSIG takes a prescribed row, BUFREA a fixed co-ordinate; they and the other bu
 (BUFDRV, BUFEKIN, BUFEPOT, BUFPOW, BUFMRED) need masses or loads on the mechanism (mode ``DYN ANA``).
 ``e`` is an element: BUFTRA takes two, BUFPIN an element and its point's two co-ordinates (it fills buffers b and
 b+1 with x and y; BUFSHAKE fills b, b+1 and b+2 with the shaking force's x, y and moment)."""
-
-
-@dataclass(frozen=True)
-class Buffer:
-    """One BUF... line: buffer ``number`` holds the quantity ``keyword args``."""
-
-    number: int
-    keyword: str
-    args: list[int]
-    line: int
-    name: str = ""
-    """Its label: the NAMES block's ``BUF b label``, else from the names of what it records (``psi``,
-    ``dpsi/dphi``, ``C.x``), else the deck's numbers (``x9``, ``ANGB(8)``, ``dANGB(3)/dinput1``)."""
-    unit: str = ""
-    """The unit its values are in: ``mm``, ``deg``, ``mm/deg``, ``-`` (deg/deg), ``N·mm``, ``kg·mm²``; "" without
-    UNITS (or where the deck declares no unit of a kind it needs)."""
-
-    def label(self) -> str:
-        """The definition as written in a deck, e.g. ``BUFKE1 -1 1``."""
-        return " ".join([self.keyword, *map(str, self.args)])
-
-
-@dataclass(frozen=True)
-class Plot:
-    """One PLOTFUNC, PLOTCURV or PLOTHODO line."""
-
-    keyword: str
-    a: int
-    b: int
-
-
-@dataclass(frozen=True)
-class Picture:
-    """One BEGINPIC ... ENDPIC block."""
-
-    title: str
-    line: int
-    plots: list[Plot]
-
-
-@dataclass(frozen=True)
-class Storage:
-    """What the STORAGE block asks to be done with the buffers."""
-
-    buffers: list[Buffer]
-    printbuf: list[int] | None
-    """Buffers to tabulate in the print file (all of them for a PRINTBUF without numbers); None without PRINTBUF."""
-    savedata: list[int]
-    """Buffers of the data set, in column order (empty: no data set)."""
-    animate: str | None
-    pictures: list[Picture]
-
-    @classmethod
-    def from_core(cls, d: _core.StorageDict) -> Storage:
-        buffers = [
-            Buffer(b["number"], b["keyword"], list(b["args"]), b["line"], b.get("label", ""), b.get("unit", ""))
-            for b in d["buffers"]
-        ]
-        printbuf = d["printbuf"]
-        if printbuf is not None and not printbuf:
-            printbuf = [b.number for b in buffers]
-        return cls(
-            buffers=buffers,
-            printbuf=None if printbuf is None else list(printbuf),
-            savedata=list(d["savedata"]),
-            animate=d["animate"],
-            pictures=[
-                Picture(p["title"], p["line"], [Plot(q["keyword"], q["a"], q["b"]) for q in p["plots"]])
-                for p in d["pictures"]
-            ],
-        )
-
-    def buffer(self, number: int) -> Buffer:
-        """The definition of buffer ``number``."""
-        for b in self.buffers:
-            if b.number == number:
-                return b
-        raise KeyError(number)
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,6 @@ themselves in Jupyter are drawn on figures pyplot never sees.
 
 from __future__ import annotations
 
-import dataclasses
 import io
 from collections.abc import Sequence
 from pathlib import Path
@@ -272,7 +271,7 @@ def animate(
     plots = [
         Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in a._traced_points(points)
     ]
-    storage = dataclasses.replace(a.storage, animate=target.stem, pictures=[Picture("", 0, plots)])
+    storage = a.storage.replace(animate=target.stem, pictures=[Picture("", 0, plots)])
     info = write_animation(a.replace(storage=storage), target.parent, max_frames=max_frames or MAX_FRAMES)
     return list(info.files)
 

@@ -119,7 +119,7 @@ class RunResult(ResultTables):
     @functools.cached_property
     def storage(self) -> Storage:
         """The storage requests: buffers, tables, data set, pictures, animation."""
-        return _CONVERTED.get(self._raw.storage, Storage.from_core)
+        return self._raw.storage
 
     @functools.cached_property
     def report(self) -> RunReport:
@@ -266,7 +266,7 @@ class PickledRun:
     hodograph_coords: list[int]
     report: _core.ReportDict
     model: _core.ModelDict
-    storage: _core.StorageDict
+    storage: _core.Storage
     simulation: _core.Simulation | None
 
     @classmethod

@@ -71,28 +71,30 @@ class Storage:
         return self
 
 
-def from_described(s: _core.StorageDict, name: Callable[[str, int], Ref]) -> Storage | None:
+def from_described(s: _core.Storage, name: Callable[[str, int], Ref]) -> Storage | None:
     """The storage of a deck the reader described (None without one); ``name(kind, number)`` names a deck number of
     a kind of :data:`BUFFER_ARGS` (``i`` co-ordinate, ``r`` row, ``j`` input)."""
-    if not (s["buffers"] or s["printbuf"] is not None or s["savedata"] or s["animate"] or s["pictures"]):
+    if not (s.buffers or s.printbuf is not None or s.savedata or s.animate or s.pictures):
         return None
     buffers: list[tuple[int, str, tuple[Ref, ...]]] = []
-    for b in s["buffers"]:
-        if b.get("part", 0):
+    for b in s.buffers:
+        if b.part:
             continue  # the y (and moment) of a BUFPIN or BUFSHAKE line: its first buffer stands for the line
-        kinds = BUFFER_ARGS[b["keyword"]]
-        buffers.append((b["number"], b["keyword"], tuple(name(k, v) for k, v in zip(kinds, b["args"], strict=False))))
+        kinds = BUFFER_ARGS[b.keyword]
+        buffers.append((b.number, b.keyword, tuple(name(k, v) for k, v in zip(kinds, b.args, strict=False))))
     pictures = []
-    for p in s["pictures"]:
+    for p in s.pictures:
         plots: list[tuple[str, Ref, Ref]] = []
-        for q in p["plots"]:
-            if q["keyword"] == "PLOTHODO":
-                plots.append((q["keyword"], name("i", q["a"]), name("i", q["b"])))
+        for q in p.plots:
+            if q.keyword == "PLOTHODO":
+                plots.append((q.keyword, name("i", q.a), name("i", q.b)))
             else:
-                plots.append((q["keyword"], q["a"], q["b"]))
-        pictures.append(Picture(p["title"], plots))
-    printbuf = s["printbuf"]
-    return Storage(buffers, None if printbuf is None else list(printbuf), list(s["savedata"]), s["animate"], pictures)
+                plots.append((q.keyword, q.a, q.b))
+        pictures.append(Picture(p.title, plots))
+    printbuf = s.printbuf
+    if printbuf == [b.number for b in s.buffers]:
+        printbuf = []  # every buffer: the PRINTBUF without numbers
+    return Storage(buffers, None if printbuf is None else list(printbuf), list(s.savedata), s.animate, pictures)
 
 
 def check_file_names(mechanism: str, storage: Storage | None, tables: Mapping[str, str]) -> None:

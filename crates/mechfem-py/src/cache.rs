@@ -38,7 +38,7 @@ struct Key {
 pub struct Echo {
     position_1: Vec<u64>,
     model: Py<PyDict>,
-    storage: Py<PyDict>,
+    storage: Py<PyAny>,
 }
 
 /// The echo of one kept deck, filled after its first run, the report of
@@ -56,8 +56,8 @@ impl EchoSlot {
         &self,
         py: Python<'py>,
         position_1: &[&[f64]],
-        make: impl FnOnce() -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)>,
-    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+        make: impl FnOnce() -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)>,
+    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let bits: Vec<u64> = position_1.iter().flat_map(|s| s.iter().map(|v| v.to_bits())).collect();
         let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(e) = lock().as_ref().filter(|e| e.position_1 == bits) {

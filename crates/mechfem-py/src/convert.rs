@@ -4,8 +4,8 @@
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::Block;
-use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Quantity, RunReport, Stop};
-use mechfem_deck::{Buffer, Compiled, Optimise, PlotItem, RowInfo, Sense, TargetKind};
+use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, RunReport, Stop};
+use mechfem_deck::{Compiled, Optimise, RowInfo, Sense, TargetKind};
 use numpy::ndarray::{Array2, ShapeError};
 use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
@@ -369,102 +369,16 @@ pub fn dynamics<'py>(py: Python<'py>, m: &Dynamics, files: &[Option<String>]) ->
     Ok(d)
 }
 
-fn dest(f: FormRef) -> i64 {
+pub fn dest(f: FormRef) -> i64 {
     match f {
         FormRef::Prescribed(r) => r as i64 + 1,
         FormRef::Dependent(d) => -(d as i64 + 1),
     }
 }
 
-/// A buffer's quantity as the deck line that defines it: keyword and
-/// arguments before the buffer number.
-fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
-    let n = |i: usize| i as i64 + 1;
-    match q {
-        Quantity::Input(j) => ("BUFINP", vec![n(j)]),
-        Quantity::Time => ("BUFTIME", vec![]),
-        Quantity::X0(i) => ("BUFX0", vec![n(i)]),
-        Quantity::Kx1 { coord, j } => ("BUFKX1", vec![n(coord), n(j)]),
-        Quantity::Kx2 { coord, j, m } => ("BUFKX2", vec![n(coord), n(j), n(m)]),
-        Quantity::Vx(i) => ("BUFVX", vec![n(i)]),
-        Quantity::Ax(i) => ("BUFAX", vec![n(i)]),
-        Quantity::E0(f) => ("BUFE0", vec![dest(f)]),
-        Quantity::Ke1(f, j) => ("BUFKE1", vec![dest(f), n(j)]),
-        Quantity::Ke2(f, j, m) => ("BUFKE2", vec![dest(f), n(j), n(m)]),
-        Quantity::Ve(f) => ("BUFVE", vec![dest(f)]),
-        Quantity::Ae(f) => ("BUFAE", vec![dest(f)]),
-        Quantity::Det => ("BUFDET", vec![]),
-        Quantity::Sigma(r) => ("BUFSIG", vec![n(r)]),
-        Quantity::Drive(j) => ("BUFDRV", vec![n(j)]),
-        Quantity::Reaction(i) => ("BUFREA", vec![n(i)]),
-        Quantity::Ekin => ("BUFEKIN", vec![]),
-        Quantity::Epot => ("BUFEPOT", vec![]),
-        Quantity::Power => ("BUFPOW", vec![]),
-        Quantity::Mred(j, m) => ("BUFMRED", vec![n(j), n(m)]),
-        Quantity::Transmission(a, b) => ("BUFTRA", vec![n(a), n(b)]),
-        Quantity::Pin { element, x, y, .. } => ("BUFPIN", vec![n(element), n(x), n(y)]),
-        Quantity::Shaking(_) => ("BUFSHAKE", vec![]),
-    }
-}
-
-fn buffer<'py>(py: Python<'py>, c: &Compiled, b: &Buffer) -> PyResult<Bound<'py, PyDict>> {
-    let (kw, args) = keyword(b.quantity);
-    let d = PyDict::new(py);
-    d.set_item("label", c.label(b))?;
-    d.set_item("unit", c.unit(b))?;
-    d.set_item("number", b.number)?;
-    d.set_item("keyword", kw)?;
-    d.set_item("args", args)?;
-    d.set_item("line", b.line)?;
-    // The buffers after the first of a keyword that fills several
-    // (BUFPIN: y; BUFSHAKE: y, moment) say which part they are.
-    let part = match b.quantity {
-        Quantity::Pin { component, .. } | Quantity::Shaking(component) => component as u8,
-        _ => 0,
-    };
-    if part > 0 {
-        d.set_item("part", part)?;
-    }
-    Ok(d)
-}
-
-/// The storage requests: buffer definitions, PRINTBUF, SAVEDATA, ANIMATE
-/// and the pictures.
-pub fn storage<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("buffers", c.buffers.iter().map(|b| buffer(py, c, b)).collect::<PyResult<Vec<_>>>()?)?;
-    d.set_item("printbuf", c.printbuf.clone())?;
-    d.set_item("savedata", c.savedata.clone())?;
-    d.set_item("animate", c.animate.clone())?;
-    let pictures = c
-        .pictures
-        .iter()
-        .map(|p| {
-            let pd = PyDict::new(py);
-            pd.set_item("title", &p.title)?;
-            pd.set_item("line", p.line)?;
-            let plots = p
-                .items
-                .iter()
-                .map(|item| {
-                    let (kw, a, b) = match *item {
-                        PlotItem::Function { x, y } => ("PLOTFUNC", i64::from(x), i64::from(y)),
-                        PlotItem::Curve { x, y } => ("PLOTCURV", i64::from(x), i64::from(y)),
-                        PlotItem::Hodograph { x, y } => ("PLOTHODO", x as i64 + 1, y as i64 + 1),
-                    };
-                    let it = PyDict::new(py);
-                    it.set_item("keyword", kw)?;
-                    it.set_item("a", a)?;
-                    it.set_item("b", b)?;
-                    Ok(it)
-                })
-                .collect::<PyResult<Vec<_>>>()?;
-            pd.set_item("plots", plots)?;
-            Ok(pd)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("pictures", pictures)?;
-    Ok(d)
+/// The storage requests of `c` as Python reads them (`_core.Storage`).
+pub fn storage<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyAny>> {
+    Ok(Bound::new(py, crate::storage::Storage::of(c))?.into_any())
 }
 
 /// The OPTIMISE block of a `KIN OPT` deck as a dict, in the deck's

@@ -53,6 +53,7 @@ mod names;
 mod observe;
 mod run;
 mod simulated;
+mod storage;
 mod text;
 mod tolerance;
 
@@ -85,7 +86,7 @@ fn echo<'py>(
     given: &[f64],
     at_1: &[f64],
     rec: &Recording<'_, Selection>,
-) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
     let (prescribed, dependent) = (&rec.prescribed_at_1, &rec.dependent_at_1);
     if !c.units.is_identity() {
         // The echo speaks the deck's units.
@@ -299,7 +300,8 @@ fn run_deck(
         n_coords: n,
         buffers,
         shape,
-        dicts: [report_dict, model, storage],
+        dicts: [report_dict, model],
+        storage,
         simulation,
         interrupted,
         stopped: report.stop.is_some(),
@@ -333,6 +335,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<checked::Check>()?;
     m.add_class::<checked::DeckFiles>()?;
     m.add_class::<simulated::Simulation>()?;
+    m.add_class::<storage::Storage>()?;
+    m.add_class::<storage::Buffer>()?;
+    m.add_class::<storage::Picture>()?;
+    m.add_class::<storage::Plot>()?;
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;

@@ -121,7 +121,7 @@ pub struct Run {
     hodograph_coords: Py<PyAny>,
     report: Py<PyDict>,
     model: Py<PyDict>,
-    storage: Py<PyDict>,
+    storage: Py<PyAny>,
     simulation: Option<Py<Simulation>>,
 }
 
@@ -232,7 +232,7 @@ impl Run {
 
     /// The storage requests.
     #[getter]
-    fn storage<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+    fn storage<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
         self.storage.bind(py).clone()
     }
 
@@ -260,8 +260,10 @@ pub struct DeckRun<'py> {
     pub buffers: (usize, usize),
     /// The layout, buffer numbers and hodograph co-ordinates every run of the deck shares.
     pub shape: [Bound<'py, PyAny>; 3],
-    /// Report, model echo and storage.
-    pub dicts: [Bound<'py, PyDict>; 3],
+    /// Report and model echo.
+    pub dicts: [Bound<'py, PyDict>; 2],
+    /// The storage requests (`_core.Storage`).
+    pub storage: Bound<'py, PyAny>,
     /// The simulation report.
     pub simulation: Option<Py<Simulation>>,
     /// Ctrl-C stopped it.
@@ -275,7 +277,7 @@ impl Run {
     pub fn of_deck(c: &Compiled, r: DeckRun<'_>) -> PyResult<Run> {
         let mech = &c.mechanism;
         let [layout, buffer_numbers, hodograph_coords] = r.shape;
-        let [report, model, storage] = r.dicts;
+        let [report, model] = r.dicts;
         Ok(Run {
             positions: r.positions,
             n_coords: r.n_coords,
@@ -293,7 +295,7 @@ impl Run {
             hodograph_coords: hodograph_coords.unbind(),
             report: report.unbind(),
             model: model.unbind(),
-            storage: storage.unbind(),
+            storage: r.storage.unbind(),
             simulation: r.simulation,
         })
     }
@@ -305,7 +307,7 @@ impl Run {
 pub struct Shared {
     /// Block name -> (first column, shape at one position), the core's full layout.
     layout: Py<PyDict>,
-    storage: Py<PyDict>,
+    storage: Py<PyAny>,
     buffer_numbers: Py<PyList>,
     hodograph_coords: Py<PyList>,
     echo: convert::Echo,
