@@ -283,8 +283,10 @@ def finish_run(
     ``optimisation`` (a KIN OPT deck's) to the report. With ``--no-media`` only the data set and the print file
     are written."""
     console: Console = args.console
-    media = None if args.no_media else Media(
-        result, outdir, max_frames=args.max_frames, report=args.report, optimisation=optimisation
+    media = (
+        None
+        if args.no_media
+        else Media(result, outdir, max_frames=args.max_frames, report=args.report, optimisation=optimisation)
     )
     report = result.report
     console.say(f"{deck}: {count(report.positions, 'position')} computed")
