@@ -4,6 +4,7 @@ target files), not with numbers written here."""
 
 from __future__ import annotations
 
+import dataclasses
 import html
 import json
 import math
@@ -16,7 +17,7 @@ from matplotlib.figure import Figure
 
 import mechfem
 from mechfem import cli, optimise_deck
-from mechfem.optimum_report import active_bound
+from mechfem.optimum_report import active_bound, optimisation_section
 from test_report_browser import chromium, needs_chromium
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -207,7 +208,7 @@ def test_optimum_page(function_optimum: mechfem.Optimum, tmp_path: Path) -> None
     assert "Content-Security-Policy" in text and "<script" not in text
 
 
-def test_deck_outcome_summary_names_the_decks_variables() -> None:
+def test_deck_outcome_summary_names_the_decks_variables(tmp_path: Path) -> None:
     deck = SYNTHESIS / "function.mec"
     opt = optimise_deck.describe(deck)["optimise"]  # type: ignore[typeddict-item]
     outcome = optimise_deck.optimise(deck, opt)
@@ -219,3 +220,13 @@ def test_deck_outcome_summary_names_the_decks_variables() -> None:
     fig = outcome.plot_history()
     assert fig.axes[0].get_lines()[0].get_ydata()[-1] == s.objective
     assert math.isfinite(s.objective)
+    # Without the start design's run the section draws the final design alone, and says the same numbers.
+    final = mechfem.run_deck(optimise_deck.write_design_deck(outcome, tmp_path))
+    alone = optimisation_section(outcome, None, final)
+    assert alone["drawing"]["start"] is None and alone["drawing"]["final"]["kinds"]
+    assert [v["final"] for v in alone["variables"]] == pytest.approx([x for x in s.x], rel=1e-15)
+
+
+def test_multi_start_summary_says_the_usable_starts(function_optimum: mechfem.Optimum) -> None:
+    two = dataclasses.replace(function_optimum, starts=function_optimum.starts * 2, usable=0.5)
+    assert "<th style='text-align:left'>usable starts</th><td colspan='3'>50%</td>" in two._repr_html_()

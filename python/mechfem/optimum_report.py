@@ -152,10 +152,14 @@ def _pairs(points: list[tuple[float | None, float | None]]) -> list[list[float |
 
 
 def target_points(
-    outcome: Outcome, start: RunResult, final: RunResult, drawing: MechanismDrawing
+    outcome: Outcome, start: RunResult | None, final: RunResult, drawing: MechanismDrawing
 ) -> list[dict[str, Any]]:
     """The points both of whose co-ordinates are TARGETs (path generation): the points asked for, and the point's
-    path over the motion in the start and final designs (core units, as the drawing)."""
+    path over the motion in the start (when run) and final designs (core units, as the drawing)."""
+
+    def path(r: RunResult | None, ix: int, iy: int) -> list[list[float | None]]:
+        return [] if r is None else _pairs(list(zip(nums(r.coords[:, ix]), nums(r.coords[:, iy]), strict=True)))
+
     coordinate_of = {b.number: b.args[0] for b in final.storage.buffers if b.keyword == "BUFX0" and b.args}
     wanted: dict[int, np.ndarray] = {}
     for term in outcome.problem.terms:
@@ -170,20 +174,21 @@ def target_points(
                 {
                     "name": point_name(final, ix + 1, iy + 1),
                     "target": _pairs(list(zip(nums(tx[both]), nums(ty[both]), strict=True))),
-                    "start": _pairs(list(zip(nums(start.coords[:, ix]), nums(start.coords[:, iy]), strict=True))),
-                    "final": _pairs(list(zip(nums(final.coords[:, ix]), nums(final.coords[:, iy]), strict=True))),
+                    "start": path(start, ix, iy),
+                    "final": path(final, ix, iy),
                 }
             )
     return out
 
 
-def optimisation_section(outcome: Outcome, start: RunResult, final: RunResult) -> dict[str, Any]:
-    """The report's ``optimisation`` data: ``start`` is the run of the deck's own (start) design, ``final`` the run of
-    the final design."""
+def optimisation_section(outcome: Outcome, start: RunResult | None, final: RunResult) -> dict[str, Any]:
+    """The report's ``optimisation`` data: ``start`` is the run of the deck's own (start) design (None: not drawn),
+    ``final`` the run of the final design."""
     s, model = outcome.solution, final.model
-    start_drawing = MechanismDrawing(start.model, start.coords)
     final_drawing = MechanismDrawing(final.model, final.coords)
-    a, b = start_drawing.bounds([0]), final_drawing.bounds([0])
+    start_drawing = None if start is None else MechanismDrawing(start.model, start.coords)
+    b = final_drawing.bounds([0])
+    a = b if start_drawing is None else start_drawing.bounds([0])
     missed = outcome.unreached()
     unreached = None
     if missed is not None:
@@ -234,7 +239,7 @@ def optimisation_section(outcome: Outcome, start: RunResult, final: RunResult) -
             for t in target_rows(outcome, model)
         ],
         "drawing": {
-            "start": _design(start_drawing, start.coords[0]),
+            "start": None if start is None or start_drawing is None else _design(start_drawing, start.coords[0]),
             "final": _design(final_drawing, final.coords[0]),
             "bounds": nums([min(a[0], b[0]), max(a[1], b[1]), min(a[2], b[2]), max(a[3], b[3])]),
             "points": target_points(outcome, start, final, final_drawing),
@@ -244,13 +249,19 @@ def optimisation_section(outcome: Outcome, start: RunResult, final: RunResult) -
 
 def deck_section(outcome: Outcome, final: RunResult, memory_limit: int | None = None) -> dict[str, Any]:
     """:func:`optimisation_section` of a deck's optimisation: its start design is the deck's own, run here (it was
-    feasible, or the optimisation could not have started)."""
+    feasible, or the optimisation could not have started; should its run fail all the same, the final design is
+    drawn alone)."""
     import warnings
 
     import mechfem
 
-    with warnings.catch_warnings():
-        # A start design whose motion stops early is drawn at its position 1 all the same.
-        warnings.simplefilter("ignore", mechfem.IncompleteRunWarning)
-        start = mechfem.run_deck(outcome.deck, memory_limit=memory_limit)
+    start: RunResult | None
+    try:
+        with warnings.catch_warnings():
+            # A start design whose motion stops early is drawn at its position 1 all the same.
+            warnings.simplefilter("ignore", mechfem.IncompleteRunWarning)
+            start = mechfem.run_deck(outcome.deck, memory_limit=memory_limit)
+    except mechfem.MechfemError:
+        # The report is still worth writing: the section then draws the final design alone.
+        start = None
     return optimisation_section(outcome, start, final)

@@ -45,7 +45,8 @@
   stage.append(el("div", { className: "optcanvas" }, canvas));
   const legend = el("ul", { className: "legend" });
   const swatch = (colour, dash) => el("i", { className: "swatch", style: "background:" + colour + (dash ? ";opacity:0.45" : "") });
-  legend.append(el("li", {}, swatch(START, true), "start design (dashed)"), el("li", {}, swatch(D.styles.bar ? D.styles.bar.edge : "#1f2933"), "final design"));
+  if (O.drawing.start) legend.append(el("li", {}, swatch(START, true), "start design (dashed)"));
+  legend.append(el("li", {}, swatch(D.styles.bar.edge), "final design"));
   if (O.drawing.points.length) {
     legend.append(el("li", {}, swatch(FINAL), "path of the final design"), el("li", {}, el("b", { style: "color:" + TARGET }, "\u00d7"), "target points"));
   }
@@ -127,7 +128,7 @@
     const ctx = canvas.getContext("2d");
     ctx.fillStyle = "#ffffff";
     ctx.fillRect(0, 0, canvas.width, canvas.height);
-    drawShapes(ctx, X, Y, s * r, r, O.drawing.start, true);
+    if (O.drawing.start) drawShapes(ctx, X, Y, s * r, r, O.drawing.start, true);
     drawShapes(ctx, X, Y, s * r, r, O.drawing.final, false);
     drawn.targets = 0;
     for (const p of O.drawing.points) {
