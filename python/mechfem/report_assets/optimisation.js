@@ -170,7 +170,7 @@
     for (let e = Math.ceil(a / every) * every; e <= b; e += every) out.push(Math.pow(10, e));
     return out;
   }
-  const decadeLabels = (self, ticks) => ticks.map((v) => "1e" + Math.round(Math.log10(v)));
+  const decadeLabels = (self, ticks) => ticks.map((v) => (v > 0 ? "1e" + Math.round(Math.log10(v)) : ""));
   function buildChart() {
     const width = Math.max(plot.clientWidth, 240);
     u = new uPlot({
@@ -181,7 +181,7 @@
       series: [{ label: "iteration" }, { label: "objective", stroke: FINAL, width: 1.7, points: { show: true, size: 5 } }],
       axes: [
         { label: "iteration", values: (_, t) => t.map((v) => (Number.isInteger(v) ? String(v) : "")), grid: { stroke: "#e6e9ee" } },
-        { label: "objective", splits: decadeSplits, values: decadeLabels, grid: { stroke: "#e6e9ee" }, size: 60 },
+        { label: "objective", splits: decadeSplits, filter: (self, ticks) => ticks, values: decadeLabels, grid: { stroke: "#e6e9ee" }, size: 60 },
       ],
     }, [hist.iteration, positive], plot);
   }
