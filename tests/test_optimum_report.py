@@ -43,8 +43,9 @@ def printed_variables(prt: Path) -> dict[str, tuple[float, float, float, float]]
         if not words:
             break
         # name, unit (may be absent without UNITS), start, final, lower, upper
-        out[words[0]] = tuple(float(w) for w in words[-4:])
-    return out  # type: ignore[return-value]
+        start, final, lo, hi = (float(w) for w in words[-4:])
+        out[words[0]] = (start, final, lo, hi)
+    return out
 
 
 def target_file(path: Path) -> list[str]:
@@ -210,7 +211,8 @@ def test_optimum_page(function_optimum: mechfem.Optimum, tmp_path: Path) -> None
 
 def test_deck_outcome_summary_names_the_decks_variables(tmp_path: Path) -> None:
     deck = SYNTHESIS / "function.mec"
-    opt = optimise_deck.describe(deck)["optimise"]  # type: ignore[typeddict-item]
+    opt = optimise_deck.describe(deck).get("optimise")
+    assert opt is not None
     outcome = optimise_deck.optimise(deck, opt)
     table = outcome._repr_html_()
     for name in ["crank_length", "coupler_length", "rocker_length", "theta"]:
