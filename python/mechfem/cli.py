@@ -38,7 +38,7 @@ import argparse
 import sys
 import warnings
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import mechfem
 import mechfem._core as _core
@@ -249,7 +249,12 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
         f"objective {s.start_objective:.4g} -> {s.objective:.4g}; {values}"
     )
     lines = optimise_deck.print_lines(outcome, written_deck, result.model)
-    status = finish_run(args, deck, outdir, result, interrupted, lines, [written_deck])
+    section = None
+    if args.report and not args.no_media and not interrupted:
+        from mechfem.optimum_report import deck_section
+
+        section = deck_section(outcome, result, args.memory_limit)
+    status = finish_run(args, deck, outdir, result, interrupted, lines, [written_deck], section)
     if not s.success:
         console.note(f"warning: {deck}: the optimiser did not converge: {s.message}")
     missed = outcome.unreached()
@@ -271,12 +276,18 @@ def finish_run(
     interrupted: bool,
     lines: list[str] | None = None,
     files: list[Path] | None = None,
+    optimisation: dict[str, Any] | None = None,
 ) -> int:
     """Writes every output of a run, saying each file as soon as it is complete, and gives the exit status;
-    ``lines`` are added to the print file and ``files`` (written before) to the list of files written. With
-    ``--no-media`` only the data set and the print file are written."""
+    ``lines`` are added to the print file and ``files`` (written before) to the list of files written, and
+    ``optimisation`` (a KIN OPT deck's) to the report. With ``--no-media`` only the data set and the print file
+    are written."""
     console: Console = args.console
-    media = None if args.no_media else Media(result, outdir, max_frames=args.max_frames, report=args.report)
+    media = (
+        None
+        if args.no_media
+        else Media(result, outdir, max_frames=args.max_frames, report=args.report, optimisation=optimisation)
+    )
     report = result.report
     console.say(f"{deck}: {count(report.positions, 'position')} computed")
     for path in files or []:

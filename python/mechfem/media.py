@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from mechfem.animation import MAX_FRAMES, animation_files, frame_plan, write_animation
 from mechfem.plots import picture_files, write_pictures
@@ -26,6 +26,8 @@ class Media:
     report: bool = False
     notes: list[str] = field(default_factory=list)
     """What :meth:`write` has to say beyond the files it wrote (a missing MP4)."""
+    optimisation: dict[str, Any] | None = None
+    """A KIN OPT deck's optimisation, for the report (:mod:`mechfem.optimum_report`)."""
 
     def print_lines(self) -> list[str]:
         """The print file's section on pictures, animation and report; empty when there are none."""
@@ -80,5 +82,5 @@ class Media:
         if self.report:
             if progress is not None:
                 progress.phase("report")
-            done(write_report(r, self.outdir), "open it in a web browser")
+            done(write_report(r, self.outdir, self.optimisation), "open it in a web browser")
         return written

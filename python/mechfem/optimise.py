@@ -26,6 +26,12 @@ from mechfem.storage import Storage
 from mechfem.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
 
 if TYPE_CHECKING:
+    import os
+    from pathlib import Path
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
     from mechfem.model import Mechanism
     from mechfem.result import RunResult
 
@@ -118,6 +124,31 @@ class Optimum:
     def run(self) -> RunResult:
         """The optimised mechanism run through the motion the optimisation used."""
         return self.mechanism.run(self.motion)
+
+    # The views live in mechfem.optimum_view, imported when asked for (it needs matplotlib for the chart).
+    def _repr_html_(self) -> str:
+        """Jupyter's summary table: the variables' start and final values, the objective, the verdict."""
+        from mechfem import optimum_view
+
+        return optimum_view.summary_html(optimum_view.optimum_summary(self))
+
+    def plot_history(self, ax: Axes | None = None) -> Figure:
+        """The objective per iteration on a logarithmic axis (on ``ax``, default a new figure); the figure."""
+        from mechfem import optimum_view
+
+        return optimum_view.plot_history(self.history, ax)
+
+    def to_html(self) -> str:
+        """The summary table and the chart of :meth:`plot_history` as one self-contained HTML page."""
+        from mechfem import optimum_view
+
+        return optimum_view.page(optimum_view.optimum_summary(self), self.history)
+
+    def save_report(self, path: str | os.PathLike[str]) -> Path:
+        """Writes :meth:`to_html` to ``path``; returns its path."""
+        from mechfem import optimum_view
+
+        return optimum_view.save_page(optimum_view.optimum_summary(self), self.history, path)
 
 
 @dataclass

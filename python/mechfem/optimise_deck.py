@@ -27,6 +27,9 @@ from mechfem.output import count
 from mechfem.units import Units
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
     from mechfem._core import DescribedDeckDict, OptimiseDict
 
 
@@ -183,6 +186,19 @@ class Outcome:
             if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
                 worst = (d, int(t["line"]))
         return worst
+
+    # The views live in mechfem.optimum_view, imported when asked for (it needs matplotlib for the chart).
+    def _repr_html_(self) -> str:
+        """Jupyter's summary table: the variables by the deck's names, start and final, the objective, the verdict."""
+        from mechfem import optimum_view
+
+        return optimum_view.summary_html(optimum_view.outcome_summary(self))
+
+    def plot_history(self, ax: Axes | None = None) -> Figure:
+        """The objective per iteration on a logarithmic axis (on ``ax``, default a new figure); the figure."""
+        from mechfem import optimum_view
+
+        return optimum_view.plot_history(self.solution.history, ax)
 
 
 def missed_value(outcome: Outcome, missed: tuple[float, int], model: Model | None) -> str:

@@ -72,8 +72,9 @@ def _scene(result: RunResult, drawing: MechanismDrawing, frames: np.ndarray) -> 
     }
 
 
-def report_data(result: RunResult) -> dict[str, Any]:
-    """Everything the page shows, as plain JSON-ready data."""
+def report_data(result: RunResult, optimisation: dict[str, Any] | None = None) -> dict[str, Any]:
+    """Everything the page shows, as plain JSON-ready data; ``optimisation`` is a KIN OPT deck's section
+    (:func:`mechfem.optimum_report.optimisation_section`)."""
     from mechfem._version import __version__
 
     frames = report_positions(result.positions)
@@ -129,6 +130,7 @@ def report_data(result: RunResult) -> dict[str, Any]:
         "warnings": list(report.warnings),
         "stop": report.stop_reason(),
         "animate": result.storage.animate,
+        "optimisation": optimisation,
     }
 
 
@@ -140,6 +142,7 @@ PAGE_PARTS = {
     "PAGE_CSS": "report_assets/report.css",
     "CHARTS_JS": "report_assets/charts.js",
     "PAGE_JS": "report_assets/page.js",
+    "OPT_JS": "report_assets/optimisation.js",
 }
 
 
@@ -151,10 +154,10 @@ def _part(name: str) -> str:
     return text
 
 
-def render_report(result: RunResult) -> str:
+def render_report(result: RunResult, optimisation: dict[str, Any] | None = None) -> str:
     """The report page as text: the template with the scripts, the style and the data inlined."""
     template = resources.files("mechfem").joinpath("report_template.html").read_text(encoding="utf-8")
-    data = json.dumps(report_data(result), separators=(",", ":"), allow_nan=False)
+    data = json.dumps(report_data(result, optimisation), separators=(",", ":"), allow_nan=False)
     parts = {key: _part(name) for key, name in PAGE_PARTS.items()}
     parts["DATA"] = script_safe(data)
     parts["TITLE"] = html.escape(f"{result.deck.stem} - mechfem report")
@@ -180,15 +183,15 @@ def report_file(result: RunResult, outdir: Path) -> Path:
     return outdir / f"{result.deck.stem}.html"
 
 
-def write_report(result: RunResult, outdir: Path) -> Path:
+def write_report(result: RunResult, outdir: Path, optimisation: dict[str, Any] | None = None) -> Path:
     """Writes ``<stem>.html`` into ``outdir`` (created if needed); returns its path."""
-    return save_report(result, report_file(result, outdir))
+    return save_report(result, report_file(result, outdir), optimisation)
 
 
-def save_report(result: RunResult, path: Path) -> Path:
+def save_report(result: RunResult, path: Path, optimisation: dict[str, Any] | None = None) -> Path:
     """Writes the report of ``result`` to the file ``path`` (its folder made if needed); returns the path."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    text = render_report(result)
+    text = render_report(result, optimisation)
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path
