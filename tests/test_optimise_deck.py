@@ -73,7 +73,7 @@ def test_the_optimised_deck_runs_as_kin_ana_and_keeps_the_design(optimised: tupl
     d = _core.describe_deck_text(deck.read_text(), os.fspath(deck), os.fspath(out))
     assert d["mode"] == "KIN ANA" and d.get("optimise") is None
     first = _core.describe_deck_text(EXAMPLE.read_text(), os.fspath(EXAMPLE), os.fspath(EXAMPLE.parent))
-    assert d["storage"]["savedata"] == first["storage"]["savedata"]
+    assert d["storage"].savedata == first["storage"].savedata
     kappa = d["prescribed"][4]["para"]
     assert abs(kappa - KAPPA) < 2e-4
     # The data set is the run of that deck.
