@@ -81,6 +81,15 @@ pub enum BandsError {
         /// What it records, in words ([`without_sensitivity`]).
         what: &'static str,
     },
+    /// A toleranced dimension is no prescribed value nor fixed co-ordinate
+    /// of the model (0-based).
+    #[error("{} is no dimension of the model: a tolerance is of a prescribed row's value (not an input) or of a \
+             fixed co-ordinate", match .0 { DesignVar::Row(r) => format!("row {}", r.wrapping_add(1)),
+             DesignVar::Fixed(i) => format!("co-ordinate {}", i.wrapping_add(1)) })]
+    NotADimension(DesignVar),
+    /// A tolerance is not positive and finite.
+    #[error("a tolerance must be positive and finite, not {0}")]
+    NotPositive(f64),
     /// The run with the sensitivities failed at position 1.
     #[error(transparent)]
     Solve(#[from] SolveError),
@@ -115,15 +124,24 @@ impl Tolerance {
     /// model's units) and the band sources `sources` (buffer numbers of
     /// `c`, recorded into no buffer), as a model built item by item states
     /// it.
-    pub fn of_items(c: &Compiled, dims: &[(DesignVar, f64)], sources: &[u32]) -> Tolerance {
-        Tolerance {
-            dims: dims
-                .iter()
-                .map(|&(var, t)| Toleranced { var, t: t / dim_of(c, var).out_scale(&c.units), line: 0 })
-                .collect(),
-            bands: sources.iter().map(|&source| BandDef { source, buffer: 0, line: 0 }).collect(),
-            line: 0,
+    pub fn of_items(c: &Compiled, dims: &[(DesignVar, f64)], sources: &[u32]) -> Result<Tolerance, BandsError> {
+        let mech = &c.mechanism;
+        let mut out = Vec::with_capacity(dims.len());
+        for &(var, t) in dims {
+            let known = match var {
+                DesignVar::Row(r) => r < mech.n_prescribed() && mech.input_of(r).is_none(),
+                DesignVar::Fixed(i) => i < mech.n_coords() && !mech.is_moving(i),
+            };
+            if !known {
+                return Err(BandsError::NotADimension(var));
+            }
+            if !(t.is_finite() && t > 0.0) {
+                return Err(BandsError::NotPositive(t));
+            }
+            out.push(Toleranced { var, t: t / dim_of(c, var).out_scale(&c.units), line: 0 });
         }
+        let bands = sources.iter().map(|&source| BandDef { source, buffer: 0, line: 0 }).collect();
+        Ok(Tolerance { dims: out, bands, line: 0 })
     }
 
     /// The bands over `c`'s motion, from `c`'s own numbers.
