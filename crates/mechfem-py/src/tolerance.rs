@@ -39,6 +39,9 @@ pub struct Bands {
     tolerance: Tolerance,
 }
 
+/// One dimension's share: `(dim, sensitivity, deviation, of_worst, of_variance)`.
+type ShareTuple = (usize, f64, f64, f64, f64);
+
 /// `data` (row-major) as an array of `shape`.
 fn shaped<D: numpy::ndarray::Dimension, S: numpy::ndarray::ShapeBuilder<Dim = D>>(
     shape: S,
@@ -110,7 +113,7 @@ impl Bands {
     }
 
     #[getter]
-    fn shares(&self) -> Vec<Vec<(usize, f64, f64, f64, f64)>> {
+    fn shares(&self) -> Vec<Vec<ShareTuple>> {
         let shares = |w: &mechfem_core::run::tolerance::Widest| {
             w.shares.iter().map(|s| (s.dim, s.sensitivity, s.deviation, s.of_worst, s.of_variance)).collect()
         };
@@ -185,9 +188,7 @@ pub fn built_tolerance(
     sources: Vec<u32>,
 ) -> PyResult<Bands> {
     let source = Source::extract(builder)?;
-    let c = py
-        .detach(|| source.compile(Path::new(&path), &base_dir))
-        .map_err(|d| errors::deck_error(py, &path, &d))?;
+    let c = py.detach(|| source.compile(Path::new(&path), &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
     let var = |kind: u8, number: usize| match kind {
         0 => DesignVar::Fixed(number.wrapping_sub(1)),
         _ => DesignVar::Row(number.wrapping_sub(1)),

@@ -167,3 +167,28 @@ pub fn bands(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Bands;
+
+    #[test]
+    fn worst_case_rss_and_shares_of_one_position() {
+        // s = (2, -3, 0), t = (0.1, 0.2, 0.5): deviations 0.2, 0.6, 0.
+        let (s, t) = ([2.0, -3.0, 0.0], [0.1, 0.2, 0.5]);
+        let (w, r) = Bands::of(&s, &t);
+        assert!((w - 0.8).abs() < 1e-15);
+        assert!((r - 0.4_f64.sqrt()).abs() < 1e-15);
+        let shares = Bands::shares(&s, &t);
+        assert_eq!(shares.iter().map(|x| x.dim).collect::<Vec<_>>(), [1, 0, 2]);
+        assert!((shares[0].of_worst - 0.75).abs() < 1e-15);
+        assert!((shares[0].of_variance - 0.9).abs() < 1e-15);
+        assert_eq!(shares[2].of_worst, 0.0);
+    }
+
+    #[test]
+    fn a_band_without_any_deviation_has_no_shares() {
+        let shares = Bands::shares(&[0.0, 0.0], &[0.1, 0.2]);
+        assert!(shares.iter().all(|s| s.of_worst.is_nan() && s.of_variance.is_nan()));
+    }
+}
