@@ -252,7 +252,8 @@ def test_python_bands_write_and_read_no_deck_text(monkeypatch: pytest.MonkeyPatc
         raise AssertionError("deck text written or read")
 
     monkeypatch.setattr(deckio, "write", refuse)
-    for name in ("deck_tolerance", "run_deck_text", "describe_deck_text"):
+    monkeypatch.setattr(deckio, "write_text", refuse)
+    for name in ("deck_tolerance", "run_deck_text", "describe_deck_text", "DesignModel", "Model"):
         monkeypatch.setattr(_core, name, refuse)
     bands = tolerance_bands(fourbar(), {"crank.length": 0.01, "B0": 0.02}, ["psi"], motion=MOTION)
     assert np.array_equal(bands["psi"].worst, expected["psi"].worst)
