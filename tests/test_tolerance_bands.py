@@ -240,3 +240,54 @@ def test_a_transfer_function_is_named_by_its_label() -> None:
     runs = [fourbar().variant({"crank.length": 1.0 + d}).run(MOTION) for d in (h, -h)]
     fd = (runs[0].transfer("psi", 1) - runs[1].transfer("psi", 1)) / (2 * h)
     assert np.allclose(bands["dpsi/dphi"].sensitivity[:, 0], fd, rtol=1e-5, atol=1e-6)
+
+
+def test_python_bands_write_and_read_no_deck_text(monkeypatch: pytest.MonkeyPatch) -> None:
+    # The mechanism reaches the core through the typed builder: no deck writer, no deck reader of text.
+    from mechfem import _core, deckio
+
+    expected = tolerance_bands(fourbar(), {"crank.length": 0.01, "B0": 0.02}, ["psi"], motion=MOTION)
+
+    def refuse(*_: object, **__: object) -> None:
+        raise AssertionError("deck text written or read")
+
+    monkeypatch.setattr(deckio, "write", refuse)
+    monkeypatch.setattr(deckio, "write_text", refuse)
+    for name in ("deck_tolerance", "run_deck_text", "describe_deck_text", "DesignModel", "Model"):
+        monkeypatch.setattr(_core, name, refuse)
+    bands = tolerance_bands(fourbar(), {"crank.length": 0.01, "B0": 0.02}, ["psi"], motion=MOTION)
+    assert np.array_equal(bands["psi"].worst, expected["psi"].worst)
+
+
+def test_deck_and_python_give_identical_bands() -> None:
+    # The deck's model read into a Mechanism and toleranced by name gives the deck's bands, number for number.
+    deck = deck_bands(mechfem.run_deck(DECK))
+    assert deck is not None
+    mech = Mechanism.from_deck(DECK)
+    rows = {r.name: r for r in mech.rows}
+    assert "crank_length" in rows and "rocker_length" in rows
+    v_of_c = next(r for r in mech.rows if r.kind == "prescribed" and r.value == 12.0)
+    tol = {"crank_length": 0.05, "rocker_length": 0.05, v_of_c.name: 0.1, "B0.x": 0.1}
+    python = tolerance_bands(mech, tol, ["psi", "C.y"])
+    for name in ("psi", "C.y"):
+        a, b = deck[name], python[name]
+        assert np.array_equal(a.worst, b.worst) and np.array_equal(a.rss, b.rss), name
+        assert np.array_equal(a.sensitivity, b.sensitivity) and a.at == b.at
+
+
+def test_worst_case_band_is_the_sum_of_central_differences_times_tolerances() -> None:
+    # sum_k |dq/dp_k| t_k with each dq/dp_k a central difference of two whole runs.
+    mech = fourbar()
+    tol = {"crank.length": 0.01, "rocker.length": 0.02, "B0.x": 0.02}
+    bands = tolerance_bands(mech, tol, ["psi"], motion=MOTION)
+    h = 1e-6
+    worst = np.zeros(bands.positions)
+    squares = np.zeros(bands.positions)
+    for name, t in tol.items():
+        value = mech[name].value
+        plus, minus = (mech.variant({name: value + d}).run(MOTION).value("psi") for d in (h, -h))
+        fd = (plus - minus) / (2 * h)
+        worst += np.abs(fd) * t
+        squares += (fd * t) ** 2
+    assert np.allclose(bands["psi"].worst, worst, rtol=1e-6, atol=1e-10)
+    assert np.allclose(bands["psi"].rss, np.sqrt(squares), rtol=1e-6, atol=1e-10)

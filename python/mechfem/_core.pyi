@@ -39,6 +39,8 @@ __all__ = [
     "Labels",
     "optimised_deck_text",
     "deck_tolerance",
+    "built_tolerance",
+    "ToleranceBands",
 ]
 
 _F64 = npt.NDArray[np.float64]
@@ -859,10 +861,59 @@ def optimised_deck_text(
     numbers, written in the deck's UNITS where it has them) replaced, in mode KIN ANA without OPTIMISE; MOV_FUNC
     files named from ``file_dir`` (the old deck's folder) when given."""
 
-def deck_tolerance(text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]) -> dict[str, Any] | None:
-    """The TOLERANCE block of the deck evaluated (None without one): ``dims`` ``(kind, number, t, line)``, ``bands``
-    ``(source, b, line)``, ``positions``, ``dofs``, flat ``inputs``, ``values`` and ``gradient`` (positions x bands x
-    dims), ``labels`` ``(label, unit)`` of every band's buffer, ``dim_units``, ``input_units``; the deck's units."""
+class ToleranceBands:
+    """Tolerance bands the core computed, every number in the model's units (``mechfem_core::run::tolerance``)."""
+
+    @property
+    def positions(self) -> int: ...
+    @property
+    def tolerances(self) -> _F64: ...
+    @property
+    def inputs(self) -> _F64:
+        """Positions x inputs."""
+    @property
+    def values(self) -> _F64:
+        """Positions x bands: the nominal values."""
+    @property
+    def worst(self) -> _F64:
+        """Positions x bands: sum_k |s_k| t_k."""
+    @property
+    def rss(self) -> _F64:
+        """Positions x bands: sqrt(sum_k (s_k t_k)^2)."""
+    @property
+    def sensitivity(self) -> _F64:
+        """Positions x bands x dimensions: s_k."""
+    @property
+    def widest(self) -> list[int | None]:
+        """Per band, the position of its largest worst case."""
+    @property
+    def shares(self) -> list[list[tuple[int, float, float, float, float]]]:
+        """Per band, at its widest position: (dimension, sensitivity, deviation, of_worst, of_variance), largest
+        first."""
+    @property
+    def dims(self) -> list[tuple[int, int, float, int]]:
+        """(kind, number, t, line): kind 0 a fixed co-ordinate, 1 a prescribed row."""
+    @property
+    def bands(self) -> list[tuple[int, int, int]]:
+        """(source, b, line)."""
+    @property
+    def labels(self) -> list[tuple[str, str]]: ...
+    @property
+    def dim_units(self) -> list[str]: ...
+    @property
+    def input_units(self) -> list[str]: ...
+
+def deck_tolerance(text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]) -> ToleranceBands | None:
+    """The TOLERANCE block of the deck evaluated (None without one)."""
+
+def built_tolerance(
+    builder: ModelBuilder,
+    path: str | os.PathLike[str],
+    base_dir: str | os.PathLike[str],
+    dims: list[tuple[int, int, float]],
+    sources: list[int],
+) -> ToleranceBands:
+    """The bands of buffers ``sources`` of the built model when each of ``dims`` (kind, number, t) is within +-t."""
 
 _Dims = Sequence[int]
 """Exponents of length, angle, mass, force and time."""

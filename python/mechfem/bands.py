@@ -12,7 +12,8 @@ sensitivity at a position (:mod:`mechfem.optimise`, ``docs/optimisation.md``):
 
 Each dimension's share at a position is ``|s_k| t_k / W`` of the worst case and ``(s_k t_k)^2 / R^2`` of the
 variance. A deck's TOLERANCE block (``TOL``, ``TOLX``, ``BUFTOL``) and :func:`tolerance_bands` of a
-:class:`~mechfem.Mechanism` compute the same, through the same deck reader and core (``docs/tolerance.md``)::
+:class:`~mechfem.Mechanism` compute the same, in the core (``mechfem_core::run::tolerance``), from the same compiled
+model: a deck's from its text, a mechanism's from the typed builder, no deck text written (``docs/tolerance.md``)::
 
     bands = mechfem.tolerance_bands(fourbar, {"crank.length": 0.01, "B0": 0.02}, ["psi"])
     bands["psi"].worst.max(), bands["psi"].at, bands["psi"].shares()
@@ -71,30 +72,25 @@ class Band:
     tolerances: FloatArray
     """t_k of every dimension, in the order of ``dimensions``."""
     dimensions: list[str]
+    worst: FloatArray
+    """The worst-case band sum_k |s_k| t_k at every position (y lies within value +- worst to first order)."""
+    rss: FloatArray
+    """The root-sum-of-squares band sqrt(sum_k (s_k t_k)^2) at every position."""
+    at: int
+    """The position (0-based) where the worst-case band is widest (the first of equal ones)."""
+    widest: list[Share]
+    """Every dimension's share of the band at :attr:`at`, largest first, as the core computed them."""
     buffer: int | None = None
     """A deck's BUFTOL b (the worst case; the RSS band is b + 1); None from Python."""
     source: int | None = None
     """A deck's buffer bsrc whose band this is."""
 
-    @property
-    def worst(self) -> FloatArray:
-        """The worst-case band sum_k |s_k| t_k at every position (y lies within value +- worst to first order)."""
-        return np.asarray(np.abs(self.sensitivity) @ self.tolerances, dtype=np.float64)
-
-    @property
-    def rss(self) -> FloatArray:
-        """The root-sum-of-squares band sqrt(sum_k (s_k t_k)^2) at every position."""
-        return np.asarray(np.sqrt(((self.sensitivity * self.tolerances) ** 2).sum(axis=1)), dtype=np.float64)
-
-    @property
-    def at(self) -> int:
-        """The position (0-based) where the worst-case band is widest (the first of equal ones)."""
-        return int(np.argmax(self.worst))
-
     def shares(self, position: int | None = None) -> list[Share]:
         """Every dimension's share of the band at ``position`` (default :attr:`at`), largest first: which
         tolerance to tighten."""
-        k = self.at if position is None else position
+        if position is None or position == self.at:
+            return list(self.widest)
+        k = position
         s = self.sensitivity[k]
         dev = np.abs(s) * self.tolerances
         w, r2 = float(dev.sum()), float((dev**2).sum())
@@ -160,36 +156,49 @@ class ToleranceBands:
         return pd.DataFrame(columns, index=pd.RangeIndex(self.positions, name="position"))
 
 
-def _of_core(d: Mapping[str, Any], dim_names: Sequence[str], names: Sequence[str | None] | None) -> ToleranceBands:
-    """The bands from what :func:`mechfem._core.deck_tolerance` computed, each named by ``names`` or else by its
+def _of_core(
+    core: _core.ToleranceBands, dim_names: Sequence[str], names: Sequence[str | None] | None
+) -> ToleranceBands:
+    """The bands the core computed (:class:`mechfem._core.ToleranceBands`), each named by ``names`` or else by its
     buffer's label."""
-    n, nj = int(d["positions"]), int(d["dofs"])
-    dims = [(int(k), int(num), float(t)) for k, num, t, _ in d["dims"]]
-    bands = [(int(src), int(b)) for src, b, _ in d["bands"]]
-    nb, nv = len(bands), len(dims)
-    values = np.asarray(d["values"], dtype=np.float64).reshape(n, nb)
-    gradient = np.asarray(d["gradient"], dtype=np.float64).reshape(n, nb, nv)
-    t = np.array([x[2] for x in dims], dtype=np.float64)
-    labels = [(str(a), str(u)) for a, u in d["labels"]]
+    t = core.tolerances
+    inputs = core.inputs
     out = ToleranceBands(
         tolerances=dict(zip(dim_names, t.tolist(), strict=True)),
-        units=dict(zip(dim_names, map(str, d["dim_units"]), strict=True)),
-        inputs=np.asarray(d["inputs"], dtype=np.float64).reshape(n, nj),
-        input_names=[f"input{j + 1}" for j in range(nj)],
-        input_units=[str(u) for u in d["input_units"]],
-        positions=n,
+        units=dict(zip(dim_names, core.dim_units, strict=True)),
+        inputs=inputs,
+        input_names=[f"input{j + 1}" for j in range(inputs.shape[1])],
+        input_units=list(core.input_units),
+        positions=core.positions,
     )
-    for q, ((src, b), (label, unit)) in enumerate(zip(bands, labels, strict=True)):
+    values, worst, rss, sensitivity = core.values, core.worst, core.rss, core.sensitivity
+    labels, bands, widest, shares = core.labels, core.bands, core.widest, core.shares
+    for q, ((src, b, _), (label, unit)) in enumerate(zip(bands, labels, strict=True)):
         name = (names[q] if names is not None else None) or label
-        out.bands[name] = Band(name, unit, values[:, q], gradient[:, q, :], t, list(dim_names), b, src)
+        at = widest[q]
+        top = [Share(dim_names[k], s, float(t[k]), dev, w, v) for k, s, dev, w, v in shares[q]]
+        out.bands[name] = Band(
+            name,
+            unit,
+            values[:, q],
+            sensitivity[:, q, :],
+            t,
+            list(dim_names),
+            worst[:, q],
+            rss[:, q],
+            0 if at is None else at,
+            top,
+            b,
+            src,
+        )
     return out
 
 
-def _deck_names(result: RunResult, d: Mapping[str, Any]) -> tuple[list[str], list[str]]:
+def _deck_names(result: RunResult, core: _core.ToleranceBands) -> tuple[list[str], list[str]]:
     """The names of a deck's toleranced dimensions and inputs: NAMES, else ``row r`` (with its formula) or ``x i``."""
     model = result.model
     dims = []
-    for kind, number, _, _ in d["dims"]:
+    for kind, number, _, _ in core.dims:
         if int(kind) == 1:
             row = model.prescribed[int(number) - 1]
             dims.append(row.name or f"row {number} ({row.formula()})")
@@ -211,11 +220,11 @@ def deck_bands(result: RunResult) -> ToleranceBands | None:
     if "TOLERANCE" not in text.upper():
         return None
     base = deck.parent if str(deck.parent) else Path(".")
-    d = _core.deck_tolerance(text, os.fspath(deck), os.fspath(base))
-    if d is None:
+    core = _core.deck_tolerance(text, os.fspath(deck), os.fspath(base))
+    if core is None:
         return None
-    dims, inputs = _deck_names(result, d)
-    bands = _of_core(d, dims, None)
+    dims, inputs = _deck_names(result, core)
+    bands = _of_core(core, dims, None)
     bands.input_names = inputs
     return bands
 
@@ -235,9 +244,9 @@ def _expanded(mech: Mechanism, tolerances: Mapping[str, float]) -> dict[str, flo
     return out
 
 
-def _dimension(mech: Mechanism, nb: Any, name: str) -> tuple[str, int]:
-    """``(keyword, deck number)`` of a toleranced dimension: ``TOL`` of a prescribed row, ``TOLX`` of a fixed
-    co-ordinate."""
+def _dimension(mech: Mechanism, nb: Any, name: str) -> tuple[int, int]:
+    """``(kind, number)`` of a toleranced dimension in the model's numbering: 1 and the row of a prescribed value,
+    0 and the co-ordinate of a fixed co-ordinate."""
     from mechfem.model import Coordinate, FormParameter, Row
 
     obj = mech[name]
@@ -254,10 +263,12 @@ def _dimension(mech: Mechanism, nb: Any, name: str) -> tuple[str, int]:
                 f"{name!r} moves: its place follows from the prescribed rows; give those rows tolerances, or tolerance "
                 "a fixed co-ordinate"
             )
-        return "TOLX", int(nb.coord_number[obj])
+        return 0, int(nb.coord_number[obj])
     if not isinstance(obj, Row) or obj.kind != "prescribed" or obj.value is None:
         raise ValueError(f"{name!r} is no prescribed dimension with a value: it cannot have a tolerance")
-    return "TOL", int(nb.row_dest[obj])
+    if obj in nb.inputs:
+        raise ValueError(f"{name!r} is an input: the motion gives its value at every position")
+    return 1, int(nb.row_dest[obj])
 
 
 def tolerance_bands(
@@ -272,10 +283,11 @@ def tolerance_bands(
     co-ordinate ``"B0.x"``, a point ``"B0"`` whose co-ordinates each get t) is made within value +- t.
 
     Quantities are named as for :func:`~mechfem.optimize` (a co-ordinate, a row or an output, or a
-    :class:`~mechfem.Q` for a transfer function). The mechanism is written as a deck with a TOLERANCE block and
-    evaluated by the deck reader and the core in one run of the motion (default the mechanism's), with the exact
-    first-order design sensitivities at every position; see the module's docstring for the formulas."""
-    from mechfem import deckio
+    :class:`~mechfem.Q` for a transfer function). The mechanism is built through the typed builder (as
+    :meth:`Mechanism.run <mechfem.Mechanism.run>` builds it, no deck text written or read) and the core computes the
+    bands in one run of the motion (default the mechanism's), from the exact first-order design sensitivities at
+    every position; see the module's docstring for the formulas."""
+    from mechfem import building, deckio
     from mechfem.errors import MechfemError
     from mechfem.optimise import _Deck
 
@@ -292,46 +304,35 @@ def tolerance_bands(
             raise ValueError(f"the tolerance of {name!r} must be positive and finite, not {t}")
     deck = _Deck(mechanism)
     sources = [deck.buffer(q) for q in quantities]
-    written = deckio.write(mechanism, motion, deck.storage)
-    if written.simulated:
+    built = building.builder(mechanism, motion, deck.storage)
+    if built.simulated:
         raise ValueError(
             "tolerance bands need a prescribed motion: the forces move "
-            + ", ".join(repr(n) for n in written.simulated)
+            + ", ".join(repr(n) for n in built.simulated)
             + " (a Dynamic motion), and a simulation has no design sensitivities"
         )
-    nb = written.numbering
-    lines = ["TOLERANCE"]
-    for name, t in dims.items():
-        kw, number = _dimension(mechanism, nb, name)
-        lines.append(f"{kw} {number} {t!r}")
-    first = max(sources) + 1
-    for k, b in enumerate(sources):
-        lines.append(f"BUFTOL {b} {first + 2 * k}")
-    head, end = written.text.rsplit("END\n", 1)
-    text = head + "\n".join(lines) + "\nEND\n" + end
-    with deckio.tables_dir(written.tables) as base:
+    nb = built.numbering
+    items = [(*_dimension(mechanism, nb, name), t) for name, t in dims.items()]
+    with deckio.tables_dir(built.tables) as base:
         try:
-            d = _core.deck_tolerance(text, written.path, base)
+            core = _core.built_tolerance(built.builder, built.path, base, items, sources)
         except MechfemError as e:
-            # The core names the deck's numbers; the model's names are the user's.
-            raise deckio.translate(e, written, mechanism.name) from None
-    if d is None:
-        raise ValueError(f"{mechanism.name!r} gave no tolerance bands")
-    if int(d["positions"]) < motion.steps + 1:
+            # The core names the model's numbers; the model's names are the user's.
+            raise building.explain(e, built, mechanism, motion, deck.storage) from None
+    if core.positions < motion.steps + 1:
         import warnings
 
         from mechfem.errors import IncompleteRunWarning
 
         warnings.warn(
-            f"the motion stopped after position {d['positions']} of {motion.steps + 1} (run the mechanism to see "
+            f"the motion stopped after position {core.positions} of {motion.steps + 1} (run the mechanism to see "
             "why): the bands are those of the positions up to there",
             IncompleteRunWarning,
             stacklevel=2,
         )
     # A quantity given by name keeps it; an object or a transfer function (Q) takes its buffer's label (dpsi/dphi).
-    out = _of_core(d, list(dims), [q if isinstance(q, str) else None for q in quantities])
-    inputs = nb.inputs
-    out.input_names = [r.name for r in inputs]
+    out = _of_core(core, list(dims), [q if isinstance(q, str) else None for q in quantities])
+    out.input_names = [r.name for r in nb.inputs]
     for band in out.bands.values():
         band.source = None
         band.buffer = None

@@ -133,7 +133,7 @@ pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind
 pub use parse::{parse_file, parse_str};
 pub use statements::names::{MAX_LABEL, MAX_NAME};
 pub use statements::{MAX_ITER, MAX_STEPS};
-pub use tolerance::{BandDef, Tolerance, Toleranced};
+pub use tolerance::{without_sensitivity, BandDef, BandsError, EvaluatedBands, Tolerance, Toleranced};
 
 /// Reads, checks and compiles the deck at `path`; MOV_FUNC, LOADFUNC and
 /// TARGET files are read from the deck's folder.

@@ -343,5 +343,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<design::DesignModel>()?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(tolerance::deck_tolerance, m)?)?;
+    m.add_function(wrap_pyfunction!(tolerance::built_tolerance, m)?)?;
+    m.add_class::<tolerance::Bands>()?;
     Ok(())
 }

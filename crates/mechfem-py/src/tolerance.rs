@@ -1,106 +1,199 @@
-//! The TOLERANCE block of a deck evaluated: the design sensitivities of
-//! every BUFTOL's buffer to every toleranced dimension at every position,
-//! from one run of [`mechfem_core::design::evaluate`], in the deck's units.
-//! The bands themselves (worst case, root sum of squares, shares) are
-//! Python's arithmetic on these (`mechfem.bands`).
+//! Tolerance bands for Python: [`Bands`] wraps the bands the deck reader
+//! and the core computed ([`mechfem_deck::EvaluatedBands`], in the model's
+//! units) and hands its columns as numpy arrays, each made once from its column.
+//! [`deck_tolerance`] evaluates a deck's TOLERANCE block,
+//! [`built_tolerance`] the dimensions and buffers of a model built item by
+//! item (`ModelBuilder`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use mechfem_core::design::evaluate;
-use mechfem_core::{DesignVar, Dim, FormRef, Quantity};
-use mechfem_deck::Compiled;
-use numpy::PyArray1;
+use mechfem_core::DesignVar;
+use mechfem_deck::{BandsError, Compiled, EvaluatedBands, Tolerance};
+use numpy::ndarray::Array1;
+use numpy::{PyArray1, PyArray2, PyArray3};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
+use crate::builder::Source;
 use crate::errors;
 use crate::text::compile_text;
 
-/// The kind of a toleranced dimension.
-fn dim_of(c: &Compiled, var: DesignVar) -> Dim {
-    match var {
-        DesignVar::Row(r) => c.dims.form(FormRef::Prescribed(r)),
-        DesignVar::Fixed(i) => c.dims.coord(i),
+/// The tolerance bands of some buffers at every position of a motion:
+/// `positions` computed; `tolerances` (dimensions); `inputs` (positions x
+/// inputs); `values`, `worst`, `rss` (positions x bands); `sensitivity`
+/// (positions x bands x dimensions); `widest` (per band, the position of
+/// its largest worst case, or None) and `shares` there (per band, `(dim,
+/// sensitivity, deviation, of_worst, of_variance)` largest first); `dims`
+/// `(kind, number, t, line)` (kind 0 a fixed co-ordinate, 1 a prescribed
+/// row; deck numbering), `bands` `(source, b, line)`, `labels` `(label,
+/// unit)` of each band's buffer, `dim_units`, `input_units`; every number in
+/// the model's units.
+#[pyclass(module = "mechfem._core", frozen, name = "ToleranceBands")]
+pub struct Bands {
+    tolerances: Py<PyArray1<f64>>,
+    inputs: Py<PyArray2<f64>>,
+    values: Py<PyArray2<f64>>,
+    worst: Py<PyArray2<f64>>,
+    rss: Py<PyArray2<f64>>,
+    sensitivity: Py<PyArray3<f64>>,
+    evaluated: EvaluatedBands,
+    tolerance: Tolerance,
+}
+
+/// One dimension's share: `(dim, sensitivity, deviation, of_worst, of_variance)`.
+type ShareTuple = (usize, f64, f64, f64, f64);
+
+/// `data` (row-major) as an array of `shape`.
+fn shaped<D: numpy::ndarray::Dimension, S: numpy::ndarray::ShapeBuilder<Dim = D>>(
+    shape: S,
+    data: Vec<f64>,
+) -> PyResult<numpy::ndarray::Array<f64, D>> {
+    numpy::ndarray::Array::from_shape_vec(shape, data).map_err(|e| errors::value_error(&e))
+}
+
+impl Bands {
+    /// The bands with their columns made numpy arrays once, each owning its
+    /// column (moved, not copied).
+    fn new(py: Python<'_>, mut evaluated: EvaluatedBands, tolerance: Tolerance, dofs: usize) -> PyResult<Bands> {
+        let b = &mut evaluated.bands;
+        let (n, nb, nv) = (b.positions, evaluated.labels.len(), b.tolerances.len());
+        let take = std::mem::take;
+        Ok(Bands {
+            tolerances: PyArray1::from_owned_array(py, Array1::from_vec(b.tolerances.clone())).unbind(),
+            inputs: PyArray2::from_owned_array(py, shaped((n, dofs), take(&mut b.inputs))?).unbind(),
+            values: PyArray2::from_owned_array(py, shaped((n, nb), take(&mut b.values))?).unbind(),
+            worst: PyArray2::from_owned_array(py, shaped((n, nb), take(&mut b.worst))?).unbind(),
+            rss: PyArray2::from_owned_array(py, shaped((n, nb), take(&mut b.rss))?).unbind(),
+            sensitivity: PyArray3::from_owned_array(py, shaped((n, nb, nv), take(&mut b.sensitivity))?).unbind(),
+            evaluated,
+            tolerance,
+        })
+    }
+}
+
+#[pymethods]
+impl Bands {
+    #[getter]
+    fn positions(&self) -> usize {
+        self.evaluated.bands.positions
+    }
+
+    #[getter]
+    fn tolerances<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.tolerances.bind(py).clone()
+    }
+
+    #[getter]
+    fn inputs<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.inputs.bind(py).clone()
+    }
+
+    #[getter]
+    fn values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.values.bind(py).clone()
+    }
+
+    #[getter]
+    fn worst<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.worst.bind(py).clone()
+    }
+
+    #[getter]
+    fn rss<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        self.rss.bind(py).clone()
+    }
+
+    #[getter]
+    fn sensitivity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray3<f64>> {
+        self.sensitivity.bind(py).clone()
+    }
+
+    #[getter]
+    fn widest(&self) -> Vec<Option<usize>> {
+        self.evaluated.bands.widest.iter().map(|w| w.as_ref().map(|w| w.position)).collect()
+    }
+
+    #[getter]
+    fn shares(&self) -> Vec<Vec<ShareTuple>> {
+        let shares = |w: &mechfem_core::run::tolerance::Widest| {
+            w.shares.iter().map(|s| (s.dim, s.sensitivity, s.deviation, s.of_worst, s.of_variance)).collect()
+        };
+        self.evaluated.bands.widest.iter().map(|w| w.as_ref().map_or_else(Vec::new, shares)).collect()
+    }
+
+    #[getter]
+    fn dims(&self) -> Vec<(u8, usize, f64, usize)> {
+        let t = &self.evaluated.bands.tolerances;
+        let number = |v: DesignVar| match v {
+            DesignVar::Fixed(i) => (0, i + 1),
+            DesignVar::Row(r) => (1, r + 1),
+        };
+        self.tolerance.dims.iter().zip(t).map(|(d, &t)| (number(d.var).0, number(d.var).1, t, d.line)).collect()
+    }
+
+    #[getter]
+    fn bands(&self) -> Vec<(u32, u32, usize)> {
+        self.tolerance.bands.iter().map(|b| (b.source, b.buffer, b.line)).collect()
+    }
+
+    #[getter]
+    fn labels(&self) -> Vec<(String, String)> {
+        self.evaluated.labels.clone()
+    }
+
+    #[getter]
+    fn dim_units(&self) -> Vec<String> {
+        self.evaluated.dim_units.clone()
+    }
+
+    #[getter]
+    fn input_units(&self) -> Vec<String> {
+        self.evaluated.input_units.clone()
+    }
+}
+
+/// The bands of `tolerance` over `c`'s motion, a failure mapped to Python's
+/// error.
+fn evaluated(py: Python<'_>, c: &Compiled, tolerance: Tolerance) -> PyResult<Bands> {
+    match py.detach(|| tolerance.evaluate(c)) {
+        Ok(e) => Bands::new(py, e, tolerance, c.mechanism.n_dof()),
+        Err(BandsError::Solve(e)) => {
+            let mut at = c.state.clone();
+            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut at, &e))
+        }
+        Err(e) => Err(errors::value_error(&e)),
     }
 }
 
 /// The TOLERANCE block of the deck `text` (named `path`, its files read
-/// from `base_dir`) evaluated, or None when the deck has none. A dict:
-/// `dims` `(kind, number, t, line)` (kind 0 a fixed co-ordinate, 1 a
-/// prescribed row; deck numbering; t in the deck's units), `bands`
-/// `(source, b, line)`, `positions`, `inputs` (positions x DOFs),
-/// `values` (positions x bands) and `gradient` (positions x bands x dims),
-/// flat and row-major, in the deck's units; `labels` `(label, unit)` of
-/// each band's buffer, `dim_units` and `input_units` the units of the
-/// dimensions and inputs ("" without UNITS).
+/// from `base_dir`) evaluated, or None when the deck has none.
 #[pyfunction]
-pub fn deck_tolerance<'py>(
-    py: Python<'py>,
-    text: &str,
+pub fn deck_tolerance(py: Python<'_>, text: &str, path: PathBuf, base_dir: PathBuf) -> PyResult<Option<Bands>> {
+    let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+    let Some(tolerance) = c.tolerance.clone() else { return Ok(None) };
+    evaluated(py, &c, tolerance).map(Some)
+}
+
+/// The bands of the buffers `sources` of the model `builder` builds (a
+/// `ModelBuilder`, its files read from `base_dir`; named `path` in
+/// messages) when each of `dims` `(kind, number, t)` (kind 0 a fixed
+/// co-ordinate, 1 a prescribed row; deck numbering; t in the model's
+/// units) is within +-t.
+#[pyfunction]
+pub fn built_tolerance(
+    py: Python<'_>,
+    builder: &Bound<'_, PyAny>,
     path: PathBuf,
     base_dir: PathBuf,
-) -> PyResult<Option<Bound<'py, PyDict>>> {
-    let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
-    let (Some(tol), Some(motion)) = (&c.tolerance, &c.motion) else { return Ok(None) };
-    let vars: Vec<DesignVar> = tol.dims.iter().map(|d| d.var).collect();
-    let source = |number: u32| c.buffers.iter().find(|b| b.number == number).map(|b| b.quantity);
-    let mut quantities: Vec<Quantity> = tol.bands.iter().filter_map(|b| source(b.source)).collect();
-    let nb = quantities.len();
-    let nj = c.mechanism.n_dof();
-    quantities.extend((0..nj).map(Quantity::Input));
-    let mut state = c.state.clone();
-    let run =
-        py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, &vars, &quantities, &[])).map_err(|e| {
-            let mut at = c.state.clone();
-            errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut at, &c.error_as_written(&e))
-        })?;
-    let (nq, nv) = (quantities.len(), vars.len());
-    let q_scale: Vec<f64> = quantities.iter().map(|&q| c.out_scale(q)).collect();
-    let v_scale: Vec<f64> = vars.iter().map(|&v| dim_of(&c, v).out_scale(&c.units)).collect();
-    let mut values = Vec::with_capacity(run.positions * nb);
-    let mut inputs = Vec::with_capacity(run.positions * nj);
-    let mut gradient = Vec::with_capacity(run.positions * nb * nv);
-    for p in 0..run.positions {
-        for k in 0..nq {
-            let value = run.values[p * nq + k] * q_scale[k];
-            if k >= nb {
-                inputs.push(value);
-                continue;
-            }
-            values.push(value);
-            for v in 0..nv {
-                gradient.push(run.gradient[(p * nq + k) * nv + v] * q_scale[k] / v_scale[v]);
-            }
-        }
-    }
-    let dims: Vec<(u8, usize, f64, usize)> = tol
-        .dims
-        .iter()
-        .zip(&v_scale)
-        .map(|(d, s)| match d.var {
-            DesignVar::Fixed(i) => (0, i + 1, d.t * s, d.line),
-            DesignVar::Row(r) => (1, r + 1, d.t * s, d.line),
-        })
-        .collect();
-    let bands: Vec<(u32, u32, usize)> = tol.bands.iter().map(|b| (b.source, b.buffer, b.line)).collect();
-    let labels: Vec<(String, String)> = tol
-        .bands
-        .iter()
-        .filter_map(|b| c.buffers.iter().find(|x| x.number == b.source))
-        .map(|b| (c.label(b), c.unit(b)))
-        .collect();
-    let dim_units: Vec<String> = vars.iter().map(|&v| dim_of(&c, v).symbol(&c.units)).collect();
-    let input_units: Vec<String> = (0..nj).map(|j| c.dims.input(&c.mechanism, j).symbol(&c.units)).collect();
-    let d = PyDict::new(py);
-    d.set_item("labels", labels)?;
-    d.set_item("dim_units", dim_units)?;
-    d.set_item("input_units", input_units)?;
-    d.set_item("dims", dims)?;
-    d.set_item("bands", bands)?;
-    d.set_item("positions", run.positions)?;
-    d.set_item("dofs", nj)?;
-    d.set_item("inputs", PyArray1::from_vec(py, inputs))?;
-    d.set_item("values", PyArray1::from_vec(py, values))?;
-    d.set_item("gradient", PyArray1::from_vec(py, gradient))?;
-    Ok(Some(d))
+    dims: Vec<(u8, usize, f64)>,
+    sources: Vec<u32>,
+) -> PyResult<Bands> {
+    let source = Source::extract(builder)?;
+    let c = py.detach(|| source.compile(Path::new(&path), &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
+    let var = |kind: u8, number: usize| match kind {
+        0 => DesignVar::Fixed(number.wrapping_sub(1)),
+        _ => DesignVar::Row(number.wrapping_sub(1)),
+    };
+    let dims: Vec<(DesignVar, f64)> = dims.iter().map(|&(k, n, t)| (var(k, n), t)).collect();
+    let tolerance = Tolerance::of_items(&c, &dims, &sources).map_err(|e| errors::value_error(&e))?;
+    evaluated(py, &c, tolerance)
 }

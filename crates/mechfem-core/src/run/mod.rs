@@ -19,6 +19,8 @@
 //! [`Quantity`]s of the deck's buffer table, a [`Layout`] (`layout.rs`)
 //! names the columns of a recording of all of them, and a [`Selection`]
 //! (`selection.rs`) those of a deck's own recording, in blocks the same way.
+//! [`tolerance`] gives the tolerance bands of quantities from their design
+//! sensitivities.
 
 mod branch;
 pub mod design;
@@ -32,6 +34,7 @@ mod pins;
 mod record;
 mod selection;
 mod simulate;
+pub mod tolerance;
 mod transmission;
 
 pub use dispatch::{motion_of, move_through, transfer_order_of, Extent, MemoryRefusal, OrderError, RunMode};

@@ -3,7 +3,7 @@
 //! of a buffer with exact design sensitivities, numbered clear of every
 //! other buffer.
 
-use mechfem_core::{DesignVar, Motion, Quantity};
+use mechfem_core::{DesignVar, Motion};
 
 use super::model::Model;
 use super::refs::{coordinate, Sizes};
@@ -12,10 +12,11 @@ use crate::ast::{Deck, Mode, TolDef};
 use crate::compiled::Buffer;
 use crate::diagnostic::{count, Diagnostic, DiagnosticKind, Hint, Span};
 use crate::keywords::Keyword;
-use crate::tolerance::{BandDef, Tolerance, Toleranced};
+use crate::tolerance::{without_sensitivity, BandDef, Tolerance, Toleranced};
 
 /// The buffers whose bands can be recorded, in words.
-const WITH_SENSITIVITY: &str = "BUFINP, BUFX0, BUFKX1, BUFKX2, BUFVX, BUFAX, BUFE0, BUFKE1, BUFKE2, BUFVE or BUFAE";
+const WITH_SENSITIVITY: &str =
+    "BUFINP, BUFX0, BUFKX1, BUFKX2, BUFVX, BUFAX, BUFE0, BUFKE1, BUFKE2, BUFVE, BUFAE or BUFTRA";
 
 /// The TOLERANCE block of `deck` (`None` without one).
 pub(crate) fn tolerance(
@@ -75,12 +76,7 @@ pub(crate) fn tolerance(
     let mut bands: Vec<BandDef> = Vec::with_capacity(block.bands.len());
     for def in &block.bands {
         let source = defined_buffer(deck, &defined, &def.source)?;
-        if source.quantity == Quantity::Det || source.quantity.is_dynamic() {
-            let what = if source.quantity == Quantity::Det {
-                "det(D^c)".to_string()
-            } else {
-                "a result of the dynamics".to_string()
-            };
+        if let Some(what) = without_sensitivity(source.quantity) {
             let dynamic = if deck.mode.value == Mode::DynAna {
                 "; mechfem has no design sensitivities of the dynamics (forces, stresses, energies, power), so a DYN \
                  ANA deck's bands are those of its kinematic buffers"
