@@ -27,6 +27,9 @@ if TYPE_CHECKING:
     from mechfem.design import DesignModelOf, FloatArray
     from mechfem.model import Mechanism
 
+Var = tuple[int, int]
+"""A variable of the core: ``(kind, number)``."""
+
 SENTINEL = (3, 0)
 """The frame angle's entry in the engine's list of variables (the core has no kind 3: :class:`TurnedModel` takes
 it out)."""
@@ -51,8 +54,9 @@ class Turn:
     """What the turn moves, in the core's numbering: the pivot's two co-ordinates, every fixed point's pair, the
     fixed angle co-ordinates and the angle inputs' start rows, each with its value in the mechanism."""
 
-    pivot: tuple[int, int]
-    points: list[tuple[int, int]]
+    pivot: tuple[Var, Var]
+    points: list[Var]
+    """The fixed points' co-ordinates as ``(kind, number)``, x then y of each point."""
     angles: list[tuple[int, int]]
     """``(kind, number)``: fixed angle co-ordinates (kind 0) and angle inputs' rows (kind 1)."""
     values: dict[tuple[int, int], float]
@@ -68,8 +72,8 @@ def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: st
     fixed = [p for p in mechanism.points if p.fixed]
     pivot = next((p for p in fixed if p.name == frame.pivot), None)
     if pivot is None:
-        names = ", ".join(p.name for p in fixed) or "none"
-        raise ValueError(f"the frame angle's pivot {frame.pivot!r} is not a fixed point of the mechanism ({names})")
+        known = ", ".join(p.name for p in fixed) or "none"
+        raise ValueError(f"the frame angle's pivot {frame.pivot!r} is not a fixed point of the mechanism ({known})")
     values: dict[tuple[int, int], float] = {}
     names: dict[tuple[int, int], str] = {}
 
@@ -83,7 +87,7 @@ def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: st
     inputs = [r for r in mechanism.rows if r.kind == "input" and r.is_angle and r.name != free_input]
     angles += [number(r.name) for r in inputs]
     flat = [v for pair in points for v in pair]
-    return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names)  # type: ignore[arg-type]
+    return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names)
 
 
 class TurnedModel:
@@ -163,7 +167,7 @@ def turned(of: DesignModelOf, turn: Turn) -> DesignModelOf:
 
     def wrapped(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
         at = variables.index(SENTINEL)
-        moved = [v for v in [turn.pivot[0], turn.pivot[1], *turn.points, *turn.angles] if v not in variables]
+        moved: list[Var] = [v for v in [*turn.pivot, *turn.points, *turn.angles] if v not in variables]
         core = [*variables[:at], *dict.fromkeys(moved), *variables[at + 1 :]]
         return TurnedModel(of(core, buffers, extrema), turn, variables, core)
 

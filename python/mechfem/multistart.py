@@ -251,9 +251,7 @@ def multi_start(
         )
     best = min(found, key=lambda o: o.objective)
     passed = [Start(b, None, math.nan, 0, False, f"draw passed over: {why}", 0.0) for b, why in rejected]
-    return dataclasses.replace(
-        best, starts=outcomes, usable=len(found) / len(begins), drawn=drawn, rejected=passed
-    )
+    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins), drawn=drawn, rejected=passed)
 
 
 __all__ = ["SCREEN", "assembled", "draws", "multi_start", "runs_through", "screened"]

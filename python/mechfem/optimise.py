@@ -17,14 +17,13 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import building, deckio, design, design_rules
+from mechfem import building, deckio, design, design_rules, frame_angle
 from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
+from mechfem.frame_angle import FrameAngle
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
 from mechfem.motion import Motion
 from mechfem.storage import Storage
-from mechfem import frame_angle
-from mechfem.frame_angle import FrameAngle
 from mechfem.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
 
 if TYPE_CHECKING:
@@ -45,7 +44,16 @@ class Q:
     wrt2: InputKey = None
 
 
-Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q"
+@dataclass(frozen=True)
+class Transmission:
+    """The transmission angle between the elements ``first`` and ``second`` at every position (the deck's BUFTRA:
+    the angle between their first sides, in [0, pi]), e.g. for a ``Bound``."""
+
+    first: str
+    second: str
+
+
+Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q | Transmission"
 
 
 @dataclass
@@ -151,6 +159,8 @@ class _Deck:
         self.keys: dict[tuple[str, tuple[object, ...]], int] = {}
 
     def buffer(self, q: Quantity) -> int:
+        if isinstance(q, Transmission):
+            return self._numbered(("BUFTRA", (q.first, q.second)), "BUFTRA", self.mech[q.first], self.mech[q.second])
         spec = q if isinstance(q, Q) else Q(q)
         obj = _lookup(self.mech, spec.name)
         coord = isinstance(obj, Coordinate)
@@ -164,10 +174,12 @@ class _Deck:
             inputs = [r for r in self.mech.rows if r.kind == "input"]
             j = input_dof(spec.wrt, inputs)
             dofs = (j,) if spec.order == 1 else (j, input_dof(spec.wrt2 if spec.wrt2 is not None else j, inputs))
-        key = (keyword, (obj, *dofs))
+        return self._numbered((keyword, (obj, *dofs)), keyword, obj, *dofs)
+
+    def _numbered(self, key: tuple[str, tuple[object, ...]], keyword: str, *args: Any) -> int:
         if key not in self.keys:
             number = len(self.keys) + 1
-            self.storage.buffer(number, keyword, obj, *dofs)
+            self.storage.buffer(number, keyword, *args)
             self.keys[key] = number
         return self.keys[key]
 
@@ -390,7 +402,8 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
-    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, timing and timing.input)
+    free_input = None if timing is None else timing.input
+    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
@@ -411,7 +424,11 @@ def optimize(
     if frame is not None:
         span = frame.span or (-math.pi, math.pi)
         lo, hi = np.append(lo, float(span[0])), np.append(hi, float(span[1]))
-        periodic, core_vars, names = [*periodic, frame.span is None], [*core_vars, frame_angle.SENTINEL], [*names, frame.name]
+        periodic, core_vars, names = (
+            [*periodic, frame.span is None],
+            [*core_vars, frame_angle.SENTINEL],
+            [*names, frame.name],
+        )
     if timed is not None:
         lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
         periodic = (periodic if any(periodic) else [False] * len(names)) + timed.periodic
