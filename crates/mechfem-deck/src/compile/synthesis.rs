@@ -11,6 +11,9 @@ use crate::diagnostic::{count, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::Keyword;
 use crate::optimise::{FrameAngle, FreeTime, FullRotation, Vary};
 
+/// FREETIME, FULLROT and VARYFRAME, each if given.
+pub(super) type Statements = (Option<FreeTime>, Option<FullRotation>, Option<FrameAngle>);
+
 /// FREETIME, FULLROT and VARYFRAME of the block, each if given.
 pub(super) fn statements(
     deck: &Deck,
@@ -19,7 +22,7 @@ pub(super) fn statements(
     motion: &Motion,
     block: &Block,
     vary: &[Vary],
-) -> Result<(Option<FreeTime>, Option<FullRotation>, Option<FrameAngle>), Box<Diagnostic>> {
+) -> Result<Statements, Box<Diagnostic>> {
     let free_time = match &block.free_time {
         Some(d) => {
             let row = input_row(deck, model, motion, d.keyword.value, &d.row)?;
