@@ -74,7 +74,7 @@ def run_mechfem(problem: str, seed: int, starts: int) -> tuple[int, float, float
             }
             opt = mechfem.optimize(ps.four_bar(), vary, targets=ps.targets(), starts=starts, seed=seed)
         else:
-            opt = sl.synthesise(starts=starts, seed=seed)
+            opt = sl.synthesise(starts=starts, seed=seed, steps=200)
     runs = sum(s.runs for s in opt.starts)
     return runs, time.perf_counter() - t0, opt.objective
 

@@ -29,7 +29,7 @@ def limited(tmp_path: Path) -> Path:
     """straight_line.mec with its data, limited to STEPS iterations."""
     for name in ("line_x.dat", "line_y.dat"):
         shutil.copy(SYNTHESIS / name, tmp_path)
-    text = (SYNTHESIS / "straight_line.mec").read_text().replace("OPTFTOL", f"OPTSTEPS {STEPS}\nOPTFTOL")
+    text = (SYNTHESIS / "straight_line.mec").read_text().replace("OPTSTEPS 50 ", f"OPTSTEPS {STEPS} ")
     deck = tmp_path / "straight_line.mec"
     deck.write_text(text)
     return deck

@@ -53,7 +53,8 @@ def four_bar(a0=(0.0, 0.0), b0=(40.0, 0.0), r2=10.0, r3=30.0, r4=35.0, u=10.0, v
 
 def synthesise(**kwargs: object) -> mechfem.Optimum:
     """The straight line from the start design, the crank angles free; ``kwargs`` go to :func:`mechfem.optimize`
-    (e.g. ``starts=20, seed=1``)."""
+    (e.g. ``starts=20, seed=1``; ``steps`` 50 as in the deck unless given)."""
+    kwargs.setdefault("steps", 50)
     targets = [mechfem.Target("P.x", POINTS[:, 0]), mechfem.Target("P.y", POINTS[:, 1])]
     return mechfem.optimize(
         four_bar(),
