@@ -155,3 +155,20 @@ def test_a_bound_on_a_transmission_angle_in_the_deck_is_the_python_problem(tmp_p
     # the bound, 60 runs on).
     mu = py.run().transmission_angle("coupler", "rocker")
     assert mu.min() >= lo - 1e-6
+
+
+def test_ordered_free_timing_in_the_deck_is_the_python_problem(tmp_path: Path) -> None:
+    deck = limited(tmp_path)
+    deck.write_text(deck.read_text().replace("FREETIME 6 ", "FREETIME 6 ORDERED "))
+    out = solved(deck)
+    targets = [mechfem.Target("P.x", sl.POINTS[:, 0]), mechfem.Target("P.y", sl.POINTS[:, 1])]
+    timing = mechfem.FreeTiming("theta", sl.STARTS, ordered=True)
+    py = mechfem.optimize(
+        sl.four_bar(), sl.VARY, targets=targets, timing=timing, full_rotation=True, rtol=1e-12, atol=1e-20, steps=STEPS
+    )
+    assert out.synthesis is not None and py.timing is not None
+    assert out.solution.objective == pytest.approx(py.objective, rel=1e-6, abs=1e-18)
+    inputs = out.synthesis.inputs(out.solution.x)
+    assert inputs == pytest.approx(py.timing, abs=1e-6)
+    # Ordered: every point's crank angle at or after the one before.
+    assert all(b >= a for a, b in zip(inputs, inputs[1:], strict=False))
