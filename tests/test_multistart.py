@@ -80,3 +80,25 @@ def test_a_start_box_outside_vary_is_refused() -> None:
         mechfem.optimize(ps.four_bar(), VARY, targets=ps.targets(), starts=3, box={"coupler.w": (0.0, 1.0)})
     with pytest.raises(ValueError, match="empty list"):
         mechfem.optimize(ps.four_bar(), VARY, targets=ps.targets(), starts=[])
+
+
+def test_draws_that_cannot_do_the_motion_are_passed_over_with_their_reason() -> None:
+    mech = ps.four_bar()
+    base = {name: float(mech[name].value) for name in VARY}
+    begins, reached, rejected, looked = multistart.screened(mech, base, VARY, 4, 1, {})
+    assert len(begins) == len(reached) == 4
+    assert looked == 4 + len(rejected)
+    assert rejected, "half of this box cannot turn the crank through 324 degrees: some draw is passed over"
+    for at in reached:
+        assert multistart.runs_through(at, {}) == ""
+    for begin, why in rejected:
+        # A rejected draw really cannot do the motion: assembled afresh, it cannot be, or its motion stops.
+        assert why
+        at = multistart.assembled(mech, begin)
+        assert isinstance(at, str) or multistart.runs_through(at, {}) != ""
+    # The drawn starts are the first draws of the sequence that can: the same seed, the same starts.
+    assert multistart.screened(mech, base, VARY, 4, 1, {})[0] == begins
+    opt = mechfem.optimize(mech, VARY, targets=ps.targets(), starts=3, seed=1, steps=2)
+    assert opt.usable == 1.0 and len(opt.starts) == 3
+    assert opt.drawn == 2 + len(opt.rejected)
+    assert all(r.values is None and r.message.startswith("draw passed over: ") for r in opt.rejected)

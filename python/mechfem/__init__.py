@@ -59,8 +59,20 @@ from mechfem.errors import (
     on_stop,
 )
 from mechfem.export import export_drawing
+from mechfem.frame_angle import FrameAngle
 from mechfem.model import Driven, Keep, Mechanism, Motion, Output
-from mechfem.optimise import Bound, Evaluated, Optimum, Q, Start, Target, TargetAt, TargetExtremum, optimize
+from mechfem.optimise import (
+    Bound,
+    Evaluated,
+    Optimum,
+    Q,
+    Start,
+    Target,
+    TargetAt,
+    TargetExtremum,
+    Transmission,
+    optimize,
+)
 from mechfem.result import Analysis, CheckResult, RunResult, check_result, run_result
 from mechfem.run_report import AdjustInfo, Limit, RunReport, Stop
 from mechfem.timing import FreeTiming
@@ -129,6 +141,7 @@ __all__ = [
     "Driven",
     "Element",
     "Evaluated",
+    "FrameAngle",
     "FreeTiming",
     "IncompleteRunWarning",
     "Infeasible",
@@ -159,6 +172,7 @@ __all__ = [
     "Target",
     "TargetAt",
     "TargetExtremum",
+    "Transmission",
     "Term",
     "ToleranceBands",
     "ToleranceStudy",

@@ -699,6 +699,23 @@ class OptimiseDict(TypedDict):
     """OPTFTOL's (rtol, atol)."""
     line: int
     """Line of the OPTIMISE header."""
+    free_time: NotRequired[SynthesisDict | None]
+    """FREETIME: ``row``, ``ordered``, ``line``."""
+    full_rotation: NotRequired[SynthesisDict | None]
+    """FULLROT: ``row``, ``line``."""
+    frame: NotRequired[SynthesisDict | None]
+    """VARYFRAME: ``coordinate`` (the pivot's x), ``lo``, ``hi``, ``line``."""
+
+@type_check_only
+class SynthesisDict(TypedDict):
+    """A synthesis statement of the OPTIMISE block (FREETIME, FULLROT, VARYFRAME)."""
+
+    row: NotRequired[int]
+    coordinate: NotRequired[int]
+    lo: NotRequired[float]
+    hi: NotRequired[float]
+    ordered: bool
+    line: int
 
 @type_check_only
 class DescribedDeckDict(TypedDict):

@@ -11,6 +11,14 @@ design assembled afresh.
   last one's (a stage that fails is halved, down to 1/64 of the way). So every start lies on the branch of the
   mechanism's own estimates, and a start that cannot be reached (a limit position on the way: the design does not
   exist on that branch) is discarded with that reason before any optimisation.
+* **Screening.** Most of a start box holds designs that cannot do the problem's motion at all: a four-bar whose
+  crank cannot turn through the target angles (not a Grashof crank), or cannot reach the free timing's start
+  values from its position 1. Such a draw is not a start: the draws are taken in the sequence's order, each
+  assembled as above and its motion run once (the problem's motion; with free timing, from position 1 to every
+  point's start value; with ``full_rotation``, a whole turn), and the first ``starts - 1`` that pass are the drawn
+  starts. The draws are thereby limited to the part of the box where the problem's motion exists; those passed
+  over are kept with their reason (``Optimum.rejected``), and ``Optimum.drawn`` counts every draw looked at, at
+  most ``SCREEN`` per start.
 """
 
 from __future__ import annotations
@@ -32,6 +40,10 @@ if TYPE_CHECKING:
     from mechfem.optimise import Optimum
 
 SMALLEST_STAGE = 1.0 / 64.0
+SCREEN = 20
+"""Draws looked at per drawn start, at most: a box of which less than one design in twenty can do the motion gives
+fewer starts than asked for (``Optimum.starts`` says how many)."""
+FULL_TURN_STEPS = 72
 POSITION_ONE_STEP = 1e-9
 """The single step of the motion that computes a stage's position 1 (the second position is not used)."""
 
@@ -98,6 +110,72 @@ def _position_one(mech: Mechanism, moving: Sequence[str], motion: object) -> lis
     return out
 
 
+def runs_through(mech: Mechanism, kwargs: Mapping[str, Any]) -> str:
+    """Why the assembled design ``mech`` cannot do the problem's motion ("" when it can): the motion stops (a limit
+    position) or cannot be computed; with free timing, a point's start value cannot be reached from position 1;
+    with ``full_rotation``, the input cannot turn fully."""
+    import warnings
+
+    from mechfem import timing as _timing
+    from mechfem.errors import IncompleteRunWarning
+    from mechfem.motion import Motion
+
+    def whole(motion: Motion, what: str) -> str:
+        with warnings.catch_warnings():
+            # The stop is said here, as the reason the draw is passed over.
+            warnings.simplefilter("ignore", IncompleteRunWarning)
+            result = mech.run(motion)
+        if result.complete:
+            return ""
+        return f"{what} stops after position {result.positions} of {motion.steps + 1} (a limit position)"
+
+    try:
+        free = kwargs.get("timing")
+        if free is not None:
+            start = float(mech[free.input].value)
+            for k, theta in enumerate(free.starts):
+                _timing._at(mech, free.input, start, float(theta), k)
+        else:
+            motion = kwargs.get("motion") or mech.motion
+            if motion is not None and (why := whole(motion, "the motion")):
+                return why
+        if kwargs.get("full_rotation"):
+            return whole(Motion.by(FULL_TURN_STEPS, 2.0 * math.pi), "a whole turn of the input")
+    except (Infeasible, MechfemError, ValueError) as e:
+        return str(e) or type(e).__name__
+    return ""
+
+
+def screened(
+    mechanism: Mechanism,
+    base: Mapping[str, float],
+    box: Mapping[str, tuple[float, float]],
+    n: int,
+    seed: int | None,
+    kwargs: Mapping[str, Any],
+) -> tuple[list[dict[str, float]], list[Mechanism], list[tuple[dict[str, float], str]], int]:
+    """The first ``n`` draws of ``box`` (in the sequence's order, at most ``SCREEN * n`` looked at) that assemble
+    and do the problem's motion: their designs, their assembled mechanisms, the draws passed over with the reason,
+    and how many draws were looked at."""
+    begins: list[dict[str, float]] = []
+    reached: list[Mechanism] = []
+    rejected: list[tuple[dict[str, float], str]] = []
+    looked = 0
+    for d in draws(box, SCREEN * n, seed):
+        if len(begins) == n:
+            break
+        looked += 1
+        begin = {**base, **d}
+        at = assembled(mechanism, begin)
+        why = f"cannot be assembled: {at}" if isinstance(at, str) else runs_through(at, kwargs)
+        if why or isinstance(at, str):
+            rejected.append((begin, why))
+            continue
+        begins.append(begin)
+        reached.append(at)
+    return begins, reached, rejected, looked
+
+
 def _one_start(
     task: tuple[Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]],
 ) -> Optimum | tuple[str, float]:
@@ -127,19 +205,25 @@ def multi_start(
     if isinstance(starts, int) and starts < 1:
         raise ValueError(f"starts must be at least 1, got {starts}")
     begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
+    reached: list[Mechanism | str] = [mechanism]
+    rejected: list[tuple[dict[str, float], str]] = []
+    drawn = 0
     if isinstance(starts, int):
         if box is None:
             box = {name: _span(mechanism, name, span) for name, span in vary.items()}
         unknown = set(box) - set(vary)
         if unknown:
             raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
-        begins += [{**begins[0], **d} for d in draws(box, starts - 1, seed)]
+        # Draws screened for the problem's motion, each assembled afresh by continuation from the mechanism's own
+        # position 1.
+        more, at, rejected, drawn = screened(mechanism, begins[0], box, starts - 1, seed, kwargs)
+        begins += more
+        reached += at
     else:
         begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
-    # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
-    # discarded with the reason.
-    reached: list[Mechanism | str] = [mechanism]
-    reached += [assembled(mechanism, b) for b in begins[1:]]
+        # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
+        # discarded with the reason.
+        reached += [assembled(mechanism, b) for b in begins[1:]]
     usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
     tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
     if executor is None:
@@ -166,7 +250,8 @@ def multi_start(
             "every start failed: " + "; ".join(f"start {k + 1}: {o.message}" for k, o in enumerate(outcomes))
         )
     best = min(found, key=lambda o: o.objective)
-    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins))
+    passed = [Start(b, None, math.nan, 0, False, f"draw passed over: {why}", 0.0) for b, why in rejected]
+    return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins), drawn=drawn, rejected=passed)
 
 
-__all__ = ["assembled", "draws", "multi_start"]
+__all__ = ["SCREEN", "assembled", "draws", "multi_start", "runs_through", "screened"]

@@ -17,9 +17,10 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import building, deckio, design, design_rules
+from mechfem import building, deckio, design, design_rules, frame_angle
 from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
+from mechfem.frame_angle import FrameAngle
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
 from mechfem.motion import Motion
 from mechfem.storage import Storage
@@ -49,7 +50,16 @@ class Q:
     wrt2: InputKey = None
 
 
-Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q"
+@dataclass(frozen=True)
+class Transmission:
+    """The transmission angle between the elements ``first`` and ``second`` at every position (the deck's BUFTRA:
+    the angle between their first sides, in [0, pi]), e.g. for a ``Bound``."""
+
+    first: str
+    second: str
+
+
+Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q | Transmission"
 
 
 @dataclass
@@ -117,6 +127,11 @@ class Optimum:
     """The fraction of the starts that could be optimised (assembled, and feasible through the motion)."""
     timing: list[float] | None = None
     """With free timing, the input's value at each target point of the optimised design."""
+    drawn: int = 0
+    """With ``starts`` a number: the draws of the start box looked at to find the drawn starts (those that assemble
+    and can do the problem's motion; :mod:`mechfem.multistart`)."""
+    rejected: list[Start] = field(default_factory=list, repr=False)
+    """The draws passed over, each with its reason (``message``)."""
     reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
     """Those infeasible designs by kind of reason (see :attr:`mechfem.design.Solution.reasons`): how many, and the
     first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
@@ -175,6 +190,8 @@ class _Deck:
         self.keys: dict[tuple[str, tuple[object, ...]], int] = {}
 
     def buffer(self, q: Quantity) -> int:
+        if isinstance(q, Transmission):
+            return self._numbered(("BUFTRA", (q.first, q.second)), "BUFTRA", self.mech[q.first], self.mech[q.second])
         spec = q if isinstance(q, Q) else Q(q)
         obj = _lookup(self.mech, spec.name)
         coord = isinstance(obj, Coordinate)
@@ -188,10 +205,12 @@ class _Deck:
             inputs = [r for r in self.mech.rows if r.kind == "input"]
             j = input_dof(spec.wrt, inputs)
             dofs = (j,) if spec.order == 1 else (j, input_dof(spec.wrt2 if spec.wrt2 is not None else j, inputs))
-        key = (keyword, (obj, *dofs))
+        return self._numbered((keyword, (obj, *dofs)), keyword, obj, *dofs)
+
+    def _numbered(self, key: tuple[str, tuple[object, ...]], keyword: str, *args: Any) -> int:
         if key not in self.keys:
             number = len(self.keys) + 1
-            self.storage.buffer(number, keyword, obj, *dofs)
+            self.storage.buffer(number, keyword, *args)
             self.keys[key] = number
         return self.keys[key]
 
@@ -308,6 +327,7 @@ def optimize(
     timing: FreeTiming | None = None,
     box: Mapping[str, tuple[float, float]] | None = None,
     full_rotation: bool = False,
+    frame: FrameAngle | None = None,
 ) -> Optimum:
     """Changes the values ``vary`` names (prescribed values: lengths, u, v, fixed angles, gear ratios, an input's
     start; fixed co-ordinates: frame pivots ``"A0.x"``) within their ``(lo, hi)`` until the targets are met as
@@ -361,6 +381,7 @@ def optimize(
             "atol": atol,
             "timing": timing,
             "full_rotation": full_rotation,
+            "frame": frame,
         }
         if not isinstance(starts, int) and not starts:
             raise ValueError("starts is an empty list: give at least one start design, or a number of starts")
@@ -412,6 +433,8 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
+    free_input = None if timing is None else timing.input
+    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
@@ -428,14 +451,24 @@ def optimize(
             raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
         if not a <= start <= b:
             raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
+    core_vars, names = [(k, n) for k, n, _ in variables], list(vary)
+    if frame is not None:
+        span = frame.span or (-math.pi, math.pi)
+        lo, hi = np.append(lo, float(span[0])), np.append(hi, float(span[1]))
+        periodic, core_vars, names = (
+            [*periodic, frame.span is None],
+            [*core_vars, frame_angle.SENTINEL],
+            [*names, frame.name],
+        )
     if timed is not None:
         lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
-        periodic = (periodic if any(periodic) else [False] * len(vary)) + timed.periodic
+        periodic = (periodic if any(periodic) else [False] * len(names)) + timed.periodic
     with deckio.tables_dir(built.tables) as base:
+        model = _model(built.builder, base, timed, full_rotation, mechanism, deck.storage)
         problem = design.Problem(
-            model=_model(built.builder, base, timed, full_rotation, mechanism, deck.storage),
-            variables=[(k, n) for k, n, _ in variables] + ([] if timed is None else [(2, k) for k in range(positions)]),
-            names=list(vary) + ([] if timed is None else timed.names),
+            model=model if turn is None else frame_angle.turned(model, turn),
+            variables=core_vars + ([] if timed is None else [(2, k) for k in range(positions)]),
+            names=names + ([] if timed is None else timed.names),
             lo=lo,
             hi=hi,
             terms=terms,
@@ -451,6 +484,11 @@ def optimize(
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)
     thetas = None
+    turned_by = None
+    if frame is not None:
+        n = len(vary)
+        turned_by = (float(sol.start[n]), float(sol.x[n]))
+        sol.x, sol.start = np.delete(sol.x, n), np.delete(sol.start, n)
     if timed is not None and timing is not None:
         n = len(vary)
         thetas = [float(t) for t in timed_inputs(timed, sol.x[n:])]
@@ -459,11 +497,17 @@ def optimize(
         motion = None
     for name, x in zip(vary, sol.x, strict=True):
         optimised.set(name, float(x))
+    if turn is not None and turned_by is not None and frame is not None:
+        frame_angle.apply(optimised, turn, turned_by[1])
     _carry_position_one(optimised, built.numbering, sol.position_one)
+    start_values = dict(zip(vary, map(float, sol.start), strict=True))
+    final_values = dict(zip(vary, map(float, sol.x), strict=True))
+    if turned_by is not None and frame is not None:
+        start_values[frame.name], final_values[frame.name] = turned_by
     return Optimum(
         mechanism=optimised,
-        start=dict(zip(vary, map(float, sol.start), strict=True)),
-        values=dict(zip(vary, map(float, sol.x), strict=True)),
+        start=start_values,
+        values=final_values,
         objective=sol.objective,
         start_objective=sol.start_objective,
         history=sol.history,
@@ -478,8 +522,8 @@ def optimize(
         timing=thetas,
         starts=[
             Start(
-                dict(zip(vary, map(float, sol.start), strict=True)),
-                dict(zip(vary, map(float, sol.x), strict=True)),
+                start_values,
+                final_values,
                 sol.objective,
                 sol.runs,
                 sol.success,

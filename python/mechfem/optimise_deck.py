@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import mechfem._core as _core
-from mechfem import design, design_rules
+from mechfem import deck_synthesis, design, design_rules
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import Model
@@ -129,7 +129,10 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
     coords = coordinate_units(model)
     out = []
     for (kind, number), fallback in zip(p.variables, p.names, strict=True):
-        if kind == 1 and 0 < number <= len(model.prescribed):
+        if kind not in (0, 1):
+            # A frame angle or the input at a free-timed point: named by the problem.
+            out.append((fallback, "rad"))
+        elif kind == 1 and 0 < number <= len(model.prescribed):
             row = model.prescribed[number - 1]
             out.append((row.name or fallback, shown(row_unit(model, row, coords), units)))
         elif 0 < number <= len(model.coordinates):
@@ -176,6 +179,8 @@ class Outcome:
     """``(term, input, buffer value)`` of every extremum at the final design."""
     misses: list[tuple[float, int | None]]
     """How far each target (in deck order) is from its value at the final design (:func:`design.misses`)."""
+    synthesis: deck_synthesis.Synthesis | None = None
+    """FREETIME, FULLROT and VARYFRAME: how the final design is written."""
 
     def unreached(self) -> tuple[float, int] | None:
         """The largest difference of a target from its value and that target's line, when some target is missed
@@ -211,7 +216,11 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
     """Solves the deck's OPTIMISE block from its own design; raises :class:`OptimisationError` when it cannot
     start."""
     text = _core.read_deck_text(deck)
-    p = problem(deck, text, opt)
+    try:
+        syn = deck_synthesis.synthesis(deck, opt, problem(deck, text, opt))
+    except deck_synthesis.SynthesisError as e:
+        raise OptimisationError(str(e)) from None
+    p = syn.problem
     try:
         solution = design.solve(p, report=report)
     except design.Infeasible as e:
@@ -235,7 +244,7 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
             f"error: {deck}: the OPTIMISE block (line {opt['line']}) cannot be evaluated: {e}."
         ) from None
     extrema, missed = at_final_design(p, solution)
-    return Outcome(deck, opt, p, solution, extrema, missed)
+    return Outcome(deck, opt, p, solution, extrema, missed, syn)
 
 
 def names_and_lines(opt: OptimiseDict) -> str:
@@ -258,7 +267,10 @@ def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
     """Writes the final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
     variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
     s = outcome.solution
-    return write_design(outcome.deck, outcome.problem.variables, s.x, s.position_one, outdir)
+    variables, x = outcome.problem.variables, s.x
+    if outcome.synthesis is not None:
+        variables, x = outcome.synthesis.written(s.x)
+    return write_design(outcome.deck, variables, x, s.position_one, outdir)
 
 
 def write_design(
@@ -369,7 +381,7 @@ def interrupted_lines(
     if written is None or not history:
         return [*out, "", "  interrupted by Ctrl-C before the first iteration: no design was written", ""]
     out += ["", "  design reached at the last iteration:"]
-    for v, x in zip(opt["vary"], history[-1].x, strict=True):
+    for v, x in zip(opt["vary"], history[-1].x, strict=False):
         out.append(f"  {variable_name(v['kind'], v['number']):>10} {x:>18.12g}")
     return [*out, "", f"  interrupted by Ctrl-C: that design is written as {written.name} (mode KIN ANA)", ""]
 
@@ -380,7 +392,7 @@ def write_interrupted(deck: Path, opt: OptimiseDict, history: list[design.Iterat
     written: Path | None = None
     if history:
         variables = [(int(v["kind"]), int(v["number"])) for v in opt["vary"]]
-        written = write_design(deck, variables, history[-1].x, [], outdir)
+        written = write_design(deck, variables, history[-1].x[: len(variables)], [], outdir)
     path = outdir / f"{deck.stem}.prt"
     with atomic_text(path) as f:
         f.write("\n".join(interrupted_lines(deck, opt, history, written)) + "\n")

@@ -137,6 +137,9 @@ keywords! {
     OptSteps "OPTSTEPS" Optimise 1 Some(1), "n";
     OptTol "OPTTOL" Optimise 1 Some(1), "tol";
     OptFTol "OPTFTOL" Optimise 2 Some(2), "rtol atol";
+    FreeTime "FREETIME" Optimise 1 Some(2), "r [ORDERED]";
+    FullRot "FULLROT" Optimise 1 Some(1), "r";
+    VaryFrame "VARYFRAME" Optimise 3 Some(3), "i lo hi";
     BufInp "BUFINP" Storage 2 Some(2), "j b";
     BufTime "BUFTIME" Storage 1 Some(1), "b";
     BufX0 "BUFX0" Storage 2 Some(2), "i b";

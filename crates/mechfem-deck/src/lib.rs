@@ -129,7 +129,9 @@ pub use files::{read_deck, MAX_DECK_BYTES};
 pub use keywords::{Block, Keyword};
 pub use mechfem_core::{Names, Units};
 pub use numbers::{Change, ChangeKindError, Numbers};
-pub use optimise::{Bound, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary};
+pub use optimise::{
+    Bound, FrameAngle, FreeTime, FullRotation, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary,
+};
 pub use parse::{parse_file, parse_str};
 pub use statements::names::{MAX_LABEL, MAX_NAME};
 pub use statements::{MAX_ITER, MAX_STEPS};

@@ -28,6 +28,12 @@ pub struct Optimise {
     /// Stop when an iteration changes the objective f by less than
     /// `atol + rtol |f|` (OPTFTOL rtol atol), if given: `(rtol, atol)`.
     pub ftol: Option<(f64, f64)>,
+    /// Free timing (FREETIME), if given.
+    pub free_time: Option<FreeTime>,
+    /// The input that must turn fully (FULLROT), if given.
+    pub full_rotation: Option<FullRotation>,
+    /// The frame angle (VARYFRAME), if given.
+    pub frame: Option<FrameAngle>,
     /// Line of the OPTIMISE header.
     pub line: usize,
 }
@@ -161,6 +167,44 @@ pub struct Objective {
     pub reduce: Reduce,
     /// The buffer.
     pub buffer: u32,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// `FREETIME r [ORDERED]`: the input of prescribed row r takes a value of
+/// its own at every position of the motion, a design variable that starts
+/// at the motion's value there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeTime {
+    /// The input's prescribed row, 0-based.
+    pub row: usize,
+    /// Each value at or after the one before (`ORDERED`).
+    pub ordered: bool,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// `FULLROT r`: a design is feasible only if the input of row r turns
+/// through a whole turn from its start without a limit position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FullRotation {
+    /// The input's prescribed row, 0-based.
+    pub row: usize,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// `VARYFRAME i lo hi`: the frame (every fixed point, fixed angle and
+/// angle input) turned about the fixed point whose x is co-ordinate i by a
+/// design variable within [lo, hi], 0 being the deck's frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameAngle {
+    /// The pivot's x co-ordinate, 0-based (its y is the next one).
+    pub x: usize,
+    /// Lower end of the range.
+    pub lo: f64,
+    /// Upper end of the range.
+    pub hi: f64,
     /// Line of the keyword.
     pub line: usize,
 }

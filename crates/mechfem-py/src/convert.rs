@@ -462,6 +462,38 @@ pub fn optimise<'py>(py: Python<'py>, o: &Optimise) -> PyResult<Bound<'py, PyDic
     d.set_item("steps", o.steps)?;
     d.set_item("tol", o.tol)?;
     d.set_item("ftol", o.ftol)?;
+    let free_time =
+        o.free_time.map(|f| synthesis_dict(py, &[("row", (f.row + 1) as f64)], f.ordered, f.line)).transpose()?;
+    d.set_item("free_time", free_time)?;
+    let full =
+        o.full_rotation.map(|f| synthesis_dict(py, &[("row", (f.row + 1) as f64)], false, f.line)).transpose()?;
+    d.set_item("full_rotation", full)?;
+    let frame = o
+        .frame
+        .map(|f| synthesis_dict(py, &[("coordinate", (f.x + 1) as f64), ("lo", f.lo), ("hi", f.hi)], false, f.line))
+        .transpose()?;
+    d.set_item("frame", frame)?;
     d.set_item("line", o.line)?;
+    Ok(d)
+}
+
+/// A synthesis statement of the OPTIMISE block as a dict: its numbers (a
+/// row or co-ordinate number as an int), `ordered` and `line`.
+fn synthesis_dict<'py>(
+    py: Python<'py>,
+    items: &[(&str, f64)],
+    ordered: bool,
+    line: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for &(key, value) in items {
+        if key == "row" || key == "coordinate" {
+            d.set_item(key, value as usize)?;
+        } else {
+            d.set_item(key, value)?;
+        }
+    }
+    d.set_item("ordered", ordered)?;
+    d.set_item("line", line)?;
     Ok(d)
 }

@@ -28,6 +28,42 @@ pub struct Optimise {
     /// `OPTFTOL rtol atol`, if given (both >= 0, not both 0, rtol < 1),
     /// with the keyword (for the message when OPTTOL is given too).
     pub ftol: Option<(Spanned<Keyword>, f64, f64)>,
+    /// `FREETIME r [ORDERED]`, if given.
+    pub free_time: Option<FreeTimeDef>,
+    /// `FULLROT r`, if given: the keyword and the row.
+    pub full_rotation: Option<(Spanned<Keyword>, Spanned<i64>)>,
+    /// `VARYFRAME i lo hi`, if given.
+    pub frame: Option<FrameDef>,
+}
+
+/// `FREETIME r [ORDERED]`: the input of row r takes a value of its own, a
+/// design variable, at every position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeTimeDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// The keyword.
+    pub keyword: Spanned<Keyword>,
+    /// The input's row r.
+    pub row: Spanned<i64>,
+    /// Whether `ORDERED` follows: every value at or after the one before.
+    pub ordered: bool,
+}
+
+/// `VARYFRAME i lo hi`: the frame turned about the fixed point whose x is
+/// co-ordinate i, by an angle within [lo, hi].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrameDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// The keyword.
+    pub keyword: Spanned<Keyword>,
+    /// The pivot's x co-ordinate i.
+    pub index: Spanned<i64>,
+    /// Lower end of the angle's range (at most 0).
+    pub lo: Spanned<f64>,
+    /// Upper end (at least 0).
+    pub hi: Spanned<f64>,
 }
 
 /// `VARY r lo hi` or `VARYX i lo hi`.

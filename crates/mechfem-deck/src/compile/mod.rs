@@ -13,6 +13,7 @@ mod refs;
 mod rows;
 mod scale;
 mod storage;
+mod synthesis;
 mod table;
 mod tables;
 mod tolerance;

@@ -83,6 +83,7 @@ pub(crate) fn optimise(
                 ));
         }
     }
+    let (free_time, full_rotation, frame) = super::synthesis::statements(deck, model, sizes, motion, block, &vary)?;
     let positions = motion.steps + 1;
     let targets = block
         .targets
@@ -121,6 +122,9 @@ pub(crate) fn optimise(
         steps: block.steps.map_or(Optimise::DEFAULT_STEPS, |n| usize::try_from(n.value).unwrap_or(usize::MAX)),
         tol: block.tol.map(|t| t.value),
         ftol: block.ftol.map(|(_, rtol, atol)| (rtol, atol)),
+        free_time,
+        full_rotation,
+        frame,
         line: block.line,
     }))
 }

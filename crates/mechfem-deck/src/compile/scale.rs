@@ -135,6 +135,11 @@ pub(crate) fn to_core(deck: &Deck, units: Units, mech: &Mechanism) -> Deck {
             scale(u, dim, &mut v.lo);
             scale(u, dim, &mut v.hi);
         }
+        if let Some(f) = &mut o.frame {
+            // VARYFRAME's range is an angle, in the deck's angle unit.
+            scale(u, Dim::ANGLE, &mut f.lo);
+            scale(u, Dim::ANGLE, &mut f.hi);
+        }
     }
     if let Some(t) = &mut d.tolerance {
         for def in &mut t.dims {

@@ -4,7 +4,7 @@
 //! [`crate::compile`].
 
 use crate::args::Source;
-use crate::ast::{BoundDef, ObjectiveDef, TargetDef, TargetDefKind, VaryDef};
+use crate::ast::{BoundDef, FrameDef, FreeTimeDef, ObjectiveDef, TargetDef, TargetDefKind, VaryDef};
 use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::{closest, Keyword};
 use crate::lexer::{Line, Word};
@@ -104,6 +104,55 @@ impl Parser<'_> {
                 }
                 self.once(kw)?;
                 self.optimise.steps = Some(n);
+            }
+            Keyword::FreeTime => {
+                let row = src.whole(arg(0)?, "the input's row number")?;
+                let ordered = match args.get(1) {
+                    None => false,
+                    Some(w) if w.text.eq_ignore_ascii_case("ORDERED") => true,
+                    Some(w) => {
+                        return Err(src
+                            .error(
+                                DiagnosticKind::BadValue,
+                                w.span,
+                                format!("FREETIME takes the word ORDERED after the row, not `{}`", w.text),
+                            )
+                            .with_hint(
+                                "`FREETIME r` makes the input's value at every position a design variable; \
+                                 `FREETIME r ORDERED` keeps each value at or after the one before",
+                            ));
+                    }
+                };
+                self.once(kw)?;
+                self.optimise.free_time = Some(FreeTimeDef { line: line_no, keyword: kw, row, ordered });
+            }
+            Keyword::FullRot => {
+                let row = src.whole(arg(0)?, "the input's row number")?;
+                self.once(kw)?;
+                self.optimise.full_rotation = Some((kw, row));
+            }
+            Keyword::VaryFrame => {
+                let index = src.whole(arg(0)?, "the pivot's x co-ordinate number")?;
+                let (lo, hi) = range(src, kw.value, arg(1)?, arg(2)?)?;
+                if lo.value > 0.0 || hi.value < 0.0 {
+                    return Err(src
+                        .error(
+                            DiagnosticKind::BadValue,
+                            lo.span.to(hi.span),
+                            format!(
+                                "VARYFRAME's range [{}, {}] does not hold 0, the frame as the deck gives it",
+                                real(lo.value),
+                                real(hi.value)
+                            ),
+                        )
+                        .with_hint(
+                            "the angle turns the deck's frame, so the design starts at 0: give a range from at most 0 \
+                             to at least 0, e.g. `VARYFRAME 1 -3.141592653589793 3.141592653589793` (a whole turn: \
+                             the angle wraps)",
+                        ));
+                }
+                self.once(kw)?;
+                self.optimise.frame = Some(FrameDef { line: line_no, keyword: kw, index, lo, hi });
             }
             Keyword::OptFTol => {
                 let rtol = src.real(arg(0)?, "the relative tolerance rtol")?;
