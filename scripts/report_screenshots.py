@@ -93,9 +93,9 @@ def find_chromium() -> str:
 def write_report(deck: Path, outdir: Path, optimise: bool) -> Path:
     """Writes the report of ``deck`` into ``outdir``: ``mechfem report`` (the report alone), or for a KIN OPT deck
     (``optimise``) ``mechfem run --report``, which optimises first; returns the report's path."""
-    command = (
-        ["run", str(deck), "-o", str(outdir), "--report"] if optimise else ["report", str(deck), "-o", str(outdir)]
-    )
+    # Relative to the repository, so that the page names the deck as the docs do.
+    name = str(deck.relative_to(ROOT))
+    command = ["run", name, "-o", str(outdir), "--report"] if optimise else ["report", name, "-o", str(outdir)]
     proc = subprocess.run(
         [sys.executable, "-m", "mechfem.cli", *command],
         cwd=ROOT,

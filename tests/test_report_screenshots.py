@@ -10,7 +10,6 @@ from pathlib import Path
 from types import ModuleType
 
 import numpy as np
-import pytest
 from PIL import Image
 
 import mechfem
