@@ -214,7 +214,8 @@ const MechfemCharts = (function () {
         ys.push(y.map((v, f) => (v === null || fy[f] === null ? null : v + fy[f] * s)));
       }
     }
-    if (this.spec.mechanism) { const b = this.D.scene.bounds; xs.push([b[0], b[1]]); ys.push([b[2], b[3]]); }
+    // The pin forces' chart shows the whole mechanism; a hodograph's only the path, the mechanism faint behind.
+    if (this.spec.force_scale) { const b = this.D.scene.bounds; xs.push([b[0], b[1]]); ys.push([b[2], b[3]]); }
     if (this.spec.origin) { xs.push([0]); ys.push([0]); }
     const [x0, x1] = extent(xs), [y0, y1] = extent(ys);
     const px = 0.05 * (x1 - x0), py = 0.05 * (y1 - y0);
