@@ -150,3 +150,19 @@ def test_a_kinematic_report_has_no_dynamics_cards() -> None:
     data = report_data(run(ROOT / "examples" / "supply" / "supply.mec"))
     titles = " ".join(c["title"] for c in data["cards"])
     assert "pin forces" not in titles and "energy balance" not in titles and "shaking" not in titles
+
+
+def test_a_named_models_balance_closes_with_a_motor_on_its_driven_input() -> None:
+    from test_dynamics_api import pendulum, swing
+
+    m = pendulum()
+    m.motor(m["theta"], 5.0, 8.0)
+    r = m.run(swing())
+    power = rd.input_power(r)
+    assert power is not None
+    np.testing.assert_allclose(power[:, 0], r.power(), rtol=1e-9, atol=1e-9)
+    bal = rd.energy_balance(r)
+    assert bal is not None
+    # The motor (5 N m at rest, none at 8 rad/s) does work beside the drive: without it the balance would not close.
+    assert np.max(np.abs(bal.loads_work)) > 0.1 * bal.scale()
+    assert bal.relative_residual() < 1e-4

@@ -42,11 +42,17 @@ ARROW_SHARE = 0.25
 
 def input_power(result: RunResult) -> FloatArray | None:
     """``drive_j x qdot_j`` of every input (positions x inputs): the power of its drive, or of the motor that moves
-    it in DYN SIM; None when the run did not record the inputs' speeds (a named model's run)."""
+    it in DYN SIM; None without the inputs' speeds (a deck's run has them in its ``vin`` block, a named model's run
+    as the velocities of its inputs)."""
     dyn = result.dynamic
-    if dyn is None or "vin" not in result._layout:
+    if dyn is None:
         return None
-    speed = np.asarray(result._block("vin"), dtype=np.float64)
+    if "vin" in result._layout:
+        speed = np.asarray(result._block("vin"), dtype=np.float64)
+    elif result.named and result.numbering.inputs:
+        speed = np.column_stack([result.velocity(phi) for phi in result.numbering.inputs])
+    else:
+        return None
     return np.asarray(dyn.drive * speed, dtype=np.float64)
 
 
@@ -99,7 +105,7 @@ def _work(time: FloatArray, power: FloatArray) -> FloatArray:
 
 
 def energy_balance(result: RunResult) -> EnergyBalance | None:
-    """The energy balance of a DYN deck's run (None without the loads' power in the run: a named model's run)."""
+    """The energy balance of a run with masses or loads (None without the loads' power or the inputs' speeds)."""
     dyn = result.dynamic
     inputs = input_power(result)
     if dyn is None or inputs is None or "loadpow" not in result._layout:
