@@ -504,12 +504,14 @@ class Run:
         """Block name -> (first column, shape at one position); the blocks cover the columns once, in order.
         A deck file's run (``run_deck``) records for B buffers, H co-ordinates in ``hodograph_coords`` and D inputs:
         ``buffers`` (B, in the order of ``buffer_numbers``), ``hodograph`` (H: d x_i / d input 1, NaN where D^c is
-        singular); for a DYN deck ``inputs``, ``drive`` (D), ``ekin``, ``epot``, ``power`` (one value each); then
-        ``time`` and ``det``. A run of deck text or of a kept ``Model`` records the core's full layout, for N
+        singular); for a DYN deck ``inputs``, ``drive`` (D), ``ekin``, ``epot``, ``power``, ``loadpow`` (the loads'
+        power; one value each), ``vin`` (D: the inputs' speeds); then ``time`` and ``det``. A run of deck text or
+        of a kept ``Model`` records the core's full layout, for N
         co-ordinates, D inputs and R rows (prescribed, then dependent): ``inputs`` (D), ``kx1`` (N, D), ``kx2`` (N,
         D, D), ``vx``, ``ax`` (N), ``e0`` (R), ``ke1`` (R, D), ``ke2`` (R, D, D), ``ve``, ``ae`` (R); when
         ``dynamic``, ``sigma`` (prescribed rows), ``drive`` (D), ``reaction`` (N; NaN for a moving co-ordinate),
-        ``ekin``, ``epot``, ``power`` (one value each), ``mass`` (D, D); then ``time`` and ``det``. Every run of one
+        ``ekin``, ``epot``, ``power`` (one value each), ``mass`` (D, D), ..., ``loadpow`` (one value); then ``time``
+        and ``det``. Every run of one
         deck shares this dict and the lists ``buffer_numbers`` and ``hodograph_coords``."""
     @property
     def coords(self) -> _F64:

@@ -86,7 +86,10 @@ def report_data(result: RunResult, optimisation: dict[str, Any] | None = None) -
     table = [cols.buffer(result, labels[b.number]) for b in ordered if b.number in labels]
     xkey = main_axis(result, labels, cols)
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
-    cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols)
+    scene = _scene(result, drawing, frames)
+    x0, x1, y0, y1 = (v if v is not None else 0.0 for v in scene["bounds"])
+    size = float(np.hypot(x1 - x0, y1 - y0))
+    cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols, labels, size)
     named = model_card(result, cols) if not result.storage.buffers else None
     if named is not None:
         xkey, card = named
@@ -119,7 +122,7 @@ def report_data(result: RunResult, optimisation: dict[str, Any] | None = None) -
             role: {"edge": s.edge, "width": s.width, "fill": s.fill, "dash": s.dash, "layer": s.layer}
             for role, s in STYLES.items()
         },
-        "scene": _scene(result, drawing, frames),
+        "scene": scene,
         "drawing_notes": drawing.notes,
         "designer": designer_lines(result),
         "paths": paths(result, cols),

@@ -133,7 +133,7 @@ def main_axis(result: RunResult, labels: dict[int, Label], cols: Columns) -> str
     return cols.add("pos", "position", "", "position", np.arange(1, result.positions + 1, dtype=np.float64))
 
 
-def _function_charts(xkey: str, ys: list[str], cols: Columns) -> list[dict[str, Any]]:
+def function_charts(xkey: str, ys: list[str], cols: Columns) -> list[dict[str, Any]]:
     """The columns ``ys`` against ``xkey``, one chart per kind and unit (in order of first appearance)."""
     groups: dict[tuple[str, str], list[str]] = {}
     for y in ys:
@@ -232,7 +232,7 @@ def picture_cards(result: RunResult, labels: dict[int, Label], cols: Columns) ->
         for xb in dict.fromkeys(p.a for p in funcs):
             xkey = cols.buffer(result, labels[xb])
             ys = [cols.buffer(result, labels[p.b]) for p in funcs if p.a == xb]
-            charts += _function_charts(xkey, list(dict.fromkeys(ys)), cols)
+            charts += function_charts(xkey, list(dict.fromkeys(ys)), cols)
         hodos = [_hodograph(result, p.a, p.b, cols) for p in pic.plots if p.keyword == "PLOTHODO"]
         curves: dict[tuple[str, str], list[dict[str, str]]] = {}
         for p in pic.plots:
@@ -279,7 +279,7 @@ def default_card(result: RunResult, labels: dict[int, Label], cols: Columns, xke
     return {
         "title": f"recorded quantities against {cols.table[xkey]['name']}",
         "picture": None,
-        "charts": _function_charts(xkey, ys, cols),
+        "charts": function_charts(xkey, ys, cols),
     }
 
 
@@ -300,7 +300,7 @@ def model_card(result: RunResult, cols: Columns) -> tuple[str, dict[str, Any]] |
         ys.append(cols.add(f"n:{r.name}'", f"d{r.name}/d{phi.name}", per, "first order", result.value(r, 1, phi)))
     if not ys:
         return None
-    return x, {"title": f"outputs against {phi.name}", "picture": None, "charts": _function_charts(x, ys, cols)}
+    return x, {"title": f"outputs against {phi.name}", "picture": None, "charts": function_charts(x, ys, cols)}
 
 
 def limit_markers(result: RunResult, xkey: str) -> list[dict[str, Any]]:
@@ -350,12 +350,20 @@ def _full(result: RunResult, key: str) -> np.ndarray:
     return result.buffers[int(key[1:])]
 
 
-def dynamics_cards(result: RunResult, cols: Columns) -> list[dict[str, Any]]:
-    """A DYN deck's report shows the drive forces (unless its own pictures chart them), the energies and the drive
-    power, against input 1 for one input of DYN ANA and against time for several inputs or a simulation."""
+def dynamics_cards(
+    result: RunResult, cols: Columns, labels: dict[int, Label] | None = None, size: float = 0.0
+) -> list[dict[str, Any]]:
+    """A DYN deck's report shows the drive forces (unless its own pictures chart them), the energies, the power of
+    each input's drive or motor, the energy balance, the pin forces at the slider's position (``size``: the
+    diagonal of the mechanism's bounding box, for the arrows' scale) and the shaking force and moment: against input
+    1 for one input of DYN ANA and against time for several inputs or a simulation (:mod:`mechfem.report_dynamics`).
+    """
+    from mechfem import report_dynamics as rd
+
     dyn = result.dynamic
     if dyn is None or dyn.drive.shape[1] == 0:
         return []
+    labels = labels if labels is not None else all_labels(result)
     nd = dyn.drive.shape[1]
     model = result.model
     simulated = result.simulation is not None
@@ -373,17 +381,33 @@ def dynamics_cards(result: RunResult, cols: Columns) -> list[dict[str, Any]]:
         cols.add("epot", "V", "energy", "energy", dyn.potential, text="potential energy V"),
         cols.add("etot", "T+V", "energy", "energy", dyn.kinetic + dyn.potential, text="T + V"),
     ]
-    power = cols.add("power", "drive power", "power", "power", dyn.power)
+    per_input = rd.input_power(result)
+    if per_input is None:
+        powers = [cols.add("power", "drive power", "power", "power", dyn.power)]
+    else:
+        # drive x speed per input: in DYN SIM the drive of an input a MOTOR moves is the motor's torque.
+        powers = [
+            cols.add(f"pin{j + 1}", f"power on {input_name(result, j + 1)}", "power", "power", per_input[:, j])
+            for j in range(nd)
+        ]
     # A simulation is a motion in time: its charts run against time, whatever its inputs do.
     against = "time" if nd > 1 or simulated else _input_words(result, 1)
+    motor = any(ld.get("kind") == "MOTOR" for ld in (model.dynamics.loads if model.dynamics else []))
+    torque = "drive or motor force or torque" if motor else "drive force or torque"
     cards = [
         (f"energies against {against}", energies),
-        (f"drive power against {against}", [power]),
+        (f"power of the {'drives and motors' if motor else 'drives'} against {against}", powers),
     ]
     # The drive torque a picture of the deck charts already is not charted a second time.
     if "BUFDRV" not in _charted_keywords(result):
-        cards.insert(0, (f"drive force or torque against {against}", drives))
-    return [{"title": title, "picture": None, "charts": _function_charts(xkey, keys, cols)} for title, keys in cards]
+        cards.insert(0, (f"{torque} against {against}", drives))
+    out = [{"title": title, "picture": None, "charts": function_charts(xkey, keys, cols)} for title, keys in cards]
+    extra = [
+        rd.energy_card(result, cols, xkey, against),
+        rd.pin_force_card(result, labels, cols, size),
+        rd.shaking_card(result, labels, cols, xkey, against),
+    ]
+    return out + [card for card in extra if card is not None]
 
 
 def _charted_keywords(result: RunResult) -> set[str]:

@@ -142,6 +142,7 @@ impl Names {
             Quantity::Ekin => "Ekin".to_string(),
             Quantity::Epot => "Epot".to_string(),
             Quantity::Power => "power".to_string(),
+            Quantity::LoadPower => "load power".to_string(),
             Quantity::Mred(j, m) => {
                 let named = |j: usize| {
                     (j < mech.n_dof()).then(|| mech.input_row(j)).and_then(|r| get(&self.prescribed, r)).is_some()

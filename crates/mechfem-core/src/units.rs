@@ -447,7 +447,7 @@ impl ModelDims {
             Quantity::Drive(j) => input(j).generalised_force(),
             Quantity::Reaction(i) => self.coord(i).generalised_force(),
             Quantity::Ekin | Quantity::Epot => Dim::ENERGY,
-            Quantity::Power => Dim::ENERGY.over(Dim::TIME),
+            Quantity::Power | Quantity::LoadPower => Dim::ENERGY.over(Dim::TIME),
             Quantity::Mred(j, m) => {
                 // Mass times one length for each input that is not a length.
                 let lengths = 2 - input(j).0[0] - input(m).0[0];

@@ -150,7 +150,7 @@ fn a_decks_selection_names_its_blocks_as_the_full_layout_does() {
         let names: Vec<&str> = s.blocks().iter().map(|b| b.name).collect();
         let mut expected = vec!["buffers", "hodograph"];
         if dynamic {
-            expected.extend(["inputs", "drive", "ekin", "epot", "power"]);
+            expected.extend(["inputs", "drive", "ekin", "epot", "power", "loadpow", "vin"]);
         }
         expected.extend(["time", "det"]);
         assert_eq!(names, expected, "{deck}");
@@ -159,10 +159,17 @@ fn a_decks_selection_names_its_blocks_as_the_full_layout_does() {
         for (k, &coord) in hodograph.iter().enumerate() {
             assert_eq!(s.quantities()[at + k], Quantity::Kx1 { coord, j: 0 }, "{deck}");
         }
-        // Every block but the deck's own has the shape and quantities of the full layout's block of that name.
+        // Every block but the deck's own has the shape and quantities of the full layout's block of that name;
+        // the inputs' speeds (`vin`) are in the full layout's `ve`.
         let full = Layout::full(mech, dynamic);
         let quantities = full.quantities();
-        for b in s.blocks().iter().filter(|b| !["buffers", "hodograph"].contains(&b.name)) {
+        if let Some(vin) = s.block("vin") {
+            for q in &s.quantities()[vin.columns()] {
+                let column = full.column(*q).unwrap_or_else(|| panic!("{deck}: the full layout has {q:?}"));
+                assert!(full.block("ve").unwrap().columns().contains(&column), "{deck}: {q:?}");
+            }
+        }
+        for b in s.blocks().iter().filter(|b| !["buffers", "hodograph", "vin"].contains(&b.name)) {
             let f = full.block(b.name).unwrap_or_else(|| panic!("{deck}: the full layout has {}", b.name));
             assert_eq!(b.shape, f.shape, "{deck}: {}", b.name);
             assert_eq!(s.quantities()[b.columns()], quantities[f.columns()], "{deck}: {}", b.name);

@@ -249,7 +249,8 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<checked::Check> {
 /// column, shape at one position): `buffers` (in the order of
 /// `buffer_numbers`), `hodograph` (d x_i / d input 1 of the co-ordinates
 /// `hodograph_coords`, 1-based, that PLOTHODO lines name), for a DYN deck
-/// `inputs`, `drive`, `ekin`, `epot` and `power`, then `time` and `det`.
+/// `inputs`, `drive`, `ekin`, `epot`, `power`, `loadpow` and `vin`, then
+/// `time` and `det`.
 /// `coords` holds every co-ordinate per position. Every run of one deck
 /// file shares its `layout`, `buffer_numbers` and `hodograph_coords`
 /// objects ([`EchoSlot::shape`]).

@@ -264,6 +264,8 @@ fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
         Quantity::Ekin => ("BUFEKIN", vec![]),
         Quantity::Epot => ("BUFEPOT", vec![]),
         Quantity::Power => ("BUFPOW", vec![]),
+        // No deck buffer records it: a deck's run has it in its `loadpow` block.
+        Quantity::LoadPower => ("", vec![]),
         Quantity::Mred(j, m) => ("BUFMRED", vec![n(j), n(m)]),
         Quantity::Transmission(a, b) => ("BUFTRA", vec![n(a), n(b)]),
         Quantity::Pin { element, x, y, .. } => ("BUFPIN", vec![n(element), n(x), n(y)]),

@@ -63,6 +63,12 @@ const MechfemCharts = (function () {
     ctx.lineTo(x1 - h * Math.cos(a + 0.38), y1 - h * Math.sin(a + 0.38));
     ctx.closePath(); ctx.fill();
   }
+  // The vector of a polar plot: from the origin to the curve's point at the slider's position.
+  function originVector(ctx, x0, y0, x1, y1, colour, r) {
+    ctx.globalAlpha = 0.8;
+    arrow(ctx, x0, y0, x1, y1, colour, 1.6 * r);
+    ctx.globalAlpha = 1;
+  }
   function dot(ctx, x, y, r, colour) {
     ctx.beginPath(); ctx.arc(x, y, r, 0, 2 * Math.PI); ctx.fillStyle = colour; ctx.fill();
     ctx.lineWidth = r / 3; ctx.strokeStyle = "#fff"; ctx.stroke();
@@ -119,7 +125,9 @@ const MechfemCharts = (function () {
     // The curves: a name, a colour and the columns of each.
     this.curves = spec.series.map((s, k) => ({
       name: s.name || cols[s.y].name, colour: PALETTE[k % PALETTE.length], x: s.x || spec.x, y: s.y,
+      force: s.fx ? { fx: s.fx, fy: s.fy } : null, short: s.short,
     }));
+    this.forceArrows = [];
     for (const h of spec.hodographs || []) {
       this.curves.push({ name: h.name, colour: page.pathColour(h.x, h.y), x: h.x, y: h.y, hodograph: h });
     }
@@ -130,7 +138,7 @@ const MechfemCharts = (function () {
     new ResizeObserver(() => {
       const w = Math.max(this.plot.clientWidth, 240);
       if (Math.abs(w - this.u.width) < 2) return;
-      this.u.setSize({ width: w, height: HEIGHT });
+      this.u.setSize({ width: w, height: this.spec.height || HEIGHT });
     }).observe(this.plot);
   }
 
@@ -199,13 +207,22 @@ const MechfemCharts = (function () {
         xs.push(h.ax.map((v, k) => (v === null || h.avx[k] === null ? null : v + h.avx[k] * h.scale)));
         ys.push(h.ay.map((v, k) => (v === null || h.avy[k] === null ? null : v + h.avy[k] * h.scale)));
       }
+      if (c.force) {
+        // A pin force's arrow tips count too, at every position.
+        const fx = cols[c.force.fx].values, fy = cols[c.force.fy].values, s = this.spec.force_scale;
+        xs.push(x.map((v, f) => (v === null || fx[f] === null ? null : v + fx[f] * s)));
+        ys.push(y.map((v, f) => (v === null || fy[f] === null ? null : v + fy[f] * s)));
+      }
     }
+    // The pin forces' chart shows the whole mechanism; a hodograph's only the path, the mechanism faint behind.
+    if (this.spec.force_scale) { const b = this.D.scene.bounds; xs.push([b[0], b[1]]); ys.push([b[2], b[3]]); }
+    if (this.spec.origin) { xs.push([0]); ys.push([0]); }
     const [x0, x1] = extent(xs), [y0, y1] = extent(ys);
     const px = 0.05 * (x1 - x0), py = 0.05 * (y1 - y0);
     this.bounds = [x0 - px, x1 + px, y0 - py, y1 + py];
     const opts = {
       mode: 2,
-      width: width, height: HEIGHT,
+      width: width, height: this.spec.height || HEIGHT,
       scales: {
         x: { time: false, auto: false, range: () => [this.bounds[0], this.bounds[1]] },
         y: { auto: false, range: () => [this.bounds[2], this.bounds[3]] },
@@ -296,7 +313,7 @@ const MechfemCharts = (function () {
     if (this.spec.mechanism) {
       const X = (v) => u.valToPos(v, "x", true), Y = (v) => u.valToPos(v, "y", true);
       const s = Math.abs(u.valToPos(1, "x", true) - u.valToPos(0, "x", true));
-      this.page.drawScene(ctx, X, Y, s, this.page.cur(), 0.3, this.ratio());
+      this.page.drawScene(ctx, X, Y, s, this.page.cur(), this.spec.mechanism_alpha || 0.3, this.ratio());
     }
     if (this.spec.type === "function" && u.scales.y.min < 0 && u.scales.y.max > 0) {
       const Y = u.valToPos(0, "y", true);
@@ -340,6 +357,7 @@ const MechfemCharts = (function () {
     });
     // The slider's position: a dashed line (function charts) and a dot on every curve.
     this.cursorDots = [];
+    this.forceArrows = [];
     if (this.spec.type === "function" && this.indexOf[f] >= 0) {
       const x = X(u.data[0][this.indexOf[f]]);
       ctx.strokeStyle = "#444"; ctx.lineWidth = r; ctx.setLineDash([4 * r, 3 * r]);
@@ -349,6 +367,8 @@ const MechfemCharts = (function () {
       const xv = cols[c.x].values[f], yv = cols[c.y].values[f];
       if (xv === null || yv === null) continue;
       const x = X(xv), y = Y(yv);
+      if (this.spec.origin) originVector(ctx, X(0), Y(0), x, y, c.colour, r);
+      if (c.force) this.drawForce(ctx, c, f, X, Y, r);
       const h = c.hodograph;
       if (h && h.scale && cols[h.vx] && cols[h.vy] && cols[h.vx].values[f] !== null && cols[h.vy].values[f] !== null) {
         arrow(ctx, x, y, X(xv + cols[h.vx].values[f] * h.scale), Y(yv + cols[h.vy].values[f] * h.scale), c.colour, 2.4 * r);
@@ -358,6 +378,18 @@ const MechfemCharts = (function () {
       this.cursorDots.push([Math.round(x / r * 10) / 10, Math.round(y / r * 10) / 10]);
     }
     ctx.restore();
+  };
+
+  // A pin force at the slider's position: an arrow from the pin, on the chart's one scale, labelled |F|.
+  Chart.prototype.drawForce = function (ctx, c, f, X, Y, r) {
+    const cols = this.D.columns, s = this.spec.force_scale;
+    const x = cols[c.x].values[f], y = cols[c.y].values[f], fx = cols[c.force.fx].values[f], fy = cols[c.force.fy].values[f];
+    if (x === null || y === null || fx === null || fy === null) return;
+    arrow(ctx, X(x), Y(y), X(x + fx * s), Y(y + fy * s), c.colour, 2.4 * r);
+    const text = withUnit(fmt(Math.hypot(fx, fy)), this.spec.force_unit);
+    ctx.font = 12 * r + "px sans-serif"; ctx.fillStyle = "#1f3b57"; ctx.textAlign = "left"; ctx.textBaseline = "bottom";
+    ctx.fillText((c.short || c.name) + " " + text, X(x + fx * s) + 4 * r, Y(y + fy * s) - 2 * r);
+    this.forceArrows.push({ name: c.name, x: x, y: y, fx: fx, fy: fy, tip: [x + fx * s, y + fy * s] });
   };
 
   // ---- the readout under the chart: every curve's value under the pointer, or at the slider ----
@@ -383,6 +415,12 @@ const MechfemCharts = (function () {
     this.readHead.textContent = head;
     this.curves.forEach((c, k) => {
       const y = cols[c.y];
+      if (c.force) {
+        const fx = cols[c.force.fx], fy = cols[c.force.fy], u = this.spec.force_unit;
+        const m = fx.values[f] === null || fy.values[f] === null ? null : Math.hypot(fx.values[f], fy.values[f]);
+        this.readValues[k].textContent = "|F| = " + withUnit(fmt(m), u) + " (" + fmt(fx.values[f]) + ", " + fmt(fy.values[f]) + ")";
+        return;
+      }
       this.readValues[k].textContent = this.spec.type === "function"
         ? withUnit(fmt(y.values[f]), y.unit)
         : "(" + withUnit(fmt(cols[c.x].values[f]), cols[c.x].unit) + ", " + withUnit(fmt(y.values[f]), y.unit) + ")";
@@ -398,6 +436,7 @@ const MechfemCharts = (function () {
     for (const c of this.curves) {
       add(c.x); add(c.y);
       if (c.hodograph) { add(c.hodograph.vx); add(c.hodograph.vy); }
+      if (c.force) { add(c.force.fx); add(c.force.fy); }
     }
     return keys;
   };

@@ -225,6 +225,13 @@
     D.cards.forEach((card, i) => {
       const box = el("section", { className: "panel card" }, el("h2", {}, card.title));
       host.append(box);
+      card.box = box;
+      if (card.note) box.append(el("p", { className: "note" }, card.note));
+      if (card.jump) {
+        const b = el("button", { type: "button", className: "jump" }, card.jump.text);
+        b.addEventListener("click", () => show(card.jump.frame));
+        box.append(b);
+      }
       const stem = D.stem + "_" + (card.picture ? "pic" + card.picture : slug(card.title));
       card.charts.forEach((spec, k) => {
         const c = new C.Chart(page, spec, box, stem + (card.charts.length > 1 ? "_" + (k + 1) : "") + ".csv");
@@ -277,7 +284,12 @@
   });
   new ResizeObserver(layoutMechanism).observe($("canvaswrap"));
   window.addEventListener("resize", layoutMechanism);
-  const m = /^#position=(\d+)$/.exec(location.hash);
+  // #position=N starts at position N; &cards=K,L (0-based, in the data's order) moves those cards to the top of
+  // the column of charts, beside the mechanism (as the docs' pictures show them).
+  const m = /^#position=(\d+)(?:&cards=([\d,]+))?$/.exec(location.hash);
+  if (m && m[2]) {
+    for (const k of m[2].split(",").reverse()) if (D.cards[+k]) $("side").insertBefore(D.cards[+k].box, $("side").firstChild);
+  }
   show(m ? nearestFrame(+m[1] - 1) : 0);
 
   // ---- the page's own check (opened as ...#selftest), read by tests/test_report_page.py ----
@@ -339,6 +351,7 @@
         card: c.card, type: c.spec.type, uplot: c.u.root.classList.contains("uplot"), curves: c.curves.map((x) => x.name),
         xlabel: c.spec.xlabel, ylabel: c.spec.ylabel, ink: shot.ink, changed_pixels: changed(shots0[i], shot),
         cursor_before: dots0[i], cursor_after: c.cursorDots.slice(), readout: c.readout.textContent, csv: c.csv(),
+        forces: c.forceArrows.slice(),
         width: c.u.width,
         // CSS pixels per unit along x and along y (equal for a path in the plane).
         pixels_per_unit: [c.u.valToPos(1, "x") - c.u.valToPos(0, "x"), c.u.valToPos(0, "y") - c.u.valToPos(1, "y")],

@@ -102,6 +102,7 @@ impl Block {
 /// | `mass` | D x D | the mass matrix in the inputs |
 /// | `pin` | P x 2 | the force each element exerts on each of its points (x, y), elements in order, each one's points in its co-ordinates' order ([`Layout::pins`]) |
 /// | `shaking` | 3 | shaking force x, y and moment about the origin |
+/// | `loadpow` | one value | power of the loads (forces, loads, tables, motors, dampers) |
 ///
 /// and last `time` and `det` (det(D^c)), one value each. Co-ordinate values
 /// are not in it: a recorder keeps them beside it.
@@ -149,6 +150,7 @@ struct Starts {
     mass: usize,
     pin: usize,
     shaking: usize,
+    loadpow: usize,
     time: usize,
     det: usize,
 }
@@ -186,6 +188,7 @@ impl Layout {
             add("mass", vec![nd, nd]);
             add("pin", vec![pins.len(), 2]);
             add("shaking", vec![3]);
+            add("loadpow", vec![]);
         }
         add("time", vec![]);
         add("det", vec![]);
@@ -214,6 +217,7 @@ impl Layout {
             mass: start("mass"),
             pin: start("pin"),
             shaking: start("shaking"),
+            loadpow: start("loadpow"),
             time: start("time"),
             det: start("det"),
         };
@@ -289,6 +293,7 @@ impl Layout {
                     [Component::X, Component::Y].map(|component| Quantity::Pin { element, x, y, component })
                 })),
                 "shaking" => q.extend([Component::X, Component::Y, Component::Moment].map(Quantity::Shaking)),
+                "loadpow" => q.push(Quantity::LoadPower),
                 "time" => q.push(Quantity::Time),
                 "det" => q.push(Quantity::Det),
                 other => unreachable!("a layout has no block {other}"),
@@ -335,6 +340,7 @@ impl Layout {
                 dynamic(at.pin + 2 * k + usize::from(c == Component::Y))
             }
             Quantity::Shaking(c) => dynamic(at.shaking + c as usize),
+            Quantity::LoadPower => dynamic(at.loadpow),
             _ => None,
         }
     }
@@ -442,6 +448,7 @@ impl Layout {
             for c in [Component::X, Component::Y, Component::Moment] {
                 row[at.shaking + c as usize] = d.shaking(c);
             }
+            row[at.loadpow] = d.load_power();
         }
         row[at.time] = v.time;
         row[at.det] = kin.det();

@@ -62,6 +62,10 @@ pub enum Quantity {
     Epot,
     /// Power delivered by the drives (BUFPOW).
     Power,
+    /// Power of the loads that are neither gravity nor a spring's elastic
+    /// force (point forces, loads, tables, motors, dampers): with the
+    /// drives' power it makes d(T + V)/dt. No deck buffer records it.
+    LoadPower,
     /// Entry (j, m) of the mass matrix in the degrees of freedom (BUFMRED).
     Mred(usize, usize),
     /// Transmission angle between the first sides of two elements with a
@@ -96,6 +100,7 @@ impl Quantity {
                 | Quantity::Ekin
                 | Quantity::Epot
                 | Quantity::Power
+                | Quantity::LoadPower
                 | Quantity::Mred(..)
                 | Quantity::Pin { .. }
                 | Quantity::Shaking(_)
@@ -140,6 +145,7 @@ impl Quantity {
             | Quantity::Reaction(_)
             | Quantity::Ekin
             | Quantity::Power
+            | Quantity::LoadPower
             | Quantity::Mred(..)
             | Quantity::Pin { .. }
             | Quantity::Shaking(_) => Some(TransferOrder::Second),
@@ -272,6 +278,7 @@ impl Quantity {
             Quantity::Ekin => d.kinetic_energy(),
             Quantity::Epot => d.potential_energy(),
             Quantity::Power => d.drive_power(),
+            Quantity::LoadPower => d.load_power(),
             Quantity::Mred(j, m) => d.mass_matrix_entry(mech, j, m),
             Quantity::Pin { element, x, y, component } => d.pin_force(element, x, y, component),
             Quantity::Shaking(c) => d.shaking(c),

@@ -25,7 +25,7 @@ use super::inverse::InverseDynamics;
 use super::layout::{acceleration, velocity, Block};
 use super::observe::PositionView;
 use super::record::{record_evaluated, Quantity};
-use crate::model::{Mechanism, FIXED};
+use crate::model::{FormRef, Mechanism, FIXED};
 use crate::solver::TransferOrder;
 
 /// Named blocks of chosen quantities of one mechanism: the quantity of
@@ -77,6 +77,8 @@ impl Selection {
     /// | `inputs` | D | input values |
     /// | `drive` | D | drive force or torque of each input |
     /// | `ekin`, `epot`, `power` | one value | kinetic and potential energy, drive power |
+    /// | `loadpow` | one value | power of the loads (forces, loads, tables, motors, dampers) |
+    /// | `vin` | D | speed of each input |
     ///
     /// and last `time` and `det` (det(D^c)), one value each. The hodograph
     /// needs an input: without one the block is empty.
@@ -92,6 +94,10 @@ impl Selection {
             s.add("ekin", vec![], [Quantity::Ekin]);
             s.add("epot", vec![], [Quantity::Epot]);
             s.add("power", vec![], [Quantity::Power]);
+            // For the report's energy balance: the loads' power and every
+            // input's speed (a motor's power is its drive times the speed).
+            s.add("loadpow", vec![], [Quantity::LoadPower]);
+            s.add("vin", vec![n_dof], (0..n_dof).map(|j| Quantity::Ve(FormRef::Prescribed(mech.input_row(j)))));
         }
         s.add("time", vec![], [Quantity::Time]);
         s.add("det", vec![], [Quantity::Det]);
