@@ -23,6 +23,7 @@
 mod branch;
 pub mod design;
 mod dispatch;
+pub mod dynamic_design;
 mod fault;
 mod inverse;
 mod kinematic;
@@ -35,7 +36,7 @@ mod simulate;
 mod transmission;
 
 pub use dispatch::{motion_of, move_through, transfer_order_of, Extent, MemoryRefusal, OrderError, RunMode};
-pub use inverse::InverseDynamics;
+pub use inverse::{DynamicSensitivity, InverseDynamics};
 pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
