@@ -1,6 +1,7 @@
 //! Design sensitivities of inverse dynamics against central differences
 //! of whole runs: every dynamic quantity (drive, stresses, reactions, pin
-//! forces, shaking force and moment, energies, power) at every position,
+//! forces, shaking force and moment, energies, power, the reduced mass) at
+//! every position,
 //! with respect to prescribed values, fixed co-ordinates, an input's start
 //! and every kind of mass variable, on a four-bar carrying every kind of
 //! mass and load and on an offset slider-crank.
@@ -19,7 +20,7 @@ use std::f64::consts::PI;
 /// reactions, the force of every element on each of its pins, shaking,
 /// energies and power.
 fn dynamic_quantities(mech: &Mechanism) -> Vec<Quantity> {
-    let mut q = vec![Quantity::Drive(0), Quantity::Ekin, Quantity::Epot, Quantity::Power];
+    let mut q = vec![Quantity::Drive(0), Quantity::Ekin, Quantity::Epot, Quantity::Power, Quantity::Mred(0, 0)];
     q.extend([Component::X, Component::Y, Component::Moment].map(Quantity::Shaking));
     q.extend((0..mech.n_prescribed()).map(Quantity::Sigma));
     q.extend((0..mech.n_coords()).filter(|&i| !mech.is_moving(i)).map(Quantity::Reaction));

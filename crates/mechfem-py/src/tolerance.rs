@@ -7,7 +7,7 @@
 use std::path::PathBuf;
 
 use mechfem_core::design::evaluate;
-use mechfem_core::{DesignVar, Dim, FormRef, Quantity};
+use mechfem_core::{dynamic_design, DesignVar, Dim, FormRef, Quantity};
 use mechfem_deck::Compiled;
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -49,8 +49,16 @@ pub fn deck_tolerance<'py>(
     let nj = c.mechanism.n_dof();
     quantities.extend((0..nj).map(Quantity::Input));
     let mut state = c.state.clone();
-    let run =
-        py.detach(|| evaluate(&c.mechanism, &mut state, motion, &c.params, &vars, &quantities, &[])).map_err(|e| {
+    // A band of a result of the dynamics takes the sensitivities of inverse dynamics.
+    let dynamic = c.dynamics.as_ref().filter(|_| quantities.iter().any(Quantity::is_dynamic));
+    let run = py
+        .detach(|| match dynamic {
+            Some(d) => {
+                dynamic_design::evaluate(&c.mechanism, &mut state, motion, &c.params, d, &vars, &[], &quantities)
+            }
+            None => evaluate(&c.mechanism, &mut state, motion, &c.params, &vars, &quantities, &[]),
+        })
+        .map_err(|e| {
             let mut at = c.state.clone();
             errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut at, &c.error_as_written(&e))
         })?;

@@ -82,8 +82,10 @@ impl Observer for Recording<'_> {
 /// already in it), and records `quantities` and their derivatives with
 /// respect to `vars` followed by `mass_vars`: the gradient of position p,
 /// quantity k, variable v at `(p * quantities + k) * (vars + mass_vars) + v`.
-/// Fails when position 1 cannot be computed, a variable is not in the
-/// model, or a dynamic result is not finite.
+/// `dynamics` is a model that passed [`Dynamics::check`] on `mech` with
+/// other values of the mass variables. Fails when position 1 cannot be
+/// computed, a variable is not in the model, or a dynamic result is not
+/// finite.
 #[allow(clippy::too_many_arguments)]
 pub fn evaluate(
     mech: &Mechanism,
@@ -97,10 +99,14 @@ pub fn evaluate(
 ) -> Result<DesignRun, SolveError> {
     let unknown = SolveError::Unsupported(Unsupported::UnknownDesignVariable);
     let sens = Sensitivity::new(mech, vars).map_err(|_| unknown.clone())?;
-    if mass_vars.iter().any(|m| !m.exists(dynamics)) {
+    // The model's structure is the caller's checked one (its numbers are
+    // the design's, any sign: bounds keep an optimiser's masses positive).
+    let on_frames = dynamics.bodies.iter().all(|b| {
+        mech.elements().get(b.element).is_some_and(|e| crate::dynamics::Frame::of(e.ty, e.coords()).is_some())
+    });
+    if !on_frames || mass_vars.iter().any(|m| !m.exists(dynamics)) {
         return Err(unknown);
     }
-    dynamics.check(mech).map_err(|_| unknown)?;
     let n = motion.steps + 1;
     let (nq, nv, nc) = (quantities.len(), vars.len() + mass_vars.len(), mech.n_coords());
     let mut rec = Recording {

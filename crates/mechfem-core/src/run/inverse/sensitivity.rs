@@ -60,6 +60,11 @@ pub struct DynamicSensitivity {
     depot: Vec<f64>,
     dpower: Vec<f64>,
     dshake: Vec<f64>,
+    /// The mass matrix's, variable v at `[v * nd * nd..]`.
+    dmred: Vec<f64>,
+    /// d x'_j / dp over every co-ordinate, DOF j at `[j * nc..]`, and zeros.
+    ds1: Vec<f64>,
+    zeros: Vec<f64>,
     delem: Vec<Vec<(usize, usize, f64)>>,
     computed: bool,
 }
@@ -98,6 +103,9 @@ impl DynamicSensitivity {
             depot: nan(nv),
             dpower: nan(nv),
             dshake: nan(nv * 3),
+            dmred: nan(nv * nd * nd),
+            ds1: vec![0.0; nd * nc],
+            zeros: vec![0.0; nc],
             delem: vec![Vec::new(); nv],
             computed: false,
         }
@@ -337,14 +345,67 @@ impl DynamicSensitivity {
         self.dekin[var] = dekin;
         self.depot[var] = depot;
         self.dshake[var * 3..var * 3 + 3].copy_from_slice(&dshake);
+        self.mass_matrix(v, d, sens, var);
         delem.sort_by_key(|t| t.0);
         self.delem[var] = delem;
     }
 
+    /// The variation of the mass matrix `M_jm = sum m c'_j . c'_m + J beta'_j
+    /// beta'_m` (and point masses, inertias): each body's velocities along
+    /// the transfer functions x'_j vary like velocities, by
+    /// [`crate::dynamics::Frame::motion_variation`] with the transfer functions' variations
+    /// as the rates'.
+    fn mass_matrix(&mut self, v: &PositionView<'_>, d: &InverseDynamics, sens: &Sensitivity, var: usize) {
+        let (mech, x) = (v.mech, &v.state.x[..]);
+        let (nc, nd) = (self.nc, mech.n_dof());
+        let mass_var = var.checked_sub(self.n_kin).map(|k| self.mass_vars[k]);
+        for j in 0..nd {
+            for i in 0..nc {
+                self.ds1[j * nc + i] = if var < self.n_kin { sens.dx1(i, j, var) } else { 0.0 };
+            }
+        }
+        let x1 = |j: usize| &d.x1[j * nc..(j + 1) * nc];
+        for j in 0..nd {
+            for m in j..nd {
+                let mut dm_jm = 0.0;
+                let (dj, dmv) = (&self.ds1[j * nc..(j + 1) * nc], &self.ds1[m * nc..(m + 1) * nc]);
+                for (b_idx, (b, frame)) in d.model.bodies.iter().zip(&d.frames).enumerate() {
+                    let own = |which: fn(usize) -> MassVar| if mass_var == Some(which(b_idx)) { 1.0 } else { 0.0 };
+                    let (du, dv) = (own(MassVar::CentreU), own(MassVar::CentreV));
+                    let along = |a: &[f64], da: &[f64]| {
+                        let var_b = Variation { x: &self.s, xd: da, xdd: &self.zeros, u: du, v: dv };
+                        let (c, beta) = frame.velocity(x, a, b.u, b.v);
+                        let dmo = frame.motion_variation(x, a, &self.zeros, b.u, b.v, &var_b);
+                        (c, beta, dmo.c_dot, dmo.beta_dot)
+                    };
+                    let (cj, bj, dcj, dbj) = along(x1(j), dj);
+                    let (cm, bm, dcm, dbm) = along(x1(m), dmv);
+                    let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+                    dm_jm += own(MassVar::Mass) * dot(cj, cm)
+                        + b.mass * (dot(dcj, cm) + dot(cj, dcm))
+                        + own(MassVar::BodyInertia) * bj * bm
+                        + b.inertia * (dbj * bm + bj * dbm);
+                }
+                for (k, p) in d.model.point_masses.iter().enumerate() {
+                    let dmass = if mass_var == Some(MassVar::PointMass(k)) { 1.0 } else { 0.0 };
+                    let (aj, am) = (x1(j), x1(m));
+                    dm_jm += dmass * (aj[p.x] * am[p.x] + aj[p.y] * am[p.y])
+                        + p.mass * (dj[p.x] * am[p.x] + aj[p.x] * dmv[p.x] + dj[p.y] * am[p.y] + aj[p.y] * dmv[p.y]);
+                }
+                for (k, i) in d.model.inertias.iter().enumerate() {
+                    let dj_i = if mass_var == Some(MassVar::Inertia(k)) { 1.0 } else { 0.0 };
+                    let (aj, am, c) = (x1(j), x1(m), i.coord);
+                    dm_jm += dj_i * aj[c] * am[c] + i.inertia * (dj[c] * am[c] + aj[c] * dmv[c]);
+                }
+                self.dmred[(var * nd + j) * nd + m] = dm_jm;
+                self.dmred[(var * nd + m) * nd + j] = dm_jm;
+            }
+        }
+    }
+
     /// The derivative of a [dynamic](Quantity::is_dynamic) quantity with
     /// respect to variable `var` at the last computed position (NaN where
-    /// not computed, and for the mass matrix, whose sensitivity is not
-    /// computed).
+    /// not computed).
     pub fn quantity(&self, mech: &Mechanism, d: &InverseDynamics, q: Quantity, var: usize) -> f64 {
         if !self.computed || var >= self.n_vars() {
             return f64::NAN;
@@ -361,6 +422,10 @@ impl DynamicSensitivity {
             Quantity::Epot => self.depot[var],
             Quantity::Power => self.dpower[var],
             Quantity::Shaking(c) => self.dshake[var * 3 + component(c)],
+            Quantity::Mred(j, m) => {
+                let nd = mech.n_dof();
+                self.dmred[(var * nd + j) * nd + m]
+            }
             Quantity::Pin { element, x, y, component } => {
                 let coord = match component {
                     Component::X => x,
