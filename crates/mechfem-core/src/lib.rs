@@ -49,6 +49,7 @@ pub use error::{
 pub use model::{FormRef, Mechanism, MechanismBuilder, State, Term};
 pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};
 pub use names::Names;
+pub use run::dynamic_design;
 pub use run::{design, run, simulate, InverseDynamics, Observer, PositionView, RunReport, SimReport, Stop};
 pub use run::{record, record_evaluated, Layout, Quantity, Recorder};
 pub use solver::Params;

@@ -52,13 +52,7 @@ pub struct BandDef {
 /// sensitivities, in words (`None`: it has them). The one place where a
 /// BUFTOL source (and a quantity of `tolerance_bands`) is refused.
 pub fn without_sensitivity(q: Quantity) -> Option<&'static str> {
-    if q == Quantity::Det {
-        Some("det(D^c)")
-    } else if q.is_dynamic() {
-        Some("a result of the dynamics")
-    } else {
-        None
-    }
+    (q == Quantity::Det).then_some("det(D^c)")
 }
 
 /// Why bands of a compiled model cannot be computed.
@@ -164,7 +158,7 @@ impl Tolerance {
         let quantities: Vec<Quantity> = sources.iter().map(|b| b.quantity).collect();
         let dims: Vec<mechfem_core::run::tolerance::Toleranced> =
             self.dims.iter().map(|d| mechfem_core::run::tolerance::Toleranced { var: d.var, t: d.t }).collect();
-        let mut bands = bands(&c.mechanism, &mut state, &motion, &c.params, &dims, &quantities)
+        let mut bands = bands(&c.mechanism, &mut state, &motion, &c.params, c.dynamics.as_ref(), &dims, &quantities)
             .map_err(|e| BandsError::Solve(c.error_as_written(&e)))?;
         // Into the model's units: a band is in its quantity's unit, a
         // sensitivity in the quantity's per the dimension's.

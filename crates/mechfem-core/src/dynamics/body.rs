@@ -19,6 +19,9 @@
 
 use crate::elements::ElementType;
 
+mod sensitivity;
+pub use sensitivity::Variation;
+
 /// Where a body's frame comes from: its origin P and its angle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Frame {

@@ -25,8 +25,10 @@
 //! Units are the user's, consistent (SI recommended); angles in radians.
 
 mod body;
+mod variable;
 
-pub use body::Frame;
+pub use body::{BodyMotion, Frame, Variation};
+pub use variable::MassVar;
 
 use crate::elements::ElementType;
 use crate::model::{FormRef, Mechanism};

@@ -177,7 +177,7 @@ impl Recording<'_> {
 /// the input at position `index` of `motion`; `extremum`: at an extremum,
 /// which is a property of the mechanism wherever the motion samples it, so
 /// the start moves nothing there but the input's velocity.
-fn scale_starts(sens: &mut Sensitivity, mech: &Mechanism, motion: &Motion, index: usize, extremum: bool) {
+pub(super) fn scale_starts(sens: &mut Sensitivity, mech: &Mechanism, motion: &Motion, index: usize, extremum: bool) {
     // At an extremum the last variable is the input itself, unscaled.
     let n = sens.vars().len() - usize::from(extremum);
     for k in 0..n {

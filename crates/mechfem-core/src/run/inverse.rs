@@ -18,6 +18,10 @@
 //! mechanism there, balancing the rows' forces and the loads that act on it
 //! directly.
 
+mod sensitivity;
+
+pub use sensitivity::DynamicSensitivity;
+
 use super::observe::PositionView;
 use crate::dynamics::{Dynamics, Frame, LoadKind};
 use crate::error::SolveError;

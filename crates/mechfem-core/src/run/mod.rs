@@ -25,6 +25,7 @@
 mod branch;
 pub mod design;
 mod dispatch;
+pub mod dynamic_design;
 mod fault;
 mod inverse;
 mod kinematic;
@@ -38,7 +39,7 @@ pub mod tolerance;
 mod transmission;
 
 pub use dispatch::{motion_of, move_through, transfer_order_of, Extent, MemoryRefusal, OrderError, RunMode};
-pub use inverse::InverseDynamics;
+pub use inverse::{DynamicSensitivity, InverseDynamics};
 pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};

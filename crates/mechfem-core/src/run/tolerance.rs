@@ -16,6 +16,7 @@
 use super::design::evaluate;
 use super::observe::RunReport;
 use super::record::Quantity;
+use crate::dynamics::Dynamics;
 use crate::error::SolveError;
 use crate::model::{Mechanism, State};
 use crate::motion::Motion;
@@ -110,16 +111,20 @@ impl Bands {
 }
 
 /// The bands of `quantities` over `motion` from `state`, when each of
-/// `dims` is within its tolerance. A quantity without design sensitivities
-/// (det(D^c), the dynamics) has NaN bands; so has any quantity at a
-/// position where its sensitivities do not exist (a limit position).
-/// Fails when position 1 cannot be computed; a motion that stops early
-/// gives the positions it reached.
+/// `dims` is within its tolerance. The results of the dynamics (drive,
+/// stresses, reactions, pin forces, shaking, energies) take the
+/// sensitivities of inverse dynamics with the mass and load model
+/// `dynamics`; without one they, like det(D^c), have NaN bands, as has any
+/// quantity at a position where its sensitivities do not exist (a limit
+/// position). Fails when position 1 cannot be computed; a motion that
+/// stops early gives the positions it reached.
+#[allow(clippy::too_many_arguments)]
 pub fn bands(
     mech: &Mechanism,
     state: &mut State,
     motion: &Motion,
     params: &Params,
+    dynamics: Option<&Dynamics>,
     dims: &[Toleranced],
     quantities: &[Quantity],
 ) -> Result<Bands, SolveError> {
@@ -128,7 +133,10 @@ pub fn bands(
     let nj = mech.n_dof();
     let mut all = quantities.to_vec();
     all.extend((0..nj).map(Quantity::Input));
-    let run = evaluate(mech, state, motion, params, &vars, &all, &[])?;
+    let run = match dynamics.filter(|_| quantities.iter().any(Quantity::is_dynamic)) {
+        Some(d) => super::dynamic_design::evaluate(mech, state, motion, params, d, &vars, &[], &all)?,
+        None => evaluate(mech, state, motion, params, &vars, &all, &[])?,
+    };
     let (n, nb, na, nv) = (run.positions, quantities.len(), all.len(), vars.len());
     let mut out = Bands {
         report: run.report,

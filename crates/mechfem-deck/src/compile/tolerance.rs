@@ -8,15 +8,15 @@ use mechfem_core::{DesignVar, Motion};
 use super::model::Model;
 use super::refs::{coordinate, Sizes};
 use super::storage::{by_number, defined_buffer};
-use crate::ast::{Deck, Mode, TolDef};
+use crate::ast::{Deck, TolDef};
 use crate::compiled::Buffer;
 use crate::diagnostic::{count, Diagnostic, DiagnosticKind, Hint, Span};
 use crate::keywords::Keyword;
 use crate::tolerance::{without_sensitivity, BandDef, Tolerance, Toleranced};
 
 /// The buffers whose bands can be recorded, in words.
-const WITH_SENSITIVITY: &str =
-    "BUFINP, BUFX0, BUFKX1, BUFKX2, BUFVX, BUFAX, BUFE0, BUFKE1, BUFKE2, BUFVE, BUFAE or BUFTRA";
+const WITH_SENSITIVITY: &str = "BUFINP, BUFX0, BUFKX1, BUFKX2, BUFVX, BUFAX, BUFE0, BUFKE1, BUFKE2, BUFVE, BUFAE, BUFTRA or, \
+                                 in DYN ANA, BUFDRV, BUFSIG, BUFREA, BUFPIN, BUFSHAKE, BUFEKIN, BUFEPOT, BUFPOW or BUFMRED";
 
 /// The TOLERANCE block of `deck` (`None` without one).
 pub(crate) fn tolerance(
@@ -77,12 +77,6 @@ pub(crate) fn tolerance(
     for def in &block.bands {
         let source = defined_buffer(deck, &defined, &def.source)?;
         if let Some(what) = without_sensitivity(source.quantity) {
-            let dynamic = if deck.mode.value == Mode::DynAna {
-                "; mechfem has no design sensitivities of the dynamics (forces, stresses, energies, power), so a DYN \
-                 ANA deck's bands are those of its kinematic buffers"
-            } else {
-                ""
-            };
             return Err(deck
                 .error(
                     DiagnosticKind::NoSensitivity,
@@ -94,7 +88,7 @@ pub(crate) fn tolerance(
                 )
                 .with_hint(format!(
                     "a band is made of the exact first-order sensitivities of its buffer to the toleranced \
-                     dimensions: give BUFTOL a buffer recorded by {WITH_SENSITIVITY}{dynamic}"
+                     dimensions: give BUFTOL a buffer recorded by {WITH_SENSITIVITY}"
                 )));
         }
         let b = u32::try_from(def.buffer.value).unwrap_or(0);
