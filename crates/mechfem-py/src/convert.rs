@@ -408,7 +408,11 @@ fn keyword(q: Quantity) -> (&'static str, Vec<i64>) {
 }
 
 fn buffer<'py>(py: Python<'py>, c: &Compiled, b: &Buffer) -> PyResult<Bound<'py, PyDict>> {
-    let (kw, args) = keyword(b.quantity);
+    let (kw, args) = match c.band_of(b.number) {
+        // BUFTOL bsrc b fills b and b + 1 (its part 1) with the band of bsrc.
+        Some((band, _)) => ("BUFTOL", vec![i64::from(band.source), i64::from(band.buffer)]),
+        None => keyword(b.quantity),
+    };
     let d = PyDict::new(py);
     d.set_item("label", c.label(b))?;
     d.set_item("unit", c.unit(b))?;
@@ -418,8 +422,9 @@ fn buffer<'py>(py: Python<'py>, c: &Compiled, b: &Buffer) -> PyResult<Bound<'py,
     d.set_item("line", b.line)?;
     // The buffers after the first of a keyword that fills several
     // (BUFPIN: y; BUFSHAKE: y, moment) say which part they are.
-    let part = match b.quantity {
-        Quantity::Pin { component, .. } | Quantity::Shaking(component) => component as u8,
+    let part = match (c.band_of(b.number), b.quantity) {
+        (Some((_, rss)), _) => u8::from(rss),
+        (None, Quantity::Pin { component, .. } | Quantity::Shaking(component)) => component as u8,
         _ => 0,
     };
     if part > 0 {
