@@ -343,6 +343,9 @@ class _Namer:
                 what = stress_unit(self.input_unit(a[0]))
                 return "force", f"drive {what} of input {a[0]} ({self.input_value(a[0])})"
             return "force", f"reaction of the frame on co-ordinate {a[0]} ({self.coordinate(a[0])})"
+        if kw == "BUFTOL":
+            rss = b.number != a[1]
+            return "band", f"{'RSS' if rss else 'worst-case'} tolerance band of buffer {a[0]}"
         simple = {
             "BUFTIME": ("time", "time"),
             "BUFDET": ("det", "det(D^c), the measure of transfer quality"),

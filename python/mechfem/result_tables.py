@@ -211,6 +211,8 @@ class ResultTables:
         if "buffers" in self._layout:
             column = self._columns("buffers", "buffer_numbers")
             for b in self.storage.buffers:
+                if b.keyword == "BUFTOL":
+                    continue  # a tolerance band, no quantity of a block
                 block = BLOCK_OF[b.keyword]
                 kinds = INDEX_KINDS.get(block, "")
                 args = list(b.args) + ([b.args[-1]] if len(b.args) < len(kinds) else [])

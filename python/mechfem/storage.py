@@ -80,6 +80,8 @@ def from_described(s: _core.Storage, name: Callable[[str, int], Ref]) -> Storage
     for b in s.buffers:
         if b.part:
             continue  # the y (and moment) of a BUFPIN or BUFSHAKE line: its first buffer stands for the line
+        if b.keyword == "BUFTOL":
+            continue  # a band of the TOLERANCE block, which the model does not carry
         kinds = BUFFER_ARGS[b.keyword]
         buffers.append((b.number, b.keyword, tuple(name(k, v) for k, v in zip(kinds, b.args, strict=False))))
     pictures = []

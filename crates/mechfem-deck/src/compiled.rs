@@ -178,6 +178,10 @@ impl Compiled {
     /// of what it records (`psi`, `dpsi/dphi`, `C.x`), else the deck's
     /// numbers (`x9`, `ANGB(8)`).
     pub fn label(&self, b: &Buffer) -> String {
+        if let Some((band, rss)) = self.band_of(b.number) {
+            let source = Buffer { number: band.source, ..*b };
+            return format!("{} {}", self.label(&source), if rss { "rss" } else { "worst" });
+        }
         self.names.label(&self.mechanism, b.number, b.quantity)
     }
 

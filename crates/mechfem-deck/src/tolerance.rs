@@ -196,3 +196,42 @@ impl Tolerance {
         })
     }
 }
+
+impl Compiled {
+    /// The BUFTOL whose band buffer `number` is, and whether it is the RSS
+    /// band (b + 1) rather than the worst case (b).
+    pub fn band_of(&self, number: u32) -> Option<(&BandDef, bool)> {
+        let bands = self.tolerance.iter().flat_map(|t| &t.bands);
+        bands.filter_map(|b| (number == b.buffer || number == b.buffer + 1).then_some((b, number != b.buffer))).next()
+    }
+
+    /// Writes BUFTOL's bands into a run's buffer columns: `columns` holds
+    /// [`Compiled::buffers`] column after column, `positions` values each,
+    /// in the core's units, as the run recorded them from `start` (where
+    /// a band's buffer holds its source's values). The bands are those of
+    /// [`Tolerance::evaluate_from`] (in the core's units) at the run's
+    /// positions; without TOLERANCE nothing is done.
+    pub fn fill_bands(&self, mut start: State, columns: &mut [f64], positions: usize) -> Result<(), SolveError> {
+        let Some(tolerance) = &self.tolerance else { return Ok(()) };
+        // A compiled TOLERANCE block has a motion and sources among the buffers.
+        let Some(motion) = self.motion_for(&mut start, Extent::Motion) else { return Ok(()) };
+        let source = |d: &BandDef| self.buffers.iter().find(|b| b.number == d.source).map(|b| b.quantity);
+        let Some(quantities) = tolerance.bands.iter().map(source).collect::<Option<Vec<Quantity>>>() else {
+            return Ok(());
+        };
+        let dims: Vec<mechfem_core::run::tolerance::Toleranced> =
+            tolerance.dims.iter().map(|d| mechfem_core::run::tolerance::Toleranced { var: d.var, t: d.t }).collect();
+        let b = bands(&self.mechanism, &mut start, &motion, &self.params, &dims, &quantities)?;
+        let nb = quantities.len();
+        for (k, buffer) in self.buffers.iter().enumerate() {
+            let Some((def, rss)) = self.band_of(buffer.number) else { continue };
+            let q = tolerance.bands.iter().position(|d| d == def).unwrap_or(0);
+            let values = if rss { &b.rss } else { &b.worst };
+            let column = &mut columns[k * positions..(k + 1) * positions];
+            for (p, v) in column.iter_mut().enumerate() {
+                *v = values.get(p * nb + q).copied().unwrap_or(f64::NAN);
+            }
+        }
+        Ok(())
+    }
+}

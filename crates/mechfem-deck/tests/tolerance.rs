@@ -41,7 +41,10 @@ fn a_deck_without_tolerance_has_none_and_the_same_model() {
     assert!(a.tolerance.is_none());
     assert_eq!(a.state.x, b.state.x);
     assert_eq!(a.state.target, b.state.target);
-    assert_eq!(a.buffers, b.buffers);
+    // The bands' buffers (BUFTOL 100 200, 101 202, 102 204) follow the deck's own.
+    assert_eq!(a.buffers[..], b.buffers[..a.buffers.len()]);
+    let bands: Vec<u32> = b.buffers[a.buffers.len()..].iter().map(|x| x.number).collect();
+    assert_eq!(bands, [200, 201, 202, 203, 204, 205]);
 }
 
 #[test]

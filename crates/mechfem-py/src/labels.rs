@@ -45,6 +45,9 @@ struct Model {
     names: Names,
     dims: ModelDims,
     buffers: Vec<(u32, Quantity)>,
+    /// BUFTOL's band buffers: number, source buffer, "worst" or "rss"
+    /// ([`Compiled::label`]).
+    bands: Vec<(u32, u32, &'static str)>,
 }
 
 /// Every answer of a model's labels, by number.
@@ -75,6 +78,13 @@ impl Labels {
             names: c.names.clone(),
             dims: c.dims.clone(),
             buffers: c.buffers.iter().map(|b| (b.number, b.quantity)).collect(),
+            bands: c
+                .buffers
+                .iter()
+                .filter_map(|b| {
+                    c.band_of(b.number).map(|(d, rss)| (b.number, d.source, if rss { "rss" } else { "worst" }))
+                })
+                .collect(),
         };
         Labels { units: c.units, source: Source::Model(Box::new(model)) }
     }
@@ -173,7 +183,12 @@ impl Labels {
                 .ok_or_else(|| missing("buffer", number)),
             Source::Model(m) => {
                 let (_, q) = m.buffers.iter().find(|(n, _)| *n == number).ok_or_else(|| missing("buffer", number))?;
-                Ok(self.named(m.names.label(&m.mechanism, number, *q), m.dims.quantity(&m.mechanism, *q)))
+                let band = m.bands.iter().find(|(n, ..)| *n == number);
+                let label = match band {
+                    Some((_, source, kind)) => format!("{} {kind}", m.names.label(&m.mechanism, *source, *q)),
+                    None => m.names.label(&m.mechanism, number, *q),
+                };
+                Ok(self.named(label, m.dims.quantity(&m.mechanism, *q)))
             }
         }
     }
@@ -214,8 +229,9 @@ impl Labels {
                 put(&mut names.coordinates, coordinates);
                 put(&mut names.prescribed, prescribed);
                 put(&mut names.dependent, dependent);
-                let model =
-                    Model { mechanism: m.mechanism.clone(), names, dims: m.dims.clone(), buffers: m.buffers.clone() };
+                let (mechanism, dims, buffers, bands) =
+                    (m.mechanism.clone(), m.dims.clone(), m.buffers.clone(), m.bands.clone());
+                let model = Model { mechanism, names, dims, buffers, bands };
                 Source::Model(Box::new(model))
             }
             Source::Table(t) => {

@@ -270,6 +270,7 @@ fn run_deck(
     det: bool,
 ) -> PyResult<run::Run> {
     let (compiled, slot) = load(py, &path)?;
+    let bands_start = compiled.tolerance.as_ref().map(|_| compiled.state.clone());
     let Ran { compiled: c, given, rec, report, sim, interrupted } =
         execute(py, compiled, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
@@ -285,6 +286,13 @@ fn run_deck(
     })?;
     let buffers = rec.columns.block("buffers").map_or((0, 0), |b| (b.start, b.width()));
     let (mut table, mut coords) = (rec.table.into_vec(), rec.coords);
+    if let Some(start) = bands_start {
+        let block = &mut table[buffers.0 * positions..(buffers.0 + buffers.1) * positions];
+        if let Err(e) = py.detach(|| c.fill_bands(start, block, positions)) {
+            let e = c.error_as_written(&e);
+            return Err(errors::position_one_error(py, mech, &c.dynamics_lines, &mut c.state.clone(), &e));
+        }
+    }
     names::table(&c, rec.columns.quantities(), &mut table, positions, &mut coords);
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let report_dict = || convert::report(py, mech, &c.dynamics_lines, &report, steps);

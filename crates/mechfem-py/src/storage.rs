@@ -211,11 +211,16 @@ impl Storage {
             .buffers
             .iter()
             .map(|b| {
-                let (keyword, args) = keyword(b.quantity);
+                let (keyword, args) = match c.band_of(b.number) {
+                    // BUFTOL bsrc b fills b and b + 1 (its part 1) with the band of bsrc.
+                    Some((band, _)) => ("BUFTOL", vec![i64::from(band.source), i64::from(band.buffer)]),
+                    None => keyword(b.quantity),
+                };
                 // The buffers after the first of a keyword that fills several
-                // (BUFPIN: y; BUFSHAKE: y, moment) say which part they are.
-                let part = match b.quantity {
-                    Quantity::Pin { component, .. } | Quantity::Shaking(component) => component as u8,
+                // (BUFPIN: y; BUFSHAKE: y, moment; BUFTOL: rss) say which part they are.
+                let part = match (c.band_of(b.number), b.quantity) {
+                    (Some((_, rss)), _) => u8::from(rss),
+                    (None, Quantity::Pin { component, .. } | Quantity::Shaking(component)) => component as u8,
                     _ => 0,
                 };
                 Buffer {

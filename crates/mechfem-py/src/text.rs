@@ -52,6 +52,7 @@ pub fn execute(
 ) -> (Outcome, Option<PyErr>) {
     let Numbers { mut state, para } = numbers;
     let extent = if with_motion { Extent::Motion } else { Extent::PositionOne };
+    let bands_start = c.tolerance.as_ref().map(|_| state.clone());
     let motion = c.motion_for(&mut state, extent);
     let quantities: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     let given = state.x.clone();
@@ -73,10 +74,14 @@ pub fn execute(
             let e0 = rec.columns.layout.block("e0").map_or(0, |b| b.start);
             let n_rows = c.mechanism.n_prescribed() + c.mechanism.n_dependent();
             let rows_at_1 = (0..n_rows).map(|r| if positions > 0 { table.get(0, e0 + r) } else { f64::NAN }).collect();
+            let mut buffers = rec.columns.buffer_table.into_vec();
+            if let Some(Err(e)) = bands_start.map(|s| c.fill_bands(s, &mut buffers, positions)) {
+                return (Outcome::Failed(Box::new(state), e), raised);
+            }
             Outcome::Ran(Box::new(FullRun {
                 width: layout_width,
                 table: table.into_vec(),
-                buffers: rec.columns.buffer_table.into_vec(),
+                buffers,
                 coords: rec.coords,
                 positions,
                 report,

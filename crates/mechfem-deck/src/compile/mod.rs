@@ -54,10 +54,12 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     if let Some(mo) = &motion {
         motion::check_rates(deck, mo, &m.mechanism, &m.state)?;
     }
-    let out = storage::outputs(deck, &sizes)?;
+    let mut buffers = storage::buffers(deck, &sizes)?;
+    let tolerance = tolerance::tolerance(deck, &m, &sizes, motion.as_ref(), &buffers)?;
+    tolerance::record_bands(tolerance.as_ref(), &mut buffers);
+    let out = storage::outputs(deck, &sizes, buffers)?;
     integration.stop_when = motion::stop_when(deck, &out.buffers)?;
     let mut optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
-    let tolerance = tolerance::tolerance(deck, &m, &sizes, motion.as_ref(), &out.buffers)?;
     let dims = match &deck.scale {
         Some(s) => {
             tables::to_core(

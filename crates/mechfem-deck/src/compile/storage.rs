@@ -21,8 +21,9 @@ pub(crate) struct Outputs {
     pub pictures: Vec<Picture>,
 }
 
-pub(crate) fn outputs(deck: &Deck, sizes: &Sizes) -> Result<Outputs, Box<Diagnostic>> {
-    let buffers = buffers(deck, sizes)?;
+/// The outputs of `deck` with its `buffers` ([`buffers`] and the bands of
+/// TOLERANCE, which PRINTBUF, SAVEDATA and the pictures may name).
+pub(crate) fn outputs(deck: &Deck, sizes: &Sizes, buffers: Vec<Buffer>) -> Result<Outputs, Box<Diagnostic>> {
     let Some(st) = &deck.storage else { return Ok(Outputs { buffers, ..Outputs::default() }) };
     let defined = by_number(&buffers);
     let known = |b: &Spanned<i64>| defined_buffer(deck, &defined, b).map(|buffer| buffer.number);
@@ -91,7 +92,7 @@ fn shown(name: &str) -> String {
 
 /// The buffers defined in OPTIMISE and STORAGE, in the order of their
 /// lines; every number defined once.
-fn buffers(deck: &Deck, sizes: &Sizes) -> Result<Vec<Buffer>, Box<Diagnostic>> {
+pub(crate) fn buffers(deck: &Deck, sizes: &Sizes) -> Result<Vec<Buffer>, Box<Diagnostic>> {
     let optimise = deck.optimise.iter().flat_map(|o| &o.buffers);
     let mut defs: Vec<&BufDef> = optimise.chain(deck.storage.iter().flat_map(|s| &s.buffers)).collect();
     defs.sort_by_key(|d| d.line);

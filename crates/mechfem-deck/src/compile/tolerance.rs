@@ -122,6 +122,18 @@ pub(crate) fn tolerance(
     Ok(Some(Tolerance { dims, bands, line: block.line }))
 }
 
+/// BUFTOL's buffers b and b + 1 appended to `buffers`. Each records its
+/// source's quantity during a run (so it has the source's unit and transfer
+/// order); [`crate::Compiled::fill_bands`] then writes the band over it.
+pub(crate) fn record_bands(tolerance: Option<&Tolerance>, buffers: &mut Vec<Buffer>) {
+    for band in tolerance.iter().flat_map(|t| &t.bands) {
+        let Some(source) = buffers.iter().find(|b| b.number == band.source).copied() else { continue };
+        for number in [band.buffer, band.buffer + 1] {
+            buffers.push(Buffer { number, quantity: source.quantity, line: band.line });
+        }
+    }
+}
+
 /// The smallest b with b and b + 1 free of buffers and bands.
 fn free_pair(defined: &std::collections::BTreeMap<u32, Buffer>, bands: &[BandDef]) -> u32 {
     let used = |n: u32| defined.contains_key(&n) || bands.iter().any(|o| n == o.buffer || n == o.buffer + 1);
