@@ -221,7 +221,7 @@ impl Compiled {
         };
         let dims: Vec<mechfem_core::run::tolerance::Toleranced> =
             tolerance.dims.iter().map(|d| mechfem_core::run::tolerance::Toleranced { var: d.var, t: d.t }).collect();
-        let b = bands(&self.mechanism, &mut start, &motion, &self.params, &dims, &quantities)?;
+        let b = bands(&self.mechanism, &mut start, &motion, &self.params, self.dynamics.as_ref(), &dims, &quantities)?;
         let nb = quantities.len();
         for (k, buffer) in self.buffers.iter().enumerate() {
             let Some((def, rss)) = self.band_of(buffer.number) else { continue };
