@@ -341,7 +341,8 @@ def side_by_side(times: dict[tuple[str, int], float], steps: list[int]) -> str:
     def shown(seconds: float | None) -> str:
         if seconds is None:
             return ""
-        return f"{seconds * 1e6:,.0f} µs".replace(",", " ") if seconds < 1e-2 else f"{seconds * 1e3:,.1f} ms"
+        text = f"{seconds * 1e6:,.0f} µs" if seconds < 1e-2 else f"{seconds * 1e3:,.1f} ms"
+        return text.replace(",", " ")
 
     head = ["tool", "computes"] + [
         f"{n:,}".replace(",", " ") + f", {how}" for n in steps for how in ("compiled once", "per call")
