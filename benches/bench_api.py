@@ -25,6 +25,9 @@ read or built and compiled inside each timed call):
 Every tool's coupler point is first checked against the closed form of the four-bar (the crank pin on its
 circle, the rocker pin at its distances from the crank pin and the rocker pivot), and pylinkage's against
 mechfem's at every position, velocities and accelerations included. Nothing here asserts a time.
+
+The run ends with the side-by-side tables of docs/performance.md (markdown): every tool's time per call, compiled
+once and per call, at every position count, and the ratios the speed targets are stated in.
 """
 
 from __future__ import annotations
@@ -91,7 +94,7 @@ def core_round(example: Path, steps: int, mode: str, min_time: float) -> float:
     return float(json.loads(out.splitlines()[-1])["seconds"])
 
 
-def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_round, example: Path) -> None:  # type: ignore[no-untyped-def]
+def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, times, study_round, example: Path) -> None:  # type: ignore[no-untyped-def]
     """Checks, then times every tool at ``steps`` steps, alternating them, and a round of the study after each
     round of the tools."""
     import numpy as np
@@ -198,6 +201,7 @@ def measure(steps: int, args: argparse.Namespace, tmp: Path, add, rates, study_r
         study_round()
     for name, t in best.items():
         add(name, steps, t)
+        times[name, steps] = t
     core = best[core_second]
     once, per = "compiled once", "compiled per call"
     second, with_kin = "run_deck, second order", "pylinkage step_fast_with_kinematics"
@@ -235,6 +239,7 @@ def main() -> None:
     args = ap.parse_args()
     tmp = Path(tempfile.mkdtemp(prefix="mechfem-bench-"))
     rates: dict[tuple[str, int], float] = {}
+    times: dict[tuple[str, int], float] = {}
 
     def add(tool: str, steps: int, seconds: float, per: str = "positions") -> None:
         rate = (steps + 1) / seconds if per == "positions" else steps / seconds
@@ -260,10 +265,109 @@ def main() -> None:
     # The core's own run (examples/throughput.rs), timed round by round with the tools.
     example = throughput_example()
     for steps in args.steps:
-        measure(steps, args, tmp, add, rates, study_round, example)
+        measure(steps, args, tmp, add, rates, times, study_round, example)
     for w, rate in study_rates.items():
         print(f"  sweep, {args.variants} variants x 360 positions, {w} worker(s): {rate:,.0f} variants/s")
     print(f"  sweep speed-up 1 -> 2 workers: {study_rates[2] / study_rates[1]:.2f}")
+    print()
+    print(side_by_side(times, args.steps))
+
+
+# The rows of the side-by-side table: (tool as the bench names it, what it computes).
+TABLE_ROWS = [
+    ("run_deck, positions only (det=False)", "`mechfem.run_deck(det=False)`", "positions"),
+    ("pylinkage step_fast", "pylinkage `step_fast`", "positions"),
+    ("run_deck, second order", "`mechfem.run_deck`", "+ velocity, acceleration (second order)"),
+    ("pylinkage step_fast_with_kinematics", "pylinkage `step_fast_with_kinematics`", "+ velocity, acceleration"),
+    ("Mechanism.run(order=2)", "`Mechanism.run(order=2)`", "every quantity of the buffer table"),
+    ("compiled handle run(order=2)", "compiled handle, `_core.Model.run(order=2)`", "the same"),
+    (
+        "the core's own run, positions only (throughput example)",
+        "the core's own run (`throughput`)",
+        "positions only, nothing recorded",
+    ),
+    (
+        "the core's own run, second order (throughput example)",
+        "the core's own run (`throughput`)",
+        "second order, nothing recorded",
+    ),
+]
+
+# The ratios of the side-by-side table: (what, numerator, denominator, whether a ratio of speeds).
+TABLE_RATIOS = [
+    (
+        "`run_deck` second order against `step_fast_with_kinematics`, both compiled once (speed)",
+        "run_deck, second order, compiled once",
+        "pylinkage step_fast_with_kinematics, compiled once",
+        True,
+    ),
+    (
+        "the same, both compiled per call",
+        "run_deck, second order, compiled per call",
+        "pylinkage step_fast_with_kinematics, compiled per call",
+        True,
+    ),
+    (
+        "`run_deck(det=False)` against `step_fast`, both compiled once (speed)",
+        "run_deck, positions only (det=False), compiled once",
+        "pylinkage step_fast, compiled once",
+        True,
+    ),
+    (
+        "the same, both compiled per call",
+        "run_deck, positions only (det=False), compiled per call",
+        "pylinkage step_fast, compiled per call",
+        True,
+    ),
+    (
+        "`Mechanism.run(order=2)` time over the core's own run (second order)",
+        "Mechanism.run(order=2), compiled once",
+        "the core's own run, second order (throughput example)",
+        False,
+    ),
+    (
+        "`Mechanism.run(order=2)` time over the compiled handle's",
+        "Mechanism.run(order=2), compiled once",
+        "compiled handle run(order=2), compiled once",
+        False,
+    ),
+]
+
+
+def side_by_side(times: dict[tuple[str, int], float], steps: list[int]) -> str:
+    """The times of every tool, compiled once and per call, at every position count, and the ratios of the
+    targets, as two markdown tables (docs/performance.md shows them)."""
+
+    def shown(seconds: float | None) -> str:
+        if seconds is None:
+            return ""
+        text = f"{seconds * 1e6:,.0f} µs" if seconds < 1e-2 else f"{seconds * 1e3:,.1f} ms"
+        return text.replace(",", " ")
+
+    head = ["tool", "computes"] + [
+        f"{n:,}".replace(",", " ") + f", {how}" for n in steps for how in ("compiled once", "per call")
+    ]
+    lines = ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (2 * len(steps))]
+    for tool, label, computes in TABLE_ROWS:
+        cells = []
+        for n in steps:
+            if tool.startswith("the core"):
+                cells += [shown(times.get((tool, n))), ""]
+            else:
+                cells += [
+                    shown(times.get((f"{tool}, compiled once", n))),
+                    shown(times.get((f"{tool}, compiled per call", n))),
+                ]
+        lines.append("| " + " | ".join([label, computes, *cells]) + " |")
+    lines += ["", "| ratio | " + " | ".join(f"{n:,} positions".replace(",", " ") for n in steps) + " |"]
+    lines.append("|---|" + "---:|" * len(steps))
+    for what, num, den, speed in TABLE_RATIOS:
+        cells = []
+        for n in steps:
+            a, b = times.get((num, n)), times.get((den, n))
+            cells.append("" if a is None or b is None else f"{(b / a if speed else a / b):.2f}")
+        lines.append("| " + " | ".join([what, *cells]) + " |")
+    return "\n".join(lines)
 
 
 if __name__ == "__main__":

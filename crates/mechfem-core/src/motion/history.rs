@@ -24,6 +24,8 @@ pub(super) struct History {
     n: usize,
     q: [f64; MAX_POINTS],
     diff: Vec<f64>,
+    /// Scratch of [`History::push`]: one row of new differences.
+    carry: Vec<f64>,
     /// The largest magnitude in each row of `diff` (a term's size without
     /// a pass over its row at every extrapolation).
     row_max: [f64; MAX_POINTS],
@@ -48,6 +50,7 @@ impl History {
             n,
             q: [0.0; MAX_POINTS],
             diff: vec![0.0; MAX_POINTS * n],
+            carry: vec![0.0; n],
             row_max: [0.0; MAX_POINTS],
             len: 0,
             depth: 3,
@@ -86,17 +89,21 @@ impl History {
         self.q[0] = q;
         let n = self.n;
         // x[q, r_0..r_{k-1}] = (x[q, r_0..r_{k-2}] - x[r_0..r_{k-1}]) / (q - r_{k-1}).
+        // Row by row, the new differences of every co-ordinate carried in
+        // `carry` from one row to the next (each co-ordinate's arithmetic is
+        // that of a pass down its own column).
         let mut row_max = [0.0f64; MAX_POINTS];
-        for (c, &xc) in x.iter().enumerate() {
-            let mut new = xc;
-            for (k, &ik) in inv[..len].iter().enumerate() {
-                let old = self.diff[k * n + c];
-                self.diff[k * n + c] = new;
+        let carry = &mut self.carry[..n];
+        carry.copy_from_slice(&x[..n]);
+        for ((row, &ik), largest) in self.diff.chunks_exact_mut(n.max(1)).zip(&inv[..len]).zip(&mut row_max) {
+            for (old, new) in row.iter_mut().zip(carry.iter_mut()) {
                 // (`f64::max` minds NaN, at thrice the cost; a NaN is left out either way.)
-                if new.abs() > row_max[k] {
-                    row_max[k] = new.abs();
+                if new.abs() > *largest {
+                    *largest = new.abs();
                 }
-                new = (new - old) * ik;
+                let next = (*new - *old) * ik;
+                *old = *new;
+                *new = next;
             }
         }
         self.row_max = row_max;

@@ -316,19 +316,26 @@ pub fn record_evaluated(
     dynamics: Option<&InverseDynamics>,
     out: &mut Vec<f64>,
 ) {
+    out.extend(quantities.iter().map(|&q| recorded_value(q, view, dynamics)));
+}
+
+/// The value [`record_evaluated`] records of quantity `q` at the position
+/// `view`.
+#[inline]
+pub(super) fn recorded_value(q: Quantity, view: &PositionView<'_>, dynamics: Option<&InverseDynamics>) -> f64 {
     let (mech, kin) = (view.mech, view.kin);
     let transfer = kin.order().is_some();
     // The quantities most recorded are read here without the generic path
     // of `Quantity::value` (which gives the same values): a short run
     // records a deck's few buffers at every position.
-    out.extend(quantities.iter().map(|q| match (*q, dynamics) {
+    match (q, dynamics) {
         (Quantity::X0(i), _) => view.state.x[i],
         (Quantity::Time, _) => view.time,
         (Quantity::Vx(i), _) if transfer => kin.velocity(mech, i, view.input_vel),
         (Quantity::Ax(i), _) if transfer => kin.acceleration(mech, i, view.input_vel, view.input_acc),
         (q, Some(d)) if q.is_dynamic() => q.dynamic_value(mech, d),
         (q, _) => q.value(view),
-    }));
+    }
 }
 
 /// An [`Observer`] that keeps chosen quantities, and optionally every

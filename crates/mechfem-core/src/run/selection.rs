@@ -24,7 +24,7 @@
 use super::inverse::InverseDynamics;
 use super::layout::{acceleration, velocity, Block};
 use super::observe::PositionView;
-use super::record::{record_evaluated, Quantity};
+use super::record::{recorded_value, Quantity};
 use crate::model::{FormRef, Mechanism, FIXED};
 use crate::solver::TransferOrder;
 
@@ -46,7 +46,7 @@ pub struct Selection {
 /// records most of a mechanism of one input from its transfer functions
 /// directly, by the column of the co-ordinate in them (found once), to the
 /// same values and sums as [`Quantity::value`]; any other as
-/// [`record_evaluated`] does.
+/// [`record_evaluated`](super::record::record_evaluated) does.
 #[derive(Debug, Clone, Copy)]
 enum Read {
     Coord(usize),
@@ -177,21 +177,19 @@ impl Selection {
             (&[][..], &[][..], f64::NAN, f64::NAN)
         };
         let at = |x: &[f64], c: usize| if c == FIXED { 0.0 } else { x[c] };
-        out.reserve(self.reads.len());
-        for (r, q) in self.reads.iter().zip(&self.quantities) {
-            let value = match *r {
+        // The row is made room for once and written column by column.
+        let start = out.len();
+        out.resize(start + self.reads.len(), f64::NAN);
+        for ((slot, r), q) in out[start..].iter_mut().zip(&self.reads).zip(&self.quantities) {
+            *slot = match *r {
                 Read::Coord(i) => v.state.x[i],
                 Read::Time => v.time,
                 Read::Det => kin.det(),
                 Read::Kx1(c) if transfer => at(x1, c),
                 Read::Velocity(c) if transfer => velocity(&[at(x1, c)], &[qd]),
                 Read::Acceleration(c) if transfer => acceleration(&[at(x1, c)], &[at(x2, c)], &[qd], &[qdd]),
-                _ => {
-                    record_evaluated(std::slice::from_ref(q), v, dynamics, out);
-                    continue;
-                }
+                _ => recorded_value(*q, v, dynamics),
             };
-            out.push(value);
         }
     }
 }
