@@ -880,6 +880,7 @@ def optimised_deck_text(
     numbers, written in the deck's UNITS where it has them) replaced, in mode KIN ANA without OPTIMISE; MOV_FUNC
     files named from ``file_dir`` (the old deck's folder) when given."""
 
+@final
 class ToleranceBands:
     """Tolerance bands the core computed, every number in the model's units (``mechfem_core::run::tolerance``)."""
 
