@@ -12,7 +12,7 @@ import copy
 import math
 import sys
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
@@ -23,16 +23,11 @@ from mechfem.design import FloatArray, Iteration
 from mechfem.frame_angle import FrameAngle
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
 from mechfem.motion import Motion
+from mechfem.optimum import Optimum, Start
 from mechfem.storage import Storage
 from mechfem.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
 
 if TYPE_CHECKING:
-    import os
-    from pathlib import Path
-
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
-
     from mechfem.model import Mechanism
     from mechfem.result import RunResult
 
@@ -100,85 +95,6 @@ class Bound:
     quantity: Quantity
     lo: float
     hi: float
-
-
-@dataclass
-class Optimum:
-    """What :func:`optimize` found: the optimised mechanism, the variables' start and final values, the history."""
-
-    mechanism: Mechanism
-    start: dict[str, float]
-    values: dict[str, float]
-    objective: float
-    start_objective: float
-    history: list[Iteration]
-    runs: int
-    """Mechanism runs (designs evaluated), the start design's included."""
-    infeasible: int
-    """How many of them met a design that could not be assembled or moved (stepped back from)."""
-    success: bool
-    message: str
-    seconds: float
-    method: str
-    motion: Motion | None = field(default=None, repr=False)
-    starts: list[Start] = field(default_factory=list, repr=False)
-    """Every start's outcome (one for a single start); this optimum is the best of them."""
-    usable: float = 1.0
-    """The fraction of the starts that could be optimised (assembled, and feasible through the motion)."""
-    timing: list[float] | None = None
-    """With free timing, the input's value at each target point of the optimised design."""
-    drawn: int = 0
-    """With ``starts`` a number: the draws of the start box looked at to find the drawn starts (those that assemble
-    and can do the problem's motion; :mod:`mechfem.multistart`)."""
-    rejected: list[Start] = field(default_factory=list, repr=False)
-    """The draws passed over, each with its reason (``message``)."""
-    reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
-    """Those infeasible designs by kind of reason (see :attr:`mechfem.design.Solution.reasons`): how many, and the
-    first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
-
-    def run(self) -> RunResult:
-        """The optimised mechanism run through the motion the optimisation used."""
-        return self.mechanism.run(self.motion)
-
-    # The views live in mechfem.optimum_view, imported when asked for (it needs matplotlib for the chart).
-    def _repr_html_(self) -> str:
-        """Jupyter's summary table: the variables' start and final values, the objective, the verdict."""
-        from mechfem import optimum_view
-
-        return optimum_view.summary_html(optimum_view.optimum_summary(self))
-
-    def plot_history(self, ax: Axes | None = None) -> Figure:
-        """The objective per iteration on a logarithmic axis (on ``ax``, default a new figure); the figure."""
-        from mechfem import optimum_view
-
-        return optimum_view.plot_history(self.history, ax)
-
-    def to_html(self) -> str:
-        """The summary table and the chart of :meth:`plot_history` as one self-contained HTML page."""
-        from mechfem import optimum_view
-
-        return optimum_view.page(optimum_view.optimum_summary(self), self.history)
-
-    def save_report(self, path: str | os.PathLike[str]) -> Path:
-        """Writes :meth:`to_html` to ``path``; returns its path."""
-        from mechfem import optimum_view
-
-        return optimum_view.save_page(optimum_view.optimum_summary(self), self.history, path)
-
-
-@dataclass
-class Start:
-    """One start of :func:`optimize`: the variables' start values, where the optimiser took them (None when the
-    start failed) and the objective there (NaN when it failed), its runs and time, and ``message``: the
-    optimiser's word, or why the start failed (e.g. its design cannot be assembled)."""
-
-    start: dict[str, float]
-    values: dict[str, float] | None
-    objective: float
-    runs: int
-    success: bool
-    message: str
-    seconds: float
 
 
 class _Deck:
