@@ -345,5 +345,5 @@ def test_a_dynamics_fault_of_a_python_model_is_named_by_its_points_without_deck_
     with pytest.raises(MechfemError) as caught:
         m.run(Motion.to(10, {"travel": 1e110}))
     message = str(caught.value)
-    assert "of the PMASS at co-ordinates S.x, S.y is not finite" in message, message
+    assert "of the PMASS at point S is not finite" in message, message
     assert "line" not in message, message

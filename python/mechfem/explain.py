@@ -142,6 +142,12 @@ class PythonWords(Words):
         if kind == "element":
             e = _numbered(nb.elements, value)
             return deck if e is None else element_words(e)
+        if kind == "point" and isinstance(value, list):
+            xy = [_numbered(nb.coords, k) for k in value]
+            x = xy[0] if xy else None
+            if len(xy) == 2 and x is not None and xy[1] is not None and x.name.endswith(".x"):
+                return f"point {x.name[:-2]}"
+            kind = "coords"
         if kind in _NOUNS:
             coordinates = kind in ("coordinate", "coords")
             items: Sequence[Coordinate | Row] = nb.coords if coordinates else nb.prescribed

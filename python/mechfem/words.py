@@ -134,26 +134,9 @@ class Words:
         return "".join(p if isinstance(p, str) else self.thing(*p) for p in parts)
 
     def thing(self, kind: str, value: object, deck: str) -> str:
-        """A thing a message names (see :data:`Part`), in the deck's words: ``element 3 (TR2)``,
-        ``co-ordinates 5, 6``; with the names the deck gives them: ``point K (co-ordinates 13, 14)``,
+        """A thing a message names (see :data:`Part`), in the deck's words as the core gives them, with the names
+        the model gives them beside the numbers: ``element 3 (TR2)``, ``point K (co-ordinates 13, 14)``,
         ``co-ordinate 9 (C.x)``, ``row 6 (phi)``."""
-        labels = getattr(self._input(1), "labels", None)
-        if labels is None:
-            return deck
-        try:
-            if kind == "coords" and isinstance(value, list) and len(value) == 2:
-                x, y = (labels.coordinate(int(i))[0] for i in value)
-                if x.endswith(".x") and y == x[:-2] + ".y":
-                    return f"point {x[:-2]} ({deck})"
-            if kind == "coordinate" and isinstance(value, int):
-                name = labels.coordinate(value)[0]
-                return f"{deck} ({name})" if name != f"x{value}" else deck
-            if kind == "row" and isinstance(value, int):
-                # A row without a name is called by its formula, ANGB(1).
-                name = labels.row(value)[0]
-                return f"{deck} ({name})" if "(" not in name else deck
-        except IndexError:
-            return deck
         return deck
 
 

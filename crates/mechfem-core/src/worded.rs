@@ -3,15 +3,19 @@
 //! rows, deck terms, the DYNAMICS line of a mass or load) kept as
 //! structure, numbered as the deck numbers them (1-based).
 //!
-//! Joined, the parts are the message in the deck's words
-//! ([`Worded`]'s `Display`); a front end that has its own names for the
-//! things of the model (the Python API) words those parts itself and takes
-//! the text parts as they are.
+//! A thing the model names ([`Names`]: a NAMES block, the names of a model
+//! built in Python) is said with its name beside its number
+//! (`point K (co-ordinates 13, 14)`, `row 6 (phi)`, `element 3 (crank,
+//! TR2)`); an unnamed one by its number alone. Joined, the parts are the
+//! message in the deck's words ([`Worded`]'s `Display`); a front end that
+//! has its own names for the things of the model (the Python API) words
+//! those parts itself and takes the text parts as they are.
 
 use std::fmt;
 
 use crate::error::{DeckTerm, DynamicSource, DynamicsFault, ElementError, Piece, SolveError};
 use crate::model::{FormRef, Mechanism, State};
+use crate::names::Names;
 use crate::run::design::DesignFailure;
 use crate::solver::diagnose;
 
@@ -26,15 +30,46 @@ pub enum Part {
         number: usize,
         /// Type name.
         ty: &'static str,
+        /// The element's name, if the model names it.
+        name: Option<String>,
     },
     /// One co-ordinate.
-    Coordinate(usize),
+    Coordinate {
+        /// Deck number.
+        number: usize,
+        /// The co-ordinate's name (`C.x`, `s`), if the model names it.
+        name: Option<String>,
+    },
     /// Co-ordinates, always said in the plural.
-    Coords(Vec<usize>),
+    Coords {
+        /// Deck numbers.
+        numbers: Vec<usize>,
+        /// Each one's name (`x5` for an unnamed one) when the model names
+        /// any of them, else empty.
+        names: Vec<String>,
+    },
+    /// The x and y co-ordinates (deck numbers) of a point the model names.
+    Point {
+        /// The point's name.
+        name: String,
+        /// Deck numbers of its x and y.
+        coords: [usize; 2],
+    },
     /// One prescribed row.
-    Row(usize),
+    Row {
+        /// Deck number.
+        number: usize,
+        /// The row's name, if the model names it.
+        name: Option<String>,
+    },
     /// Prescribed rows, always said in the plural.
-    Rows(Vec<usize>),
+    Rows {
+        /// Deck numbers.
+        numbers: Vec<usize>,
+        /// Each one's name (its formula for an unnamed one) when the model
+        /// names any of them, else empty.
+        names: Vec<String>,
+    },
     /// A term the deck spells its own way.
     Term(DeckTerm),
     /// The deck line of the statement just named (` given at line 23`); a front
@@ -55,29 +90,93 @@ impl Part {
         match self {
             Part::Text(_) => "text",
             Part::Element { .. } => "element",
-            Part::Coordinate(_) => "coordinate",
-            Part::Coords(_) => "coords",
-            Part::Row(_) => "row",
-            Part::Rows(_) => "rows",
+            Part::Coordinate { .. } => "coordinate",
+            Part::Coords { .. } => "coords",
+            Part::Point { .. } => "point",
+            Part::Row { .. } => "row",
+            Part::Rows { .. } => "rows",
             Part::Term(_) => "term",
             Part::Line(_) => "line",
             Part::Detail { .. } => "detail",
         }
     }
 
-    /// The part in the deck's words.
+    /// The part in the deck's words, with the model's names beside the
+    /// numbers.
     pub fn deck(&self) -> String {
+        let named = |words: String, names: &[String]| {
+            if names.is_empty() {
+                words
+            } else {
+                format!("{words} ({})", names.join(", "))
+            }
+        };
         match self {
             Part::Text(t) => t.clone(),
-            Part::Element { number, ty } => format!("element {number} ({ty})"),
-            Part::Coordinate(i) => format!("co-ordinate {i}"),
-            Part::Coords(c) => format!("co-ordinates {}", list(c)),
-            Part::Row(r) => format!("row {r}"),
-            Part::Rows(r) => format!("rows {}", list(r)),
+            Part::Element { number, ty, name: None } => format!("element {number} ({ty})"),
+            Part::Element { number, ty, name: Some(name) } => format!("element {number} ({name}, {ty})"),
+            Part::Coordinate { number, name } => named(format!("co-ordinate {number}"), name.as_slice()),
+            Part::Coords { numbers, names } => named(format!("co-ordinates {}", list(numbers)), names),
+            Part::Point { name, coords } => format!("point {name} (co-ordinates {})", list(coords)),
+            Part::Row { number, name } => named(format!("row {number}"), name.as_slice()),
+            Part::Rows { numbers, names } => named(format!("rows {}", list(numbers)), names),
             Part::Term(t) => t.deck().to_string(),
             Part::Line(n) => format!(" given at line {n}"),
             Part::Detail { error, .. } => error.to_string(),
         }
+    }
+}
+
+/// How a message names the things of a model: by deck number (1-based),
+/// with the model's name beside it where it has one.
+struct Namer<'a> {
+    mech: &'a Mechanism,
+    names: &'a Names,
+}
+
+fn name_of(names: &[Option<String>], k: usize) -> Option<String> {
+    names.get(k).cloned().flatten()
+}
+
+impl Namer<'_> {
+    /// Element `k` (0-based).
+    fn element(&self, k: usize) -> Part {
+        let ty = self.mech.elements().get(k).map_or("?", |e| e.ty.name());
+        Part::Element { number: k + 1, ty, name: name_of(&self.names.elements, k) }
+    }
+
+    /// Co-ordinate `i` (0-based).
+    fn coordinate(&self, i: usize) -> Part {
+        Part::Coordinate { number: i + 1, name: name_of(&self.names.coordinates, i) }
+    }
+
+    /// Co-ordinates `coords` (0-based): a named point when they are its x
+    /// and y.
+    fn coords(&self, coords: &[usize]) -> Part {
+        if let [x, y] = *coords {
+            if let Some(p) = self.names.points.iter().find(|p| p.0 == x && p.1 == y) {
+                return Part::Point { name: p.2.clone(), coords: [x + 1, y + 1] };
+            }
+        }
+        let named = coords.iter().any(|&i| name_of(&self.names.coordinates, i).is_some());
+        let names = if named { coords.iter().map(|&i| self.names.coordinate(i)).collect() } else { Vec::new() };
+        Part::Coords { numbers: coords.iter().map(|i| i + 1).collect(), names }
+    }
+
+    /// Prescribed row `r` (0-based).
+    fn row(&self, r: usize) -> Part {
+        Part::Row { number: r + 1, name: name_of(&self.names.prescribed, r) }
+    }
+
+    /// Prescribed rows `rows` (0-based).
+    fn rows(&self, rows: &[usize]) -> Part {
+        let named = rows.iter().any(|&r| name_of(&self.names.prescribed, r).is_some());
+        let names = if named {
+            rows.iter().map(|&r| self.names.row(self.mech, FormRef::Prescribed(r))).collect()
+        } else {
+            Vec::new()
+        };
+        Part::Rows { numbers: rows.iter().map(|r| r + 1).collect(), names }
     }
 }
 
@@ -122,22 +221,22 @@ impl SolveError {
         }
     }
 
-    /// The failure in parts, with the deck's numbering of `mech`; a fault of
-    /// the dynamics names the line of its statement from `lines`.
-    pub fn worded(&self, mech: &Mechanism, lines: Lines<'_>) -> Worded {
+    /// The failure in parts, with the deck's numbering of `mech` and the
+    /// model's `names` beside the numbers; a fault of the dynamics names the
+    /// line of its statement from `lines`.
+    pub fn worded(&self, mech: &Mechanism, names: &Names, lines: Lines<'_>) -> Worded {
+        let namer = Namer { mech, names };
         Worded(match self {
             SolveError::Element { element, source } => {
-                let ty = mech.elements().get(*element).map_or("?", |e| e.ty.name());
                 let number = element + 1;
-                vec![Part::Element { number, ty }, text(": "), Part::Detail { element: number, error: *source }]
+                vec![namer.element(*element), text(": "), Part::Detail { element: number, error: *source }]
             }
             SolveError::Singular { column, pivot } => {
-                let coord = mech.moving_coords().get(*column).map_or(0, |i| i + 1);
-                vec![
-                    text(format!("D^c is singular (pivot {pivot:.2e} at the column of ")),
-                    Part::Coordinate(coord),
-                    text(")"),
-                ]
+                let coord = match mech.moving_coords().get(*column) {
+                    Some(&i) => namer.coordinate(i),
+                    None => Part::Coordinate { number: 0, name: None },
+                };
+                vec![text(format!("D^c is singular (pivot {pivot:.2e} at the column of ")), coord, text(")")]
             }
             SolveError::NoConvergence { iterations, residual } => vec![text(format!(
                 "Newton iteration did not converge in {iterations} iterations (largest deformation {residual:.3e})"
@@ -150,7 +249,7 @@ impl SolveError {
                 "det(D^c) changed sign within the step (from {before:.3e} to {after:.3e}): the step crosses a limit \
                  position or a point where two assembly branches meet"
             ))],
-            SolveError::Dynamics(fault) => dynamics_parts(mech, lines, fault),
+            SolveError::Dynamics(fault) => dynamics_parts(&namer, lines, fault),
             SolveError::Unsupported(u) => u
                 .pieces()
                 .iter()
@@ -165,24 +264,27 @@ impl SolveError {
 }
 
 /// A result of the dynamics that is not finite, in parts with the deck's
-/// numbering: what it is, the DYNAMICS line's keyword and what that line
-/// names, and what to check.
-fn dynamics_parts(mech: &Mechanism, lines: Lines<'_>, fault: &DynamicsFault) -> Vec<Part> {
-    let element = |k: usize| Part::Element { number: k + 1, ty: mech.elements().get(k).map_or("?", |e| e.ty.name()) };
+/// numbering and the model's names: what it is, the DYNAMICS line's keyword
+/// and what that line names, and what to check.
+fn dynamics_parts(namer: &Namer<'_>, lines: Lines<'_>, fault: &DynamicsFault) -> Vec<Part> {
     let mut parts = vec![text(format!("{} ", fault.quantity.words()))];
     parts.extend(match fault.source {
-        DynamicSource::Body { element: k } => vec![text("of the MASS on "), element(k)],
-        DynamicSource::PointMass { x, y } => vec![text("of the PMASS at "), Part::Coords(vec![x + 1, y + 1])],
-        DynamicSource::Inertia { coord } => vec![text("of the INERTIA on "), Part::Coordinate(coord + 1)],
-        DynamicSource::Force { x, y } => vec![text("of the FORCE at "), Part::Coords(vec![x + 1, y + 1])],
+        DynamicSource::Body { element: k } => vec![text("of the MASS on "), namer.element(k)],
+        DynamicSource::PointMass { x, y } => vec![text("of the PMASS at "), namer.coords(&[x, y])],
+        DynamicSource::Inertia { coord } => vec![text("of the INERTIA on "), namer.coordinate(coord)],
+        DynamicSource::Force { x, y } => vec![text("of the FORCE at "), namer.coords(&[x, y])],
         DynamicSource::Load { form: FormRef::Prescribed(r), keyword } => {
-            vec![text(format!("of the {keyword} on ")), Part::Row(r + 1)]
+            vec![text(format!("of the {keyword} on ")), namer.row(r)]
         }
         DynamicSource::Load { form: FormRef::Dependent(d), keyword } => {
-            vec![text(format!("of the {keyword} on dependent form parameter -{}", d + 1))]
+            let words = format!("of the {keyword} on dependent form parameter -{}", d + 1);
+            match name_of(&namer.names.dependent, d) {
+                Some(name) => vec![text(format!("{words} ({name})"))],
+                None => vec![text(words)],
+            }
         }
-        DynamicSource::Row(r) => vec![text("of "), Part::Row(r + 1)],
-        DynamicSource::Coordinate(i) => vec![text("on "), Part::Coordinate(i + 1)],
+        DynamicSource::Row(r) => vec![text("of "), namer.row(r)],
+        DynamicSource::Coordinate(i) => vec![text("on "), namer.coordinate(i)],
         DynamicSource::FreeDofs => {
             vec![text("of the degrees of freedom moved by the forces ("), Part::Term(DeckTerm::Dynamic), text(")")]
         }
@@ -211,16 +313,18 @@ pub struct Dependence {
     pub size: usize,
 }
 
-/// A failure at position 1, worded: the error's parts, and for a singular
-/// D^c the analysis at the co-ordinates `state` where it was met, which
-/// names the rows and co-ordinates at fault (and is added to the words).
+/// A failure at position 1, worded with the model's `names`: the error's
+/// parts, and for a singular D^c the analysis at the co-ordinates `state`
+/// where it was met, which names the rows and co-ordinates at fault (and is
+/// added to the words).
 pub fn position_one(
     mech: &Mechanism,
+    names: &Names,
     lines: Lines<'_>,
     state: &mut State,
     err: &SolveError,
 ) -> (Worded, Option<Dependence>) {
-    let mut worded = err.worded(mech, lines);
+    let mut worded = err.worded(mech, names, lines);
     if !matches!(err, SolveError::Singular { .. }) {
         return (worded, None);
     }
@@ -228,24 +332,27 @@ pub fn position_one(
         Ok(m) if m.rank < m.n => m,
         _ => return (worded, None),
     };
+    let namer = Namer { mech, names };
     let rows: Vec<usize> = m.dependent_rows.iter().map(|r| r + 1).collect();
     let coords: Vec<usize> = m.free_coords.iter().map(|i| i + 1).collect();
     let parts = &mut worded.0;
     parts.push(text(format!("; D^c has rank {} of {}: prescribed ", m.rank, m.n)));
-    match rows.as_slice() {
-        [r] => parts.extend([Part::Row(*r), text(" is superfluous")]),
-        _ => parts.extend([Part::Rows(rows.clone()), text(" are linearly dependent")]),
+    match m.dependent_rows.as_slice() {
+        [r] => parts.extend([namer.row(*r), text(" is superfluous")]),
+        all => parts.extend([namer.rows(all), text(" are linearly dependent")]),
     }
-    parts.extend([text(", and "), Part::Coords(coords.clone()), text(" can move with every prescribed value held")]);
+    let free = namer.coords(&m.free_coords);
+    parts.extend([text(", and "), free, text(" can move with every prescribed value held")]);
     (worded, Some(Dependence { rows, coords, rank: m.rank, size: m.n }))
 }
 
-/// Why a design is infeasible, worded with the deck's numbering of `mech`:
-/// a stable code (`position_one`, `other_branch`, `left_branch`) and the words.
-pub fn design_failure(mech: &Mechanism, lines: Lines<'_>, e: &DesignFailure) -> (&'static str, String) {
+/// Why a design is infeasible, worded with the deck's numbering of `mech`
+/// and the model's `names`: a stable code (`position_one`, `other_branch`,
+/// `left_branch`) and the words.
+pub fn design_failure(mech: &Mechanism, names: &Names, lines: Lines<'_>, e: &DesignFailure) -> (&'static str, String) {
     match e {
         DesignFailure::Solve(e) => {
-            ("position_one", format!("position 1 cannot be computed: {}", e.worded(mech, lines)))
+            ("position_one", format!("position 1 cannot be computed: {}", e.worded(mech, names, lines)))
         }
         DesignFailure::OtherBranch { .. } => ("other_branch", e.to_string()),
         DesignFailure::LeftBranch(_) => ("left_branch", e.to_string()),
@@ -253,9 +360,10 @@ pub fn design_failure(mech: &Mechanism, lines: Lines<'_>, e: &DesignFailure) -> 
 }
 
 /// Why a design's motion stopped before its end (`last_good`: the 0-based
-/// position it last reached), worded with the deck's numbering of `mech`.
-pub fn design_stopped(mech: &Mechanism, lines: Lines<'_>, last_good: usize, e: &SolveError) -> String {
-    format!("the motion stopped before position {}: {}", last_good + 2, e.worded(mech, lines))
+/// position it last reached), worded with the deck's numbering of `mech`
+/// and the model's `names`.
+pub fn design_stopped(mech: &Mechanism, names: &Names, lines: Lines<'_>, last_good: usize, e: &SolveError) -> String {
+    format!("the motion stopped before position {}: {}", last_good + 2, e.worded(mech, names, lines))
 }
 
 /// A start design that cannot be computed, in words (`why`: its failure).

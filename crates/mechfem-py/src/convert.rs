@@ -4,7 +4,7 @@
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::Block;
-use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, RunReport, Stop};
+use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Names, RunReport, Stop};
 use mechfem_deck::{Compiled, Optimise, RowInfo, Sense, TargetKind};
 use numpy::ndarray::{Array2, ShapeError};
 use numpy::PyArray2;
@@ -64,13 +64,19 @@ fn limit<'py>(py: Python<'py>, l: &LimitPosition) -> PyResult<Bound<'py, PyDict>
     Ok(d)
 }
 
-fn stop<'py>(py: Python<'py>, mech: &Mechanism, lines: errors::Lines<'_>, s: &Stop) -> PyResult<Bound<'py, PyDict>> {
+fn stop<'py>(
+    py: Python<'py>,
+    mech: &Mechanism,
+    names: &Names,
+    lines: errors::Lines<'_>,
+    s: &Stop,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("last_good", s.last_good + 1)?;
     d.set_item("inputs", s.inputs.clone())?;
     d.set_item("last_inputs", s.last_inputs.clone())?;
     d.set_item("kind", s.error.code())?;
-    let worded = s.error.worded(mech, lines);
+    let worded = s.error.worded(mech, names, lines);
     d.set_item("message", worded.to_string())?;
     d.set_item("parts", errors::parts_object(py, &worded)?)?;
     d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
@@ -78,10 +84,12 @@ fn stop<'py>(py: Python<'py>, mech: &Mechanism, lines: errors::Lines<'_>, s: &St
 }
 
 /// `RunReport` as a dict; `steps` is the number of steps the motion asked
-/// for, `lines` the DYNAMICS lines a stop's fault may name.
+/// for, `names` the model's names and `lines` the DYNAMICS lines a stop's
+/// fault may name.
 pub fn report<'py>(
     py: Python<'py>,
     mech: &Mechanism,
+    names: &Names,
     lines: errors::Lines<'_>,
     r: &RunReport,
     steps: usize,
@@ -94,7 +102,7 @@ pub fn report<'py>(
     let limits = r.limits.iter().map(|l| limit(py, l)).collect::<PyResult<Vec<_>>>()?;
     d.set_item("limits", limits)?;
     d.set_item("singular_positions", r.singular_positions.iter().map(|k| k + 1).collect::<Vec<_>>())?;
-    d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, lines, s)).transpose()?)?;
+    d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, names, lines, s)).transpose()?)?;
     Ok(d)
 }
 

@@ -167,15 +167,18 @@ impl DesignModel {
         match result {
             Ok(run) => {
                 let stop = run.report.stop.as_ref();
-                let reason =
-                    stop.map(|s| worded::design_stopped(&c.mechanism, &c.dynamics_lines, s.last_good, &s.error));
+                let reason = stop
+                    .map(|s| worded::design_stopped(&c.mechanism, &c.names, &c.dynamics_lines, s.last_good, &s.error));
                 let at_1 = run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec);
                 d.set_item("position_one", at_1)?;
                 d.set_item("feasible", reason.is_none())?;
                 d.set_item("reason_kind", reason.as_ref().map(|_| "stopped"))?;
                 d.set_item("reason", reason)?;
                 d.set_item("positions", run.positions)?;
-                d.set_item("report", convert::report(py, &c.mechanism, &c.dynamics_lines, &run.report, motion.steps)?)?;
+                d.set_item(
+                    "report",
+                    convert::report(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?,
+                )?;
                 d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
                 let g = PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?;
                 d.set_item("gradient", g)?;
@@ -222,7 +225,7 @@ impl DesignModel {
 
 /// The kind of a failure (see [`DesignModel::evaluate`]) and its words.
 fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
-    worded::design_failure(&c.mechanism, &c.dynamics_lines, e)
+    worded::design_failure(&c.mechanism, &c.names, &c.dynamics_lines, e)
 }
 
 /// The deck `text` (named `path` in messages) of the design with the PARA

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use mechfem_core::run::MemoryRefusal;
 use mechfem_core::worded::{self, Part, Worded};
-use mechfem_core::{DesignError, ElementError, Mechanism, SolveError, State};
+use mechfem_core::{DesignError, ElementError, Mechanism, Names, SolveError, State};
 use mechfem_deck::{Diagnostic, Diagnostics};
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
@@ -140,10 +140,12 @@ pub fn interrupted(py: Python<'_>, raised: Option<PyErr>, kept: bool) -> PyResul
 fn part_object<'py>(py: Python<'py>, part: &Part) -> PyResult<Bound<'py, PyAny>> {
     let value = match part {
         Part::Text(t) => return Ok(PyString::new(py, t).into_any()),
-        Part::Element { number: n, .. } | Part::Coordinate(n) | Part::Row(n) | Part::Line(n) => {
-            n.into_pyobject(py)?.into_any()
-        }
-        Part::Coords(n) | Part::Rows(n) => PyList::new(py, n)?.into_any(),
+        Part::Element { number: n, .. }
+        | Part::Coordinate { number: n, .. }
+        | Part::Row { number: n, .. }
+        | Part::Line(n) => n.into_pyobject(py)?.into_any(),
+        Part::Coords { numbers: n, .. } | Part::Rows { numbers: n, .. } => PyList::new(py, n)?.into_any(),
+        Part::Point { coords, .. } => PyList::new(py, coords)?.into_any(),
         Part::Term(t) => PyString::new(py, t.code()).into_any(),
         Part::Detail { element, error } => detail_fields(py, *element, error)?.into_any(),
     };
@@ -202,11 +204,12 @@ pub type Lines<'a> = mechfem_core::worded::Lines<'a>;
 pub fn position_one_error(
     py: Python<'_>,
     mech: &Mechanism,
+    names: &Names,
     lines: Lines<'_>,
     state: &mut State,
     err: &SolveError,
 ) -> PyErr {
-    let (worded, dependence) = worded::position_one(mech, lines, state, err);
+    let (worded, dependence) = worded::position_one(mech, names, lines, state, err);
     let message = worded.to_string();
     let e = match err {
         SolveError::Element { .. } => AssemblyError::new_err(message),

@@ -175,7 +175,7 @@ fn execute(
         }
         Err(e) => {
             let e = c.error_as_written(&e);
-            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut c.state, &e))
+            Err(errors::position_one_error(py, &c.mechanism, &c.names, &c.dynamics_lines, &mut c.state, &e))
         }
     }
 }
@@ -290,12 +290,12 @@ fn run_deck(
         let block = &mut table[buffers.0 * positions..(buffers.0 + buffers.1) * positions];
         if let Err(e) = py.detach(|| c.fill_bands(start, block, positions)) {
             let e = c.error_as_written(&e);
-            return Err(errors::position_one_error(py, mech, &c.dynamics_lines, &mut c.state.clone(), &e));
+            return Err(errors::position_one_error(py, mech, &c.names, &c.dynamics_lines, &mut c.state.clone(), &e));
         }
     }
     names::table(&c, rec.columns.quantities(), &mut table, positions, &mut coords);
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
-    let report_dict = || convert::report(py, mech, &c.dynamics_lines, &report, steps);
+    let report_dict = || convert::report(py, mech, &c.names, &c.dynamics_lines, &report, steps);
     let report_dict = match convert::plain_report_key(&report, steps).filter(|_| sim.is_none()) {
         Some(key) => slot.report(py, key, report_dict)?,
         None => report_dict()?,

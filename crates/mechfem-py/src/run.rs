@@ -364,7 +364,7 @@ impl Shared {
         let echo = &self.echo;
         let model =
             kept(py, &self.last_echo, key, || echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para)))?;
-        let report = || convert::report(py, mech, &c.dynamics_lines, &r.report, r.steps);
+        let report = || convert::report(py, mech, &c.names, &c.dynamics_lines, &r.report, r.steps);
         let report = match convert::plain_report_key(&r.report, r.steps).filter(|_| r.sim.is_none()) {
             Some(key) => kept(py, &self.last_report, key, report)?,
             None => report()?,
@@ -415,7 +415,14 @@ pub fn outcome_run(
         Outcome::BadChange(e) => Err(errors::change_error(&e)),
         Outcome::Failed(mut state, e) => {
             let (c, _) = text.ok_or_else(lost)?;
-            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut state, &c.error_as_written(&e)))
+            Err(errors::position_one_error(
+                py,
+                &c.mechanism,
+                &c.names,
+                &c.dynamics_lines,
+                &mut state,
+                &c.error_as_written(&e),
+            ))
         }
     }
 }

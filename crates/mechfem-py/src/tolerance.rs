@@ -158,7 +158,7 @@ fn evaluated(py: Python<'_>, c: &Compiled, tolerance: Tolerance) -> PyResult<Ban
         Ok(e) => Bands::new(py, e, tolerance, c.mechanism.n_dof()),
         Err(BandsError::Solve(e)) => {
             let mut at = c.state.clone();
-            Err(errors::position_one_error(py, &c.mechanism, &c.dynamics_lines, &mut at, &e))
+            Err(errors::position_one_error(py, &c.mechanism, &c.names, &c.dynamics_lines, &mut at, &e))
         }
         Err(e) => Err(errors::value_error(&e)),
     }
