@@ -685,6 +685,8 @@ class ObjectiveDict(TypedDict):
     sense: Literal["minimise", "maximise"]
     reduce: Literal["max", "maxabs", "rms", "end"]
     buffer: int
+    with_buffer: NotRequired[int | None]
+    """MINIMISE kind b b2: b2, the magnitude sqrt(b^2 + b2^2) judged."""
     line: int
 
 @type_check_only
@@ -707,6 +709,20 @@ class OptimiseDict(TypedDict):
     """FULLROT: ``row``, ``line``."""
     frame: NotRequired[SynthesisDict | None]
     """VARYFRAME: ``coordinate`` (the pivot's x), ``lo``, ``hi``, ``line``."""
+    mass_vary: NotRequired[list[MassVaryDict]]
+    """VARYM lines (DYN ANA)."""
+
+@type_check_only
+class MassVaryDict(TypedDict):
+    """A VARYM line: ``item`` (MASS, U, V, J, PMASS, INERTIA), the element or co-ordinate ``number``, the variable
+    ``kind`` of ``DynamicDesignModel`` (10..15), ``lo``, ``hi``, ``line``."""
+
+    item: str
+    number: int
+    kind: int
+    lo: float
+    hi: float
+    line: int
 
 @type_check_only
 class SynthesisDict(TypedDict):
@@ -868,6 +884,31 @@ class DesignModel:
     def start(self) -> list[float]: ...
     def start_at(self, values: list[float]) -> dict[str, Any]: ...
     def evaluate(self, values: list[float]) -> dict[str, Any]: ...
+
+@final
+class DynamicDesignModel:
+    """A compiled DYN ANA deck kept for an optimiser: the dict of ``DesignModel``, the dynamic buffers with their
+    sensitivities to dimensions and to the mass model. Variable kinds 0 (fixed co-ordinate), 1 (prescribed row),
+    10..15 (MASS, U, V, J of an element's MASS line, the PMASS at a co-ordinate, the INERTIA on one)."""
+
+    def __new__(
+        cls,
+        text: str,
+        path: str | os.PathLike[str],
+        base_dir: str | os.PathLike[str],
+        variables: list[tuple[int, int]],
+        buffers: list[int],
+        extrema: list[tuple[int, int]],
+    ) -> DynamicDesignModel: ...
+    @property
+    def runs(self) -> int: ...
+    def start(self) -> list[float]: ...
+    def start_at(self, values: list[float]) -> dict[str, Any]: ...
+    def evaluate(self, values: list[float]) -> dict[str, Any]: ...
+
+def deck_with_masses(text: str, path: str | os.PathLike[str], masses: list[tuple[int, int, float]]) -> str:
+    """The DYN ANA deck with the numbers of its mass model replaced: ``(kind, number, value)``, kind 10..15 as for
+    ``DynamicDesignModel``, values in the core's units (written in the deck's UNITS)."""
 
 def optimised_deck_text(
     text: str,

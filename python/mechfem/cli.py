@@ -204,13 +204,13 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def optimisation(deck: Path) -> OptimiseDict | None:
-    """The OPTIMISE block of a KIN OPT deck; None for any other mode, or a deck that cannot be read (the run then
-    says why)."""
+    """The OPTIMISE block of a KIN OPT deck or a DYN ANA deck that has one; None for any other deck, or a deck that
+    cannot be read (the run then says why)."""
     try:
         text = _core.read_deck_text(deck)
     except DeckError:
         return None
-    if optimise_deck.deck_mode(text) != "KIN OPT":
+    if optimise_deck.deck_mode(text) not in ("KIN OPT", "DYN ANA"):
         return None
     return optimise_deck.describe(deck).get("optimise")
 

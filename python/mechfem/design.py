@@ -29,6 +29,7 @@ import numpy.typing as npt
 
 import mechfem._core as _core
 from mechfem.design_rules import _EPS, _FEASIBLE, TURN, Stop, _Converged, _optimiser_bounds, _reported, _stop_message
+from mechfem.dynamic_design import magnitude, reduced
 from mechfem.errors import MechfemError
 
 FloatArray = npt.NDArray[np.float64]
@@ -64,7 +65,9 @@ class ExtremumTerm:
     weight: float = 1.0
 
 
-DesignModelOf = Callable[[list[tuple[int, int]], list[int], list[tuple[int, int]]], _core.DesignModel]
+DesignModelOf = Callable[
+    [list[tuple[int, int]], list[int], list[tuple[int, int]]], _core.DesignModel | _core.DynamicDesignModel
+]
 """Compiles the model of a problem for its variables, the buffers evaluated and the extrema taken:
 ``(variables, buffers, extrema)`` as ``_core.DesignModel`` takes them."""
 
@@ -101,6 +104,9 @@ class Problem:
     bounds: list[tuple[int, float, float]] = field(default_factory=list)
     objective: tuple[Literal[1, -1], Reduce, int] | None = None
     """``(sense, reduce, buffer)``: +1 minimise, -1 maximise."""
+    objective_with: int | None = None
+    """A second buffer of the MINIMISE/MAXIMISE term: the term is then of the magnitude ``sqrt(b^2 + b2^2)`` at
+    every position (a force's x and y)."""
     custom: Callable[[Evaluation], tuple[float, FloatArray]] | None = None
     extra_buffers: list[int] = field(default_factory=list)
     """Buffers evaluated for ``custom`` beyond those of the terms."""
@@ -191,6 +197,8 @@ def _buffers(problem: Problem) -> list[int]:
             out.append(b)
     if problem.objective is not None and problem.objective[2] not in out:
         out.append(problem.objective[2])
+    if problem.objective_with is not None and problem.objective_with not in out:
+        out.append(problem.objective_with)
     return out + [b for b in problem.extra_buffers if b not in out]
 
 
@@ -333,21 +341,6 @@ def misses(problem: Problem, e: Evaluation) -> list[tuple[float, int | None]]:
     return out
 
 
-def reduced(reduce: Reduce, v: FloatArray, g: FloatArray) -> tuple[float, FloatArray]:
-    """One number from a buffer's values over the positions, and its gradient (at the position that decides it,
-    for MAX and MAXABS)."""
-    if reduce == "max":
-        k = int(np.argmax(v))
-        return float(v[k]), g[k]
-    if reduce == "maxabs":
-        k = int(np.argmax(np.abs(v)))
-        return float(abs(v[k])), np.sign(v[k]) * g[k]
-    if reduce == "rms":
-        rms = float(np.sqrt(np.mean(v**2)))
-        return rms, (v @ g) / (len(v) * rms) if rms > 0 else np.zeros(g.shape[1])
-    return float(v[-1]), g[-1]
-
-
 def objective(problem: Problem, e: Evaluation) -> tuple[float, FloatArray]:
     """Sum of squares of the targets, plus the MINIMISE/MAXIMISE term, plus a Python objective; with gradient."""
     r, j = residuals(problem, e)
@@ -355,7 +348,10 @@ def objective(problem: Problem, e: Evaluation) -> tuple[float, FloatArray]:
         f, g = float(r @ r), 2.0 * (r @ j)
         if problem.objective is not None:
             sense, reduce, b = problem.objective
-            fo, go = reduced(reduce, e.value(b), e.gradient(b))
+            v, gv = e.value(b), e.gradient(b)
+            if problem.objective_with is not None:
+                v, gv = magnitude(v, gv, e.value(problem.objective_with), e.gradient(problem.objective_with))
+            fo, go = reduced(reduce, v, gv)
             f, g = f + sense * fo, g + sense * go
             _finite_objective(f, g, "the MINIMISE or MAXIMISE term")
         if problem.custom is not None:

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import mechfem._core as _core
-from mechfem import deck_synthesis, design, design_rules
+from mechfem import deck_synthesis, design, design_rules, dynamic_design
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import Model
@@ -75,21 +75,28 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
     if any(periodic):
         angles = angle_variables(_core.describe_deck_text(text, os.fspath(deck), os.fspath(deck_dir(deck))), opt)
         periodic = [p and a for p, a in zip(periodic, angles, strict=True)]
+    masses = opt.get("mass_vary") or []
+    dynamic = deck_mode(text) == "DYN ANA"
+    model = (dynamic_design.dynamic_deck_model if dynamic else design.deck_model)(
+        text, os.fspath(deck), os.fspath(deck_dir(deck))
+    )
     return design.Problem(
-        model=design.deck_model(text, os.fspath(deck), os.fspath(deck_dir(deck))),
-        variables=[(v["kind"], v["number"]) for v in opt["vary"]],
-        names=[variable_name(v["kind"], v["number"]) for v in opt["vary"]],
-        lo=np.array([v["lo"] for v in opt["vary"]], dtype=np.float64),
-        hi=np.array([v["hi"] for v in opt["vary"]], dtype=np.float64),
+        model=model,
+        variables=[(v["kind"], v["number"]) for v in opt["vary"]] + [(m["kind"], m["number"]) for m in masses],
+        names=[variable_name(v["kind"], v["number"]) for v in opt["vary"]]
+        + [dynamic_design.mass_name(m["kind"], m["number"]) for m in masses],
+        lo=np.array([v["lo"] for v in opt["vary"]] + [m["lo"] for m in masses], dtype=np.float64),
+        hi=np.array([v["hi"] for v in opt["vary"]] + [m["hi"] for m in masses], dtype=np.float64),
         terms=terms,
         bounds=[(b["buffer"], b["lo"], b["hi"]) for b in opt["bounds"]],
         objective=None
         if objective is None
         else (1 if objective["sense"] == "minimise" else -1, objective["reduce"], objective["buffer"]),
+        objective_with=None if objective is None else objective.get("with_buffer"),
         steps=opt["steps"],
         tol=opt["tol"],
         stop=None if (ftol := opt.get("ftol")) is None else design_rules.Stop(*ftol),
-        periodic=periodic if any(periodic) else [],
+        periodic=periodic + [False] * len(masses) if any(periodic) else [],
     )
 
 
@@ -129,7 +136,9 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
     coords = coordinate_units(model)
     out = []
     for (kind, number), fallback in zip(p.variables, p.names, strict=True):
-        if kind not in (0, 1):
+        if kind in dynamic_design.MASS_UNITS:
+            out.append((fallback, shown(dynamic_design.MASS_UNITS[kind], units)))
+        elif kind not in (0, 1):
             # A frame angle or the input at a free-timed point: named by the problem.
             out.append((fallback, "rad"))
         elif kind == 1 and 0 < number <= len(model.prescribed):
@@ -145,7 +154,7 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
 def deck_scales(opt: OptimiseDict | None, n: int) -> list[float]:
     """What each design variable's number in the optimiser (the core's units) is multiplied by to give it in the
     deck's units (1 for a deck without UNITS)."""
-    vary: list[Mapping[str, Any]] = [] if opt is None else list(opt["vary"])
+    vary: list[Mapping[str, Any]] = [] if opt is None else [*opt["vary"], *(opt.get("mass_vary") or [])]
     return [float(v.get("scale", 1.0)) for v in vary] if len(vary) == n else [1.0] * n
 
 
@@ -249,9 +258,9 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
 
 def names_and_lines(opt: OptimiseDict) -> str:
     keyword = {0: "VARYX", 1: "VARY"}
-    return ", ".join(
-        f"{variable_name(v['kind'], v['number'])} ({keyword[v['kind']]} on line {v['line']})" for v in opt["vary"]
-    )
+    named = [f"{variable_name(v['kind'], v['number'])} ({keyword[v['kind']]} on line {v['line']})" for v in opt["vary"]]
+    named += [f"{m['item']} {m['number']} (VARYM on line {m['line']})" for m in opt.get("mass_vary") or []]
+    return ", ".join(named)
 
 
 def at_final_design(
@@ -270,6 +279,10 @@ def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
     variables, x = outcome.problem.variables, s.x
     if outcome.synthesis is not None:
         variables, x = outcome.synthesis.written(s.x)
+        # The mass model's variables (DYN ANA) are written as they are.
+        masses = [(k, v) for k, v in enumerate(outcome.problem.variables) if v[0] in dynamic_design.MASS_UNITS]
+        variables = [*variables, *(v for _, v in masses)]
+        x = np.append(x, [s.x[k] for k, _ in masses])
     return write_design(outcome.deck, variables, x, s.position_one, outdir)
 
 
@@ -280,13 +293,17 @@ def write_design(
     be empty) replaces the XMOV estimates."""
     described = describe(deck)
     moving = {c["number"] for c in described["coordinates"] if c["moving"]}
+    masses = [(k, n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k >= 10]
     rows = [(n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k == 1]
     coords = [(n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k == 0]
     coords += [(i + 1, float(v)) for i, v in enumerate(position_one) if i + 1 in moving]
     outdir.mkdir(parents=True, exist_ok=True)
     source = deck_dir(deck).resolve()
     file_dir = None if source == outdir.resolve() else Path(os.path.relpath(source, outdir.resolve()))
-    text = _core.optimised_deck_text(_core.read_deck_text(deck), os.fspath(deck), rows, coords, file_dir)
+    text = _core.read_deck_text(deck)
+    if masses:
+        text = _core.deck_with_masses(text, os.fspath(deck), masses)
+    text = _core.optimised_deck_text(text, os.fspath(deck), rows, coords, file_dir)
     path = outdir / f"{deck.stem}_opt.mec"
     with atomic_text(path) as f:
         f.write(text)
@@ -340,7 +357,8 @@ def print_lines(outcome: Outcome, written: Path | None, model: Model | None = No
             b = int(target["buffer"])
             out.append(f"  {kw} on line {target['line']} ({buffer_name(model, b)}): {core_value(model, b, d)}{where}")
     if written is not None:
-        out.append(f"  final design: {written.name} (mode KIN ANA); the model and tables above are its run")
+        mode = deck_mode(written.read_text(encoding="utf-8"))
+        out.append(f"  final design: {written.name} (mode {mode}); the model and tables above are its run")
     return [*out, ""]
 
 
@@ -391,7 +409,7 @@ def write_interrupted(deck: Path, opt: OptimiseDict, history: list[design.Iterat
     outdir.mkdir(parents=True, exist_ok=True)
     written: Path | None = None
     if history:
-        variables = [(int(v["kind"]), int(v["number"])) for v in opt["vary"]]
+        variables = [(int(v["kind"]), int(v["number"])) for v in [*opt["vary"], *(opt.get("mass_vary") or [])]]
         written = write_design(deck, variables, history[-1].x[: len(variables)], [], outdir)
     path = outdir / f"{deck.stem}.prt"
     with atomic_text(path) as f:

@@ -19,7 +19,9 @@ mod tolerance;
 
 pub(crate) use names::CoreScale;
 pub use names::{NameDef, NameKind, NamesBlock, UnitsDef};
-pub use optimise::{BoundDef, FrameDef, FreeTimeDef, ObjectiveDef, Optimise, TargetDef, TargetDefKind, VaryDef};
+pub use optimise::{
+    BoundDef, FrameDef, FreeTimeDef, MassVaryDef, ObjectiveDef, Optimise, TargetDef, TargetDefKind, VaryDef,
+};
 pub use tolerance::{BufTolDef, TolDef, ToleranceBlock};
 
 /// A parsed deck.

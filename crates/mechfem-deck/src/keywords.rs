@@ -132,14 +132,15 @@ keywords! {
     TargetAt "TARGETAT" Optimise 3 Some(4), "b k value [w]";
     TargetExt "TARGETEXT" Optimise 3 Some(4), "b bref value [w]";
     Bound "BOUND" Optimise 3 Some(3), "b lo hi";
-    Minimise "MINIMISE" Optimise 2 Some(2), "kind b";
-    Maximise "MAXIMISE" Optimise 2 Some(2), "kind b";
+    Minimise "MINIMISE" Optimise 2 Some(3), "kind b [b2]";
+    Maximise "MAXIMISE" Optimise 2 Some(3), "kind b [b2]";
     OptSteps "OPTSTEPS" Optimise 1 Some(1), "n";
     OptTol "OPTTOL" Optimise 1 Some(1), "tol";
     OptFTol "OPTFTOL" Optimise 2 Some(2), "rtol atol";
     FreeTime "FREETIME" Optimise 1 Some(2), "r [ORDERED]";
     FullRot "FULLROT" Optimise 1 Some(1), "r";
     VaryFrame "VARYFRAME" Optimise 3 Some(3), "i lo hi";
+    VaryM "VARYM" Optimise 4 Some(4), "what n lo hi";
     BufInp "BUFINP" Storage 2 Some(2), "j b";
     BufTime "BUFTIME" Storage 1 Some(1), "b";
     BufX0 "BUFX0" Storage 2 Some(2), "i b";

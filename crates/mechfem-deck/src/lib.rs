@@ -106,6 +106,7 @@ mod compile;
 mod compiled;
 mod design_setup;
 mod diagnostic;
+mod dynamic_setup;
 mod files;
 mod keywords;
 mod lexer;
@@ -113,6 +114,7 @@ mod numbers;
 mod optimise;
 mod parse;
 pub mod rewrite;
+pub mod rewrite_masses;
 mod running;
 mod statements;
 mod tolerance;
@@ -125,12 +127,14 @@ pub use compile::compile;
 pub use compiled::{Buffer, Compiled, ElementInfo, Picture, PlotItem, RowInfo, TermInfo};
 pub use design_setup::{DesignSetup, DesignSetupError};
 pub use diagnostic::{output_name_problem, Diagnostic, DiagnosticKind, Diagnostics, Span, Spanned, MAX_OUTPUT_NAME};
+pub use dynamic_setup::{mass_item, DynamicSetup, DynamicSetupError};
 pub use files::{read_deck, MAX_DECK_BYTES};
 pub use keywords::{Block, Keyword};
 pub use mechfem_core::{Names, Units};
 pub use numbers::{Change, ChangeKindError, Numbers};
 pub use optimise::{
-    Bound, FrameAngle, FreeTime, FullRotation, Objective, Optimise, Reduce, Sense, Target, TargetKind, Vary,
+    Bound, FrameAngle, FreeTime, FullRotation, MassItem, MassVary, Objective, Optimise, Reduce, Sense, Target,
+    TargetKind, Vary,
 };
 pub use parse::{parse_file, parse_str};
 pub use statements::names::{MAX_LABEL, MAX_NAME};

@@ -6,6 +6,7 @@
 //! optimises anything. Positions are 0-based, as everywhere in the
 //! compiled deck.
 
+use mechfem_core::dynamics::MassVar;
 use mechfem_core::DesignVar;
 
 /// The compiled OPTIMISE block.
@@ -34,6 +35,9 @@ pub struct Optimise {
     pub full_rotation: Option<FullRotation>,
     /// The frame angle (VARYFRAME), if given.
     pub frame: Option<FrameAngle>,
+    /// The variables of the mass model (VARYM, mode `DYN ANA`), in deck
+    /// order; they follow the `vary` ones.
+    pub mass_vary: Vec<MassVary>,
     /// Line of the OPTIMISE header.
     pub line: usize,
 }
@@ -167,6 +171,107 @@ pub struct Objective {
     pub reduce: Reduce,
     /// The buffer.
     pub buffer: u32,
+    /// The second component, if given: the objective is of the magnitude
+    /// `sqrt(b^2 + b2^2)` at every position (a force's x and y).
+    pub with: Option<u32>,
+    /// Line of the keyword.
+    pub line: usize,
+}
+
+/// What a `VARYM` line varies: one number of a DYNAMICS line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MassItem {
+    /// `MASS`: the mass m of element k's MASS line.
+    Mass,
+    /// `U`: its centre of mass along the element's u-axis.
+    U,
+    /// `V`: its centre of mass along the element's v-axis.
+    V,
+    /// `J`: its moment of inertia about the centre of mass.
+    J,
+    /// `PMASS`: the mass of the PMASS at the point whose x is co-ordinate i.
+    PointMass,
+    /// `INERTIA`: the moment of inertia of the INERTIA on co-ordinate i.
+    Inertia,
+}
+
+impl MassItem {
+    /// Every item, in the order of the deck reference.
+    pub const ALL: [MassItem; 6] =
+        [MassItem::Mass, MassItem::U, MassItem::V, MassItem::J, MassItem::PointMass, MassItem::Inertia];
+
+    /// The word of the deck, e.g. `PMASS`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MassItem::Mass => "MASS",
+            MassItem::U => "U",
+            MassItem::V => "V",
+            MassItem::J => "J",
+            MassItem::PointMass => "PMASS",
+            MassItem::Inertia => "INERTIA",
+        }
+    }
+
+    /// The item spelled `word` (case-insensitive).
+    pub fn from_name(word: &str) -> Option<MassItem> {
+        MassItem::ALL.into_iter().find(|r| r.name().eq_ignore_ascii_case(word))
+    }
+
+    /// The variable of `model` it names for the deck's element or
+    /// co-ordinate `number` (1-based), if the DYNAMICS block has that line.
+    pub fn var(self, model: &mechfem_core::dynamics::Dynamics, number: usize) -> Option<MassVar> {
+        let k = number.checked_sub(1)?;
+        match self {
+            MassItem::Mass | MassItem::U | MassItem::V | MassItem::J => {
+                model.bodies.iter().position(|b| b.element == k).map(|b| match self {
+                    MassItem::Mass => MassVar::Mass(b),
+                    MassItem::U => MassVar::CentreU(b),
+                    MassItem::V => MassVar::CentreV(b),
+                    _ => MassVar::BodyInertia(b),
+                })
+            }
+            MassItem::PointMass => model.point_masses.iter().position(|p| p.x == k).map(MassVar::PointMass),
+            MassItem::Inertia => model.inertias.iter().position(|i| i.coord == k).map(MassVar::Inertia),
+        }
+    }
+
+    /// Its kind of quantity; `coord` is the kind of the co-ordinate an
+    /// INERTIA sits on (a moment of inertia on an angle, a mass on a length).
+    pub fn dim(self, coord: mechfem_core::Dim) -> mechfem_core::Dim {
+        use mechfem_core::Dim;
+        match self {
+            MassItem::Mass | MassItem::PointMass => Dim::MASS,
+            MassItem::U | MassItem::V => Dim::LENGTH,
+            MassItem::J => Dim::INERTIA,
+            MassItem::Inertia => crate::compile::inertia_on(coord),
+        }
+    }
+
+    /// Whether it names an element's MASS line (else a co-ordinate).
+    pub fn of_element(self) -> bool {
+        matches!(self, MassItem::Mass | MassItem::U | MassItem::V | MassItem::J)
+    }
+
+    /// Whether it is a mass or a moment of inertia (a centre is not).
+    pub fn is_mass(self) -> bool {
+        !matches!(self, MassItem::U | MassItem::V)
+    }
+}
+
+/// `VARYM what n lo hi`: a number of the mass model as a design variable.
+/// Its start value is the DYNAMICS line's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassVary {
+    /// Which number.
+    pub item: MassItem,
+    /// The deck's element k or co-ordinate i, 1-based as written.
+    pub number: usize,
+    /// The variable of the compiled mass model.
+    pub var: MassVar,
+    /// Lower end of the range (below `hi`).
+    pub lo: f64,
+    /// Upper end of the range.
+    pub hi: f64,
     /// Line of the keyword.
     pub line: usize,
 }

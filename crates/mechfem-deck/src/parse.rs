@@ -331,12 +331,14 @@ impl<'a> Parser<'a> {
             let message = format!("a {name} deck has no DYNAMICS block: masses and loads belong to the dynamics modes");
             self.error(DiagnosticKind::WrongMode, span, message, hint);
         }
-        if block == Block::Optimise && mode != Mode::KinOpt {
-            let message =
-                format!("a {name} deck has no OPTIMISE block: design variables and targets belong to the mode KIN OPT");
+        if block == Block::Optimise && !matches!(mode, Mode::KinOpt | Mode::DynAna) {
+            let message = format!(
+                "a {name} deck has no OPTIMISE block: design variables and targets belong to the modes KIN OPT and \
+                 DYN ANA"
+            );
             let hint = format!(
-                "change the mode line to `KIN OPT` to optimise the design, or remove the OPTIMISE block to run {name} \
-                 as it is"
+                "change the mode line to `KIN OPT` to optimise the kinematics or `DYN ANA` to optimise the dynamics \
+                 of a prescribed motion, or remove the OPTIMISE block to run {name} as it is"
             );
             self.error(DiagnosticKind::WrongMode, span, message, hint);
         }

@@ -94,7 +94,8 @@ pub fn design_deck(
         }
     }
     let optimise = deck.optimise.as_ref().map(|o| (o.line, block_end(&lines, o.line)));
-    if optimise.is_some() {
+    // A DYN ANA deck keeps its mode: without OPTIMISE it analyses the design.
+    if optimise.is_some() && deck.mode.value == crate::ast::Mode::KinOpt {
         edit(deck.mode.span, "KIN ANA".to_string());
     }
     let moved = moved_buffers(&deck, &lines);
@@ -151,7 +152,7 @@ fn files(deck: &Deck) -> Vec<&Spanned<String>> {
 }
 
 /// `line` with the character ranges of `edits` replaced.
-fn replaced(line: &str, edits: &mut [(Span, String)]) -> String {
+pub(crate) fn replaced(line: &str, edits: &mut [(Span, String)]) -> String {
     edits.sort_by_key(|(s, _)| s.start);
     let chars: Vec<char> = line.chars().collect();
     let mut out = String::with_capacity(line.len() + 16);

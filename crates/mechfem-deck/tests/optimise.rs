@@ -88,7 +88,10 @@ fn every_keyword_of_the_optimise_block() {
         ]
     );
     assert_eq!(o.bounds, [Bound { buffer: 12, lo: -1.0, hi: 1.0, line: 44 }]);
-    assert_eq!(o.objective, Some(Objective { sense: Sense::Maximise, reduce: Reduce::Rms, buffer: 12, line: 45 }));
+    assert_eq!(
+        o.objective,
+        Some(Objective { sense: Sense::Maximise, reduce: Reduce::Rms, buffer: 12, with: None, line: 45 })
+    );
     assert_eq!((o.steps, o.tol, o.line), (30, Some(1e-9), 33));
     // STORAGE comes first in this deck and names OPTIMISE's buffers.
     let numbers: Vec<u32> = c.buffers.iter().map(|b| b.number).collect();
@@ -106,12 +109,12 @@ fn optsteps_defaults_to_200() {
 }
 
 #[test]
-fn only_a_kin_opt_deck_has_an_optimisation() {
+fn only_kin_opt_and_dyn_ana_decks_have_an_optimisation() {
     let c = compiled(&four_bar("KIN ANA")).unwrap();
     assert!(c.optimise.is_none());
     let e = compiled(&format!("{}OPTIMISE\nVARY 2 3 4\n", four_bar("KIN ANA"))).unwrap_err();
     assert_eq!(kinds(&e), [(DiagnosticKind::WrongMode, 30)]);
-    let e = compiled(&format!("{}OPTIMISE\nVARY 2 3 4\n", four_bar("DYN ANA"))).unwrap_err();
+    let e = compiled(&format!("{}OPTIMISE\nVARY 2 3 4\n", four_bar("DYN SIM"))).unwrap_err();
     assert!(kinds(&e).contains(&(DiagnosticKind::WrongMode, 30)), "{e}");
 }
 

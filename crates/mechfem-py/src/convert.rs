@@ -458,6 +458,7 @@ pub fn optimise<'py>(py: Python<'py>, o: &Optimise) -> PyResult<Bound<'py, PyDic
             d.set_item("sense", if ob.sense == Sense::Minimise { "minimise" } else { "maximise" })?;
             d.set_item("reduce", ob.reduce.name().to_ascii_lowercase())?;
             d.set_item("buffer", ob.buffer)?;
+            d.set_item("with_buffer", ob.with)?;
             d.set_item("line", ob.line)?;
             Ok::<_, PyErr>(d)
         })
@@ -481,6 +482,21 @@ pub fn optimise<'py>(py: Python<'py>, o: &Optimise) -> PyResult<Bound<'py, PyDic
         .map(|f| synthesis_dict(py, &[("coordinate", (f.x + 1) as f64), ("lo", f.lo), ("hi", f.hi)], false, f.line))
         .transpose()?;
     d.set_item("frame", frame)?;
+    let mass_vary = o
+        .mass_vary
+        .iter()
+        .map(|v| {
+            let d = PyDict::new(py);
+            d.set_item("item", v.item.name())?;
+            d.set_item("number", v.number)?;
+            d.set_item("kind", 10 + mechfem_deck::MassItem::ALL.iter().position(|&m| m == v.item).unwrap_or(0))?;
+            d.set_item("lo", v.lo)?;
+            d.set_item("hi", v.hi)?;
+            d.set_item("line", v.line)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    d.set_item("mass_vary", mass_vary)?;
     d.set_item("line", o.line)?;
     Ok(d)
 }

@@ -46,6 +46,7 @@ mod checked;
 mod convert;
 mod described_names;
 mod design;
+mod dynamic_design;
 mod errors;
 mod labels;
 mod model;
@@ -350,6 +351,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<storage::Plot>()?;
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
+    m.add_class::<dynamic_design::DynamicDesignModel>()?;
+    m.add_function(wrap_pyfunction!(dynamic_design::deck_with_masses, m)?)?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(tolerance::deck_tolerance, m)?)?;
     m.add_function(wrap_pyfunction!(tolerance::built_tolerance, m)?)?;

@@ -137,6 +137,8 @@ pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> P
         })
         .collect();
     set("vary", vary)?;
+    let coord = |n: usize| c.dims.coord(n.saturating_sub(1));
+    set("mass_vary", o.mass_vary.iter().map(|m| m.item.dim(coord(m.number))).collect())?;
     set("targets", o.targets.iter().map(|t| buffer(t.buffer)).collect())?;
     set("bounds", o.bounds.iter().map(|b| buffer(b.buffer)).collect())?;
     Ok(())

@@ -34,6 +34,26 @@ pub struct Optimise {
     pub full_rotation: Option<(Spanned<Keyword>, Spanned<i64>)>,
     /// `VARYFRAME i lo hi`, if given.
     pub frame: Option<FrameDef>,
+    /// `VARYM what n lo hi` lines (mode `DYN ANA`), in order.
+    pub mass_vary: Vec<MassVaryDef>,
+}
+
+/// `VARYM what n lo hi`: a number of the DYNAMICS block as a design
+/// variable (mode `DYN ANA`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MassVaryDef {
+    /// Line of the keyword.
+    pub line: usize,
+    /// The keyword.
+    pub keyword: Spanned<Keyword>,
+    /// Which number of which DYNAMICS line: the word `what`.
+    pub what: Spanned<crate::optimise::MassItem>,
+    /// The element k (MASS, U, V, J) or co-ordinate i (PMASS, INERTIA).
+    pub index: Spanned<i64>,
+    /// Lower end of the range.
+    pub lo: Spanned<f64>,
+    /// Upper end of the range (above `lo`).
+    pub hi: Spanned<f64>,
 }
 
 /// `FREETIME r [ORDERED]`: the input of row r takes a value of its own, a
@@ -143,4 +163,7 @@ pub struct ObjectiveDef {
     pub reduce: Spanned<Reduce>,
     /// The buffer.
     pub buffer: Spanned<i64>,
+    /// The second component b2, if given: the objective is then of the
+    /// magnitude `sqrt(b^2 + b2^2)` (a force's x and y).
+    pub with: Option<Spanned<i64>>,
 }

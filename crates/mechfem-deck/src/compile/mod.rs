@@ -5,6 +5,7 @@ mod coordinates;
 mod design;
 mod designer;
 mod dynamics;
+mod mass_vary;
 mod model;
 mod motion;
 mod names;
@@ -12,6 +13,7 @@ mod optimise;
 mod refs;
 mod rows;
 mod scale;
+pub(crate) use scale::inertia_on;
 mod storage;
 mod synthesis;
 mod table;
@@ -59,7 +61,8 @@ pub fn compile(deck: &Deck, deck_dir: &Path) -> Result<Compiled, Diagnostics> {
     tolerance::record_bands(tolerance.as_ref(), &mut buffers);
     let out = storage::outputs(deck, &sizes, buffers)?;
     integration.stop_when = motion::stop_when(deck, &out.buffers)?;
-    let mut optimise = optimise::optimise(deck, &m, &sizes, motion.as_ref(), &out.buffers, deck_dir)?;
+    let mut optimise =
+        optimise::optimise(deck, &m, &sizes, motion.as_ref(), dynamics.as_ref(), &out.buffers, deck_dir)?;
     let dims = match &deck.scale {
         Some(s) => {
             tables::to_core(

@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use mechfem_core::dynamics::Dynamics;
 use mechfem_core::{FormRef, Motion, Quantity};
 
 use super::design::design_variables;
@@ -18,27 +19,54 @@ use crate::diagnostic::{count, Diagnostic, DiagnosticKind, Hint, Span};
 use crate::keywords::Keyword;
 use crate::optimise::{Bound, Objective, Optimise, Target, TargetKind};
 
-/// The optimisation problem of a `KIN OPT` deck (`None` for other modes).
+/// The optimisation problem of a `KIN OPT` deck, or of a `DYN ANA` deck
+/// with an OPTIMISE block (`None` otherwise).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn optimise(
     deck: &Deck,
     model: &Model,
     sizes: &Sizes,
     motion: Option<&Motion>,
+    dynamics: Option<&Dynamics>,
     buffers: &[Buffer],
     deck_dir: &Path,
 ) -> Result<Option<Optimise>, Box<Diagnostic>> {
-    if deck.mode.value != Mode::KinOpt {
+    let dynamic = deck.mode.value == Mode::DynAna && deck.optimise.is_some();
+    if deck.mode.value != Mode::KinOpt && !dynamic {
         return Ok(None);
     }
     // The parser reports both already.
     let Some(block) = &deck.optimise else {
         return Err(missing_optimise(&deck.path, &deck.source, deck.mode.span));
     };
+    let header = Span::new(block.line, 0, deck.line_text(block.line).trim_end().chars().count());
     let Some(motion) = motion else {
+        if dynamic {
+            return Err(deck
+                .error(
+                    DiagnosticKind::MissingBlock,
+                    header,
+                    "this DYN ANA deck optimises but has no MOVEMENT block: the motion gives the positions at which \
+                     the design is judged",
+                )
+                .with_hint(
+                    "add a MOVEMENT block with `TSTEPE n dt` and, for every DOF j, a driven motion: `MOV_RELE j \
+                     delta`, `MOV_ABSE j end` or `MOV_FUNC j file`",
+                ));
+        }
         return Err(missing_movement(&deck.path, &deck.source, deck.mode.value, deck.mode.span));
     };
-    let header = Span::new(block.line, 0, deck.line_text(block.line).trim_end().chars().count());
-    if block.vary.is_empty() {
+    let mass_vary = super::mass_vary::mass_variables(deck, dynamics, &block.mass_vary)?;
+    if block.vary.is_empty() && mass_vary.is_empty() && dynamic {
+        return Err(deck
+            .error(DiagnosticKind::NothingToOptimise, header, "the OPTIMISE block has no design variable")
+            .with_hint(
+                "add `VARYM what n lo hi` to vary a number of the DYNAMICS block (a MASS line's MASS, U, V or J, \
+                 a PMASS, an INERTIA), `VARY r lo hi` to vary the PARA value of prescribed row r or `VARYX i lo hi` \
+                 to vary fixed co-ordinate i",
+            ));
+    }
+    if block.vary.is_empty() && mass_vary.is_empty() {
         return Err(deck
             .error(DiagnosticKind::NothingToOptimise, header, "the OPTIMISE block has no design variable")
             .with_hint(
@@ -64,6 +92,7 @@ pub(crate) fn optimise(
     let judged = block.targets.iter().map(|t| (&t.buffer, t.keyword.value));
     let judged = judged.chain(block.bounds.iter().map(|b| (&b.buffer, Keyword::Bound)));
     let judged = judged.chain(block.objective.iter().map(|o| (&o.buffer, o.keyword.value)));
+    let judged = judged.chain(block.objective.iter().filter_map(|o| o.with.as_ref().map(|b| (b, o.keyword.value))));
     for (b, kw) in judged {
         let buffer = defined_buffer(deck, &defined, b)?;
         if buffer.quantity == Quantity::Det {
@@ -82,6 +111,9 @@ pub(crate) fn optimise(
                      a transfer function or a position instead",
                 ));
         }
+    }
+    if dynamic {
+        kinematic_only(deck, block)?;
     }
     let (free_time, full_rotation, frame) = super::synthesis::statements(deck, model, sizes, motion, block, &vary)?;
     let positions = motion.steps + 1;
@@ -110,6 +142,7 @@ pub(crate) fn optimise(
             sense: o.sense,
             reduce: o.reduce.value,
             buffer: defined_buffer(deck, &defined, &o.buffer)?.number,
+            with: o.with.as_ref().map(|b| defined_buffer(deck, &defined, b).map(|b| b.number)).transpose()?,
             line: o.line,
         }),
         None => None,
@@ -125,8 +158,33 @@ pub(crate) fn optimise(
         free_time,
         full_rotation,
         frame,
+        mass_vary,
         line: block.line,
     }))
+}
+
+/// Refuses the statements of kinematic synthesis in a `DYN ANA` deck:
+/// its motion is timed, every design is judged at the same instants.
+fn kinematic_only(deck: &Deck, block: &crate::ast::Optimise) -> Result<(), Box<Diagnostic>> {
+    let ext = block.targets.iter().find(|t| t.keyword.value == Keyword::TargetExt).map(|t| t.keyword.clone());
+    let found = [
+        ext,
+        block.free_time.as_ref().map(|f| f.keyword.clone()),
+        block.full_rotation.as_ref().map(|f| f.0.clone()),
+        block.frame.as_ref().map(|f| f.keyword.clone()),
+    ];
+    let Some(kw) = found.into_iter().flatten().next() else { return Ok(()) };
+    Err(deck
+        .error(
+            DiagnosticKind::WrongMode,
+            kw.span,
+            format!("{} belongs to the kinematic synthesis of a KIN OPT deck, not to a DYN ANA deck", kw.value),
+        )
+        .with_hint(
+            "a DYN ANA deck judges every design at the instants of its timed motion, by TARGET, TARGETAT, BOUND, \
+             MINIMISE and MAXIMISE of its buffers: synthesise the kinematics in a KIN OPT deck first, then balance \
+             the result here",
+        ))
 }
 
 /// What a TARGET, TARGETAT or TARGETEXT line compares its buffer with.

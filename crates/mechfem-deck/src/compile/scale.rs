@@ -135,6 +135,17 @@ pub(crate) fn to_core(deck: &Deck, units: Units, mech: &Mechanism) -> Deck {
             scale(u, dim, &mut v.lo);
             scale(u, dim, &mut v.hi);
         }
+        for v in &mut o.mass_vary {
+            use crate::optimise::MassItem;
+            let dim = match v.what.value {
+                MassItem::Mass | MassItem::PointMass => Dim::MASS,
+                MassItem::U | MassItem::V => Dim::LENGTH,
+                MassItem::J => Dim::INERTIA,
+                MassItem::Inertia => inertia_on(coord(v.index.value)),
+            };
+            scale(u, dim, &mut v.lo);
+            scale(u, dim, &mut v.hi);
+        }
         if let Some(f) = &mut o.frame {
             // VARYFRAME's range is an angle, in the deck's angle unit.
             scale(u, Dim::ANGLE, &mut f.lo);

@@ -4,11 +4,11 @@
 //! [`crate::compile`].
 
 use crate::args::Source;
-use crate::ast::{BoundDef, FrameDef, FreeTimeDef, ObjectiveDef, TargetDef, TargetDefKind, VaryDef};
+use crate::ast::{BoundDef, FrameDef, FreeTimeDef, MassVaryDef, ObjectiveDef, TargetDef, TargetDefKind, VaryDef};
 use crate::diagnostic::{real, Diagnostic, DiagnosticKind, Hint, Spanned};
 use crate::keywords::{closest, Keyword};
 use crate::lexer::{Line, Word};
-use crate::optimise::{Reduce, Sense};
+use crate::optimise::{MassItem, Reduce, Sense};
 use crate::parse::Parser;
 use crate::statements::dynamics::bounded;
 
@@ -64,6 +64,27 @@ impl Parser<'_> {
             Keyword::Minimise | Keyword::Maximise => {
                 let reduce = reduce(src, kw.value, arg(0)?)?;
                 let buffer = src.buffer(arg(1)?)?;
+                let with = args.get(2).map(|w| src.buffer(w)).transpose()?;
+                if let Some(b2) = &with {
+                    if !matches!(reduce.value, Reduce::Rms | Reduce::MaxAbs) {
+                        return Err(src
+                            .error(
+                                DiagnosticKind::BadValue,
+                                b2.span,
+                                format!(
+                                    "{} {} takes one buffer: only RMS and MAXABS judge the magnitude of two",
+                                    kw.value,
+                                    reduce.value.name()
+                                ),
+                            )
+                            .with_hint(format!(
+                                "`{kw} RMS b b2` and `{kw} MAXABS b b2` judge sqrt(b^2 + b2^2) at every position (a \
+                                 force's x and y, e.g. the shaking force of BUFSHAKE); {} of one buffer takes only b",
+                                reduce.value.name(),
+                                kw = kw.value
+                            )));
+                    }
+                }
                 if let Some(first) = &self.optimise.objective {
                     return Err(src
                         .error(
@@ -77,7 +98,8 @@ impl Parser<'_> {
                         ));
                 }
                 let sense = if kw.value == Keyword::Minimise { Sense::Minimise } else { Sense::Maximise };
-                self.optimise.objective = Some(ObjectiveDef { line: line_no, keyword: kw, sense, reduce, buffer });
+                self.optimise.objective =
+                    Some(ObjectiveDef { line: line_no, keyword: kw, sense, reduce, buffer, with });
             }
             Keyword::OptSteps => {
                 let n = src.whole(arg(0)?, "the iteration limit")?;
@@ -130,6 +152,13 @@ impl Parser<'_> {
                 let row = src.whole(arg(0)?, "the input's row number")?;
                 self.once(kw)?;
                 self.optimise.full_rotation = Some((kw, row));
+            }
+            Keyword::VaryM => {
+                let what = mass_item(src, arg(0)?)?;
+                let number = if what.value.of_element() { "the element number" } else { "the co-ordinate number" };
+                let index = src.whole(arg(1)?, number)?;
+                let (lo, hi) = range(src, kw.value, arg(2)?, arg(3)?)?;
+                self.optimise.mass_vary.push(MassVaryDef { line: line_no, keyword: kw, what, index, lo, hi });
             }
             Keyword::VaryFrame => {
                 let index = src.whole(arg(0)?, "the pivot's x co-ordinate number")?;
@@ -314,6 +343,19 @@ fn positive_weight(src: &Source<'_>, kw: Keyword, w: &Word) -> Result<Spanned<f6
 }
 
 /// The kind of MINIMISE or MAXIMISE: MAX, MAXABS, RMS or END.
+/// The word `what` of a VARYM line.
+fn mass_item(src: &Source<'_>, w: &Word) -> Result<Spanned<MassItem>, Box<Diagnostic>> {
+    if let Some(m) = MassItem::from_name(&w.text) {
+        return Ok(Spanned::new(m, w.span));
+    }
+    let names = MassItem::ALL.map(MassItem::name);
+    let guess = closest(&w.text, names).map_or(String::new(), |n| format!("; did you mean `{n}`?"));
+    Err(src.error(DiagnosticKind::BadValue, w.span, format!("unknown item `{}` of VARYM", w.text)).with_hint(format!(
+        "VARYM names the number of the DYNAMICS block it varies: MASS, U, V or J of element k's MASS line (`VARYM U \
+         k lo hi`), PMASS of the point mass at co-ordinate i (`VARYM PMASS i lo hi`) or INERTIA on co-ordinate i{guess}"
+    )))
+}
+
 fn reduce(src: &Source<'_>, kw: Keyword, w: &Word) -> Result<Spanned<Reduce>, Box<Diagnostic>> {
     if let Some(r) = Reduce::from_name(&w.text) {
         return Ok(Spanned::new(r, w.span));
