@@ -166,12 +166,12 @@ pub(crate) fn optimise(
 /// Refuses the statements of kinematic synthesis in a `DYN ANA` deck:
 /// its motion is timed, every design is judged at the same instants.
 fn kinematic_only(deck: &Deck, block: &crate::ast::Optimise) -> Result<(), Box<Diagnostic>> {
-    let ext = block.targets.iter().find(|t| t.keyword.value == Keyword::TargetExt).map(|t| t.keyword.clone());
+    let ext = block.targets.iter().find(|t| t.keyword.value == Keyword::TargetExt).map(|t| t.keyword);
     let found = [
         ext,
-        block.free_time.as_ref().map(|f| f.keyword.clone()),
-        block.full_rotation.as_ref().map(|f| f.0.clone()),
-        block.frame.as_ref().map(|f| f.keyword.clone()),
+        block.free_time.as_ref().map(|f| f.keyword),
+        block.full_rotation.as_ref().map(|f| f.0),
+        block.frame.as_ref().map(|f| f.keyword),
     ];
     let Some(kw) = found.into_iter().flatten().next() else { return Ok(()) };
     Err(deck
