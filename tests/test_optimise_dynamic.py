@@ -118,3 +118,39 @@ def test_the_written_deck_runs_to_the_optimum_found(optimised: tuple[Path, Path]
     rms = float(np.sqrt(np.mean(fx**2 + fy**2)))
     outcome = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
     assert rms == pytest.approx(outcome.solution.objective, rel=1e-9)
+
+
+def test_the_report_shows_the_balancing_as_its_optimisation_section(optimised: tuple[Path, Path]) -> None:
+    import mechfem
+    from mechfem.optimum_report import deck_section
+
+    deck, out = optimised
+    outcome = optimise_deck.optimise(deck, optimise_deck.describe(deck)["optimise"])
+    final = mechfem.run_deck(out / f"{deck.stem}_opt.mec")
+    section = deck_section(outcome, final)
+    assert [(v["name"], v["unit"]) for v in section["variables"]] == [("U 1", "m"), ("V 1", "m")]
+    assert section["objective"]["final"] == pytest.approx(outcome.solution.objective)
+    assert section["drawing"]["start"] is not None
+
+
+def test_a_deck_in_grams_varies_and_writes_its_masses_in_grams(tmp_path: Path) -> None:
+    # The example with its masses in g (J in g m^2): the counterweight's mass and centre both vary, and the
+    # optimum balances the first moment m1 u = -r (m_A + m_rec / 2) in kg m, whatever the unit of the deck.
+    text = EXAMPLE.read_text().replace("MASS kg", "MASS g")
+    text = text.replace("MASS  1 2.0 0.03 0.0 0.004", "MASS  1 2000 0.03 0.0 4")
+    text = text.replace("      2 1.2 0.1  0.0 0.03 ", "      2 1200 0.1  0.0 30 ")
+    text = text.replace("PMASS 7 8 1.5 ", "PMASS 7 8 1500 ")
+    text = text.replace("VARYM V 1 -0.2 0.2", "VARYM MASS 1 1000 3000")
+    deck = tmp_path / "grams.mec"
+    deck.write_text("".join(s for s in text.splitlines(keepends=True) if not re.match(r"\s*(BEGINPIC|ENDPIC|PLOT)", s)))
+    opt = optimise_deck.describe(deck)["optimise"]
+    outcome = optimise_deck.optimise(deck, opt)
+    u, m1 = outcome.solution.x  # the core's units: m and kg
+    first_moment = -R * (M_ROD * (L - A) / L + (M_PISTON + M_ROD * A / L) / 2)
+    assert m1 * u == pytest.approx(first_moment, rel=1e-6)
+    written = optimise_deck.write_design_deck(outcome, tmp_path / "out")
+    mass = next(line for line in written.read_text().splitlines() if line.startswith("MASS  1")).split()
+    assert float(mass[2]) == pytest.approx(1000 * m1, rel=1e-12)
+    assert float(mass[3]) == pytest.approx(u, rel=1e-12)
+    line = optimise_deck.values_line(outcome.problem, outcome.solution.x, None, opt)
+    assert f"MASS 1 = {1000 * m1:.10g}" in line, line
