@@ -154,3 +154,29 @@ def test_a_deck_in_grams_varies_and_writes_its_masses_in_grams(tmp_path: Path) -
     assert float(mass[3]) == pytest.approx(u, rel=1e-12)
     line = optimise_deck.values_line(outcome.problem, outcome.solution.x, None, opt)
     assert f"MASS 1 = {1000 * m1:.10g}" in line, line
+
+
+def test_python_optimize_of_the_mechanism_agrees_with_its_deck(tmp_path: Path) -> None:
+    import mechfem
+    from mechfem.dynamic_optimise import Drive, ShakingForce
+    from mechfem.loads import Body
+
+    mech = mechfem.Mechanism.from_deck(ROOT / "examples" / "balancing" / "slider_crank_dyn.mec")
+    vary = {"crank.mass_u": (-0.2, 0.2), "crank.mass_v": (-0.2, 0.2)}
+    found = mechfem.optimize(mech, vary, minimize=("rms", ShakingForce()), rtol=1e-13, atol=0.0)
+    deck = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
+    assert found.objective == pytest.approx(deck.solution.objective, rel=1e-12)
+    assert found.values["crank.mass_u"] == pytest.approx(deck.solution.x[0], abs=1e-10)
+    assert found.start["crank.mass_u"] == 0.03
+    body = found.mechanism.loads.of(Body)[0] if found.mechanism.loads else None
+    assert body is not None and body.u == found.values["crank.mass_u"]
+    # The RMS drive torque over the piston's mass, as the deck states it with VARYM PMASS and BUFDRV.
+    text = re.sub(r"VARYM V 1 .*\n", "", EXAMPLE.read_text().replace("VARYM U 1 -0.2 0.2", "VARYM PMASS 7 0.5 3"))
+    text = text.replace("MINIMISE RMS 3 4 ", "MINIMISE RMS 2 ")
+    path = tmp_path / "drive.mec"
+    path.write_text(text)
+    by_deck = optimise_deck.optimise(path, optimise_deck.describe(path)["optimise"])
+    assert by_deck.problem.names == ["PMASS 7"]
+    by_python = mechfem.optimize(mech, {"B.mass": (0.5, 3.0)}, minimize=("rms", Drive("phi")), rtol=1e-13, atol=0.0)
+    assert by_python.values["B.mass"] == pytest.approx(by_deck.solution.x[0], abs=1e-9)
+    assert by_python.objective == pytest.approx(by_deck.solution.objective, rel=1e-10)

@@ -850,6 +850,13 @@ class ModelBuilder:
         buffers: list[int],
         extrema: list[tuple[int, int]],
     ) -> DesignModel: ...
+    def dynamic_design(
+        self,
+        base_dir: str | os.PathLike[str],
+        variables: list[tuple[int, int]],
+        buffers: list[int],
+        extrema: list[tuple[int, int]],
+    ) -> DynamicDesignModel: ...
 
 def run_deck_variants(
     texts: Sequence[str | ModelBuilder],

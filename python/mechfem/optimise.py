@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import building, deckio, design, design_rules, frame_angle
+from mechfem import building, deckio, design, design_rules, dynamic_optimise, frame_angle
 from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
 from mechfem.frame_angle import FrameAngle
@@ -54,7 +54,7 @@ class Transmission:
     second: str
 
 
-Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q | Transmission"
+Quantity: TypeAlias = "str | Coordinate | Row | FormParameter | Q | Transmission | dynamic_optimise.DynamicQuantity"
 
 
 @dataclass
@@ -106,6 +106,8 @@ class _Deck:
         self.keys: dict[tuple[str, tuple[object, ...]], int] = {}
 
     def buffer(self, q: Quantity) -> int:
+        if isinstance(q, dynamic_optimise.Drive | dynamic_optimise.Shaking | dynamic_optimise.ShakingForce):
+            return dynamic_optimise.buffer(self._numbered, q)
         if isinstance(q, Transmission):
             return self._numbered(("BUFTRA", (q.first, q.second)), "BUFTRA", self.mech[q.first], self.mech[q.second])
         spec = q if isinstance(q, Q) else Q(q)
@@ -123,10 +125,11 @@ class _Deck:
             dofs = (j,) if spec.order == 1 else (j, input_dof(spec.wrt2 if spec.wrt2 is not None else j, inputs))
         return self._numbered((keyword, (obj, *dofs)), keyword, obj, *dofs)
 
-    def _numbered(self, key: tuple[str, tuple[object, ...]], keyword: str, *args: Any) -> int:
+    def _numbered(self, key: tuple[str, tuple[object, ...]], keyword: str | None, *args: Any) -> int:
         if key not in self.keys:
             number = len(self.keys) + 1
-            self.storage.buffer(number, keyword, *args)
+            if keyword is not None:  # None: a number a buffer line before fills (BUFSHAKE's y and moment)
+                self.storage.buffer(number, keyword, *args)
             self.keys[key] = number
         return self.keys[key]
 
@@ -183,6 +186,10 @@ def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
         return TimedModel(points, len(shared), timed.thetas, timed.ordered, timed.angle)
 
     return of
+
+
+def _extremum_terms(terms: Sequence[object]) -> bool:
+    return any(isinstance(t, design.ExtremumTerm) for t in terms)
 
 
 def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> bool:
@@ -333,6 +340,7 @@ def optimize(
             terms.append(design.ExtremumTerm(b, deck.buffer(t.reference), float(t.value), t.weight))
     bound_terms = [(deck.buffer(bd.quantity), float(bd.lo), float(bd.hi)) for bd in bounds]
     goal: tuple[Literal[1, -1], design.Reduce, int] | None = None
+    goal_q = minimize[1] if minimize is not None else maximize[1] if maximize is not None else None
     if minimize is not None:
         goal = (1, minimize[0], deck.buffer(minimize[1]))
     elif maximize is not None:
@@ -341,7 +349,10 @@ def optimize(
     if not (terms or goal or objective):
         raise ValueError("nothing to optimise: give targets, minimize, maximize or objective")
     built = building.builder(mechanism, motion, deck.storage)
-    variables = [_variable(mechanism, built.numbering, name) for name in vary]
+    variables = [
+        dynamic_optimise.variable(mechanism, built.numbering, name) or _variable(mechanism, built.numbering, name)
+        for name in vary
+    ]
     positions = motion.steps + 1
     timed = None
     if timing is not None:
@@ -356,7 +367,16 @@ def optimize(
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
         if isinstance(term, design.AtTerm) and not 0 <= term.position < positions:
             raise ValueError(f"TargetAt position {term.position} is outside 0..{positions - 1}")
-    periodic = [_periodic(mechanism, name, span) for name, span in vary.items()]
+    dynamic = any(dynamic_optimise.is_mass(v[0]) for v in variables) or dynamic_optimise.recorded(deck.keys)
+    if dynamic and (timing is not None or full_rotation or frame is not None or _extremum_terms(terms)):
+        raise ValueError(
+            "a dynamic optimisation (masses varied, or a drive or shaking judged) is judged at the instants of the "
+            "motion: free timing, full_rotation, frame and TargetExtremum belong to kinematic synthesis"
+        )
+    periodic = [
+        False if dynamic_optimise.is_mass(v[0]) else _periodic(mechanism, name, span)
+        for (name, span), v in zip(vary.items(), variables, strict=True)
+    ]
     ranges = [
         (s - math.pi, s + math.pi) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)
     ]
@@ -380,7 +400,11 @@ def optimize(
         lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
         periodic = (periodic if any(periodic) else [False] * len(names)) + timed.periodic
     with deckio.tables_dir(built.tables) as base:
-        model = _model(built.builder, base, timed, full_rotation, mechanism, deck.storage)
+        model = (
+            dynamic_optimise.model(built.builder, base)
+            if dynamic
+            else _model(built.builder, base, timed, full_rotation, mechanism, deck.storage)
+        )
         problem = design.Problem(
             model=model if turn is None else frame_angle.turned(model, turn),
             variables=core_vars + ([] if timed is None else [(2, k) for k in range(positions)]),
@@ -390,6 +414,7 @@ def optimize(
             terms=terms,
             bounds=bound_terms,
             objective=goal,
+            objective_with=goal[2] + 1 if isinstance(goal_q, dynamic_optimise.ShakingForce) and goal else None,
             custom=None if objective is None else _named(objective, deck),
             extra_buffers=extra,
             steps=steps,
@@ -412,7 +437,8 @@ def optimize(
         sol.x, sol.start = sol.x[:n], sol.start[:n]
         motion = None
     for name, x in zip(vary, sol.x, strict=True):
-        optimised.set(name, float(x))
+        if not dynamic_optimise.apply(optimised, name, float(x)):
+            optimised.set(name, float(x))
     if turn is not None and turned_by is not None and frame is not None:
         frame_angle.apply(optimised, turn, turned_by[1])
     _carry_position_one(optimised, built.numbering, sol.position_one)

@@ -10,6 +10,7 @@ use mechfem_deck::{Compiled, DeckBuilder, Diagnostic, Diagnostics, Mode};
 use pyo3::prelude::*;
 
 use crate::design::DesignModel;
+use crate::dynamic_design::DynamicDesignModel;
 use crate::errors;
 use crate::model::Model;
 use crate::text::compile_text;
@@ -265,6 +266,28 @@ impl ModelBuilder {
         let compiled =
             py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
         DesignModel::of_compiled(compiled, &variables, &buffers, &extrema)
+    }
+
+    /// The compiled DYN ANA model kept for an optimiser of its dynamics: a
+    /// `DynamicDesignModel` of the design `variables` (mass variables
+    /// included) and `buffers`, as `DynamicDesignModel(text, ...)` takes
+    /// them for deck text; `extrema` must be empty.
+    fn dynamic_design(
+        &self,
+        py: Python<'_>,
+        base_dir: PathBuf,
+        variables: Vec<(u8, usize)>,
+        buffers: Vec<u32>,
+        extrema: Vec<(u32, u32)>,
+    ) -> PyResult<DynamicDesignModel> {
+        if !extrema.is_empty() {
+            return Err(pyo3::exceptions::PyValueError::new_err(
+                "a dynamic design evaluation locates no extrema: pass an empty list",
+            ));
+        }
+        let compiled =
+            py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
+        DynamicDesignModel::of_compiled(compiled, &variables, &buffers)
     }
 }
 
