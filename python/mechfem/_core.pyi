@@ -41,6 +41,8 @@ __all__ = [
     "deck_tolerance",
     "built_tolerance",
     "ToleranceBands",
+    "DynamicDesignModel",
+    "deck_with_masses",
 ]
 
 _F64 = npt.NDArray[np.float64]
