@@ -180,3 +180,18 @@ def test_python_optimize_of_the_mechanism_agrees_with_its_deck(tmp_path: Path) -
     by_python = mechfem.optimize(mech, {"B.mass": (0.5, 3.0)}, minimize=("rms", Drive("phi")), rtol=1e-13, atol=0.0)
     assert by_python.values["B.mass"] == pytest.approx(by_deck.solution.x[0], abs=1e-9)
     assert by_python.objective == pytest.approx(by_deck.solution.objective, rel=1e-10)
+
+
+def test_an_interrupted_balancing_writes_the_design_it_had_reached(tmp_path: Path) -> None:
+    from mechfem.design import Iteration
+
+    deck = without_media(tmp_path)
+    opt = optimise_deck.describe(deck)["optimise"]
+    history = [
+        Iteration(0, 6363.4, 0.0, 0.0, 1, np.array([0.03, 0.0])),
+        Iteration(1, 2460.0, 0.0, 0.1, 3, np.array([-0.05, 0.01])),
+    ]
+    written = optimise_deck.write_interrupted(deck, opt, history, tmp_path / "out")
+    assert [p.name for p in written] == [f"{deck.stem}_opt.mec", f"{deck.stem}.prt"]
+    assert "MASS  1 2.0 -0.05 0.01 0.004" in written[0].read_text()
+    assert re.search(r"U 1\s+-0.05\n", written[1].read_text())

@@ -215,6 +215,11 @@ def optimisation(deck: Path) -> OptimiseDict | None:
     return optimise_deck.describe(deck).get("optimise")
 
 
+def mode_of(deck: Path) -> str:
+    """The mode line of a deck that reads (``KIN OPT``, ``DYN ANA``)."""
+    return optimise_deck.deck_mode(_core.read_deck_text(deck))
+
+
 def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: OptimiseDict) -> int:
     """Optimises the design of a KIN OPT deck, writes it as ``<stem>_opt.mec`` and runs that deck as a KIN ANA
     run whose outputs are named after ``deck`` and whose print file has the OPTIMISATION section."""
@@ -349,8 +354,8 @@ def cmd_report(args: argparse.Namespace) -> int:
     plan(deck, outdir, data_format=None, media=False, report=True).check()
     if optimisation(deck) is not None:
         console.note(
-            f"note: {deck} is a KIN OPT deck: this report shows its start design; `mechfem run --report` optimises "
-            "it and reports the final design"
+            f"note: {deck} is a {mode_of(deck)} deck: this report shows its start design; "
+            "`mechfem run --report` optimises it and reports the final design"
         )
     with locked(outdir, deck.stem):
         result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)
@@ -372,7 +377,8 @@ def cmd_check(args: argparse.Namespace) -> int:
     opt = optimisation(deck)
     if opt is not None:
         print(
-            f"  KIN OPT: position 1 of the start design; the optimisation varies {optimise_deck.names_and_lines(opt)}"
+            f"  {mode_of(deck)}: position 1 of the start design; the optimisation varies "
+            f"{optimise_deck.names_and_lines(opt)}"
         )
     print(
         f"  {c.n_coords} co-ordinates ({c.n_coords - c.n_moving} fixed, {c.n_moving} moving), "
@@ -479,8 +485,8 @@ def cmd_draw(args: argparse.Namespace) -> int:
     plan(deck, outdir, drawings=names).check()
     if optimisation(deck) is not None:
         console.note(
-            f"note: {deck} is a KIN OPT deck: this drawing shows its start design; `mechfem run` optimises it and "
-            "writes the final design as a deck, which `mechfem draw` draws"
+            f"note: {deck} is a {mode_of(deck)} deck: this drawing shows its start design; "
+            "`mechfem run` optimises it and writes the final design as a deck, which `mechfem draw` draws"
         )
     with locked(outdir, deck.stem):
         result, interrupted = run_with_progress(deck, args.memory_limit, console.bar)

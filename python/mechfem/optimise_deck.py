@@ -399,8 +399,10 @@ def interrupted_lines(
     if written is None or not history:
         return [*out, "", "  interrupted by Ctrl-C before the first iteration: no design was written", ""]
     out += ["", "  design reached at the last iteration:"]
-    for v, x in zip(opt["vary"], history[-1].x, strict=False):
-        out.append(f"  {variable_name(v['kind'], v['number']):>10} {x:>18.12g}")
+    names = [variable_name(v["kind"], v["number"]) for v in opt["vary"]]
+    names += [dynamic_design.mass_name(m["kind"], m["number"]) for m in opt.get("mass_vary") or []]
+    for name, x in zip(names, history[-1].x, strict=False):
+        out.append(f"  {name:>10} {x:>18.12g}")
     return [*out, "", f"  interrupted by Ctrl-C: that design is written as {written.name} (mode KIN ANA)", ""]
 
 
