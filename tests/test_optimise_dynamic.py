@@ -195,3 +195,12 @@ def test_an_interrupted_balancing_writes_the_design_it_had_reached(tmp_path: Pat
     assert [p.name for p in written] == [f"{deck.stem}_opt.mec", f"{deck.stem}.prt"]
     assert "MASS  1 2.0 -0.05 0.01 0.004" in written[0].read_text()
     assert re.search(r"U 1\s+-0.05\n", written[1].read_text())
+
+
+def test_a_multi_start_of_mass_variables_is_refused_with_a_reason() -> None:
+    import mechfem
+    from mechfem.dynamic_optimise import ShakingForce
+
+    mech = mechfem.Mechanism.from_deck(ROOT / "examples" / "balancing" / "slider_crank_dyn.mec")
+    with pytest.raises(ValueError, match="balance a mechanism's masses from one start"):
+        mechfem.optimize(mech, {"crank.mass_u": (-0.2, 0.2)}, minimize=("rms", ShakingForce()), starts=3)

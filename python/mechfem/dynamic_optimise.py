@@ -72,6 +72,11 @@ def _item(mech: Mechanism, name: str) -> tuple[Any, int, str] | None:
     return None
 
 
+def variable_named(mech: Mechanism, name: str) -> bool:
+    """Whether ``name`` names a number of the mass model."""
+    return _item(mech, name) is not None
+
+
 def variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[int, int, float] | None:
     """``(kind, deck number, start value)`` of a variable of the mass model; None when ``name`` names none."""
     found = _item(mech, name)

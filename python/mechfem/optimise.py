@@ -308,6 +308,8 @@ def optimize(
         }
         if not isinstance(starts, int) and not starts:
             raise ValueError("starts is an empty list: give at least one start design, or a number of starts")
+        if any(dynamic_optimise.variable_named(mechanism, name) for name in vary):
+            raise ValueError("a multi-start varies dimensions: balance a mechanism's masses from one start (starts=1)")
         from mechfem import multistart
 
         return multistart.multi_start(mechanism, vary, kwargs, starts, seed, executor, box)
