@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechfem import fourbar_starts
 from mechfem.design import Infeasible
 from mechfem.errors import MechfemError
 
@@ -161,12 +162,20 @@ def screened(
     reached: list[Mechanism] = []
     rejected: list[tuple[dict[str, float], str]] = []
     looked = 0
-    for d in draws(box, SCREEN * n, seed):
+    four_bar = _four_bar(mechanism, kwargs)
+    if four_bar is None:
+        candidates = [(d, "") for d in draws(box, SCREEN * n, seed)]
+    else:
+        candidates = fourbar_starts.grashof_draws(four_bar[0], mechanism, box, SCREEN * n, seed)
+    for d, why in candidates:
         if len(begins) == n:
             break
         looked += 1
         begin = {**base, **d}
-        at = assembled(mechanism, begin)
+        if why:
+            rejected.append((begin, why))
+            continue
+        at = assembled(mechanism, begin) if four_bar is None else fourbar_starts.assembled(*four_bar, begin)
         why = f"cannot be assembled: {at}" if isinstance(at, str) else runs_through(at, kwargs)
         if why or isinstance(at, str):
             rejected.append((begin, why))
@@ -174,6 +183,23 @@ def screened(
         begins.append(begin)
         reached.append(at)
     return begins, reached, rejected, looked
+
+
+def _four_bar(
+    mechanism: Mechanism, kwargs: Mapping[str, Any]
+) -> tuple[fourbar_starts.FourBar, Mechanism, float] | None:
+    """The four-bar ``mechanism`` is, with its assembly branch (the side of A -> B0 its position 1 has B on), when
+    its starts are drawn and assembled as a four-bar's (not with a frame angle, which turns the frame after the
+    draw); else None."""
+    if kwargs.get("frame") is not None:
+        return None
+    fb = fourbar_starts.recognised(mechanism)
+    if fb is None:
+        return None
+    own = assembled(mechanism, {})
+    if isinstance(own, str):
+        return None
+    return fb, mechanism, fourbar_starts.side(fb, own)
 
 
 def _one_start(
@@ -221,9 +247,12 @@ def multi_start(
         reached += at
     else:
         begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
-        # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
-        # discarded with the reason.
-        reached += [assembled(mechanism, b) for b in begins[1:]]
+        # Every start assembled afresh (a four-bar from its closed-form position 1, any other mechanism by
+        # continuation from its own position 1); one that cannot be is discarded with the reason.
+        four_bar = _four_bar(mechanism, kwargs)
+        reached += [
+            assembled(mechanism, b) if four_bar is None else fourbar_starts.assembled(*four_bar, b) for b in begins[1:]
+        ]
     usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
     tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
     if executor is None:
