@@ -97,3 +97,9 @@ def test_at_least_four_draws_in_five_become_starts(full_rotation: bool) -> None:
     begins, reached, rejected, looked = multistart.screened(mech, base, LINE_BOX, 10, 2, kwargs)
     assert len(begins) == len(reached) == 10
     assert 10 / looked >= 0.8, rejected
+
+
+def test_an_optimum_reports_the_usable_fraction_of_its_draws() -> None:
+    opt = mechfem.optimize(ps.four_bar(), PATH_BOX, targets=ps.targets(), starts=4, seed=1, steps=2)
+    assert opt.drawn == 3 and opt.usable_draws == 1.0
+    assert math.isnan(mechfem.optimize(ps.four_bar(), PATH_BOX, targets=ps.targets(), steps=2).usable_draws)

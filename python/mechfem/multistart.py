@@ -5,20 +5,17 @@ design assembled afresh.
   random draw leaves holes and clusters), it takes any number of points (a Sobol sequence wants powers of two),
   and it is seeded. The box's dimensions are taken in the order of the variables' names, so the same seed gives
   the same start designs whatever order ``vary`` lists them in.
-* **Assembly.** A start design far from the mechanism's own would assemble, from the mechanism's estimates, on
-  whichever branch Newton's method happens to reach, or not at all. Each start is reached instead by continuation
-  from the mechanism's position 1: its variables move there in stages, each stage's position 1 solved from the
-  last one's (a stage that fails is halved, down to 1/64 of the way). So every start lies on the branch of the
-  mechanism's own estimates, and a start that cannot be reached (a limit position on the way: the design does not
-  exist on that branch) is discarded with that reason before any optimisation.
-* **Screening.** Most of a start box holds designs that cannot do the problem's motion at all: a four-bar whose
-  crank cannot turn through the target angles (not a Grashof crank), or cannot reach the free timing's start
-  values from its position 1. Such a draw is not a start: the draws are taken in the sequence's order, each
-  assembled as above and its motion run once (the problem's motion; with free timing, from position 1 to every
-  point's start value; with ``full_rotation``, a whole turn), and the first ``starts - 1`` that pass are the drawn
-  starts. The draws are thereby limited to the part of the box where the problem's motion exists; those passed
-  over are kept with their reason (``Optimum.rejected``), and ``Optimum.drawn`` counts every draw looked at, at
-  most ``SCREEN`` per start.
+* **A four-bar** (:mod:`mechfem.fourbar_starts`) is drawn where its crank turns fully and each draw assembled from
+  its closed-form position 1 on the mechanism's assembly branch: its draws can do any crank motion by construction.
+* **Any other mechanism** draws in the box itself, and each start is reached by continuation from the mechanism's
+  position 1: its variables move there in stages, each stage's position 1 solved from the last one's (a stage that
+  fails is halved, down to 1/64 of the way). So every start lies on the branch of the mechanism's own estimates,
+  and a start that cannot be reached (a limit position on the way: the design does not exist on that branch) is
+  discarded with that reason before any optimisation.
+* **Check.** Each draw, assembled, runs the problem's motion once (with free timing, from position 1 to every
+  point's start value; with ``full_rotation``, a whole turn); the first ``starts - 1`` that can are the drawn
+  starts. Those passed over are kept with their reason (``Optimum.rejected``), and ``Optimum.drawn`` counts every
+  draw looked at, at most ``SCREEN`` per start, so ``(starts - 1) / drawn`` is the usable fraction of the draws.
 """
 
 from __future__ import annotations
