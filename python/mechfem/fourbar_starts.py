@@ -1,26 +1,28 @@
-"""Start designs of a four-bar that can do the motion, drawn as such, and their position 1 in closed form.
+"""Start designs of a four-bar that can do the problem's crank motion, drawn as such, and their position 1 in
+closed form.
 
-A start box of a four-bar's dimensions is mostly made of linkages whose crank cannot turn: with the lengths drawn
-independently, half or more of the box fails Grashof's condition, and with the frame pivots free as well four
-draws in five do. Drawing those and throwing them away wastes the draws; here the draws are made so that the crank
-turns fully by construction, and every drawn design is assembled from its own closed-form position 1.
+A start box of a four-bar's dimensions is mostly made of linkages that cannot run through the targets: with the
+lengths drawn independently, half or more of the box cannot turn the crank through the motion, and with the frame
+pivots free as well four draws in five cannot. Drawing those and throwing them away wastes the draws; here the
+draws are made so that the dyad closes over the crank's whole sweep by construction, and every drawn design is
+assembled from its own closed-form position 1.
 
-* **Recognised mechanism.** Exactly three elements: a crank (a bar from a fixed point, its angle the only input),
-  a coupler (a bar or a ternary-2 element) from the crank's moving end A to B, and a rocker (a bar from B to a
-  fixed point B0); every length (and the coupler point's u, v) a prescribed value. Anything else is drawn in the
-  box as before (:mod:`mechfem.multistart`).
+* **Recognised mechanism.** Exactly three elements: a crank (a bar from a fixed point, its angle the only input,
+  in radians), a coupler (a bar or a ternary-2 element) from the crank's moving end A to B, and a rocker (a bar
+  from B to a fixed point B0); every length (and the coupler point's u, v) a prescribed value. Anything else is
+  drawn in the box as before (:mod:`mechfem.multistart`).
+* **Sweep.** The crank angles the problem turns the crank through (:func:`sweep`): the motion's, with free timing
+  from the first to the last start value, with ``full_rotation`` (or a motion of a turn or more) a whole turn.
 * **Draws.** One scrambled Halton point per start in the unit cube of the box (as for any mechanism), mapped to the
   box: every variable but the three lengths scaled to its range (a frame pivot B0 so far from A0 that no lengths
-  of the ranges span it moved towards A0 until some do); then the lengths in turn, each within the part of
-  its range where the crank can still turn fully given the frame length d = |A0 B0| and the lengths before it. A
-  crank a turns fully when the distance |A B0|, which runs through [|d - a|, d + a] over a turn, stays within the
-  dyad's reach [|b - c|, b + c]: ``|b - c| <= |d - a|`` and ``d + a <= b + c`` (Grashof's condition with the
-  crank or the frame the shortest link). Given a, the coupler b has an interval of such values, and given a and b
-  the rocker c has one; the crank's own feasible values are found on a grid of its range. A margin of 1 % of the
-  frame keeps the draws off the change points, where the linkage folds flat. A full turn makes every crank angle
-  reachable, so the draws suit prescribed timing over any part of a turn, free timing, and ``full_rotation``
-  alike; a problem whose motion is shorter loses only the non-Grashof linkages, which a start box or a list of
-  start designs still reaches.
+  of the ranges span it moved towards A0 until some do); then the lengths in turn, each within the part of its
+  range where the dyad can still close over the sweep given the frame and the lengths before it. Over the sweep
+  the distance |A B0| runs through [e, s] (for a whole turn [|d - a|, d + a], d = |A0 B0|), and the dyad closes
+  all the way while ``|b - c| <= e`` and ``b + c >= s`` (for a whole turn: Grashof's condition with the crank or
+  the frame the shortest link). Given a, the coupler b has an interval of such values, and given a and b the
+  rocker c has one; the crank's own feasible values are found on a grid of its range. A margin of 1 % of the frame
+  keeps the draws off the limit positions, where the dyad folds flat; closing over the whole sweep, the dyad meets
+  none, so a draw stays on its branch through the motion.
 * **Assembly.** The drawn design's position 1 is computed in closed form at the crank's start angle: A on the crank
   circle, B the intersection of the circles (A, b) and (B0, c) on the side of the line A -> B0 where the
   mechanism's own position 1 has it (its assembly branch), the coupler point from u and v. Those are the start's
@@ -33,11 +35,12 @@ import copy
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
 
 from mechfem.errors import MechfemError
+from mechfem.motion import By, To
 
 if TYPE_CHECKING:
     from mechfem.model import Mechanism
@@ -69,7 +72,7 @@ class FourBar:
 
 def recognised(mech: Mechanism) -> FourBar | None:
     """The four-bar that ``mech`` is, or None."""
-    if len(mech.elements) != 3 or len(mech.inputs) != 1:
+    if len(mech.elements) != 3 or len(mech.inputs) != 1 or mech.units.angle != "rad":
         return None
     drive = mech.inputs[0]
     if len(drive.terms) != 1 or drive.terms[0][1].form != "ANGB":
@@ -127,44 +130,95 @@ def recognised(mech: Mechanism) -> FourBar | None:
     )
 
 
+def sweep(fb: FourBar, mech: Mechanism, kwargs: Mapping[str, Any]) -> tuple[float, float] | None:
+    """The crank angles the problem turns the crank through, relative to its start value: (lowest, highest); None
+    for a whole turn (``full_rotation``, or a motion of a turn or more)."""
+    if kwargs.get("full_rotation"):
+        return None
+    start = float(mech[fb.input].value)
+    free = kwargs.get("timing")
+    if free is not None:
+        offsets = [float(t) - start for t in free.starts] + [0.0]
+    else:
+        motion = kwargs.get("motion") or mech.motion
+        if motion is None or len(motion.inputs) != 1:
+            return None
+        step = next(iter(motion.inputs.values()))
+        if isinstance(step, By):
+            offsets = [0.0, float(step.value)]
+        elif isinstance(step, To):
+            offsets = [0.0, float(step.value) - start]
+        else:
+            return None
+    lo, hi = min(offsets), max(offsets)
+    return None if hi - lo >= 2.0 * math.pi else (lo, hi)
+
+
 def _value(mech: Mechanism, values: Mapping[str, float], name: str) -> float:
     return float(values[name]) if name in values else float(mech[name].value)
 
 
+Cosines: TypeAlias = tuple[float, float]
+"""The largest and smallest cosine of the angle between the crank A0 -> A and the frame A0 -> B0 over the sweep."""
+
+
+def _cosines(sweep: tuple[float, float] | None, theta: float, phi: float) -> Cosines:
+    """:data:`Cosines` for a crank at ``theta + sweep`` (None: a whole turn) and a frame at angle ``phi``."""
+    if sweep is None:
+        return 1.0, -1.0
+    lo, hi = theta + sweep[0] - phi, theta + sweep[1] - phi
+    ends = (math.cos(lo), math.cos(hi))
+    turns = math.floor(hi / (2.0 * math.pi))
+    top = 1.0 if turns * 2.0 * math.pi >= lo else max(ends)
+    bottom = -1.0 if math.floor((hi - math.pi) / (2.0 * math.pi)) * 2.0 * math.pi + math.pi >= lo else min(ends)
+    return top, bottom
+
+
+def _reach(d: float, a: np.ndarray, cos: Cosines) -> tuple[np.ndarray, np.ndarray]:
+    """The shortest and longest distance |A B0| over the sweep, for each crank ``a``, with the margin: e and s."""
+    m = MARGIN * d
+    near = np.sqrt(np.maximum(a * a + d * d - 2.0 * a * d * cos[0], 0.0))
+    far = np.sqrt(a * a + d * d - 2.0 * a * d * cos[1])
+    return near - m, far + m
+
+
 def _crank_lengths(
-    d: float, ranges: tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
+    d: float, ranges: tuple[tuple[float, float], tuple[float, float], tuple[float, float]], cos: Cosines
 ) -> np.ndarray:
-    """The crank lengths on a grid of its range for which some coupler and rocker in their ranges let it turn."""
+    """The crank lengths on a grid of its range for which some coupler and rocker in their ranges close the dyad
+    over the whole sweep."""
     (a_lo, a_hi), (b_lo, b_hi), (c_lo, c_hi) = ranges
     a = np.linspace(a_lo, a_hi, GRID) if a_hi > a_lo else np.array([a_lo])
-    b_low, b_high = _coupler_interval(d, a, (b_lo, b_hi), (c_lo, c_hi))
+    b_low, b_high = _coupler_interval(d, a, (b_lo, b_hi), (c_lo, c_hi), cos)
     return np.asarray(a[(b_low <= b_high) & (a > 0.0)])
 
 
 def _coupler_interval(
-    d: float, a: np.ndarray | float, b_range: tuple[float, float], c_range: tuple[float, float]
+    d: float, a: np.ndarray | float, b_range: tuple[float, float], c_range: tuple[float, float], cos: Cosines
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The couplers b (an interval per crank a) that some rocker in its range completes to a turning crank: with
-    e = |d - a| - m and s = d + a + m, c must lie in [max(b - e, s - b, c_lo), min(b + e, c_hi)]."""
+    """The couplers b (an interval per crank a) that some rocker in its range completes to a dyad that closes
+    over the sweep: with e and s the shortest and longest |A B0| (:func:`_reach`), c must lie in
+    [max(b - e, s - b, c_lo), min(b + e, c_hi)]."""
     a = np.asarray(a, dtype=float)
-    m = MARGIN * d
-    e, s = np.abs(d - a) - m, d + a + m
+    e, s = _reach(d, a, cos)
     c_lo, c_hi = c_range
     low = np.maximum.reduce([np.full_like(a, b_range[0]), (s - e) / 2.0, s - c_hi, c_lo - e])
     high = np.minimum(np.full_like(a, b_range[1]), c_hi + e)
     return low, np.where(e >= 0.0, high, -np.inf)
 
 
-def grashof_draws(
+def draws(
     fb: FourBar,
     mech: Mechanism,
     box: Mapping[str, tuple[float, float]],
     n: int,
     seed: int | None,
+    sweep: tuple[float, float] | None = None,
 ) -> list[tuple[dict[str, float], str]]:
-    """``n`` start designs in ``box`` (name -> (lo, hi)) whose crank turns fully, from a scrambled Halton sequence
-    taken in the order of the names; each with "" or, for a draw whose frame admits no turning crank within the
-    ranges, the reason (its values are then the plain scaled draw)."""
+    """``n`` start designs in ``box`` (name -> (lo, hi)) whose dyad closes over the crank's ``sweep`` (:func:`sweep`;
+    None: a whole turn), from a scrambled Halton sequence taken in the order of the names; each with "" or, for a
+    draw whose frame admits no such linkage within the ranges, the reason (its values are then the plain scaled
+    draw)."""
     from scipy.stats import qmc
 
     if n <= 0:
@@ -179,7 +233,7 @@ def grashof_draws(
     for row in unit:
         draw = dict(zip(names, map(float, qmc.scale(row[None, :], lo, hi)[0]), strict=True))
         at = dict(zip(names, map(float, row), strict=True))
-        out.append(_lengths(fb, mech, box, draw, at))
+        out.append(_lengths(fb, mech, box, draw, at, sweep))
     return out
 
 
@@ -189,15 +243,19 @@ def _lengths(
     box: Mapping[str, tuple[float, float]],
     draw: dict[str, float],
     at: Mapping[str, float],
+    sweep: tuple[float, float] | None,
 ) -> tuple[dict[str, float], str]:
-    """``draw`` with its lengths moved to where the crank turns, each by its own unit co-ordinate ``at``."""
+    """``draw`` with its lengths moved to where the dyad closes over the sweep, each by its own unit co-ordinate
+    ``at``."""
     x0, y0 = (_value(mech, draw, f"{fb.a0}.{k}") for k in "xy")
     x1, y1 = (_value(mech, draw, f"{fb.b0}.{k}") for k in "xy")
     d = math.hypot(x1 - x0, y1 - y0)
+    theta = _value(mech, draw, fb.input) + (0.0 if fb.crank_from_a0 else math.pi)
+    cos = _cosines(sweep, theta, math.atan2(y1 - y0, x1 - x0))
     fixed = {name: _value(mech, draw, name) for name in fb.lengths}
     ranges = tuple((box[k] if k in box else (fixed[k], fixed[k])) for k in fb.lengths)
     r3 = (ranges[0], ranges[1], ranges[2])
-    cranks = _crank_lengths(d, r3)
+    cranks = _crank_lengths(d, r3, cos)
     pivot = (f"{fb.b0}.x", f"{fb.b0}.y")
     if cranks.size == 0 and d > 0.0 and all(k in box for k in pivot):
         # A frame too long for any linkage of the ranges: B0 moves towards A0, within its box, to the longest
@@ -207,19 +265,18 @@ def _lengths(
             x, y = x0 + t * (x1 - x0), y0 + t * (y1 - y0)
             if not (xl <= x <= xh and yl <= y <= yh):
                 break
-            cranks = _crank_lengths(d * t, r3)
+            cranks = _crank_lengths(d * t, r3, cos)
             if cranks.size:
                 x1, y1 = x, y
                 draw[pivot[0]], draw[pivot[1]], d = x1, y1, d * t
                 break
     if d <= 0.0 or cranks.size == 0:
-        return draw, f"no crank, coupler and rocker within their ranges turn fully on a frame of length {d:.6g}"
+        return draw, f"no crank, coupler and rocker within their ranges close over the motion on a frame of {d:.6g}"
     name_a, name_b, name_c = fb.lengths
     a = float(cranks[min(int(at.get(name_a, 0.5) * cranks.size), cranks.size - 1)])
-    b_low, b_high = (float(v[0]) for v in _coupler_interval(d, np.array([a]), r3[1], r3[2]))
+    b_low, b_high = (float(v[0]) for v in _coupler_interval(d, np.array([a]), r3[1], r3[2], cos))
     b = b_low + at.get(name_b, 0.5) * (b_high - b_low)
-    m = MARGIN * d
-    e, s = abs(d - a) - m, d + a + m
+    e, s = (float(v[0]) for v in _reach(d, np.array([a]), cos))
     c_low, c_high = max(b - e, s - b, r3[2][0]), min(b + e, r3[2][1])
     c = c_low + at.get(name_c, 0.5) * (c_high - c_low)
     for name, v in ((name_a, a), (name_b, b), (name_c, c)):
@@ -290,4 +347,4 @@ def assembled(fb: FourBar, mechanism: Mechanism, branch: float, values: Mapping[
     return at
 
 
-__all__ = ["FourBar", "assembled", "grashof_draws", "position_one", "recognised", "side"]
+__all__ = ["FourBar", "assembled", "draws", "position_one", "recognised", "side", "sweep"]

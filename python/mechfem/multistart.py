@@ -5,8 +5,9 @@ design assembled afresh.
   random draw leaves holes and clusters), it takes any number of points (a Sobol sequence wants powers of two),
   and it is seeded. The box's dimensions are taken in the order of the variables' names, so the same seed gives
   the same start designs whatever order ``vary`` lists them in.
-* **A four-bar** (:mod:`mechfem.fourbar_starts`) is drawn where its crank turns fully and each draw assembled from
-  its closed-form position 1 on the mechanism's assembly branch: its draws can do any crank motion by construction.
+* **A four-bar** (:mod:`mechfem.fourbar_starts`) is drawn where its dyad closes over the crank's whole sweep in the
+  problem (a whole turn with ``full_rotation``) and each draw assembled from its closed-form position 1 on the
+  mechanism's assembly branch: its draws can do the problem's crank motion by construction.
 * **Any other mechanism** draws in the box itself, and each start is reached by continuation from the mechanism's
   position 1: its variables move there in stages, each stage's position 1 solved from the last one's (a stage that
   fails is halved, down to 1/64 of the way). So every start lies on the branch of the mechanism's own estimates,
@@ -163,7 +164,8 @@ def screened(
     if four_bar is None:
         candidates = [(d, "") for d in draws(box, SCREEN * n, seed)]
     else:
-        candidates = fourbar_starts.grashof_draws(four_bar[0], mechanism, box, SCREEN * n, seed)
+        fb, branch, sweep = four_bar
+        candidates = fourbar_starts.draws(fb, mechanism, box, SCREEN * n, seed, sweep)
     for d, why in candidates:
         if len(begins) == n:
             break
@@ -172,7 +174,7 @@ def screened(
         if why:
             rejected.append((begin, why))
             continue
-        at = assembled(mechanism, begin) if four_bar is None else fourbar_starts.assembled(*four_bar, begin)
+        at = assembled(mechanism, begin) if four_bar is None else fourbar_starts.assembled(fb, mechanism, branch, begin)
         why = f"cannot be assembled: {at}" if isinstance(at, str) else runs_through(at, kwargs)
         if why or isinstance(at, str):
             rejected.append((begin, why))
@@ -184,10 +186,10 @@ def screened(
 
 def _four_bar(
     mechanism: Mechanism, kwargs: Mapping[str, Any]
-) -> tuple[fourbar_starts.FourBar, Mechanism, float] | None:
-    """The four-bar ``mechanism`` is, with its assembly branch (the side of A -> B0 its position 1 has B on), when
-    its starts are drawn and assembled as a four-bar's (not with a frame angle, which turns the frame after the
-    draw); else None."""
+) -> tuple[fourbar_starts.FourBar, float, tuple[float, float] | None] | None:
+    """The four-bar ``mechanism`` is, with its assembly branch (the side of A -> B0 its position 1 has B on) and the
+    crank's sweep in the problem (:func:`fourbar_starts.sweep`), when its starts are drawn and assembled as a
+    four-bar's (not with a frame angle, which turns the frame after the draw); else None."""
     if kwargs.get("frame") is not None:
         return None
     fb = fourbar_starts.recognised(mechanism)
@@ -196,7 +198,7 @@ def _four_bar(
     own = assembled(mechanism, {})
     if isinstance(own, str):
         return None
-    return fb, mechanism, fourbar_starts.side(fb, own)
+    return fb, fourbar_starts.side(fb, own), fourbar_starts.sweep(fb, mechanism, kwargs)
 
 
 def _one_start(
@@ -248,7 +250,10 @@ def multi_start(
         # continuation from its own position 1); one that cannot be is discarded with the reason.
         four_bar = _four_bar(mechanism, kwargs)
         reached += [
-            assembled(mechanism, b) if four_bar is None else fourbar_starts.assembled(*four_bar, b) for b in begins[1:]
+            assembled(mechanism, b)
+            if four_bar is None
+            else fourbar_starts.assembled(four_bar[0], mechanism, four_bar[1], b)
+            for b in begins[1:]
         ]
     usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
     tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
