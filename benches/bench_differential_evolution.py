@@ -10,6 +10,7 @@ fully scores 1e6); its evaluations are counted as mechanism runs. mechfem's ``op
 same problem from n starts (mechanism runs as it counts them). For each seed: runs, seconds, best error.
 
     .venv/bin/python benches/bench_differential_evolution.py [--seeds 1 2 3] [--starts 20] [--maxiter 3000]
+        [--problems path line] [--methods de mechfem]
 """
 
 from __future__ import annotations
@@ -85,13 +86,17 @@ def main() -> None:
     parser.add_argument("--starts", type=int, default=20)
     parser.add_argument("--maxiter", type=int, default=3000)
     parser.add_argument("--problems", nargs="+", default=["path", "line"], choices=sorted(PROBLEMS))
+    parser.add_argument("--methods", nargs="+", default=["de", "mechfem"], choices=["de", "mechfem"])
     args = parser.parse_args()
     print("| problem | method | seed | mechanism runs | seconds | best error |\n|---|---|---|---|---|---|")
     for problem in args.problems:
         for seed in args.seeds:
-            runs, seconds, err = run_de(problem, seed, args.maxiter)
-            row = f"| {problem} | SciPy differential_evolution | {seed} | {runs} | {seconds:.1f} | {err:.2e} |"
-            print(row, flush=True)
+            if "de" in args.methods:
+                runs, seconds, err = run_de(problem, seed, args.maxiter)
+                row = f"| {problem} | SciPy differential_evolution | {seed} | {runs} | {seconds:.1f} | {err:.2e} |"
+                print(row, flush=True)
+            if "mechfem" not in args.methods:
+                continue
             runs, seconds, err = run_mechfem(problem, seed, args.starts)
             print(
                 f"| {problem} | mechfem, {args.starts} starts | {seed} | {runs} | {seconds:.1f} | {err:.2e} |",

@@ -21,8 +21,8 @@ import mechfem
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "examples" / "synthesis"))
-import bench_free_timing as fl  # noqa: E402
 import path_synthesis as ps  # noqa: E402
+import straight_line as fl  # noqa: E402
 
 
 def problems() -> dict[str, tuple[mechfem.Mechanism, dict[str, tuple[float, float] | None], dict[str, object]]]:
@@ -38,6 +38,11 @@ def problems() -> dict[str, tuple[mechfem.Mechanism, dict[str, tuple[float, floa
             fl.VARY,
             {"targets": line_targets, "timing": timing, "rtol": 1e-12, "atol": 1e-20},
         ),
+        "straight line, 6 points, free timing, full turn": (
+            fl.four_bar(),
+            fl.VARY,
+            {"targets": line_targets, "timing": timing, "full_rotation": True, "rtol": 1e-12, "atol": 1e-20},
+        ),
     }
 
 
@@ -46,8 +51,8 @@ def main() -> None:
     parser.add_argument("--starts", type=int, default=20)
     parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     args = parser.parse_args()
-    print("| problem | seed | starts | draws looked at | starts optimised | best objective | seconds |")
-    print("|---|---|---|---|---|---|---|")
+    print("| problem | seed | starts | draws looked at | usable draws | starts optimised | best objective | seconds |")
+    print("|---|---|---|---|---|---|---|---|")
     for name, (mech, vary, kwargs) in problems().items():
         for seed in args.seeds:
             t0 = time.perf_counter()
@@ -56,7 +61,8 @@ def main() -> None:
                 opt = mechfem.optimize(mech, vary, starts=args.starts, seed=seed, **kwargs)  # type: ignore[arg-type]
             used = sum(s.values is not None for s in opt.starts)
             print(
-                f"| {name} | {seed} | {len(opt.starts)} | {opt.drawn} | {used} ({opt.usable:.0%}) | "
+                f"| {name} | {seed} | {len(opt.starts)} | {opt.drawn} | {opt.usable_draws:.0%} | "
+                f"{used} ({opt.usable:.0%}) | "
                 f"{opt.objective:.2e} | {time.perf_counter() - t0:.0f} |",
                 flush=True,
             )

@@ -82,9 +82,13 @@ def test_a_start_box_outside_vary_is_refused() -> None:
         mechfem.optimize(ps.four_bar(), VARY, targets=ps.targets(), starts=[])
 
 
-def test_draws_that_cannot_do_the_motion_are_passed_over_with_their_reason() -> None:
+def test_draws_that_cannot_do_the_motion_are_passed_over_with_their_reason(monkeypatch: pytest.MonkeyPatch) -> None:
     mech = ps.four_bar()
     base = {name: float(mech[name].value) for name in VARY}
+    # A four-bar's draws turn the crank by construction (tests/test_fourbar_starts.py): the first four are taken.
+    assert multistart.screened(mech, base, VARY, 4, 1, {})[3] == 4
+    # Any other mechanism draws in the box itself, as this four-bar does when not recognised.
+    monkeypatch.setattr(multistart.fourbar_starts, "recognised", lambda _m: None)
     begins, reached, rejected, looked = multistart.screened(mech, base, VARY, 4, 1, {})
     assert len(begins) == len(reached) == 4
     assert looked == 4 + len(rejected)

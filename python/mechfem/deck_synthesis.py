@@ -21,6 +21,7 @@ import numpy as np
 
 from mechfem import design, design_rules, frame_angle, full_rotation, timing
 from mechfem.frame_angle import FrameAngle, TurnedModel
+from mechfem.optimise import _timed_model, synthesis_problem
 from mechfem.timing import FreeTiming, Plan
 
 if TYPE_CHECKING:
@@ -93,8 +94,6 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
     base = os.fspath(deck.parent if deck.parent != Path("") else Path("."))
     rows = {numbering.row_dest[r]: r for r in mech.rows if r in numbering.row_dest}
     of: design.DesignModelOf = design.built_model(built.builder, base)
-    variables, names = list(p.variables), list(p.names)
-    lo, hi, periodic = p.lo, p.hi, list(p.periodic) or [False] * len(variables)
     timed, input_row, free_name = None, None, None
     if free:
         input_row = int(free["row"])
@@ -113,36 +112,30 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
             of = full_rotation.checked(of, mech, storage, base)
         except ValueError as e:
             raise SynthesisError(f"error: {deck}: line {line}: FULLROT: {e}") from None
-    turn = None
+    turn, framed = None, None
     if frame:
         pivot = next((q for q in mech.points if q.fixed and q.x.number == int(frame["coordinate"])), None)
         if pivot is None:
             raise AssertionError("the deck reader checks that VARYFRAME names a fixed point")
         span = (float(frame["lo"]), float(frame["hi"]))
         turn = frame_angle.plan(mech, FrameAngle(pivot.name, span=span), numbering, free_name)
-        of = frame_angle.turned(of, turn)
-        variables, names = [*variables, frame_angle.SENTINEL], [*names, "frame"]
-        lo, hi = np.append(lo, span[0]), np.append(hi, span[1])
-        periodic.append(design_rules.full_turn(*span))
-    if timed is not None:
-        n = len(timed.thetas)
-        variables += [(2, k) for k in range(n)]
-        names += timed.names
-        lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
-        periodic += timed.periodic
-    q = design.Problem(
-        model=of,
-        variables=variables,
-        names=names,
-        lo=lo,
-        hi=hi,
+        framed = ("frame", span[0], span[1], design_rules.full_turn(*span))
+    q = synthesis_problem(
+        of,
+        p.variables,
+        p.names,
+        p.lo,
+        p.hi,
+        p.periodic,
+        frame=framed,
+        turn=turn,
+        timed=timed,
         terms=p.terms,
         bounds=p.bounds,
         objective=p.objective,
         steps=p.steps,
         tol=p.tol,
         stop=p.stop,
-        periodic=periodic if any(periodic) else [],
     )
     return Synthesis(q, turn, timed, input_row)
 
@@ -166,8 +159,6 @@ def _plan(deck: Path, mech: Mechanism, storage: Storage, name: str, ordered: boo
 
 
 def _timed(timed: Plan, base: str) -> design.DesignModelOf:
-    from mechfem.optimise import _timed_model
-
     return _timed_model(timed, base)
 
 

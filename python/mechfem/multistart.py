@@ -5,20 +5,18 @@ design assembled afresh.
   random draw leaves holes and clusters), it takes any number of points (a Sobol sequence wants powers of two),
   and it is seeded. The box's dimensions are taken in the order of the variables' names, so the same seed gives
   the same start designs whatever order ``vary`` lists them in.
-* **Assembly.** A start design far from the mechanism's own would assemble, from the mechanism's estimates, on
-  whichever branch Newton's method happens to reach, or not at all. Each start is reached instead by continuation
-  from the mechanism's position 1: its variables move there in stages, each stage's position 1 solved from the
-  last one's (a stage that fails is halved, down to 1/64 of the way). So every start lies on the branch of the
-  mechanism's own estimates, and a start that cannot be reached (a limit position on the way: the design does not
-  exist on that branch) is discarded with that reason before any optimisation.
-* **Screening.** Most of a start box holds designs that cannot do the problem's motion at all: a four-bar whose
-  crank cannot turn through the target angles (not a Grashof crank), or cannot reach the free timing's start
-  values from its position 1. Such a draw is not a start: the draws are taken in the sequence's order, each
-  assembled as above and its motion run once (the problem's motion; with free timing, from position 1 to every
-  point's start value; with ``full_rotation``, a whole turn), and the first ``starts - 1`` that pass are the drawn
-  starts. The draws are thereby limited to the part of the box where the problem's motion exists; those passed
-  over are kept with their reason (``Optimum.rejected``), and ``Optimum.drawn`` counts every draw looked at, at
-  most ``SCREEN`` per start.
+* **A four-bar** (:mod:`mechfem.fourbar_starts`) is drawn where its dyad closes over the crank's whole sweep in the
+  problem (a whole turn with ``full_rotation``) and each draw assembled from its closed-form position 1 on the
+  mechanism's assembly branch: its draws can do the problem's crank motion by construction.
+* **Any other mechanism** draws in the box itself, and each start is reached by continuation from the mechanism's
+  position 1: its variables move there in stages, each stage's position 1 solved from the last one's (a stage that
+  fails is halved, down to 1/64 of the way). So every start lies on the branch of the mechanism's own estimates,
+  and a start that cannot be reached (a limit position on the way: the design does not exist on that branch) is
+  discarded with that reason before any optimisation.
+* **Check.** Each draw, assembled, runs the problem's motion once (with free timing, from position 1 to every
+  point's start value; with ``full_rotation``, a whole turn); the first ``starts - 1`` that can are the drawn
+  starts. Those passed over are kept with their reason (``Optimum.rejected``), and ``Optimum.drawn`` counts every
+  draw looked at, at most ``SCREEN`` per start, so ``(starts - 1) / drawn`` is the usable fraction of the draws.
 """
 
 from __future__ import annotations
@@ -32,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechfem import fourbar_starts
 from mechfem.design import Infeasible
 from mechfem.errors import MechfemError
 
@@ -161,12 +160,21 @@ def screened(
     reached: list[Mechanism] = []
     rejected: list[tuple[dict[str, float], str]] = []
     looked = 0
-    for d in draws(box, SCREEN * n, seed):
+    four_bar = _four_bar(mechanism, kwargs)
+    if four_bar is None:
+        candidates = [(d, "") for d in draws(box, SCREEN * n, seed)]
+    else:
+        fb, branch, sweep = four_bar
+        candidates = fourbar_starts.draws(fb, mechanism, box, SCREEN * n, seed, sweep)
+    for d, why in candidates:
         if len(begins) == n:
             break
         looked += 1
         begin = {**base, **d}
-        at = assembled(mechanism, begin)
+        if why:
+            rejected.append((begin, why))
+            continue
+        at = assembled(mechanism, begin) if four_bar is None else fourbar_starts.assembled(fb, mechanism, branch, begin)
         why = f"cannot be assembled: {at}" if isinstance(at, str) else runs_through(at, kwargs)
         if why or isinstance(at, str):
             rejected.append((begin, why))
@@ -174,6 +182,23 @@ def screened(
         begins.append(begin)
         reached.append(at)
     return begins, reached, rejected, looked
+
+
+def _four_bar(
+    mechanism: Mechanism, kwargs: Mapping[str, Any]
+) -> tuple[fourbar_starts.FourBar, float, tuple[float, float] | None] | None:
+    """The four-bar ``mechanism`` is, with its assembly branch (the side of A -> B0 its position 1 has B on) and the
+    crank's sweep in the problem (:func:`fourbar_starts.sweep`), when its starts are drawn and assembled as a
+    four-bar's (not with a frame angle, which turns the frame after the draw); else None."""
+    if kwargs.get("frame") is not None:
+        return None
+    fb = fourbar_starts.recognised(mechanism)
+    if fb is None:
+        return None
+    own = assembled(mechanism, {})
+    if isinstance(own, str):
+        return None
+    return fb, fourbar_starts.side(fb, own), fourbar_starts.sweep(fb, mechanism, kwargs)
 
 
 def _one_start(
@@ -221,9 +246,15 @@ def multi_start(
         reached += at
     else:
         begins += [{**begins[0], **{k: float(v) for k, v in d.items()}} for d in starts]
-        # Every start assembled afresh, by continuation from the mechanism's own position 1; one that cannot be is
-        # discarded with the reason.
-        reached += [assembled(mechanism, b) for b in begins[1:]]
+        # Every start assembled afresh (a four-bar from its closed-form position 1, any other mechanism by
+        # continuation from its own position 1); one that cannot be is discarded with the reason.
+        four_bar = _four_bar(mechanism, kwargs)
+        reached += [
+            assembled(mechanism, b)
+            if four_bar is None
+            else fourbar_starts.assembled(four_bar[0], mechanism, four_bar[1], b)
+            for b in begins[1:]
+        ]
     usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
     tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
     if executor is None:

@@ -389,30 +389,26 @@ def optimize(
             raise ValueError(f"{name!r}: the range ({a}, {b}) is empty")
         if not a <= start <= b:
             raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
-    core_vars, names = [(k, n) for k, n, _ in variables], list(vary)
+    framed = None
     if frame is not None:
         span = frame.span or (-math.pi, math.pi)
-        lo, hi = np.append(lo, float(span[0])), np.append(hi, float(span[1]))
-        periodic, core_vars, names = (
-            [*periodic, frame.span is None],
-            [*core_vars, frame_angle.SENTINEL],
-            [*names, frame.name],
-        )
-    if timed is not None:
-        lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
-        periodic = (periodic if any(periodic) else [False] * len(names)) + timed.periodic
+        framed = (frame.name, float(span[0]), float(span[1]), frame.span is None)
     with deckio.tables_dir(built.tables) as base:
         model = (
             dynamic_optimise.model(built.builder, base)
             if dynamic
             else _model(built.builder, base, timed, full_rotation, mechanism, deck.storage)
         )
-        problem = design.Problem(
-            model=model if turn is None else frame_angle.turned(model, turn),
-            variables=core_vars + ([] if timed is None else [(2, k) for k in range(positions)]),
-            names=names + ([] if timed is None else timed.names),
-            lo=lo,
-            hi=hi,
+        problem = synthesis_problem(
+            model,
+            [(k, n) for k, n, _ in variables],
+            list(vary),
+            lo,
+            hi,
+            periodic,
+            frame=framed,
+            turn=turn,
+            timed=timed,
             terms=terms,
             bounds=bound_terms,
             objective=goal,
@@ -422,7 +418,6 @@ def optimize(
             steps=steps,
             tol=tol,
             stop=stop,
-            periodic=periodic if any(periodic) else [],
         )
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)
@@ -475,6 +470,46 @@ def optimize(
                 sol.seconds,
             )
         ],
+    )
+
+
+def synthesis_problem(
+    model: design.DesignModelOf,
+    variables: Sequence[tuple[int, int]],
+    names: Sequence[str],
+    lo: FloatArray,
+    hi: FloatArray,
+    periodic: Sequence[bool],
+    *,
+    frame: tuple[str, float, float, bool] | None,
+    turn: frame_angle.Turn | None,
+    timed: Plan | None,
+    **fields: Any,
+) -> design.Problem:
+    """The design problem of ``variables`` (core numbering, ranges ``lo``..``hi``) on ``model``, with the frame
+    angle ``frame`` = (name, lo, hi, wraps) turning the model by ``turn``, and with the free timing ``timed``'s
+    input at every point appended as variables; ``fields`` are the rest of :class:`design.Problem` (terms, bounds,
+    objective, tolerances). Both ``optimize`` and a deck's FREETIME/FULLROT/VARYFRAME set their problem up here."""
+    variables, names = list(variables), list(names)
+    wraps = list(periodic) or [False] * len(variables)
+    if frame is not None:
+        name, a, b, periodic_frame = frame
+        variables, names = [*variables, frame_angle.SENTINEL], [*names, name]
+        lo, hi = np.append(lo, a), np.append(hi, b)
+        wraps.append(periodic_frame)
+    if timed is not None:
+        variables += [(2, k) for k in range(len(timed.thetas))]
+        names += timed.names
+        lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
+        wraps += timed.periodic
+    return design.Problem(
+        model=model if turn is None else frame_angle.turned(model, turn),
+        variables=variables,
+        names=names,
+        lo=lo,
+        hi=hi,
+        periodic=wraps if any(wraps) else [],
+        **fields,
     )
 
 

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -52,6 +53,12 @@ class Optimum:
     reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
     """Those infeasible designs by kind of reason (see :attr:`mechfem.design.Solution.reasons`): how many, and the
     first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
+
+    @property
+    def usable_draws(self) -> float:
+        """With ``starts`` a number: the fraction of the draws looked at that became starts (assembled and able to
+        do the problem's motion), ``(len(starts) - 1) / drawn``; NaN when nothing was drawn."""
+        return (len(self.starts) - 1) / self.drawn if self.drawn else math.nan
 
     def run(self) -> RunResult:
         """The optimised mechanism run through the motion the optimisation used."""
