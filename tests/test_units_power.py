@@ -1,0 +1,41 @@
+"""A power at the edges: drive x speed of an input given in degrees is a power in the deck's units (the speed taken
+per radian), and a power's unit is the watt where the deck's units make one."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from mechfem.labels import shown
+from mechfem.report_dynamics import energy_balance, input_power
+from mechfem.units import Units, symbol
+from test_units_outputs import supply_dyn
+
+
+def test_the_power_on_an_input_in_degrees_is_the_drives_power_and_its_work_is_the_si_work_converted(
+    tmp_path: Path,
+) -> None:
+    si, mm = supply_dyn(tmp_path)
+    for r in (si, mm):
+        assert r.dynamic is not None
+        on_input = input_power(r)
+        assert on_input is not None
+        # One input in DYN ANA: drive x speed is the drives' power BUFPOW.
+        np.testing.assert_allclose(
+            on_input[:, 0], r.dynamic.power, rtol=1e-9, atol=1e-9 * np.abs(r.dynamic.power).max()
+        )
+    # N·mm/ms is the watt: the same numbers as the SI deck's; its work in N·mm is the SI work in N·m times 1000.
+    np.testing.assert_allclose(input_power(mm), input_power(si), rtol=1e-8, atol=1e-8)
+    b_si, b_mm = energy_balance(si), energy_balance(mm)
+    assert b_si is not None and b_mm is not None
+    np.testing.assert_allclose(b_mm.inputs_work, 1e3 * b_si.inputs_work, rtol=1e-6, atol=1e-9)
+
+
+def test_a_powers_unit_is_the_watt_where_the_units_make_one() -> None:
+    mm_ms = Units(length="mm", angle="deg", mass="kg", force="N", time="ms")
+    assert shown("power", mm_ms) == "W" and symbol(mm_ms.as_dict(), force=1, length=1, time=-1) == "W"
+    assert shown("power", Units(length="mm", force="N")) == "mW"
+    assert shown("power", Units(length="in", force="N")) == "N·in/s"
+    # A torque and an energy keep force x length.
+    assert shown("torque", mm_ms) == "N·mm" and shown("energy", mm_ms) == "N·mm"
