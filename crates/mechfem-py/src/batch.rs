@@ -15,7 +15,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use mechfem_core::batch;
+use mechfem_core::{batch, Lost};
 use mechfem_core::run::transfer_order_of;
 use mechfem_deck::{Change, Compiled, Diagnostics};
 use pyo3::exceptions::PyIndexError;
@@ -163,6 +163,6 @@ pub fn run_deck_variants(
     }
     results
         .into_iter()
-        .map(|object| object.ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err("a batch run was lost")))
+        .map(|object| object.ok_or_else(|| errors::lost(Lost::BatchRun)))
         .collect()
 }
