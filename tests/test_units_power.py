@@ -6,10 +6,13 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
+import mechfem
 from mechfem.labels import shown
 from mechfem.report_dynamics import energy_balance, input_power
 from mechfem.units import Units, symbol
+from test_names_units import fourbar_mm_deg
 from test_units_outputs import supply_dyn
 
 
@@ -39,3 +42,29 @@ def test_a_powers_unit_is_the_watt_where_the_units_make_one() -> None:
     assert shown("power", Units(length="in", force="N")) == "N·in/s"
     # A torque and an energy keep force x length.
     assert shown("torque", mm_ms) == "N·mm" and shown("energy", mm_ms) == "N·mm"
+
+
+def test_a_model_in_mm_read_from_a_deck_without_accuracy_writes_none_and_reads_back_unchanged(tmp_path: Path) -> None:
+    deck = tmp_path / "fourbar_mm.mec"
+    deck.write_text(fourbar_mm_deg())
+    first = mechfem.Mechanism.from_deck(deck)
+    assert first.motion is not None and first.motion.accuracy is None
+    text = first.to_deck()
+    assert "ACCURACY" not in text
+    again = tmp_path / "again.mec"
+    again.write_text(text)
+    second = mechfem.Mechanism.from_deck(again).to_deck()
+    # Only the comment naming the model's source differs, and the numbers by rounding (read in mm, computed in m).
+    assert len(second.splitlines()) == len(text.splitlines())
+    for a, b in zip(second.splitlines()[1:], text.splitlines()[1:], strict=True):
+        wa, wb = [_word(w) for w in a.split()], [_word(w) for w in b.split()]
+        assert [w for w in wa if isinstance(w, str)] == [w for w in wb if isinstance(w, str)]
+        numbers = [w for w in wb if isinstance(w, float)]
+        assert [w for w in wa if isinstance(w, float)] == pytest.approx(numbers, rel=1e-13), a
+
+
+def _word(w: str) -> float | str:
+    try:
+        return float(w)
+    except ValueError:
+        return w
