@@ -68,3 +68,18 @@ def _word(w: str) -> float | str:
         return float(w)
     except ValueError:
         return w
+
+
+def test_the_command_line_says_a_unit_warning_as_the_deck_reader_words_it(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mechfem.cli import main
+
+    deck = tmp_path / "turn.mec"
+    deck.write_text(fourbar_mm_deg().replace("MOV_RELE 1 720.0", "MOV_RELE 1 12.566370614359172"))
+    assert "MOV_RELE 1 12.566370614359172" in deck.read_text()
+    assert main(["run", str(deck), "-o", str(tmp_path / "out"), "--no-media"]) == 0
+    err = capsys.readouterr().err
+    assert "warning: the motion's step" in err and "turn.mec:" in err
+    # Not Python's form of a warning: no source file of mechfem, no class name.
+    assert "UnitWarning" not in err and ".py:" not in err
