@@ -15,6 +15,8 @@ from mechfem.units import Units, symbol
 from test_names_units import fourbar_mm_deg
 from test_units_outputs import supply_dyn
 
+ROOT = Path(__file__).resolve().parents[1]
+
 
 def test_the_power_on_an_input_in_degrees_is_the_drives_power_and_its_work_is_the_si_work_converted(
     tmp_path: Path,
@@ -83,3 +85,21 @@ def test_the_command_line_says_a_unit_warning_as_the_deck_reader_words_it(
     assert "warning: the motion's step" in err and "turn.mec:" in err
     # Not Python's form of a warning: no source file of mechfem, no class name.
     assert "UnitWarning" not in err and ".py:" not in err
+
+
+def test_a_dxf_drawing_of_a_deck_in_mm_says_its_unit_is_the_millimetre(tmp_path: Path) -> None:
+    pytest.importorskip("ezdxf")
+    import ezdxf
+
+    from mechfem import export
+
+    deck = tmp_path / "fourbar_mm.mec"
+    deck.write_text(fourbar_mm_deg())
+    [dxf] = export.draw_files(mechfem.run_deck(deck), tmp_path / "out", formats=["dxf"])
+    assert ezdxf.readfile(dxf).header["$INSUNITS"] == export.DXF_UNITS["mm"]
+    # A deck without UNITS stays unitless; a unit asked for wins.
+    plain = mechfem.run_deck(ROOT / "examples" / "fourbar" / "fourbar.mec")
+    [dxf] = export.draw_files(plain, tmp_path / "plain", formats=["dxf"])
+    assert ezdxf.readfile(dxf).header["$INSUNITS"] == 0
+    [dxf] = export.draw_files(plain, tmp_path / "m", formats=["dxf"], units="m")
+    assert ezdxf.readfile(dxf).header["$INSUNITS"] == export.DXF_UNITS["m"]
