@@ -103,3 +103,12 @@ def test_a_dxf_drawing_of_a_deck_in_mm_says_its_unit_is_the_millimetre(tmp_path:
     assert ezdxf.readfile(dxf).header["$INSUNITS"] == 0
     [dxf] = export.draw_files(plain, tmp_path / "m", formats=["dxf"], units="m")
     assert ezdxf.readfile(dxf).header["$INSUNITS"] == export.DXF_UNITS["m"]
+
+
+def test_a_label_asked_for_by_a_number_the_model_lacks_is_an_index_error_worded_by_the_core() -> None:
+    labels = mechfem.run_deck(ROOT / "examples" / "fourbar" / "fourbar.mec").model.labels
+    assert labels is not None
+    with pytest.raises(IndexError, match=r"^no co-ordinate 99$"):
+        labels.coordinate(99)
+    with pytest.raises(IndexError, match=r"^no buffer 999$"):
+        labels.buffer(999)
