@@ -228,7 +228,7 @@ def test_supply_inverse_dynamics_in_mm_degrees_and_milliseconds(tmp_path: Path) 
         close(mm.buffers[number], si.buffers[number] * factor, rtol=1e-8)
     labels = by_number(mm)
     assert labels[110] == ("drive(phi)", "N·mm")
-    assert labels[113] == ("power", "N·mm/ms")
+    assert labels[113] == ("power", "W")
     assert labels[117] == ("M(phi,phi)", "kg·mm²")
     assert labels[114][1] == "N"
 

@@ -538,7 +538,10 @@ def main(argv: list[str] | None = None) -> int:
     args.console = Console(ProgressBar(show=False if quiet else None), quiet)
     try:
         try:
-            return int(args.func(args))
+            # A warning of mechfem's names its deck, line and fix: said as it is, not with Python's source line.
+            with warnings.catch_warnings():
+                warnings.showwarning = lambda message, *_, **__: args.console.note(str(message))
+                return int(args.func(args))
         finally:
             args.console.close()
     except MechfemError as e:

@@ -16,6 +16,7 @@ the numbering of this module, and the model compiled from them is the one its de
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 import re
 import sys
@@ -60,7 +61,7 @@ from mechfem.motion import check_units
 from mechfem.numbering import DeckText, Numbering, number
 from mechfem.stopping import stop_buffer, stop_name
 from mechfem.storage import check_file_names, from_described
-from mechfem.units import Units
+from mechfem.units import Units, scale
 
 Progress = bool | Callable[[int, int], object] | None
 
@@ -522,7 +523,8 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             mv["steps"],
             inputs,
             mv["dt"],
-            None if tol == DEFAULT_ACCURACY else tol,
+            # The core's default (in metres) comes back in the model's length unit: equal to it within rounding.
+            None if math.isclose(tol, DEFAULT_ACCURACY * scale("m", m.units.length), rel_tol=1e-12) else tol,
             None if max_iter == DEFAULT_MAX_ITER else max_iter,
             rtol,
             atol,

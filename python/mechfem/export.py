@@ -428,13 +428,14 @@ def export_drawing(
     """Writes the mechanism of ``result`` (a deck's run or a named model's) at ``position`` (1-based) to ``path``
     as DXF or SVG (``format``, default from the suffix) with the paths of its moving points (``paths``: True, False,
     or which points: co-ordinate number pairs for a deck's run, names for a named model's). ``units`` ("mm", "m",
-    ...) declares the deck's length unit in a DXF file. Returns the file written."""
+    ...) declares the deck's length unit in a DXF file (default the model's own, from its UNITS). Returns the file
+    written."""
     fmt = file_format(path, format)
     if result.named:
         d = analysis_drawing(result, position, paths)
     else:
         d = result_drawing(result, position, paths)
-    return write(d, path, fmt, units)
+    return write(d, path, fmt, units or run_units(result).length)
 
 
 def draw_files(
@@ -450,7 +451,7 @@ def draw_files(
     d = result_drawing(result, position, paths)
     outdir.mkdir(parents=True, exist_ok=True)
     name = f"{result.deck.stem}_pos{d.position}"
-    return [write(d, outdir / f"{name}.{fmt}", fmt, units) for fmt in formats]
+    return [write(d, outdir / f"{name}.{fmt}", fmt, units or run_units(result).length) for fmt in formats]
 
 
 @_result.TO_DXF.register

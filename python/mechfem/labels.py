@@ -27,7 +27,7 @@ import mechfem._core as _core
 from mechfem.echo import Buffer, Model, Row
 from mechfem.result import RunResult
 from mechfem.result_tables import run_units
-from mechfem.units import Units
+from mechfem.units import Units, watts
 
 ANGLE = "rad"
 LENGTH = "length"
@@ -181,7 +181,7 @@ def _words(units: Units) -> dict[str, str | None]:
         "force": force,
         "torque": moment,
         "energy": moment,
-        "power": None if moment is None else f"{moment}/{units.time}",
+        "power": None if moment is None else watts(units.as_dict()) or f"{moment}/{units.time}",
         "mass": units.mass,
     }
 

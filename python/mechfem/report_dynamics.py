@@ -20,6 +20,7 @@ forces as arrows on the mechanism and the shaking force as a polar plot.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -53,7 +54,20 @@ def input_power(result: RunResult) -> FloatArray | None:
         speed = np.column_stack([result.velocity(phi) for phi in result.numbering.inputs])
     else:
         return None
-    return np.asarray(dyn.drive * speed, dtype=np.float64)
+    return np.asarray(dyn.drive * speed * _radians_per_unit(result), dtype=np.float64)
+
+
+def _radians_per_unit(result: RunResult) -> FloatArray:
+    """What each input's speed is multiplied by so that drive x speed is a power: a torque is per radian, so the
+    speed of an angular input given in degrees is turned into radians; any other input's speed stays as it is."""
+    from mechfem.labels import ANGLE, row_unit
+
+    model = result.model
+    per_degree = math.pi / 180.0 if model.units.get("angle") == "deg" else 1.0
+    return np.array(
+        [per_degree if row_unit(model, model.prescribed[d - 1]) == ANGLE else 1.0 for d in model.dofs],
+        dtype=np.float64,
+    )
 
 
 @dataclass(frozen=True)

@@ -192,6 +192,20 @@ def wrong_angle_unit(value: float, angle: str) -> str | None:
     return None
 
 
+#: The watt's decimal multiples by name, as the core writes a power.
+_WATTS = ((1e-6, "µW"), (1e-3, "mW"), (1.0, "W"), (1e3, "kW"), (1e6, "MW"))
+
+
+def watts(units: Mapping[str, str | None]) -> str | None:
+    """The unit of a power in ``units`` by the watt's name where force x length / time is one of its decimal
+    multiples (N·m/s and N·mm/ms are ``W``, N·mm/s is ``mW``); None otherwise (N·in/s, or a unit not declared)."""
+    length, force, time = units.get("length"), units.get("force"), units.get("time") or "s"
+    if length is None or force is None:
+        return None
+    size = SI["force"][force] * SI["length"][length] / SI["time"][time]
+    return next((name for w, name in _WATTS if abs(size - w) <= 1e-12 * w), None)
+
+
 #: The base kinds in the order of a :func:`symbol`'s exponents; force and mass are written first, as in ``N·mm``
 #: and ``kg·mm²``.
 _ORDER = ("force", "mass", "length", "angle", "time")
@@ -207,6 +221,10 @@ def symbol(units: Mapping[str, str | None], **exponents: int) -> str:
         return ""
     if any(e and not units.get(k) for k, e in exponents.items()):
         return ""
+    if {k: e for k, e in exponents.items() if e} == {"force": 1, "length": 1, "time": -1}:
+        named = watts(units)
+        if named is not None:
+            return named
 
     def part(sign: int) -> str:
         out = []
@@ -243,5 +261,6 @@ __all__ = [
     "scale",
     "symbol",
     "to_radians",
+    "watts",
     "wrong_angle_unit",
 ]

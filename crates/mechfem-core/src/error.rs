@@ -423,3 +423,29 @@ impl std::fmt::Display for DynamicsFault {
         write!(f, "{} {of} is not finite", self.quantity.words())
     }
 }
+
+/// A thing of a model asked for by a number it does not have (a label of
+/// co-ordinate 12 of a model with 10).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("no {kind} {number}")]
+pub struct NoSuch {
+    /// What was asked for: `co-ordinate`, `row`, `input`, `buffer`.
+    pub kind: &'static str,
+    /// Its number as asked (a dependent row is negative).
+    pub number: i64,
+}
+
+/// A promise broken between the core and its caller: a run's answer that
+/// should be there and is not. Never the user's mistake.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+pub enum Lost {
+    /// A run of a batch gave no result and no error.
+    #[error("a batch run was lost")]
+    BatchRun,
+    /// A run's table was handed over once already.
+    #[error("a run's table was taken twice")]
+    TableTakenTwice,
+    /// A run came back without the compiled deck that ran it.
+    #[error("a run came back without its compiled deck")]
+    CompiledDeck,
+}

@@ -44,7 +44,8 @@ pub mod worded;
 
 pub use elements::{Dimension, Element, ElementType, FormEval, Order, Slot};
 pub use error::{
-    DeckTerm, DynamicQuantity, DynamicSource, DynamicsFault, ElementError, ModelError, Piece, SolveError, Unsupported,
+    DeckTerm, DynamicQuantity, DynamicSource, DynamicsFault, ElementError, Lost, ModelError, NoSuch, Piece, SolveError,
+    Unsupported,
 };
 pub use model::{FormRef, Mechanism, MechanismBuilder, State, Term};
 pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};

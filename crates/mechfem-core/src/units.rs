@@ -237,6 +237,8 @@ impl Dim {
     pub const ENERGY: Dim = Dim([1, 0, 0, 1, 0]);
     /// A moment of inertia (mass x length²).
     pub const INERTIA: Dim = Dim([2, 0, 1, 0, 0]);
+    /// A power (force x length / time).
+    pub const POWER: Dim = Dim([1, 0, 0, 1, -1]);
 
     /// The kind of a catalogue dimension (`Any` taken as a length).
     pub fn of(d: Dimension) -> Dim {
@@ -295,6 +297,11 @@ impl Dim {
         if !units.declared || self.0.iter().zip(&symbols).any(|(&e, s)| e != 0 && s.is_none()) {
             return String::new();
         }
+        if self == Dim::POWER {
+            if let Some(watt) = watts(self.scale(units)) {
+                return watt.to_string();
+            }
+        }
         let part = |positive: bool| {
             let mut out = String::new();
             // Force and mass first, as in N·mm and kg·mm².
@@ -328,6 +335,16 @@ impl Dim {
             (false, false) => format!("{num}/{den}"),
         }
     }
+}
+
+/// A power whose unit is `size` watts, by the watt's name where `size` is
+/// one of its decimal multiples (N·m/s and N·mm/ms are `W`, N·mm/s is
+/// `mW`); `None` for any other size (N·in/s keeps its compound symbol).
+fn watts(size: f64) -> Option<&'static str> {
+    [(1e-6, "µW"), (1e-3, "mW"), (1.0, "W"), (1e3, "kW"), (1e6, "MW")]
+        .into_iter()
+        .find(|&(w, _)| (size - w).abs() <= 1e-12 * w)
+        .map(|(_, name)| name)
 }
 
 impl Dim {
@@ -483,6 +500,24 @@ mod tests {
     }
 
     #[test]
+    fn a_power_is_named_by_the_watt_where_its_units_make_one() {
+        let with = |length, force, time| Units {
+            declared: true,
+            length: Some(length),
+            angle: None,
+            mass: None,
+            force: Some(force),
+            time: Some(time),
+        };
+        assert_eq!(Dim::POWER.symbol(&with(Length::M, Force::N, Time::S)), "W");
+        assert_eq!(Dim::POWER.symbol(&with(Length::Mm, Force::N, Time::Ms)), "W");
+        assert_eq!(Dim::POWER.symbol(&with(Length::M, Force::KN, Time::S)), "kW");
+        assert_eq!(Dim::POWER.symbol(&with(Length::In, Force::N, Time::S)), "N·in/s");
+        // A torque and an energy keep force x length: they share one kind.
+        assert_eq!(Dim::ENERGY.symbol(&with(Length::M, Force::N, Time::S)), "N·m");
+    }
+
+    #[test]
     fn derived_units_are_written_from_their_kinds() {
         let u = mm_deg();
         assert_eq!(Dim::LENGTH.symbol(&u), "mm");
@@ -497,6 +532,9 @@ mod tests {
         assert_eq!(Dim::LENGTH.over(Dim::ANGLE.times(Dim::ANGLE)).symbol(&u), "mm/deg²");
         assert_eq!(Dim::NONE.over(Dim::TIME).symbol(&u), "1/s");
         assert_eq!(Dim::LENGTH.over(Dim::ANGLE.times(Dim::TIME)).symbol(&u), "mm/(deg·s)");
+        // A power is named by the watt where its size is one of the watt's multiples.
+        assert_eq!(Dim::POWER.symbol(&u), "mW");
+        assert_eq!(Dim::ENERGY.over(Dim::TIME).symbol(&u), "mW");
         // Without a UNITS line nothing is shown; a kind whose base unit is
         // not declared is not shown either.
         assert_eq!(Dim::ANGLE.symbol(&Units::NONE), "");

@@ -15,8 +15,8 @@ use std::sync::atomic::AtomicBool;
 use std::sync::OnceLock;
 use std::time::Duration;
 
-use mechfem_core::batch;
 use mechfem_core::run::transfer_order_of;
+use mechfem_core::{batch, Lost};
 use mechfem_deck::{Change, Compiled, Diagnostics};
 use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
@@ -161,8 +161,5 @@ pub fn run_deck_variants(
     if on_result.is_some() {
         return Ok(Vec::new());
     }
-    results
-        .into_iter()
-        .map(|object| object.ok_or_else(|| pyo3::exceptions::PyRuntimeError::new_err("a batch run was lost")))
-        .collect()
+    results.into_iter().map(|object| object.ok_or_else(|| errors::lost(Lost::BatchRun))).collect()
 }

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use mechfem_core::run::MemoryRefusal;
 use mechfem_core::worded::{self, Part, Worded};
-use mechfem_core::{DesignError, ElementError, Mechanism, Names, SolveError, State};
+use mechfem_core::{DesignError, ElementError, Lost, Mechanism, Names, SolveError, State};
 use mechfem_deck::{Diagnostic, Diagnostics};
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
@@ -164,6 +164,12 @@ pub fn parts_object<'py>(py: Python<'py>, worded: &Worded) -> PyResult<Bound<'py
 /// functions), worded by them.
 pub fn value_error(e: &dyn std::error::Error) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// The `RuntimeError` of a run's answer lost between the core and Python,
+/// worded by the core.
+pub fn lost(e: Lost) -> PyErr {
+    pyo3::exceptions::PyRuntimeError::new_err(e.to_string())
 }
 
 /// The `ValueError` of a change of a model's numbers that the model does

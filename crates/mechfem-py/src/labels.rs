@@ -11,7 +11,7 @@
 //! length) and the exponents of length, angle, mass, force and time.
 
 use mechfem_core::units::{Angle, Force, Length, Mass, Time};
-use mechfem_core::{Dim, FormRef, Mechanism, ModelDims, Names, Quantity, Units};
+use mechfem_core::{Dim, FormRef, Mechanism, ModelDims, Names, NoSuch, Quantity, Units};
 use mechfem_deck::Compiled;
 use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
@@ -61,12 +61,12 @@ struct Table {
     det: Named,
 }
 
-fn missing(what: &str, n: impl std::fmt::Display) -> PyErr {
-    PyIndexError::new_err(format!("no {what} {n}"))
+fn missing(kind: &'static str, n: impl TryInto<i64>) -> PyErr {
+    PyIndexError::new_err(NoSuch { kind, number: n.try_into().unwrap_or(i64::MAX) }.to_string())
 }
 
 /// Entry `k` (1-based) of `list`.
-fn nth<T: Clone>(list: &[T], k: usize, what: &str) -> PyResult<T> {
+fn nth<T: Clone>(list: &[T], k: usize, what: &'static str) -> PyResult<T> {
     k.checked_sub(1).and_then(|k| list.get(k)).cloned().ok_or_else(|| missing(what, k))
 }
 

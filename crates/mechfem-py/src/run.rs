@@ -13,11 +13,11 @@ use std::path::Path;
 use std::sync::Mutex;
 
 use mechfem_core::run::{Layout, MemoryRefusal, SimReport};
-use mechfem_core::{RunReport, SolveError, State};
+use mechfem_core::{Lost, RunReport, SolveError, State};
 use mechfem_deck::{Compiled, Diagnostics};
 use numpy::ndarray::{Array2, ShapeBuilder};
 use numpy::PyArray2;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PySlice, PyTuple};
@@ -84,7 +84,7 @@ impl Lazy {
     fn get<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let array = self.array.get_or_try_init(py, || {
             let values = self.values.lock().unwrap_or_else(|e| e.into_inner()).take();
-            let values = values.ok_or_else(|| PyRuntimeError::new_err("a run's table was taken twice"))?;
+            let values = values.ok_or_else(|| errors::lost(Lost::TableTakenTwice))?;
             Ok::<_, PyErr>(PyArray2::from_owned_array(py, values).into_any().unbind())
         })?;
         Ok(array.bind(py).clone())
@@ -402,7 +402,7 @@ pub fn outcome_run(
     path: &Path,
     interrupted: bool,
 ) -> PyResult<Run> {
-    let lost = || PyRuntimeError::new_err("a run came back without its compiled deck");
+    let lost = || errors::lost(Lost::CompiledDeck);
     match outcome {
         Outcome::Ran(r) => {
             let (c, s) = text.ok_or_else(lost)?;
