@@ -25,7 +25,7 @@ CHECK = 1e-9
 
 
 def _json(a: np.ndarray, decimals: int) -> list[Any]:
-    """A 2-D array as nested lists rounded to ``decimals`` (a millionth of the drawing's size: far below a pixel,
+    """A 2-D array as nested lists rounded to ``decimals`` (the 6th digit of the drawing's size: far below a pixel,
     and short in JSON), None where not finite."""
     a = np.round(a, decimals)
     finite = np.isfinite(a)

@@ -10,6 +10,7 @@ from __future__ import annotations
 from mechfem.model import Mechanism
 from mechfem.motion import Motion
 from mechfem.parts import Driven, Output
+from mechfem.storage import Storage
 
 #: Positions per turn of the template's crank, plus the first one again.
 STEPS = 360
@@ -28,6 +29,22 @@ def four_bar(steps: int = STEPS) -> Mechanism:
     m.ternary2("coupler", a, b, c, length=3.5, u=1.5, v=1.2)
     m.bar("rocker", b0, b, length=3.0, angle=Output("psi"))
     m.motion = Motion.by(steps, 360.0, unit="deg")
+    # What a saved design's data set and report hold: the crank and rocker angles, the rocker's transfer
+    # functions, the coupler point's path, det(D^c) and the transmission angle between coupler and rocker.
+    m.storage = (
+        Storage(printbuf=[1, 2, 5, 6], savedata=[1, 2, 3, 4, 5, 6, 7, 8])
+        .buffer(1, "BUFINP", "phi")
+        .buffer(2, "BUFE0", "psi")
+        .buffer(3, "BUFKE1", "psi", "phi")
+        .buffer(4, "BUFKE2", "psi", "phi")
+        .buffer(5, "BUFX0", "C.x")
+        .buffer(6, "BUFX0", "C.y")
+        .buffer(7, "BUFDET")
+        .buffer(8, "BUFTRA", "coupler", "rocker")
+        .picture("coupler curve", ("PLOTHODO", "C"))
+        .picture("rocker angle and its transfer functions", ("PLOTFUNC", 1, 2), ("PLOTFUNC", 1, 3), ("PLOTFUNC", 1, 4))
+        .picture("transmission angle", ("PLOTFUNC", 1, 8))
+    )
     return m
 
 

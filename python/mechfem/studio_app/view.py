@@ -122,6 +122,8 @@ def transmission_pairs(mech: Mechanism) -> list[tuple[Element, Element, str]]:
 
 
 def _transmission_card(result: RunResult, data: dict[str, Any], mech: Mechanism) -> dict[str, Any] | None:
+    if any(b.keyword == "BUFTRA" for b in result.storage.buffers):
+        return None  # the deck's own transmission angles are charted already
     xkey = data["det"]["x"]
     frames = np.asarray(data["frames"])
     keys = []
