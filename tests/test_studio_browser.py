@@ -135,3 +135,37 @@ def test_open_drag_edit_save_compare_undo(page: Any, server: Running, tmp_path: 
     settled(page, revision + 2)
     np.testing.assert_allclose(shown(page, "b21"), psi0)
     assert page.evaluate("window.mechfemStudio.errors") == []
+
+
+def test_new_four_bar_through_three_clicked_points_saved_as_a_deck(page: Any, server: Running, tmp_path: Path) -> None:
+    # The acceptance: from the template to a four-bar whose coupler point passes through three clicked points.
+    page.click("#template")
+    page.wait_for_function("window.mechfemStudio.D && window.mechfemStudio.D.studio.name === 'fourbar'")
+    settled(page)
+    xs, ys = shown(page, "c9"), shown(page, "c10")
+    # Three points near the coupler curve (C's path), but off it.
+    wanted = [(xs[k] + 0.1, ys[k] + 0.15) for k in (0, 120, 240)]
+    page.click("#optclick")
+    for x, y in wanted:
+        sx, sy = page.evaluate("([x, y]) => window.mechfemStudio.toScreen(x, y)", [x, y])
+        page.mouse.click(sx, sy)
+    assert page.evaluate("window.mechfemStudio.targets.length") == 3
+    assert page.input_value("#optpoint") == "C"
+    page.click("#optrun")
+    page.wait_for_function("!window.mechfemStudio.optimising", timeout=60000)
+    assert page.evaluate("window.mechfemStudio.lastReply.optimised !== undefined"), page.text_content("#status")
+    settled(page)
+    assert page.evaluate("window.mechfemStudio.iterations") >= 1, "no iteration was shown while optimising"
+    assert "passes within" in page.text_content("#optstatus")
+    deck = tmp_path / "through_three.mec"
+    page.fill("#savepath", str(deck))
+    page.click("#save")
+    page.wait_for_function("(p) => window.mechfemStudio.lastSaved && window.mechfemStudio.lastSaved.deck === p", arg=str(deck))
+    # The saved deck, run as `mechfem run` runs it: C's path passes through the three points.
+    out = tmp_path / "cli"
+    assert cli.main(["run", str(deck), "-o", str(out), "--no-media", "-q"]) == 0
+    rows = np.loadtxt(out / "through_three.csv", delimiter=",", skiprows=1, ndmin=2)
+    cx, cy = rows[:, 4], rows[:, 5]  # buffers 5 and 6: C.x and C.y
+    size = float(np.hypot(np.ptp(cx), np.ptp(cy)))
+    for x, y in wanted:
+        assert float(np.min(np.hypot(cx - x, cy - y))) < 0.01 * size

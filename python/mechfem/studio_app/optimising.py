@@ -20,7 +20,7 @@ from mechfem.studio_app.view import view
 from mechfem.timing import FreeTiming
 
 #: Least time between two iterations shown on the page, in seconds.
-SHOW_EVERY = 0.1
+SHOW_EVERY = 0.25
 
 
 def _span(session: Session, name: str, size: float) -> tuple[float, float]:
@@ -80,14 +80,17 @@ def path_through(
             return
         push({"type": "iteration", "number": it.number, "objective": it.objective, "design": view(shown_session)})
 
-    found = optimize(
-        mech,
-        box,
-        targets=[Target(f"{point}.x", [x for x, _ in points]), Target(f"{point}.y", [y for _, y in points])],
-        timing=FreeTiming(phi.name, starts),
-        steps=steps,
-        progress=shown,
-    )
+    problem = {
+        "targets": [Target(f"{point}.x", [x for x, _ in points]), Target(f"{point}.y", [y for _, y in points])],
+        "timing": FreeTiming(phi.name, starts),
+        "steps": steps,
+        "progress": shown,
+    }
+    found = optimize(mech, box, **problem)  # type: ignore[arg-type]
+    if result.report.stop_reason() is None and phi.is_angle and not _runs_whole_motion(found.mechanism):
+        # The points are met at three input values, but the crank no longer turns all the way: search again among
+        # the designs whose crank does (slower: each design is also turned once round).
+        found = optimize(mech, box, full_rotation=True, **problem)  # type: ignore[arg-type]
     return {
         "values": {name: float(found.values[name]) for name in vary},
         "objective": float(found.objective),
@@ -97,6 +100,13 @@ def path_through(
         "message": str(found.message),
         "timing": [float(t) for t in found.timing] if found.timing is not None else None,
     }
+
+
+def _runs_whole_motion(mech: Any) -> bool:
+    try:
+        return Session(mech).result.report.stop_reason() is None
+    except Exception:  # a design that cannot even be assembled does not run its motion
+        return False
 
 
 __all__ = ["path_through"]

@@ -140,8 +140,7 @@ class Session:
         if stop and result.positions < self.result.positions:
             self._restore(before)
             raise EditRefused(
-                f"the motion stops at position {result.positions} of {result.report.steps + 1}: {stop}. "
-                "The last good design is kept."
+                f"the motion stops at position {result.positions} of {result.report.steps + 1}: {stop}"
             )
         branch = self._branch(result)
         if group is None or group != self._group or not self._undo:

@@ -49,9 +49,11 @@
   function reply(m) {
     const took = performance.now() - state.sentAt;
     if (m.type === "design") {
+      const sentAt = state.sentAt;
       showDesign(m.design, !!m.opened);
-      const drawn = performance.now() - state.sentAt;
-      state.latencies.push(drawn);
+      const drawn = performance.now() - sentAt;
+      // Edit to redraw: until the frame after the new design is drawn (uPlot draws its charts in a task of their own).
+      requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, run: m.run_ms })));
       if (m.branch) say("branch", m.branch);
       else if (m.opened) say("ok", "Opened " + (m.design.studio.deck || m.design.studio.name) + ".");
       else if (m.optimised) optimised(m.optimised);
@@ -311,9 +313,11 @@
     if (D.paths.length) sel.value = D.paths[D.paths.length - 1].name;
     vary.textContent = "";
     const names = D.studio.dimensions.filter((d) => d.kind !== "input").map((d) => d.name);
-    for (const p of D.studio.points) if (p.fixed) names.push(p.name + ".x", p.name + ".y");
+    // Every dimension and every frame pivot but the first (which keeps the design where it is) may vary.
+    const pivots = D.studio.points.filter((p) => p.fixed).map((p) => p.name);
+    for (const p of pivots) names.push(p + ".x", p + ".y");
     for (const n of names) {
-      const box = el("input", { type: "checkbox", value: n, checked: !/\.(x|y)$/.test(n) });
+      const box = el("input", { type: "checkbox", value: n, checked: !pivots.length || !n.startsWith(pivots[0] + ".") });
       box.setAttribute("aria-label", "vary " + n);
       vary.append(el("label", {}, box, " " + n));
     }
@@ -340,8 +344,8 @@
   function optimised(o) {
     state.optimising = false;
     const worst = Math.max(...o.distances);
-    optStatus("Done in " + o.iterations + " iterations: the path of " + $("optpoint").value + " passes within " + fmt(worst) +
-      " of every clicked point. " + o.message);
+    optStatus("Done in " + o.iterations + " iterations (objective " + fmt(o.objective) + "): the path of " + $("optpoint").value +
+      " passes within " + fmt(worst) + " of every clicked point, as drawn at the motion's positions. " + o.message);
     say("ok", "Optimised: " + Object.entries(o.values).map(([k, v]) => k + " = " + fmt(v)).join(", ") + ". Undo goes back.");
   }
 
