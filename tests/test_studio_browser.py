@@ -80,9 +80,8 @@ def test_open_drag_edit_save_compare_undo(page: Any, server: Running, tmp_path: 
 
     # Drag the frame pivot B0 40 pixels to the right with the mouse.
     x, y = page.evaluate("window.mechfemStudio.handleAt('B0')")
-    scale = page.evaluate(
-        "(() => { const a = window.mechfemStudio.toScreen(0, 0), b = window.mechfemStudio.toScreen(1, 0); return b[0] - a[0]; })()"
-    )
+    left, right = page.evaluate("[window.mechfemStudio.toScreen(0, 0), window.mechfemStudio.toScreen(1, 0)]")
+    scale = right[0] - left[0]  # pixels per unit of length
     page.mouse.move(x, y)
     page.mouse.down()
     for k in range(1, 9):
@@ -160,7 +159,9 @@ def test_new_four_bar_through_three_clicked_points_saved_as_a_deck(page: Any, se
     deck = tmp_path / "through_three.mec"
     page.fill("#savepath", str(deck))
     page.click("#save")
-    page.wait_for_function("(p) => window.mechfemStudio.lastSaved && window.mechfemStudio.lastSaved.deck === p", arg=str(deck))
+    page.wait_for_function(
+        "(p) => window.mechfemStudio.lastSaved && window.mechfemStudio.lastSaved.deck === p", arg=str(deck)
+    )
     # The saved deck, run as `mechfem run` runs it: C's path passes through the three points.
     out = tmp_path / "cli"
     assert cli.main(["run", str(deck), "-o", str(out), "--no-media", "-q"]) == 0

@@ -6,8 +6,8 @@ function of the co-ordinates: ``d(x) = A x + b``. :func:`scene` finds ``A`` and 
 itself (the shapes at position 1 and with each co-ordinate moved by one unit), checks that they give the drawing's
 own shapes at five positions spread over the motion, and then computes the shape at every position with one matrix
 product. A shape that fails the check (a slider's block turned by an angle, a belt's wrap) is drawn at every position
-by the drawing as the report does. The result is the report's scene (:func:`mechfem.report._scene`): same shapes, the same
-numbers (unrounded).
+by the drawing as the report does. The result is the report's scene (:func:`mechfem.report._scene`): the same
+shapes, the numbers rounded to the 6th digit of the drawing's size.
 """
 
 from __future__ import annotations

@@ -21,7 +21,6 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import uvicorn
@@ -153,7 +152,9 @@ def serve_in_thread(session: Session | None, port: int = 0, **options: Any) -> R
     return Running(url, server, thread, server.actions)  # type: ignore[attr-defined]
 
 
-def serve(session: Session | None, port: int = 0, on_start: Callable[[str], object] | None = None, **options: Any) -> None:
+def serve(
+    session: Session | None, port: int = 0, on_start: Callable[[str], object] | None = None, **options: Any
+) -> None:
     """Serves until interrupted (Ctrl-C); ``on_start(url)`` is called once the server listens."""
     server, sock, url = prepare(session, port, **options)
     if on_start is not None:

@@ -116,7 +116,7 @@ class Session:
 
     def _restore(self, values: Values) -> None:
         for obj, v in values.items():
-            obj.value = v  # type: ignore[assignment]
+            obj.value = v
 
     def edit(self, changes: dict[str, Value], group: object = None) -> Outcome:
         """Sets ``changes`` (name -> value, a point's (x, y)) and re-runs the motion; raises :class:`EditRefused`
@@ -139,9 +139,7 @@ class Session:
         stop = result.report.stop_reason()
         if stop and result.positions < self.result.positions:
             self._restore(before)
-            raise EditRefused(
-                f"the motion stops at position {result.positions} of {result.report.steps + 1}: {stop}"
-            )
+            raise EditRefused(f"the motion stops at position {result.positions} of {result.report.steps + 1}: {stop}")
         branch = self._branch(result)
         if group is None or group != self._group or not self._undo:
             self._undo.append(before)

@@ -18,7 +18,8 @@ STEPS = 360
 
 def four_bar(steps: int = STEPS) -> Mechanism:
     """A crank-rocker four-bar: fixed pivots A0 (0, 0) and B0 (4, 0); crank A0-A 1, coupler A-B 3.5 carrying C at
-    (u, v) = (1.5, 1.2), rocker B0-B 3 whose angle is the output ``psi``; the crank angle ``phi`` turns from 0 through 360 deg in ``steps`` steps."""
+    (u, v) = (1.5, 1.2), rocker B0-B 3 whose angle is the output ``psi``; the crank angle ``phi`` turns from 0
+    through 360 deg in ``steps`` steps."""
     m = Mechanism("fourbar", angle="deg")
     a0, b0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 4.0, 0.0)
     # Start estimates of the moving points: B above the frame line chooses that assembly branch.

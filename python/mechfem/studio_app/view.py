@@ -48,8 +48,14 @@ def _moving_points(result: RunResult, mech: Mechanism, cols: Columns) -> list[di
     for p in traced:
         ix, iy = nb.coord_number[p.x], nb.coord_number[p.y]
         out.append(
-            {"name": p.name, "x": cols.coordinate(result, ix), "y": cols.coordinate(result, iy), "vx": None,
-             "vy": None, "scale": None}
+            {
+                "name": p.name,
+                "x": cols.coordinate(result, ix),
+                "y": cols.coordinate(result, iy),
+                "vx": None,
+                "vy": None,
+                "scale": None,
+            }
         )
     return out
 
@@ -63,7 +69,9 @@ def design_data(result: RunResult, mech: Mechanism) -> dict[str, Any]:
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
     drawn = scene(result, frames)
     x0, x1, y0, y1 = (v if v is not None else 0.0 for v in drawn["bounds"])
-    cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols, labels, float(np.hypot(x1 - x0, y1 - y0)))
+    cards = picture_cards(result, labels, cols) + dynamics_cards(
+        result, cols, labels, float(np.hypot(x1 - x0, y1 - y0))
+    )
     named = model_card(result, cols) if not result.storage.buffers else None
     if named is not None:
         xkey, card = named
@@ -143,17 +151,11 @@ def _transmission_card(result: RunResult, data: dict[str, Any], mech: Mechanism)
         keys.append(key)
     if not keys:
         return None
-    return {"title": "transmission angles", "picture": None, "charts": function_charts(xkey, keys, _Cols(data))}
-
-
-class _Cols:
-    """The part of :class:`mechfem.report_charts.Columns` that :func:`function_charts` reads."""
-
-    def __init__(self, data: dict[str, Any]) -> None:
-        self.table = data["columns"]
-
-    def values(self, key: str) -> list[float | None]:
-        return list(self.table[key]["values"])
+    return {
+        "title": "transmission angles",
+        "picture": None,
+        "charts": function_charts(xkey, keys, Columns(frames, table=data["columns"])),
+    }
 
 
 def view(session: Session) -> dict[str, Any]:
