@@ -216,3 +216,23 @@ def test_cli_says_how_to_install_what_is_missing(
     assert cli.main(["studio", "--no-browser"]) == 1
     assert "pip install 'mechfem[studio]'" in capsys.readouterr().err
     assert missing() == []
+
+
+def test_notebook_widget_edits_a_copy_and_gives_it_back() -> None:
+    pytest.importorskip("anywidget")
+    original = four_bar(steps=36)
+    widget = mechfem.studio(original)
+    try:
+        assert widget.url.startswith("http://127.0.0.1:") and "token=" in widget.url
+        assert "mechfem studio" in urllib.request.urlopen(widget.url, timeout=10).read().decode()
+        ws_url = widget.url.replace("http://", "ws://").replace("/?token=", "/ws?token=")
+        with websockets_sync.connect(ws_url) as ws:
+            ws.recv()
+            ws.send(json.dumps({"op": "edit", "changes": {"coupler.v": 0.8}}))
+            assert json.loads(ws.recv())["type"] == "design"
+        edited = widget.mechanism
+        assert isinstance(edited, mechfem.Mechanism) and edited["coupler.v"].value == 0.8
+        assert original["coupler.v"].value == 1.2
+        assert edited.run().positions == 37
+    finally:
+        widget.stop()

@@ -54,7 +54,9 @@
       const drawn = performance.now() - sentAt;
       // Edit to redraw: until the frame after the new design is drawn (uPlot draws its charts in a task of their own).
       requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, run: m.run_ms })));
-      if (m.branch) say("branch", m.branch);
+      if (m.branch) { say("branch", m.branch); state.branchGroup = state.group; }
+      // A branch change during a drag stays said for the rest of that drag (until the next edit).
+      else if (state.branchGroup === state.group && !m.opened && !m.optimised) void 0;
       else if (m.opened) say("ok", "Opened " + (m.design.studio.deck || m.design.studio.name) + ".");
       else if (m.optimised) optimised(m.optimised);
       else say("ok", "Recomputed " + m.design.positions + " positions in " + fmt(Math.round(drawn)) + " ms (the core: " + fmt(m.run_ms === undefined ? m.server_ms : m.run_ms) + " ms).");
@@ -83,7 +85,7 @@
     state.D = D;
     state.revision = D.studio.revision;
     state.cur = Math.min(state.cur, D.frames.length - 1);
-    if (first || !state.box) fit();
+    if (first || !state.box || (!state.drag && !inside(state.box))) fit();
     $("title").textContent = D.studio.name + ": mechfem studio";
     $("summary").textContent = (D.studio.deck || "not saved yet") + " - " + D.positions + " of " + D.asked + " positions" +
       (D.stop ? " - the motion stops: " + D.stop : "");
@@ -99,13 +101,23 @@
     show(state.cur);
   }
 
-  function fit() {
+  // The box of the drawing, its paths and the clicked targets.
+  function extent() {
     const D = state.D;
     const b = D.scene.bounds.map((v) => (v === null ? 0 : v));
+    for (const t of state.targets) { b[0] = Math.min(b[0], t[0]); b[1] = Math.max(b[1], t[0]); b[2] = Math.min(b[2], t[1]); b[3] = Math.max(b[3], t[1]); }
     for (const p of D.paths) {
       for (const v of D.columns[p.x].values) if (v !== null) { b[0] = Math.min(b[0], v); b[1] = Math.max(b[1], v); }
       for (const v of D.columns[p.y].values) if (v !== null) { b[2] = Math.min(b[2], v); b[3] = Math.max(b[3], v); }
     }
+    return b;
+  }
+  function inside(box) {
+    const b = extent();
+    return b[0] >= box[0] && b[1] <= box[1] && b[2] >= box[2] && b[3] <= box[3];
+  }
+  function fit() {
+    const b = extent();
     const pad = 0.12 * Math.max(b[1] - b[0], b[3] - b[2], 1e-9);
     state.box = [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + pad];
     layout(true);
@@ -294,7 +306,12 @@
     const x = mech.x(px) - state.drag.dx, y = mech.y(py) - state.drag.dy;
     edit({ [state.drag.name]: [x, y] }, true);
   });
-  function endDrag() { if (state.drag) { state.drag = null; buildDimensions(); draw(); } }
+  function endDrag() {
+    if (!state.drag) return;
+    state.drag = null;
+    buildDimensions();
+    if (!inside(state.box)) fit(); else draw();
+  }
   mech.canvas.addEventListener("pointerup", endDrag);
   mech.canvas.addEventListener("pointercancel", endDrag);
   state.handleAt = (name) => {
