@@ -37,9 +37,9 @@ to the last good one, says why it stopped and warns with
 from __future__ import annotations
 
 import os as _os
-from typing import Any as _Any
 from collections.abc import Callable as _Callable
 from pathlib import Path as _Path
+from typing import Any as _Any
 
 from mechfem import _core, limits
 from mechfem._version import __version__
