@@ -83,6 +83,10 @@ def main() -> int:
     print(f"studio edit-to-redraw, 361-position four-bar with second order, {len(samples)} edits")
     print(f"  whole (edit -> painted)  {quantiles(painted)}")
     print(f"  page (transfer, parse, draw, paint)  {quantiles(page_part)}")
+    print(f"  answer arrived           {quantiles([s['arrive'] for s in samples])}")
+    print(f"  design drawn             {quantiles([s['shown'] for s in samples])}")
+    for part in ("parse", "charts", "show"):
+        print(f"    page's {part:6s}         {quantiles([s[part] for s in samples])}")
     print(f"  server (run + view + JSON)  {quantiles(server)}")
     print(f"  core run                 {quantiles(run)}")
     print(f"  target 50 ms: {'met' if statistics.median(painted) <= 50 else 'NOT met'} (median)")

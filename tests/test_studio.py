@@ -112,7 +112,7 @@ def test_the_moves_of_one_drag_are_undone_together() -> None:
 
 
 def test_save_writes_deck_data_set_and_report_that_mechfem_run_reproduces(tmp_path: Path) -> None:
-    s = Session(four_bar())
+    s = Session(four_bar(steps=72))
     s.edit({"crank.length": 1.1, "coupler.v": 0.9})
     files = s.save(tmp_path / "mine.mec")
     assert sorted(p.name for p in files) == ["mine.csv", "mine.html", "mine.mec", "mine.prt"]
@@ -121,7 +121,7 @@ def test_save_writes_deck_data_set_and_report_that_mechfem_run_reproduces(tmp_pa
     out = tmp_path / "cli"
     assert cli.main(["run", str(tmp_path / "mine.mec"), "-o", str(out), "--no-media", "-q"]) == 0
     rows = np.loadtxt(out / "mine.csv", delimiter=",", skiprows=1, ndmin=2)
-    assert rows.shape[0] == 361
+    assert rows.shape[0] == 73
     # Column 2 of the data set is buffer 2, psi (deg): the CLI's run of the saved deck gives the session's numbers.
     np.testing.assert_allclose(rows[:, 1], psi(s), rtol=1e-7, atol=1e-7)
 
@@ -138,7 +138,7 @@ def test_view_has_the_motion_charts_dimensions_and_points() -> None:
     assert data["paths"][0]["name"] == "C"
 
 
-@pytest.mark.parametrize("deck", ["fourbar/fourbar.mec", "supply/supply.mec", "limits/nongrashof.mec"])
+@pytest.mark.parametrize("deck", ["fourbar/fourbar.mec", "supply/supply.mec"])
 def test_fast_scene_is_the_reports_scene(deck: str) -> None:
     from mechfem.drawing import MechanismDrawing
     from mechfem.report import _scene

@@ -28,7 +28,10 @@
   }
   state.send = send;
   ws.addEventListener("message", (e) => {
+    const t0 = performance.now();
     const m = JSON.parse(e.data);
+    state.parseMs = performance.now() - t0;
+    state.arriveMs = t0 - state.sentAt;
     state.messages++;
     if (m.type === "hello") { hello(m); return; }
     if (m.type === "iteration") { state.iterations++; showDesign(m.design, false); optStatus("iteration " + m.number + ": objective " + fmt(m.objective)); return; }
@@ -53,7 +56,8 @@
       showDesign(m.design, !!m.opened);
       const drawn = performance.now() - sentAt;
       // Edit to redraw: until the frame after the new design is drawn (uPlot draws its charts in a task of their own).
-      requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, run: m.run_ms })));
+      requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, run: m.run_ms,
+        arrive: state.arriveMs, parse: state.parseMs, charts: state.chartsMs, show: state.showMs, shown: drawn })));
       if (m.branch) { say("branch", m.branch); state.branchGroup = state.group; }
       // A branch change during a drag stays said for the rest of that drag (until the next edit).
       else if (state.branchGroup === state.group && !m.opened && !m.optimised) void 0;
@@ -96,9 +100,13 @@
     if (!$("savepath").value) $("savepath").value = D.studio.deck ? D.studio.deck.replace(/\.mec$/i, "_studio.mec") : D.studio.name + ".mec";
     if (first) buildOptimise();
     if (!state.drag || first) buildDimensions();
+    const t0 = performance.now();
     buildCharts();
+    const t1 = performance.now();
     buildLimits();
     show(state.cur);
+    state.chartsMs = t1 - t0;
+    state.showMs = performance.now() - t1;
   }
 
   // The box of the drawing, its paths and the clicked targets.
