@@ -236,3 +236,23 @@ def test_notebook_widget_edits_a_copy_and_gives_it_back() -> None:
         assert edited.run().positions == 37
     finally:
         widget.stop()
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "gears/planetary_gr1.mec",
+        "supply/supply_dyn.mec",
+        "limits/slider_dead_centre_free.mec",
+        "manipulator/manipulator.mec",
+    ],
+)
+def test_examples_of_every_kind_open_and_take_an_edit(name: str) -> None:
+    actions = Actions(None)
+    opened = actions.handle({"op": "example", "name": name}, lambda m: None)
+    assert opened["type"] == "design", opened
+    json.dumps(opened, allow_nan=False)
+    pivot = [p for p in opened["design"]["studio"]["points"] if p["fixed"]][-1]
+    x, y = pivot["given"]
+    edited = actions.handle({"op": "edit", "changes": {pivot["name"]: [x * 1.01 + 0.001, y]}}, lambda m: None)
+    assert edited["type"] == "design" and edited["design"]["studio"]["revision"] == 1
