@@ -15,15 +15,12 @@ import argparse
 import shutil
 import statistics
 import sys
-from pathlib import Path
 
 from playwright.sync_api import sync_playwright
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
-
-from mechfem.studio_app.server import serve_in_thread  # noqa: E402
-from mechfem.studio_app.session import Session  # noqa: E402
-from mechfem.studio_app.template import four_bar  # noqa: E402
+from mechfem.studio_app.server import serve_in_thread
+from mechfem.studio_app.session import Session
+from mechfem.studio_app.template import four_bar
 
 FLAGS = [
     "--no-sandbox",
