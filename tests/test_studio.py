@@ -256,3 +256,16 @@ def test_examples_of_every_kind_open_and_take_an_edit(name: str) -> None:
     x, y = pivot["given"]
     edited = actions.handle({"op": "edit", "changes": {pivot["name"]: [x * 1.01 + 0.001, y]}}, lambda m: None)
     assert edited["type"] == "design" and edited["design"]["studio"]["revision"] == 1
+
+
+def test_six_digits_rounds_a_column_as_the_report_rounds_each_number() -> None:
+    from mechfem.report_charts import nums
+    from mechfem.studio_app.view import six_digits
+
+    rng = np.random.default_rng(7)
+    v = rng.normal(size=5000) * 10.0 ** rng.integers(-12, 12, 5000)
+    v = np.concatenate([v, [0.0, -0.0, np.nan, np.inf, -np.inf, 1e-300, 5e-324, 999999.5, 0.1 + 0.2]])
+    got, want = six_digits(v), nums(v)
+    assert [x is None for x in got] == [x is None for x in want]
+    close = [x == y or abs(x - y) <= 1e-15 * abs(y) for x, y in zip(got, want, strict=True) if x is not None]
+    assert all(close)

@@ -17,6 +17,7 @@ from mechfem.designer import FRAMED, transmission_angle
 from mechfem.drawing import STYLES
 from mechfem.model import Mechanism
 from mechfem.parts import Element
+from mechfem.labels import with_unit
 from mechfem.report_charts import (
     Columns,
     all_labels,
@@ -33,6 +34,42 @@ from mechfem.result import RunResult
 from mechfem.result_tables import run_units
 from mechfem.studio_app.scene import scene
 from mechfem.studio_app.session import Session
+
+
+def six_digits(values: Any) -> list[float | None]:
+    """``values`` to 6 significant digits, None where not finite: :func:`mechfem.report_charts.nums` for a whole
+    column at once (tests/test_studio.py compares the two)."""
+    v = np.asarray(values, dtype=np.float64).ravel()
+    finite = np.isfinite(v) & (v != 0.0)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        exponent = np.floor(np.log10(np.abs(np.where(finite, v, 1.0))))
+        scale = 10.0 ** (5.0 - exponent)
+        rounded = np.round(v * scale) / scale
+    # A number too small for its scale (a subnormal) is kept as it is.
+    rounded = np.where(finite & np.isfinite(rounded), rounded, v)
+    out: np.ndarray = rounded.astype(object)
+    out[~np.isfinite(v)] = None
+    return list(out.tolist())
+
+
+class StudioColumns(Columns):
+    """The report's columns, each rounded at once (:func:`six_digits`): a column per value costs more than a run."""
+
+    def add(
+        self, key: str, name: str, unit: str, kind: str, values: Any, header: str | None = None, text: str = ""
+    ) -> str:
+        unit = self.shown(unit)
+        if key not in self.table:
+            self.table[key] = {
+                "name": name,
+                "unit": unit,
+                "kind": kind,
+                "axis": with_unit(name, unit),
+                "header": with_unit(header or name, unit),
+                "text": text or name,
+                "values": six_digits(np.asarray(values, dtype=np.float64)[self.frames]),
+            }
+        return key
 
 
 def _moving_points(result: RunResult, mech: Mechanism, cols: Columns) -> list[dict[str, Any]]:
@@ -64,7 +101,7 @@ def design_data(result: RunResult, mech: Mechanism) -> dict[str, Any]:
     """The report page's data of ``result`` (the parts the studio shows), every position a frame."""
     frames = np.arange(result.positions)
     labels = all_labels(result)
-    cols = Columns(frames, run_units(result))
+    cols = StudioColumns(frames, run_units(result))
     xkey = main_axis(result, labels, cols)
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
     drawn = scene(result, frames)
