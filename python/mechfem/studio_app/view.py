@@ -15,9 +15,9 @@ import numpy as np
 
 from mechfem.designer import FRAMED, transmission_angle
 from mechfem.drawing import STYLES
+from mechfem.labels import with_unit
 from mechfem.model import Mechanism
 from mechfem.parts import Element
-from mechfem.labels import with_unit
 from mechfem.report_charts import (
     Columns,
     all_labels,
