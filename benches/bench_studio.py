@@ -85,6 +85,7 @@ def main() -> int:
     for part in ("parse", "charts", "show"):
         print(f"    page's {part:6s}         {quantiles([s[part] for s in samples])}")
     print(f"  server (run + view + JSON)  {quantiles(server)}")
+    print(f"    its CPU time           {quantiles([s['server_cpu'] for s in samples])}")
     print(f"  core run                 {quantiles(run)}")
     print(f"  target 50 ms: {'met' if statistics.median(painted) <= 50 else 'NOT met'} (median)")
     return 0

@@ -56,7 +56,7 @@
       showDesign(m.design, !!m.opened);
       const drawn = performance.now() - sentAt;
       // Edit to redraw: until the frame after the new design is drawn (uPlot draws its charts in a task of their own).
-      requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, run: m.run_ms,
+      requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, server_cpu: m.server_cpu_ms, run: m.run_ms,
         arrive: state.arriveMs, parse: state.parseMs, charts: state.chartsMs, show: state.showMs, shown: drawn })));
       if (m.branch) { say("branch", m.branch); state.branchGroup = state.group; }
       // A branch change during a drag stays said for the rest of that drag (until the next edit).
