@@ -80,11 +80,10 @@ def make_app(actions: Actions, token: str, port: int) -> Starlette:
         def answer(message: dict[str, Any]) -> str:
             # Wall and CPU time of the answer (the CPU time of this thread: what the edit costs on an idle machine).
             started, cpu = time.perf_counter(), time.thread_time()
-            reply = actions.handle(message, push)
-            text = _dumps(reply)
-            reply["server_ms"] = round(1000 * (time.perf_counter() - started), 2)
-            reply["server_cpu_ms"] = round(1000 * (time.thread_time() - cpu), 2)
-            return _dumps(reply)
+            text = _dumps(actions.handle(message, push))
+            wall, used = 1000 * (time.perf_counter() - started), 1000 * (time.thread_time() - cpu)
+            # The reply is a JSON object: the two times go in before its closing brace, without a second dump.
+            return f'{text[:-1]},"server_ms":{wall:.2f},"server_cpu_ms":{used:.2f}}}'
 
         await ws.send_text(_dumps(actions.hello()))
         try:
