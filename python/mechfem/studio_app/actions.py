@@ -85,10 +85,6 @@ class Actions:
         deck = self.examples_folder / name
         return self._open(Mechanism.from_deck(deck), deck)
 
-    def op_open_path(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
-        deck = Path(str(message["path"])).expanduser()
-        return self._open(Mechanism.from_deck(deck), deck)
-
     def op_open_text(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
         # A file the browser read (file picker, drag and drop): no folder, so a deck that reads files beside it
         # says which one it misses.

@@ -6,8 +6,8 @@ the page (DNS rebinding) nor drive the websocket. The page is one HTML document 
 report is); everything else goes over the websocket as JSON messages, each answered by the new view or by the
 words saying why an edit was refused.
 
-The server reads decks only where the user points it (a path given on the command line or typed in the page, a
-file the browser sends, the repository's examples) and writes only the files of a save, at the path the user gives.
+The server reads decks only where the user points it (the path given on the command line, a file the browser sends,
+the repository's examples) and writes only the files of a save, at the path typed into the page.
 """
 
 from __future__ import annotations
