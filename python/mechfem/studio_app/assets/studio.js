@@ -266,7 +266,9 @@
       num.setAttribute("aria-label", d.name + " value");
       num.dataset.name = d.name;
       const label = el("label", { title: d.formula + (d.kind === "input" ? " (the input's start)" : "") }, d.name + (d.unit ? " [" + d.unit + "]" : ""));
+      // One slider drag (or one key press on it) is one edit to undo.
       range.addEventListener("pointerdown", () => { state.group++; });
+      range.addEventListener("keydown", () => { state.group++; });
       range.addEventListener("input", () => { num.value = range.value; edit({ [d.name]: +range.value }, true); });
       num.addEventListener("change", () => { state.group++; if (num.value !== "" && isFinite(+num.value)) edit({ [d.name]: +num.value }, false); });
       host.append(el("div", { className: "dim" }, label, range, num));
