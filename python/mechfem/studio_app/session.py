@@ -16,11 +16,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from mechfem.errors import MechfemError
 from mechfem.model import Mechanism
-from mechfem.parts import Coordinate, Point, Row
+from mechfem.parts import Coordinate, Row
 from mechfem.result import RunResult
 
 #: A value a user gives: a number, or a point's (x, y).
@@ -207,19 +205,6 @@ class Session:
         written = [deck, *write_outputs(result, deck.parent), write_report(result, deck.parent)]
         self.deck = deck
         return written
-
-
-def point_of(mech: Mechanism, name: str) -> Point:
-    """The point ``name`` of ``mech``."""
-    found = mech.find(name)
-    if not isinstance(found, Point):
-        raise KeyError(f"{name!r} is not a point")
-    return found
-
-
-def finite_values(values: np.ndarray) -> list[float | None]:
-    """``values`` as JSON numbers, None where not finite."""
-    return [float(v) if math.isfinite(v) else None for v in values.tolist()]
 
 
 __all__ = ["EditRefused", "Outcome", "Session", "Value"]
