@@ -138,7 +138,9 @@ def test_view_has_the_motion_charts_dimensions_and_points() -> None:
     assert data["paths"][0]["name"] == "C"
 
 
-@pytest.mark.parametrize("deck", ["fourbar/fourbar.mec", "supply/supply.mec"])
+@pytest.mark.parametrize(
+    "deck", ["fourbar/fourbar.mec", "supply/supply.mec", "slider_crank/slider_crank.mec", "gears/belt_swing_arm.mec"]
+)
 def test_fast_scene_is_the_reports_scene(deck: str) -> None:
     from mechfem.drawing import MechanismDrawing
     from mechfem.report import _scene

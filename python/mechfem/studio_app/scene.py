@@ -41,6 +41,14 @@ def _size(d: np.ndarray) -> float:
     return 1.0 + (float(np.abs(finite).max()) if len(finite) else 0.0)
 
 
+def _same(predicted: np.ndarray, drawn: Any, tol: float) -> bool:
+    """Equal within ``tol`` (absolute plus ``CHECK`` relative), NaN where NaN: ``np.allclose`` without its cost."""
+    actual = np.asarray(drawn, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        close = np.abs(predicted - actual) <= tol + CHECK * np.abs(actual)
+    return bool(np.all(close | (np.isnan(predicted) & np.isnan(actual))))
+
+
 def scene(result: RunResult, frames: np.ndarray) -> dict[str, Any]:
     """The scene of the report's page (kinds, roles, static shapes, moving shapes per frame, bounds)."""
     drawing = MechanismDrawing(result.model, result.coords)
@@ -61,11 +69,8 @@ def scene(result: RunResult, frames: np.ndarray) -> dict[str, Any]:
             continue
         a = np.column_stack(cols[i]) if n else np.zeros((len(d0[i]), 0))
         b = d0[i] - a @ x0
-        ok = all(
-            len(seen[k][i].data) == len(d0[i])
-            and np.allclose(a @ x[k] + b, seen[k][i].data, rtol=CHECK, atol=CHECK * _size(d0[i]), equal_nan=True)
-            for k in checks
-        )
+        tol = CHECK * _size(d0[i])
+        ok = all(len(seen[k][i].data) == len(d0[i]) and _same(a @ x[k] + b, seen[k][i].data, tol) for k in checks)
         per_shape.append(x @ a.T + b if ok else None)
     slow = [i for i, v in enumerate(per_shape) if v is None]
     if slow:
@@ -73,7 +78,7 @@ def scene(result: RunResult, frames: np.ndarray) -> dict[str, Any]:
         for i in slow:
             per_shape[i] = np.array([np.asarray(r[i].data, dtype=np.float64) for r in rest])
     data = [v for v in per_shape if v is not None]
-    moving = [i for i, v in enumerate(data) if not np.array_equal(v, np.broadcast_to(v[0], v.shape))]
+    moving = [i for i, v in enumerate(data) if not np.array_equal(v, np.broadcast_to(v[0], v.shape), equal_nan=True)]
     # The bounds of every shape over the frames: circles and arcs by centre and radius, the rest by their points.
     lo, hi = np.array([np.inf, np.inf]), np.array([-np.inf, -np.inf])
     for s, v in zip(first, data, strict=True):
