@@ -217,24 +217,40 @@
     drawScene: (ctx, X, Y, s, f, alpha, r) => MechfemScene.draw(state.D, order || MechfemScene.layers(state.D), ctx, X, Y, s, f, alpha, r),
     pathColour: (x, y) => { const k = state.D.paths.findIndex((p) => p.x === x && p.y === y); return C.PALETTE[Math.max(k, 0) % C.PALETTE.length]; },
   };
+  // The charts' make-up (which curves against which, in which cards): while it stays, an edit's new numbers are drawn
+  // into the charts there are (Chart.update); a new uPlot chart costs many times more.
+  function chartsMakeUp(D) {
+    const chart = (c) => [c.type, c.x, c.series.map((s) => [s.x, s.y, s.fx, s.fy]), (c.hodographs || []).length, c.title, c.xlabel, c.ylabel];
+    return JSON.stringify([D.stem, D.det.x, D.det.y, D.columns[D.det.x].axis, D.cards.map((card) => [card.title, card.note, card.charts.map(chart)])]);
+  }
+  const chartPage = { D: null, cur: page.cur, goTo: page.goTo, drawScene: page.drawScene, pathColour: page.pathColour };
+  let madeUp = null;
   function buildCharts() {
     const D = state.D;
+    const det = D.det;
+    const detSpec = {
+      type: "function", x: det.x, series: [{ y: det.y }], xlabel: D.columns[det.x].axis, ylabel: D.columns[det.y].axis,
+      limits: det.limits, zero: true, title: "det(D^c) against " + D.columns[det.x].name,
+    };
+    const makeUp = chartsMakeUp(D);
+    chartPage.D = D;
+    if (makeUp === madeUp && state.charts.length) {
+      const specs = [detSpec].concat(...D.cards.map((card) => card.charts));
+      state.charts.forEach((c, k) => c.update(specs[k]));
+      return;
+    }
+    madeUp = makeUp;
     for (const c of state.charts) c.u.destroy();
     state.charts = [];
     $("detchart").textContent = "";
     $("cards").textContent = "";
-    const det = D.det;
-    const pageNow = { D: D, cur: page.cur, goTo: page.goTo, drawScene: page.drawScene, pathColour: page.pathColour };
-    state.detChart = new C.Chart(pageNow, {
-      type: "function", x: det.x, series: [{ y: det.y }], xlabel: D.columns[det.x].axis, ylabel: D.columns[det.y].axis,
-      limits: det.limits, zero: true, title: "det(D^c) against " + D.columns[det.x].name,
-    }, $("detchart"), D.stem + "_det.csv");
+    state.detChart = new C.Chart(chartPage, detSpec, $("detchart"), D.stem + "_det.csv");
     state.charts.push(state.detChart);
     for (const card of D.cards) {
       const box = el("section", { className: "panel card" }, el("h2", {}, card.title));
       $("cards").append(box);
       if (card.note) box.append(el("p", { className: "note" }, card.note));
-      card.charts.forEach((spec, k) => state.charts.push(new C.Chart(pageNow, spec, box, D.stem + "_" + k + ".csv")));
+      card.charts.forEach((spec, k) => state.charts.push(new C.Chart(chartPage, spec, box, D.stem + "_" + k + ".csv")));
     }
   }
   function buildLimits() {
