@@ -26,7 +26,7 @@ from mechfem import cli, compiled  # noqa: E402
 from mechfem.studio_app import missing  # noqa: E402
 from mechfem.studio_app.actions import Actions, examples  # noqa: E402
 from mechfem.studio_app.scene import scene  # noqa: E402
-from mechfem.studio_app.server import serve_in_thread  # noqa: E402
+from mechfem.studio_app.server import dumps, serve_in_thread  # noqa: E402
 from mechfem.studio_app.session import EditRefused, Session  # noqa: E402
 from mechfem.studio_app.template import four_bar  # noqa: E402
 from mechfem.studio_app.view import view  # noqa: E402
@@ -128,7 +128,7 @@ def test_save_writes_deck_data_set_and_report_that_mechfem_run_reproduces(tmp_pa
 
 def test_view_has_the_motion_charts_dimensions_and_points() -> None:
     s = Session(four_bar())
-    data = json.loads(json.dumps(view(s), allow_nan=False))
+    data = json.loads(dumps(view(s)))
     assert len(data["frames"]) == 361 and len(data["scene"]["frames"]) == 361
     assert [d["name"] for d in data["studio"]["dimensions"]][:2] == ["crank.length", "phi"]
     assert {d["name"]: d["unit"] for d in data["studio"]["dimensions"]}["phi"] == "deg"
@@ -253,7 +253,7 @@ def test_examples_of_every_kind_open_and_take_an_edit(name: str) -> None:
     actions = Actions(None)
     opened = actions.handle({"op": "example", "name": name}, lambda m: None)
     assert opened["type"] == "design", opened
-    json.dumps(opened, allow_nan=False)
+    json.loads(dumps(opened))
     pivot = [p for p in opened["design"]["studio"]["points"] if p["fixed"]][-1]
     x, y = pivot["given"]
     edited = actions.handle({"op": "edit", "changes": {pivot["name"]: [x * 1.01 + 0.001, y]}}, lambda m: None)
@@ -267,7 +267,13 @@ def test_six_digits_rounds_a_column_as_the_report_rounds_each_number() -> None:
     rng = np.random.default_rng(7)
     v = rng.normal(size=5000) * 10.0 ** rng.integers(-12, 12, 5000)
     v = np.concatenate([v, [0.0, -0.0, np.nan, np.inf, -np.inf, 1e-300, 5e-324, 999999.5, 0.1 + 0.2]])
-    got, want = six_digits(v), nums(v)
-    assert [x is None for x in got] == [x is None for x in want]
-    close = [x == y or abs(x - y) <= 1e-15 * abs(y) for x, y in zip(got, want, strict=True) if x is not None]
+    got, want = six_digits(v).tolist(), nums(v)
+    assert [np.isnan(x) for x in got] == [x is None for x in want]
+    close = [x == y or abs(x - y) <= 1e-15 * abs(y) for x, y in zip(got, want, strict=True) if y is not None]
     assert all(close)
+
+
+def test_answers_write_numpy_columns_and_not_finite_numbers_as_null() -> None:
+    table = np.array([[1.5, np.nan], [np.inf, 2.0]])
+    written = json.loads(dumps({"row": table[0], "column": table[:, 0], "n": np.float64(np.nan)}))
+    assert written == {"row": [1.5, None], "column": [1.5, None], "n": None}

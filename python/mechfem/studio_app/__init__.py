@@ -19,7 +19,7 @@ from __future__ import annotations
 import importlib.util
 
 #: The modules ``mechfem studio`` needs beyond mechfem's own, with the distribution that brings each.
-NEEDS = {"starlette": "starlette", "uvicorn": "uvicorn", "websockets": "websockets"}
+NEEDS = {"starlette": "starlette", "uvicorn": "uvicorn", "websockets": "websockets", "orjson": "orjson"}
 
 INSTALL = "pip install 'mechfem[studio]'"
 

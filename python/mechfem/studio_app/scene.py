@@ -24,16 +24,11 @@ from mechfem.result import RunResult
 CHECK = 1e-9
 
 
-def _json(a: np.ndarray, decimals: int) -> list[Any]:
-    """A 2-D array as nested lists rounded to ``decimals`` (the 6th digit of the drawing's size: far below a pixel,
-    and short in JSON), None where not finite."""
+def _rounded(a: np.ndarray, decimals: int) -> np.ndarray:
+    """``a`` rounded to ``decimals`` (the 6th digit of the drawing's size: far below a pixel, and short in JSON), NaN
+    where not finite (written as null by the server's orjson, as numpy arrays are)."""
     a = np.round(a, decimals)
-    finite = np.isfinite(a)
-    if finite.all():
-        return list(a.tolist())
-    out: np.ndarray = a.astype(object)
-    out[~finite] = None
-    return list(out.tolist())
+    return np.where(np.isfinite(a), a, np.nan)
 
 
 def _size(d: np.ndarray) -> float:
@@ -94,7 +89,7 @@ def scene(result: RunResult, frames: np.ndarray) -> dict[str, Any]:
     bounds = (lo[0], hi[0], lo[1], hi[1]) if np.isfinite(lo).all() else (-1.0, 1.0, -1.0, 1.0)
     size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], 1e-300)
     decimals = max(0, 6 - int(np.ceil(np.log10(size))))
-    per_frame = [_json(data[i], decimals) for i in moving]
+    per_frame = [_rounded(data[i], decimals) for i in moving]
     return {
         "kinds": [s.kind for s in first],
         "roles": [s.role for s in first],

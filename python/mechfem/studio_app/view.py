@@ -36,9 +36,10 @@ from mechfem.studio_app.scene import scene
 from mechfem.studio_app.session import Session
 
 
-def six_digits(values: Any) -> list[float | None]:
-    """``values`` to 6 significant digits, None where not finite: :func:`mechfem.report_charts.nums` for a whole
-    column at once (tests/test_studio.py compares the two)."""
+def six_digits(values: Any) -> np.ndarray:
+    """``values`` to 6 significant digits, NaN where not finite (written as null: :func:`mechfem.studio_app.server`
+    writes numpy arrays as they are): :func:`mechfem.report_charts.nums` for a whole column at once
+    (tests/test_studio.py compares the two)."""
     v = np.asarray(values, dtype=np.float64).ravel()
     finite = np.isfinite(v) & (v != 0.0)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
@@ -47,9 +48,7 @@ def six_digits(values: Any) -> list[float | None]:
         rounded = np.round(v * scale) / scale
     # A number too small for its scale (a subnormal) is kept as it is.
     rounded = np.where(finite & np.isfinite(rounded), rounded, v)
-    out: np.ndarray = rounded.astype(object)
-    out[~np.isfinite(v)] = None
-    return list(out.tolist())
+    return np.where(np.isfinite(v), rounded, np.nan)
 
 
 class StudioColumns(Columns):
@@ -70,6 +69,9 @@ class StudioColumns(Columns):
                 "values": six_digits(np.asarray(values, dtype=np.float64)[self.frames]),
             }
         return key
+
+    def values(self, key: str) -> list[float | None]:
+        return [None if np.isnan(v) else v for v in self.table[key]["values"].tolist()]
 
 
 def _moving_points(result: RunResult, mech: Mechanism, cols: Columns) -> list[dict[str, Any]]:
@@ -183,7 +185,7 @@ def _transmission_card(result: RunResult, data: dict[str, Any], mech: Mechanism)
             "axis": f"mu at {at} [{unit}]",
             "header": f"mu({coupler.name}, {link.name}) [{unit}]",
             "text": f"the transmission angle between {coupler.name} and {link.name} at {at}",
-            "values": [float(v) if np.isfinite(v) else None for v in mu[frames]],
+            "values": np.where(np.isfinite(mu[frames]), mu[frames], np.nan),
         }
         keys.append(key)
     if not keys:
