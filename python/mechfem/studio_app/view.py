@@ -14,21 +14,18 @@ from typing import Any
 import numpy as np
 
 from mechfem.designer import FRAMED, transmission_angle
-from mechfem.drawing import STYLES
 from mechfem.labels import with_unit
 from mechfem.model import Mechanism
 from mechfem.parts import Element
 from mechfem.report_charts import (
     Columns,
     all_labels,
-    default_card,
-    dynamics_cards,
     function_charts,
     limit_markers,
     main_axis,
-    model_card,
+    page_cards,
+    page_styles,
     paths,
-    picture_cards,
 )
 from mechfem.result import RunResult
 from mechfem.result_tables import run_units
@@ -71,7 +68,12 @@ class StudioColumns(Columns):
         return key
 
     def values(self, key: str) -> list[float | None]:
-        return [None if np.isnan(v) else v for v in self.table[key]["values"].tolist()]
+        v = self.table[key]["values"]
+        if not np.isnan(v).any():
+            return list(v.tolist())
+        out: np.ndarray = v.astype(object)
+        out[np.isnan(v)] = None
+        return list(out.tolist())
 
 
 def _moving_points(result: RunResult, mech: Mechanism, cols: Columns) -> list[dict[str, Any]]:
@@ -108,18 +110,9 @@ def design_data(result: RunResult, mech: Mechanism) -> dict[str, Any]:
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
     drawn = scene(result, frames)
     x0, x1, y0, y1 = (v if v is not None else 0.0 for v in drawn["bounds"])
-    cards = picture_cards(result, labels, cols) + dynamics_cards(
-        result, cols, labels, float(np.hypot(x1 - x0, y1 - y0))
-    )
-    named = model_card(result, cols) if not result.storage.buffers else None
-    if named is not None:
-        xkey, card = named
-        cards = [card, *cards]
-    elif not result.storage.pictures:
-        default = default_card(result, labels, cols, xkey)
-        cards = ([default] if default else []) + cards
+    xkey, cards, named = page_cards(result, labels, cols, xkey, float(np.hypot(x1 - x0, y1 - y0)))
     inputs = [f"b{b.number}" for b in result.storage.buffers if b.keyword == "BUFINP" and f"b{b.number}" in cols.table]
-    if named is not None:
+    if named:
         inputs = [xkey]
     traced = paths(result, cols) or (_moving_points(result, mech, cols) if result.named else [])
     report = result.report
@@ -129,10 +122,7 @@ def design_data(result: RunResult, mech: Mechanism) -> dict[str, Any]:
         "asked": report.steps + 1,
         "frames": [int(k) for k in frames],
         "position_columns": inputs,
-        "styles": {
-            role: {"edge": s.edge, "width": s.width, "fill": s.fill, "dash": s.dash, "layer": s.layer}
-            for role, s in STYLES.items()
-        },
+        "styles": page_styles(),
         "scene": drawn,
         "paths": traced,
         "det": {"x": xkey, "y": det, "limits": limit_markers(result, xkey)},
