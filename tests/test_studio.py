@@ -277,3 +277,22 @@ def test_answers_write_numpy_columns_and_not_finite_numbers_as_null() -> None:
     table = np.array([[1.5, np.nan], [np.inf, 2.0]])
     written = json.loads(dumps({"row": table[0], "column": table[:, 0], "n": np.float64(np.nan)}))
     assert written == {"row": [1.5, None], "column": [1.5, None], "n": None}
+
+
+def test_the_drawing_kept_from_one_design_draws_the_next_as_a_fresh_one() -> None:
+    s = Session(four_bar())
+    view(s)
+    assert s.drawing_kept["maps"]
+    s.edit({"crank.length": 1.2, "coupler.v": 0.9})
+    frames = np.arange(s.result.positions)
+    kept, fresh = scene(s.result, frames, s.drawing_kept), scene(s.result, frames)
+    assert kept["moving"] == fresh["moving"] and kept["static"] == fresh["static"] and kept["bounds"] == fresh["bounds"]
+    np.testing.assert_allclose(_flat(kept["frames"]), _flat(fresh["frames"]), atol=1e-9)
+    # Maps that no longer draw the design (here: made wrong on purpose) are found anew, not used.
+    s.drawing_kept["maps"] = [None if m is None else (m[0], m[1] + 1.0) for m in s.drawing_kept["maps"]]
+    again = scene(s.result, frames, s.drawing_kept)
+    np.testing.assert_allclose(_flat(again["frames"]), _flat(fresh["frames"]), atol=1e-9)
+
+
+def _flat(frames: list[list[np.ndarray]]) -> np.ndarray:
+    return np.concatenate([np.asarray(v, dtype=np.float64).ravel() for shapes in frames for v in shapes])

@@ -23,6 +23,9 @@ from mechfem.result import RunResult
 #: Relative tolerance of the affinity check.
 CHECK = 1e-9
 
+#: A shape's affine map: ``A`` and ``b`` of ``d(x) = A x + b``.
+Affine = tuple[np.ndarray, np.ndarray]
+
 
 def _rounded(a: np.ndarray, decimals: int) -> np.ndarray:
     """``a`` rounded to ``decimals`` (the 6th digit of the drawing's size: far below a pixel, and short in JSON), NaN
@@ -44,29 +47,56 @@ def _same(predicted: np.ndarray, drawn: Any, tol: float) -> bool:
     return bool(np.all(close | (np.isnan(predicted) & np.isnan(actual))))
 
 
-def scene(result: RunResult, frames: np.ndarray) -> dict[str, Any]:
-    """The scene of the report's page (kinds, roles, static shapes, moving shapes per frame, bounds)."""
+def _affine_maps(drawing: MechanismDrawing, x0: np.ndarray, d0: list[np.ndarray]) -> list[Affine | None]:
+    """``A`` and ``b`` of each shape from the drawing at ``x0`` and with each co-ordinate moved by one unit (None: a
+    shape whose number of values changes)."""
+    n = len(x0)
+    # Column j of A: how each shape moves when co-ordinate j moves by one unit.
+    probes = [drawing.shapes(x0 + np.eye(n)[j]) for j in range(n)]
+    maps: list[Affine | None] = []
+    for i in range(len(d0)):
+        cols = [np.asarray(p[i].data, dtype=np.float64) - d0[i] for p in probes]
+        if any(len(c) != len(d0[i]) for c in cols):
+            maps.append(None)
+            continue
+        a = np.column_stack(cols) if n else np.zeros((len(d0[i]), 0))
+        maps.append((a, d0[i] - a @ x0))
+    return maps
+
+
+def scene(result: RunResult, frames: np.ndarray, kept: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The scene of the report's page (kinds, roles, static shapes, moving shapes per frame, bounds).
+
+    ``kept``: a dict the caller keeps between the scenes of one mechanism's designs (the studio's session); the affine
+    maps found for one design are tried first on the next, and found anew when the check refuses them."""
     drawing = MechanismDrawing(result.model, result.coords)
     x = np.asarray(result.coords[frames], dtype=np.float64)
     x0 = x[0]
     first = drawing.shapes(x0)
     d0 = [np.asarray(s.data, dtype=np.float64) for s in first]
-    n = x.shape[1]
-    # Column j of A: how each shape moves when co-ordinate j moves by one unit.
-    probes = [drawing.shapes(x0 + np.eye(n)[j]) for j in range(n)]
-    cols = [[np.asarray(p[i].data, dtype=np.float64) - d0[i] for p in probes] for i in range(len(first))]
     checks = sorted({0, len(x) // 4, len(x) // 2, (3 * len(x)) // 4, len(x) - 1})
     seen = {k: drawing.shapes(x[k]) for k in checks}
-    per_shape: list[np.ndarray | None] = []
-    for i in range(len(first)):
-        if any(len(cols[i][j]) != len(d0[i]) for j in range(n)):
-            per_shape.append(None)
-            continue
-        a = np.column_stack(cols[i]) if n else np.zeros((len(d0[i]), 0))
-        b = d0[i] - a @ x0
+
+    def checked(i: int, m: Affine | None) -> np.ndarray | None:
+        if m is None or m[0].shape != (len(d0[i]), len(x0)):
+            return None
+        a, b = m
         tol = CHECK * _size(d0[i])
         ok = all(len(seen[k][i].data) == len(d0[i]) and _same(a @ x[k] + b, seen[k][i].data, tol) for k in checks)
-        per_shape.append(x @ a.T + b if ok else None)
+        return x @ a.T + b if ok else None
+
+    shape_of = (len(x0), tuple(s.kind for s in first), tuple(len(d) for d in d0))
+    per_shape: list[np.ndarray | None] = []
+    if kept is not None and kept.get("shape_of") == shape_of:
+        maps = kept["maps"]
+        per_shape = [checked(i, m) for i, m in enumerate(maps)]
+        if any(m is not None and v is None for m, v in zip(maps, per_shape, strict=True)):
+            per_shape = []
+    if not per_shape:
+        maps = _affine_maps(drawing, x0, d0)
+        per_shape = [checked(i, m) for i, m in enumerate(maps)]
+        if kept is not None:
+            kept.update(shape_of=shape_of, maps=maps)
     slow = [i for i, v in enumerate(per_shape) if v is None]
     if slow:
         rest = [drawing.shapes(row) for row in x]

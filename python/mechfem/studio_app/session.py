@@ -58,6 +58,8 @@ class Session:
         self.result = self._run()
         self.revision = 0
         self._group: object = None
+        #: What the drawing of one design keeps for the next (:func:`mechfem.studio_app.scene.scene`).
+        self.drawing_kept: dict[str, Any] = {}
 
     # -- what can be edited
 

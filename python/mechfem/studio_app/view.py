@@ -101,14 +101,15 @@ def _moving_points(result: RunResult, mech: Mechanism, cols: Columns) -> list[di
     return out
 
 
-def design_data(result: RunResult, mech: Mechanism) -> dict[str, Any]:
-    """The report page's data of ``result`` (the parts the studio shows), every position a frame."""
+def design_data(result: RunResult, mech: Mechanism, kept: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The report page's data of ``result`` (the parts the studio shows), every position a frame; ``kept``: what the
+    drawing of one design keeps for the next (:func:`mechfem.studio_app.scene.scene`)."""
     frames = np.arange(result.positions)
     labels = all_labels(result)
     cols = StudioColumns(frames, run_units(result))
     xkey = main_axis(result, labels, cols)
     det = cols.add("det", "det(D^c)", "", "det", result.det, text="det(D^c), the determinant of the dependent columns")
-    drawn = scene(result, frames)
+    drawn = scene(result, frames, kept)
     x0, x1, y0, y1 = (v if v is not None else 0.0 for v in drawn["bounds"])
     xkey, cards, named = page_cards(result, labels, cols, xkey, float(np.hypot(x1 - x0, y1 - y0)))
     inputs = [f"b{b.number}" for b in result.storage.buffers if b.keyword == "BUFINP" and f"b{b.number}" in cols.table]
@@ -191,7 +192,7 @@ def view(session: Session) -> dict[str, Any]:
     """Everything the page shows of ``session``'s last good design, as JSON-ready data."""
     result = session.result
     mech = session.mechanism
-    data = design_data(result, mech)
+    data = design_data(result, mech, session.drawing_kept)
     card = _transmission_card(result, data, mech)
     if card is not None:
         data["cards"].append(card)
