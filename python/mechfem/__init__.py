@@ -39,6 +39,7 @@ from __future__ import annotations
 import os as _os
 from collections.abc import Callable as _Callable
 from pathlib import Path as _Path
+from typing import Any as _Any
 
 from mechfem import _core, limits
 from mechfem._version import __version__
@@ -128,6 +129,19 @@ def check_deck(path: str | _os.PathLike[str]) -> CheckResult:
     return check_result(deck, _core.check_deck(_os.fspath(deck)))
 
 
+def studio(mechanism: Mechanism, height: int = 900) -> _Any:
+    """Edits ``mechanism`` in a Jupyter notebook with mechfem studio (needs ``mechfem[studio]``); the widget's
+    ``.mechanism`` is the edited design (docs/studio.md)."""
+    from mechfem.studio_app import INSTALL, NEEDS, missing
+
+    absent = missing({**NEEDS, "anywidget": "anywidget"})
+    if absent:
+        raise ImportError(f"mechfem.studio needs {', '.join(absent)}: {INSTALL}")
+    from mechfem.studio_app.widget import studio as _studio
+
+    return _studio(mechanism, height)
+
+
 __all__ = [
     "AdjustInfo",
     "Analysis",
@@ -183,6 +197,7 @@ __all__ = [
     "optimize",
     "run_many",
     "run_deck",
+    "studio",
     "sweep",
     "tolerance_bands",
     "tolerance_study",

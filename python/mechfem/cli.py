@@ -116,6 +116,9 @@ def build_parser() -> argparse.ArgumentParser:
     add_quiet(check, "the exit status alone says whether the deck is valid")
     check.set_defaults(func=cmd_check)
     add_draw(commands)
+    from mechfem.studio_app.command import add_studio
+
+    add_studio(commands)
     return parser
 
 

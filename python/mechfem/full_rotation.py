@@ -67,7 +67,7 @@ def checked(of: DesignModelOf, mechanism: Mechanism, storage: Storage, base: str
     inputs = [r for r in mechanism.rows if r.kind == "input"]
     if len(inputs) != 1 or not inputs[0].is_angle:
         raise ValueError("full_rotation needs a mechanism with one input, an angle (a crank)")
-    builder = building.builder(mechanism, Motion.by(STEPS, TURN), storage).builder
+    builder = building.builder(mechanism, Motion.by(STEPS, TURN, unit="rad"), storage).builder
 
     def wrapped(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
         shared = [v for v in variables if v[0] != 2]

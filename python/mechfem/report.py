@@ -26,18 +26,16 @@ import numpy as np
 
 from mechfem.atomic import atomic_path
 from mechfem.designer import print_lines as designer_lines
-from mechfem.drawing import STYLES, MechanismDrawing
+from mechfem.drawing import MechanismDrawing
 from mechfem.report_charts import (
     Columns,
     all_labels,
-    default_card,
-    dynamics_cards,
     limit_markers,
     main_axis,
-    model_card,
     nums,
+    page_cards,
+    page_styles,
     paths,
-    picture_cards,
 )
 from mechfem.result import RunResult
 from mechfem.result_tables import REPORT, SAVE_REPORT, run_units
@@ -89,14 +87,7 @@ def report_data(result: RunResult, optimisation: dict[str, Any] | None = None) -
     scene = _scene(result, drawing, frames)
     x0, x1, y0, y1 = (v if v is not None else 0.0 for v in scene["bounds"])
     size = float(np.hypot(x1 - x0, y1 - y0))
-    cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols, labels, size)
-    named = model_card(result, cols) if not result.storage.buffers else None
-    if named is not None:
-        xkey, card = named
-        cards = [card, *cards]
-    elif not result.storage.pictures:
-        default = default_card(result, labels, cols, xkey)
-        cards = ([default] if default else []) + cards
+    xkey, cards, _ = page_cards(result, labels, cols, xkey, size)
     subsampled = len(frames) < result.positions
     note = None
     if subsampled:
@@ -118,10 +109,7 @@ def report_data(result: RunResult, optimisation: dict[str, Any] | None = None) -
         "frames": [int(k) for k in frames],
         "subsample_note": note,
         "position_columns": inputs,
-        "styles": {
-            role: {"edge": s.edge, "width": s.width, "fill": s.fill, "dash": s.dash, "layer": s.layer}
-            for role, s in STYLES.items()
-        },
+        "styles": page_styles(),
         "scene": scene,
         "drawing_notes": drawing.notes,
         "designer": designer_lines(result),

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from mechfem.drawing import points_of
+from mechfem.drawing import STYLES, points_of
 from mechfem.labels import (
     Label,
     axis_group,
@@ -427,3 +427,28 @@ def _input_words(result: RunResult, j: int) -> str:
 def all_labels(result: RunResult) -> dict[int, Label]:
     """Every buffer's label (the buffers the storage defines but the run did not record are left out)."""
     return {n: lab for n, lab in buffer_labels(result).items() if n in result.buffers}
+
+
+def page_cards(
+    result: RunResult, labels: dict[int, Label], cols: Columns, xkey: str, size: float
+) -> tuple[str, list[dict[str, Any]], bool]:
+    """The page's cards (the deck's pictures, the dynamics', and else the model's named input's card or a default
+    one), with the column of the page's x axis and whether that is the model's named input (a model without
+    buffers). The report's page and the studio's both show these."""
+    cards = picture_cards(result, labels, cols) + dynamics_cards(result, cols, labels, size)
+    named = model_card(result, cols) if not result.storage.buffers else None
+    if named is not None:
+        xkey, card = named
+        return xkey, [card, *cards], True
+    if not result.storage.pictures:
+        default = default_card(result, labels, cols, xkey)
+        cards = ([default] if default else []) + cards
+    return xkey, cards, False
+
+
+def page_styles() -> dict[str, dict[str, Any]]:
+    """The drawing's styles by role, as the page draws them."""
+    return {
+        role: {"edge": s.edge, "width": s.width, "fill": s.fill, "dash": s.dash, "layer": s.layer}
+        for role, s in STYLES.items()
+    }

@@ -165,7 +165,7 @@ const MechfemCharts = (function () {
   };
 
   // Function charts: the points sorted by x; frameOf maps a point to its frame (-1: a limit marker's place).
-  Chart.prototype.buildFunction = function (width) {
+  Chart.prototype.functionData = function () {
     const D = this.D, cols = D.columns, xs = cols[this.spec.x].values;
     const rows = [];
     for (let f = 0; f < D.frames.length; f++) if (xs[f] !== null) rows.push({ x: xs[f], f: f });
@@ -177,6 +177,12 @@ const MechfemCharts = (function () {
     rows.forEach((r, i) => { if (r.f >= 0 && this.indexOf[r.f] < 0) this.indexOf[r.f] = i; });
     const data = [rows.map((r) => r.x)];
     for (const c of this.curves) data.push(rows.map((r) => (r.f < 0 ? null : cols[c.y].values[r.f])));
+    return data;
+  };
+
+  Chart.prototype.buildFunction = function (width) {
+    const cols = this.D.columns;
+    const data = this.functionData();
     const opts = {
       width: width, height: HEIGHT,
       // det(D^c) is read against zero: its axis always shows it.
@@ -193,7 +199,7 @@ const MechfemCharts = (function () {
   };
 
   // Curves in the plane: one uPlot facet per curve, every point in the order of the motion (index = frame).
-  Chart.prototype.buildXY = function (width) {
+  Chart.prototype.xyData = function () {
     const cols = this.D.columns;
     const data = [null];
     const xs = [], ys = [];
@@ -220,6 +226,11 @@ const MechfemCharts = (function () {
     const [x0, x1] = extent(xs), [y0, y1] = extent(ys);
     const px = 0.05 * (x1 - x0), py = 0.05 * (y1 - y0);
     this.bounds = [x0 - px, x1 + px, y0 - py, y1 + py];
+    return data;
+  };
+
+  Chart.prototype.buildXY = function (width) {
+    const data = this.xyData();
     const opts = {
       mode: 2,
       width: width, height: this.spec.height || HEIGHT,
@@ -449,6 +460,23 @@ const MechfemCharts = (function () {
       lines.push(row.join(","));
     }
     return lines.join("\n") + "\n";
+  };
+
+  /* The same chart of another design (a page that changes its data: the studio): the curves' numbers and the limit
+   * markers from page.D and spec, given anew, drawn into the uPlot chart there is (a new uPlot costs many times more). */
+  Chart.prototype.update = function (spec) {
+    this.D = this.page.D;
+    this.spec = spec;
+    const hodographs = (spec.hodographs || []).values();
+    for (const c of this.curves) if (c.hodograph) c.hodograph = hodographs.next().value;
+    if (spec.type === "function") {
+      this.u.setData(this.functionData(), !this.zoomed);
+    } else {
+      const data = this.xyData();
+      this.u.setData(data, false);
+      if (!this.zoomed) this.resetZoom(); else this.u.redraw(false, false);
+    }
+    if (this.hover === null) this.updateReadout();
   };
 
   Chart.prototype.redraw = function () {

@@ -1,0 +1,154 @@
+"""What the page asks of the studio, one JSON message at a time, and the answers: open a deck or the template, edit,
+undo, redo, save, optimise. No web here: the server (:mod:`.server`) and the notebook widget (:mod:`.widget`) both
+hand their messages to :meth:`Actions.handle`.
+
+Every answer is a dict with ``type``: ``design`` (the new view, with ``branch`` words when the assembly branch
+changed), ``refused`` (the words why; the design on screen is still the last good one), ``saved`` (the files
+written), ``optimised``, or ``error`` (a message the page could not act on).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+import mechfem
+from mechfem.errors import MechfemError
+from mechfem.model import Mechanism
+from mechfem.studio_app.session import EditRefused, Outcome, Session
+from mechfem.studio_app.template import four_bar
+from mechfem.studio_app.view import view
+
+Push = Callable[[dict[str, Any]], object]
+
+#: The repository's example decks, when mechfem runs from a checkout (an installed wheel has none).
+EXAMPLES = Path(mechfem.__file__).resolve().parents[2] / "examples"
+
+
+def examples(folder: Path = EXAMPLES) -> list[str]:
+    """The example decks under ``folder``, as paths relative to it (those that need no file beside them)."""
+    if not folder.is_dir():
+        return []
+    out = []
+    for deck in sorted(folder.rglob("*.mec")):
+        text = deck.read_text(encoding="utf-8", errors="replace").upper()
+        if "MOV_FUNC" not in text and "LOADTAB" not in text:
+            out.append(deck.relative_to(folder).as_posix())
+    return out
+
+
+class Actions:
+    """The studio's state, one :class:`Session` at a time (None before a deck is opened)."""
+
+    def __init__(self, session: Session | None, examples_folder: Path = EXAMPLES) -> None:
+        self.session = session
+        self.examples_folder = examples_folder
+        self.optimising = False
+
+    def hello(self) -> dict[str, Any]:
+        """The first message: the examples to offer and, when a design is open, its view."""
+        out: dict[str, Any] = {"type": "hello", "examples": examples(self.examples_folder)}
+        if self.session is not None:
+            out["design"] = view(self.session)
+        return out
+
+    def handle(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        op = message.get("op")
+        handler = getattr(self, f"op_{op}", None) if isinstance(op, str) else None
+        if handler is None:
+            return {"type": "error", "message": f"unknown request {op!r}"}
+        try:
+            return dict(handler(message, push))
+        except EditRefused as e:
+            return {"type": "refused", "message": str(e)}
+        except (MechfemError, OSError, ValueError, TypeError, KeyError) as e:
+            text = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
+            return {"type": "refused", "message": text}
+
+    # -- opening
+
+    def _open(self, mech: Mechanism, deck: Path | None) -> dict[str, Any]:
+        self.session = Session(mech, deck)
+        return self._design(Outcome(), opened=True)
+
+    def op_template(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        return self._open(four_bar(), None)
+
+    def op_example(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        name = str(message["name"])
+        if name not in examples(self.examples_folder):
+            raise ValueError(f"{name!r} is not one of the examples")
+        deck = self.examples_folder / name
+        return self._open(Mechanism.from_deck(deck), deck)
+
+    def op_open_text(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        # A file the browser read (file picker, drag and drop): no folder, so a deck that reads files beside it
+        # says which one it misses.
+        name = Path(str(message.get("name") or "deck.mec")).stem
+        return self._open(Mechanism.from_deck_text(str(message["text"]), name), None)
+
+    # -- editing
+
+    def _need(self) -> Session:
+        if self.session is None:
+            raise ValueError("open a deck or the four-bar template first")
+        return self.session
+
+    def _design(self, outcome: Outcome, **more: Any) -> dict[str, Any]:
+        session = self._need()
+        return {"type": "design", "design": view(session), "branch": outcome.branch, **more}
+
+    def op_edit(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        changes = message["changes"]
+        if not isinstance(changes, dict):
+            raise TypeError("an edit's changes are a mapping of names to values")
+        started = time.perf_counter()
+        outcome = self._need().edit(changes, message.get("group"))
+        run_ms = 1000 * (time.perf_counter() - started)
+        return self._design(outcome, run_ms=round(run_ms, 2))
+
+    def op_undo(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        return self._design(self._need().undo())
+
+    def op_redo(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        return self._design(self._need().redo())
+
+    def op_save(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        path = Path(str(message["path"])).expanduser()
+        if path.suffix.lower() != ".mec":
+            raise ValueError(f"save as a deck: give a file name ending in .mec, not {path.name!r}")
+        files = self._need().save(path)
+        return {"type": "saved", "files": [str(p) for p in files], "deck": str(files[0])}
+
+    # -- optimising
+
+    def op_optimise(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        from mechfem.studio_app.optimising import path_through
+
+        session = self._need()
+        points = [(float(x), float(y)) for x, y in message["points"]]
+        vary = [str(v) for v in message["vary"]]
+        self.optimising = True
+        try:
+            found = path_through(session, str(message["point"]), points, vary, push)
+        finally:
+            self.optimising = False
+        outcome = session.edit(found["values"])
+        found["distances"] = distances(session, str(message["point"]), points)
+        return self._design(outcome, optimised=found)
+
+
+def distances(session: Session, point: str, points: list[tuple[float, float]]) -> list[float]:
+    """How near the path of ``point`` in the last good run passes to each of ``points``."""
+    result, p = session.result, session.mechanism.find(point)
+    nb = result.numbering
+    xs = result.coords[:, nb.coord_number[p.x] - 1]
+    ys = result.coords[:, nb.coord_number[p.y] - 1]
+    return [float(np.nanmin(np.hypot(xs - x, ys - y))) for x, y in points]
+
+
+__all__ = ["Actions", "examples"]

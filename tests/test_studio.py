@@ -1,0 +1,298 @@
+"""mechfem studio without a browser: the design session (edits on the kept compiled model, refused edits, branch
+changes, undo and redo, saving), the view the page draws, and the server's token and loopback-only address.
+
+The four-bar template is checked against a closed form: with the crank A0-A at angle 0, A = (a, 0), and the rocker
+B0-B closes the triangle A, B, B0 (sides: coupler b, rocker c, A-B0 d = 4 - a); the rocker angle psi is 180 deg minus
+the angle at B0 (law of cosines) on the branch with B above the frame line, and minus that on the other."""
+
+from __future__ import annotations
+
+import json
+import math
+import urllib.error
+import urllib.request
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+websockets = pytest.importorskip("websockets")
+websockets_sync = pytest.importorskip("websockets.sync.client")
+
+import mechfem  # noqa: E402
+from mechfem import cli, compiled  # noqa: E402
+from mechfem.studio_app import missing  # noqa: E402
+from mechfem.studio_app.actions import Actions, examples  # noqa: E402
+from mechfem.studio_app.scene import scene  # noqa: E402
+from mechfem.studio_app.server import dumps, serve_in_thread  # noqa: E402
+from mechfem.studio_app.session import EditRefused, Session  # noqa: E402
+from mechfem.studio_app.template import four_bar  # noqa: E402
+from mechfem.studio_app.view import view  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def psi_closed_form(a: float, b: float = 3.5, c: float = 3.0, up: bool = True) -> float:
+    d = 4.0 - a
+    at_b0 = math.degrees(math.acos((c * c + d * d - b * b) / (2 * c * d)))
+    return 180.0 - at_b0 if up else -(180.0 - at_b0)
+
+
+def psi(session: Session) -> np.ndarray:
+    return np.asarray(session.result.buffers[2])
+
+
+def test_template_matches_the_closed_form() -> None:
+    s = Session(four_bar())
+    assert psi(s)[0] == pytest.approx(psi_closed_form(1.0), abs=1e-9)
+    assert s.result.positions == 361 and s.result.report.stop_reason() is None
+
+
+def test_an_edit_changes_a_number_of_the_kept_model_and_reruns_the_motion() -> None:
+    s = Session(four_bar())
+    model = compiled.kept(s.mechanism).last.model  # type: ignore[union-attr]
+    s.edit({"crank.length": 1.2})
+    assert psi(s)[0] == pytest.approx(psi_closed_form(1.2), abs=1e-9)
+    # The same compiled model ran: the deck was neither written nor read again.
+    assert compiled.kept(s.mechanism).last.model is model  # type: ignore[union-attr]
+    assert len(compiled.kept(s.mechanism).by_topology) == 1
+    assert s.result.positions == 361
+
+
+def test_an_edit_that_cannot_be_assembled_is_refused_and_the_last_good_design_kept() -> None:
+    s = Session(four_bar())
+    before = psi(s).copy()
+    with pytest.raises(EditRefused, match="rocker|assembl|position 1") as refused:
+        s.edit({"rocker.length": 10.0})
+    assert "Traceback" not in str(refused.value)
+    assert s.mechanism["rocker.length"].value == 3.0
+    assert np.array_equal(psi(s), before) and not s.can_undo
+
+
+def test_an_edit_whose_motion_stops_at_a_limit_is_refused() -> None:
+    s = Session(four_bar())
+    # 2.6 + 4 > 3.5 + 3: Grashof's condition fails, the crank cannot turn all the way round.
+    with pytest.raises(EditRefused, match="stops at position"):
+        s.edit({"crank.length": 2.6})
+    assert s.mechanism["crank.length"].value == 1.0 and s.result.positions == 361
+
+
+def test_dragging_a_moving_point_across_chooses_the_other_branch_and_says_so() -> None:
+    s = Session(four_bar())
+    outcome = s.edit({"B": (3.0, -2.8)})
+    assert outcome.branch is not None and "other branch" in outcome.branch
+    assert psi(s)[0] == pytest.approx(psi_closed_form(1.0, up=False), abs=1e-9)
+    assert s.edit({"B": (3.1, -2.7)}).branch is None
+
+
+def test_undo_and_redo_restore_values_and_results() -> None:
+    s = Session(four_bar())
+    s.edit({"crank.length": 1.2})
+    s.edit({"B0": (4.2, 0.1)})
+    s.undo()
+    assert s.mechanism["B0"].x.value == 4.0 and psi(s)[0] == pytest.approx(psi_closed_form(1.2), abs=1e-9)
+    s.undo()
+    assert s.mechanism["crank.length"].value == 1.0 and not s.can_undo
+    s.redo()
+    assert s.mechanism["crank.length"].value == 1.2 and s.can_redo
+    with pytest.raises(EditRefused, match="nothing to undo"):
+        Session(four_bar()).undo()
+
+
+def test_the_moves_of_one_drag_are_undone_together() -> None:
+    s = Session(four_bar())
+    for k in range(3):
+        s.edit({"B0": (4.0 + 0.1 * (k + 1), 0.0)}, group=7)
+    s.edit({"crank.length": 1.1})
+    s.undo()
+    s.undo()
+    assert s.mechanism["B0"].x.value == 4.0 and not s.can_undo
+
+
+def test_save_writes_deck_data_set_and_report_that_mechfem_run_reproduces(tmp_path: Path) -> None:
+    s = Session(four_bar(steps=72))
+    s.edit({"crank.length": 1.1, "coupler.v": 0.9})
+    files = s.save(tmp_path / "mine.mec")
+    assert sorted(p.name for p in files) == ["mine.csv", "mine.html", "mine.mec", "mine.prt"]
+    text = (tmp_path / "mine.mec").read_text()
+    assert "NAMES" in text and "UNITS ANGLE deg" in text
+    out = tmp_path / "cli"
+    assert cli.main(["run", str(tmp_path / "mine.mec"), "-o", str(out), "--no-media", "-q"]) == 0
+    rows = np.loadtxt(out / "mine.csv", delimiter=",", skiprows=1, ndmin=2)
+    assert rows.shape[0] == 73
+    # Column 2 of the data set is buffer 2, psi (deg): the CLI's run of the saved deck gives the session's numbers.
+    np.testing.assert_allclose(rows[:, 1], psi(s), rtol=1e-7, atol=1e-7)
+
+
+def test_view_has_the_motion_charts_dimensions_and_points() -> None:
+    s = Session(four_bar())
+    data = json.loads(dumps(view(s)))
+    assert len(data["frames"]) == 361 and len(data["scene"]["frames"]) == 361
+    assert [d["name"] for d in data["studio"]["dimensions"]][:2] == ["crank.length", "phi"]
+    assert {d["name"]: d["unit"] for d in data["studio"]["dimensions"]}["phi"] == "deg"
+    assert [p["name"] for p in data["studio"]["points"]] == ["A0", "B0", "A", "B", "C"]
+    assert data["det"]["limits"] == [] and data["stop"] is None
+    assert [c["title"] for c in data["cards"]][0] == "coupler curve"
+    assert data["paths"][0]["name"] == "C"
+
+
+@pytest.mark.parametrize(
+    "deck", ["fourbar/fourbar.mec", "supply/supply.mec", "slider_crank/slider_crank.mec", "gears/belt_swing_arm.mec"]
+)
+def test_fast_scene_is_the_reports_scene(deck: str) -> None:
+    from mechfem.drawing import MechanismDrawing
+    from mechfem.report import _scene
+
+    path = ROOT / "examples" / deck
+    if not path.exists():
+        pytest.skip(f"no {deck}")
+    result = mechfem.run_deck(path)
+    frames = np.arange(result.positions)
+    fast, slow = scene(result, frames), _scene(result, MechanismDrawing(result.model, result.coords), frames)
+    assert fast["kinds"] == slow["kinds"] and fast["roles"] == slow["roles"] and fast["moving"] == slow["moving"]
+    assert fast["static"] == slow["static"] and fast["bounds"] == slow["bounds"]
+    # The report rounds to 6 significant digits, the studio to the 6th digit of the drawing's size.
+    x0, x1, y0, y1 = slow["bounds"]
+    size = max(x1 - x0, y1 - y0)
+    for a, b in zip(fast["frames"], slow["frames"], strict=True):
+        for p, q in zip(a, b, strict=True):
+            p_, q_ = (np.array(v, dtype=np.float64) for v in (p, q))
+            np.testing.assert_allclose(p_, q_, rtol=1e-6, atol=5e-6 * size)
+
+
+def test_examples_are_offered_and_opened() -> None:
+    names = examples()
+    assert "fourbar/fourbar.mec" in names
+    actions = Actions(None)
+    reply = actions.handle({"op": "example", "name": "fourbar/fourbar.mec"}, lambda m: None)
+    assert reply["type"] == "design" and reply["design"]["studio"]["name"] == "fourbar"
+    bad = actions.handle({"op": "example", "name": "../../etc/passwd"}, lambda m: None)
+    assert bad["type"] == "refused" and "not one of the examples" in bad["message"]
+
+
+def test_a_deck_sent_by_the_browser_that_is_wrong_says_where() -> None:
+    reply = Actions(None).handle(
+        {"op": "open_text", "name": "bad.mec", "text": "KIN ANA\nTOPOLOGY\nELEM 1 XYZ 1 2\n"}, print
+    )
+    assert reply["type"] == "refused" and "bad.mec:3:8" in reply["message"] and "ELEM 1 XYZ" in reply["message"]
+
+
+def test_server_needs_its_token_and_answers_on_loopback_only() -> None:
+    running = serve_in_thread(Session(four_bar()))
+    try:
+        assert running.url.startswith("http://127.0.0.1:")
+        page = urllib.request.urlopen(running.url, timeout=10).read().decode()
+        assert "mechfem studio" in page and "connect-src ws://127.0.0.1:" in page
+        base = running.url.split("?")[0]
+        for wrong in (base, base + "?token=wrong"):
+            with pytest.raises(urllib.error.HTTPError) as e:
+                urllib.request.urlopen(wrong, timeout=10)
+            assert e.value.code == 403
+        # Another host name (DNS rebinding) is refused too.
+        request = urllib.request.Request(running.url, headers={"Host": "evil.example:80"})
+        with pytest.raises(urllib.error.HTTPError):
+            urllib.request.urlopen(request, timeout=10)
+        ws_url = running.url.replace("http://", "ws://").replace("/?token=", "/ws?token=")
+        with websockets_sync.connect(ws_url) as ws:
+            hello = json.loads(ws.recv())
+            assert hello["type"] == "hello" and hello["design"]["positions"] == 361
+            ws.send(json.dumps({"op": "edit", "changes": {"crank.length": 1.2}}))
+            reply = json.loads(ws.recv())
+            assert reply["type"] == "design" and reply["design"]["studio"]["revision"] == 1
+        # Without the token the websocket is closed before it opens (the handshake gets 403).
+        with pytest.raises(websockets.exceptions.InvalidStatus) as refused:
+            websockets_sync.connect(ws_url.split("?")[0] + "?token=nope").close()
+        assert refused.value.response.status_code == 403
+    finally:
+        running.stop()
+
+
+def test_cli_says_how_to_install_what_is_missing(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from mechfem.studio_app import command
+
+    monkeypatch.setattr(command, "missing", lambda: ["uvicorn"])
+    assert cli.main(["studio", "--no-browser"]) == 1
+    assert "pip install 'mechfem[studio]'" in capsys.readouterr().err
+    assert missing() == []
+
+
+def test_notebook_widget_edits_a_copy_and_gives_it_back() -> None:
+    pytest.importorskip("anywidget")
+    original = four_bar(steps=36)
+    widget = mechfem.studio(original)
+    try:
+        assert widget.url.startswith("http://127.0.0.1:") and "token=" in widget.url
+        assert "mechfem studio" in urllib.request.urlopen(widget.url, timeout=10).read().decode()
+        ws_url = widget.url.replace("http://", "ws://").replace("/?token=", "/ws?token=")
+        with websockets_sync.connect(ws_url) as ws:
+            ws.recv()
+            ws.send(json.dumps({"op": "edit", "changes": {"coupler.v": 0.8}}))
+            assert json.loads(ws.recv())["type"] == "design"
+        edited = widget.mechanism
+        assert isinstance(edited, mechfem.Mechanism) and edited["coupler.v"].value == 0.8
+        assert original["coupler.v"].value == 1.2
+        assert edited.run().positions == 37
+    finally:
+        widget.stop()
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "gears/planetary_gr1.mec",
+        "supply/supply_dyn.mec",
+        "limits/slider_dead_centre_free.mec",
+        "manipulator/manipulator.mec",
+    ],
+)
+def test_examples_of_every_kind_open_and_take_an_edit(name: str) -> None:
+    actions = Actions(None)
+    opened = actions.handle({"op": "example", "name": name}, lambda m: None)
+    assert opened["type"] == "design", opened
+    json.loads(dumps(opened))
+    pivot = [p for p in opened["design"]["studio"]["points"] if p["fixed"]][-1]
+    x, y = pivot["given"]
+    edited = actions.handle({"op": "edit", "changes": {pivot["name"]: [x * 1.01 + 0.001, y]}}, lambda m: None)
+    assert edited["type"] == "design" and edited["design"]["studio"]["revision"] == 1
+
+
+def test_six_digits_rounds_a_column_as_the_report_rounds_each_number() -> None:
+    from mechfem.report_charts import nums
+    from mechfem.studio_app.view import six_digits
+
+    rng = np.random.default_rng(7)
+    v = rng.normal(size=5000) * 10.0 ** rng.integers(-12, 12, 5000)
+    v = np.concatenate([v, [0.0, -0.0, np.nan, np.inf, -np.inf, 1e-300, 5e-324, 999999.5, 0.1 + 0.2]])
+    got, want = six_digits(v).tolist(), nums(v)
+    assert [np.isnan(x) for x in got] == [x is None for x in want]
+    close = [x == y or abs(x - y) <= 1e-15 * abs(y) for x, y in zip(got, want, strict=True) if y is not None]
+    assert all(close)
+
+
+def test_answers_write_numpy_columns_and_not_finite_numbers_as_null() -> None:
+    table = np.array([[1.5, np.nan], [np.inf, 2.0]])
+    written = json.loads(dumps({"row": table[0], "column": table[:, 0], "n": np.float64(np.nan)}))
+    assert written == {"row": [1.5, None], "column": [1.5, None], "n": None}
+
+
+def test_the_drawing_kept_from_one_design_draws_the_next_as_a_fresh_one() -> None:
+    s = Session(four_bar())
+    view(s)
+    assert s.drawing_kept["maps"]
+    s.edit({"crank.length": 1.2, "coupler.v": 0.9})
+    frames = np.arange(s.result.positions)
+    kept, fresh = scene(s.result, frames, s.drawing_kept), scene(s.result, frames)
+    assert kept["moving"] == fresh["moving"] and kept["static"] == fresh["static"] and kept["bounds"] == fresh["bounds"]
+    np.testing.assert_allclose(_flat(kept["frames"]), _flat(fresh["frames"]), atol=1e-9)
+    # Maps that no longer draw the design (here: made wrong on purpose) are found anew, not used.
+    s.drawing_kept["maps"] = [None if m is None else (m[0], m[1] + 1.0) for m in s.drawing_kept["maps"]]
+    again = scene(s.result, frames, s.drawing_kept)
+    np.testing.assert_allclose(_flat(again["frames"]), _flat(fresh["frames"]), atol=1e-9)
+
+
+def _flat(frames: list[list[np.ndarray]]) -> np.ndarray:
+    return np.concatenate([np.asarray(v, dtype=np.float64).ravel() for shapes in frames for v in shapes])
