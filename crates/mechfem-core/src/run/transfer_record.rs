@@ -124,48 +124,46 @@ impl TransferRecord {
     /// was made for); the values of inverse dynamics from `dynamics`,
     /// evaluated at this position ([`InverseDynamics::evaluate`]; NaN without it).
     pub fn push(&mut self, layout: &Layout, v: &PositionView<'_>, dynamics: Option<&InverseDynamics>) {
-        let (kin, nd, at) = (v.kin, self.n_dof, &self.at);
-        let data = &mut self.data;
-        let start = data.len();
-        data.extend((0..nd).map(|j| v.input(j)));
-        data.extend_from_slice(&v.input_vel[..nd]);
-        data.extend_from_slice(&v.input_acc[..nd]);
-        data.push(v.time);
-        data.push(kin.det());
-        data.extend((0..layout.n_prescribed).map(|r| kin.row_value(r)));
-        data.extend((0..layout.n_dependent).map(|d| kin.dep(d)));
-        // At a limit position D^c has no inverse: the transfer functions do
-        // not exist, and their place is not read.
+        let (kin, nd, nm, at) = (v.kin, self.n_dof, self.n_moving, &self.at);
+        let (np, ndep) = (layout.n_prescribed, layout.n_dependent);
+        let start = self.data.len();
+        // The whole row at once, NaN where nothing is written (the transfer
+        // functions at a limit position, where D^c has no inverse, and inverse
+        // dynamics without a model of it), then written part by part.
+        self.data.resize(start + at.stride, f64::NAN);
+        let row = &mut self.data[start..];
+        for j in 0..nd {
+            row[at.inputs + j] = v.input(j);
+        }
+        row[at.qd..][..nd].copy_from_slice(&v.input_vel[..nd]);
+        row[at.qdd..][..nd].copy_from_slice(&v.input_acc[..nd]);
+        row[at.time] = v.time;
+        row[at.det] = kin.det();
+        for r in 0..np {
+            row[at.rows + r] = kin.row_value(r);
+        }
+        for d in 0..ndep {
+            row[at.rows + np + d] = kin.dep(d);
+        }
         let transfer = kin.order().is_some();
         if transfer {
             for j in 0..nd {
-                data.extend_from_slice(kin.x1(j));
-            }
-            for j in 0..nd {
+                row[at.x1 + j * nm..][..nm].copy_from_slice(kin.x1(j));
                 for m in 0..nd {
-                    data.extend_from_slice(kin.x2(j, m));
+                    row[at.x2 + (j * nd + m) * nm..][..nm].copy_from_slice(kin.x2(j, m));
                 }
             }
-            for d in 0..layout.n_dependent {
-                data.extend((0..nd).map(|j| kin.dep1(d, j)));
+            for d in 0..ndep {
+                for j in 0..nd {
+                    row[at.dep1 + d * nd + j] = kin.dep1(d, j);
+                    for m in 0..nd {
+                        row[at.dep2 + (d * nd + j) * nd + m] = kin.dep2(d, j, m);
+                    }
+                }
             }
-            for d in 0..layout.n_dependent {
-                data.extend((0..nd).flat_map(|j| (0..nd).map(move |m| kin.dep2(d, j, m))));
-            }
-        } else {
-            data.resize(start + at.dynamic, f64::NAN);
         }
-        debug_assert_eq!(
-            data.len(),
-            start + at.dynamic,
-            "transfer functions over {} moving co-ordinates",
-            self.n_moving
-        );
-        if layout.dynamic {
-            match dynamics {
-                Some(d) => dynamic_values(layout, v.mech, d, data),
-                None => data.resize(start + at.stride, f64::NAN),
-            }
+        if let (true, Some(d)) = (layout.dynamic, dynamics) {
+            dynamic_values(layout, v.mech, d, &mut row[at.dynamic..]);
         }
         self.transfer.push(transfer);
     }
@@ -176,20 +174,30 @@ impl TransferRecord {
     }
 }
 
-/// Appends the values of the layout's blocks of inverse dynamics (`sigma`
-/// to `loadpow`, in its order) from `d`, evaluated at the position.
-fn dynamic_values(layout: &Layout, mech: &Mechanism, d: &InverseDynamics, out: &mut Vec<f64>) {
+/// Writes the values of the layout's blocks of inverse dynamics (`sigma`
+/// to `loadpow`, in its order) from `d`, evaluated at the position, into `out`.
+fn dynamic_values(layout: &Layout, mech: &Mechanism, d: &InverseDynamics, out: &mut [f64]) {
     let (nd, n) = (layout.n_dof, layout.n_coords);
-    out.extend((0..layout.n_prescribed).map(|r| d.sigma(r)));
-    out.extend((0..nd).map(|j| d.drive(mech, j)));
-    out.extend((0..n).map(|i| d.reaction(mech, i)));
-    out.extend([d.kinetic_energy(), d.potential_energy(), d.drive_power()]);
-    out.extend((0..nd).flat_map(|j| (0..nd).map(move |m| d.mass_matrix_entry(mech, j, m))));
-    for &(e, x, y) in &layout.pins {
-        out.extend([d.pin_force(e, x, y, Component::X), d.pin_force(e, x, y, Component::Y)]);
+    let values = (0..layout.n_prescribed)
+        .map(|r| d.sigma(r))
+        .chain((0..nd).map(|j| d.drive(mech, j)))
+        .chain((0..n).map(|i| d.reaction(mech, i)))
+        .chain([d.kinetic_energy(), d.potential_energy(), d.drive_power()])
+        .chain((0..nd).flat_map(|j| (0..nd).map(move |m| d.mass_matrix_entry(mech, j, m))))
+        .chain(
+            layout
+                .pins
+                .iter()
+                .flat_map(|&(e, x, y)| [d.pin_force(e, x, y, Component::X), d.pin_force(e, x, y, Component::Y)]),
+        )
+        .chain([Component::X, Component::Y, Component::Moment].map(|c| d.shaking(c)))
+        .chain([d.load_power()]);
+    let mut written = 0;
+    for (x, value) in out.iter_mut().zip(values) {
+        *x = value;
+        written += 1;
     }
-    out.extend([Component::X, Component::Y, Component::Moment].map(|c| d.shaking(c)));
-    out.push(d.load_power());
+    debug_assert_eq!(written, out.len(), "the blocks of inverse dynamics");
 }
 
 impl Layout {
@@ -243,6 +251,22 @@ impl Layout {
                     (false, _) => nan,
                     (true, FIXED) => 0.0,
                     (true, col) => r[o.x2 + p * nm + col],
+                }));
+            }
+            "vx" | "ax" if nd == 1 => {
+                // One input, the common case: the same sums, without the loops over the inputs.
+                let (col, acc) = (self.columns[t], block.name == "ax");
+                out.extend(rows.map(|(r, tr)| {
+                    if !tr {
+                        return nan;
+                    }
+                    let (d1, d2) = if col == FIXED { (0.0, 0.0) } else { (r[o.x1 + col], r[o.x2 + col]) };
+                    let (qd, qdd) = (r[o.qd], r[o.qdd]);
+                    if acc {
+                        acceleration(&[d1], &[d2], &[qd], &[qdd])
+                    } else {
+                        velocity(&[d1], &[qd])
+                    }
                 }));
             }
             "vx" | "ax" => {
