@@ -4,8 +4,10 @@
 //! kind: one and several inputs, dependent rows, limit positions, free
 //! motion, masses and loads, a simulation, and first-order runs. A deck's
 //! own recording ([`Selection`]) names its blocks as the full layout does.
+//! The table made afterwards from a run's [`TransferRecord`] holds, bit for
+//! bit, what the layout records position by position.
 
-use mechfem_core::run::{Columns, Layout, Selection};
+use mechfem_core::run::{Columns, Layout, Selection, TransferRecord};
 use mechfem_core::{record, run, simulate, InverseDynamics, Observer, PositionView, Quantity, TransferOrder};
 use std::path::Path;
 
@@ -17,6 +19,8 @@ struct Both {
     order: TransferOrder,
     by_layout: Vec<f64>,
     by_quantity: Vec<f64>,
+    /// The same positions as the motion computed them, for the table made afterwards.
+    record: TransferRecord,
     positions: usize,
     limits: usize,
 }
@@ -37,6 +41,7 @@ impl Observer for Both {
             assert_eq!(x.to_bits(), own.to_bits(), "{q:?} at position {}", view.index + 1);
         }
         self.layout.record(view, self.dynamics.as_ref(), &mut self.by_layout);
+        self.record.push(&self.layout, view, self.dynamics.as_ref());
         self.positions += 1;
         self.limits += usize::from(view.kin.order().is_none());
     }
@@ -73,6 +78,8 @@ fn both(deck: &str, order: TransferOrder) -> Both {
     let layout = Layout::full(&c.mechanism, c.dynamics.is_some());
     let mut out = Both {
         quantities: layout.quantities(),
+        // Room for no position: the record grows as a run that goes on past its motion's steps makes it.
+        record: TransferRecord::new(&layout, &c.mechanism, 0),
         layout,
         dynamics: c.dynamics.clone().map(|d| InverseDynamics::new(&c.mechanism, d)),
         order,
@@ -257,6 +264,19 @@ fn every_column_is_its_quantity_to_the_last_bit() {
                 assert_eq!(x.to_bits(), y.to_bits(), "{deck}, {order:?}: position {}, {q:?}", k / b.layout.width());
             }
             limits += b.limits;
+            // The table made from the record, column after column, is the one recorded position by position.
+            let (width, positions) = (b.layout.width(), b.positions);
+            assert_eq!(b.record.positions(), positions, "{deck}");
+            let table = b.layout.table(&b.record);
+            assert_eq!(table.len(), b.by_layout.len(), "{deck}");
+            for (k, x) in table.iter().enumerate() {
+                let (column, position) = (k / positions, k % positions);
+                let y = b.by_layout[position * width + column];
+                let q = b.quantities[column];
+                assert_eq!(x.to_bits(), y.to_bits(), "{deck}, {order:?}: position {position}, {q:?} from the record");
+            }
+            // The record keeps fewer numbers a position than the table has columns.
+            assert!(b.record.stride() < width, "{deck}: {} numbers a position", b.record.stride());
         }
     }
     // The decks include positions without transfer functions, where the layout writes NaN.

@@ -156,7 +156,8 @@ pub fn full_run(c: &Compiled, r: &mut crate::run::FullRun) {
     r.sim = r.sim.as_ref().map(|s| c.sim_as_written(s));
     let positions = r.positions;
     let layout = mechfem_core::Layout::full(&c.mechanism, c.dynamics.is_some()).quantities();
-    table(c, &layout, &mut r.table, positions, &mut r.coords);
+    r.table.scale_columns(layout.iter().map(|q| c.out_scale(*q)).collect());
+    coords(c, &mut r.coords);
     let buffers: Vec<Quantity> = c.buffers.iter().map(|b| b.quantity).collect();
     table(c, &buffers, &mut r.buffers, positions, &mut []);
     coords(c, &mut r.given);

@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
-use mechfem_core::run::{Columns, InverseDynamics, Layout, Selection};
+use mechfem_core::run::{Columns, InverseDynamics, Layout, Selection, TransferRecord};
 use mechfem_core::{record_evaluated, Mechanism, Observer, PositionView, Quantity, SolveError, TransferOrder};
 use pyo3::prelude::*;
 
@@ -53,16 +53,21 @@ impl Record for Selection {
     }
 }
 
-/// The full layout of a run of deck text, and the deck's buffers in a
-/// table of their own (each read from the layout's column of its quantity
-/// where it has one, to the last bit the same value).
+/// The full layout of a run of deck text, recorded as the motion computes
+/// it ([`TransferRecord`]: the layout's table is made from it when Python
+/// asks for it), and the deck's buffers, made from it at the end of the run
+/// (each read from the layout's column of its quantity where it has one, to
+/// the last bit the same value). It keeps its own record: the
+/// [`Recording`]'s table has no column.
 pub struct Full {
-    /// The core's full layout: the table's columns.
+    /// The core's full layout: the columns of the table made from `record`.
     pub layout: Layout,
     /// Where each of the deck's buffers is found, in the order of their definitions.
     buffers: Vec<Source>,
-    /// The deck's buffers, column by column.
-    pub buffer_table: Columns,
+    /// Every position, as the motion computed it.
+    pub record: TransferRecord,
+    /// The buffers the layout does not have, row-major, one row of them per position.
+    own: Vec<f64>,
 }
 
 impl Full {
@@ -71,12 +76,34 @@ impl Full {
     pub fn new(mech: &Mechanism, dynamic: bool, buffers: &[Quantity], total: usize) -> Full {
         let layout = Layout::full(mech, dynamic);
         let buffers: Vec<Source> = buffers.iter().map(|&q| Source::of(q, &layout)).collect();
-        Full { buffer_table: Columns::new(buffers.len(), total), buffers, layout }
+        let n_own = buffers.iter().filter(|b| matches!(b, Source::Own(_))).count();
+        let record = TransferRecord::new(&layout, mech, total);
+        Full { own: Vec::with_capacity(total.saturating_mul(n_own)), buffers, record, layout }
     }
 
     /// Columns of the layout and the buffers together.
     pub fn width(&self) -> usize {
         self.layout.width() + self.buffers.len()
+    }
+
+    /// The deck's buffers at every position recorded, column after column;
+    /// `coords` holds the co-ordinates (row-major, `n_coords` a position).
+    pub fn buffer_table(&self, coords: &[f64], n_coords: usize) -> Vec<f64> {
+        let positions = self.record.positions();
+        let n_own = self.own.len().checked_div(positions).unwrap_or(0);
+        let mut out = Vec::with_capacity(positions * self.buffers.len());
+        let mut own = 0;
+        for b in &self.buffers {
+            match *b {
+                Source::Column(c) => self.layout.column_values(&self.record, c, &mut out),
+                Source::Coord(i) => out.extend(coords.chunks_exact(n_coords.max(1)).map(|x| x[i])),
+                Source::Own(_) => {
+                    out.extend(self.own.chunks_exact(n_own.max(1)).map(|x| x[own]));
+                    own += 1;
+                }
+            }
+        }
+        out
     }
 }
 
@@ -112,26 +139,16 @@ impl Record for Full {
         v: &PositionView<'_>,
         dynamics: Option<&mut InverseDynamics>,
         _checked: bool,
-        table: &mut Columns,
-        row: &mut Vec<f64>,
+        _table: &mut Columns,
+        _row: &mut Vec<f64>,
     ) {
         let dynamics = dynamics.map(|d| &*d);
-        row.clear();
-        self.layout.record(v, dynamics, row);
-        table.push(row);
-        let width = row.len();
+        self.record.push(&self.layout, v, dynamics);
         for b in &self.buffers {
-            let value = match *b {
-                Source::Column(c) => row[c],
-                Source::Coord(i) => v.state.x[i],
-                Source::Own(q) => {
-                    record_evaluated(&[q], v, dynamics, row);
-                    row.pop().unwrap_or(f64::NAN)
-                }
-            };
-            row.push(value);
+            if let Source::Own(q) = *b {
+                record_evaluated(&[q], v, dynamics, &mut self.own);
+            }
         }
-        self.buffer_table.push(&row[width..]);
     }
 }
 

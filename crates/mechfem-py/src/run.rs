@@ -12,7 +12,7 @@
 use std::path::Path;
 use std::sync::Mutex;
 
-use mechfem_core::run::{Layout, MemoryRefusal, SimReport};
+use mechfem_core::run::{Layout, MemoryRefusal, SimReport, TransferRecord};
 use mechfem_core::{Lost, RunReport, SolveError, State};
 use mechfem_deck::{Compiled, Diagnostics};
 use numpy::ndarray::{Array2, ShapeBuilder};
@@ -28,8 +28,8 @@ use crate::{convert, errors};
 /// A finished run of deck text with everything recorded, ready to be
 /// wrapped for Python.
 pub struct FullRun {
-    /// The full layout ([`Layout`]), column by column: positions x its width.
-    pub table: Vec<f64>,
+    /// The full layout ([`Layout`]): positions x its width, made when asked for.
+    pub table: RecordedTable,
     /// The deck's buffers in the order of their definitions, column by column.
     pub buffers: Vec<f64>,
     /// Row-major, positions x co-ordinates.
@@ -66,29 +66,88 @@ pub enum Outcome {
     BadChange(mechfem_core::DesignError),
 }
 
+/// The full layout's table of a run as the motion recorded it
+/// ([`TransferRecord`]), made column by column ([`Layout::table`]) when
+/// Python first asks for it, each column then multiplied by its factor
+/// from the core's units to the deck's.
+pub struct RecordedTable {
+    layout: Layout,
+    record: TransferRecord,
+    /// The factor of each column; empty when every factor is 1.
+    scales: Vec<f64>,
+}
+
+impl RecordedTable {
+    /// The table of `layout` of the positions of `record`, in the core's units.
+    pub fn new(layout: Layout, record: TransferRecord) -> RecordedTable {
+        RecordedTable { layout, record, scales: Vec::new() }
+    }
+
+    /// The table's columns in other units: column k multiplied by `scales[k]`.
+    pub fn scale_columns(&mut self, scales: Vec<f64>) {
+        self.scales = scales;
+    }
+
+    /// The values, column after column.
+    fn values(&self) -> Vec<f64> {
+        let mut table = self.layout.table(&self.record);
+        let positions = self.record.positions();
+        for (&k, column) in self.scales.iter().zip(table.chunks_mut(positions.max(1))) {
+            if k != 1.0 {
+                column.iter_mut().for_each(|v| *v *= k);
+            }
+        }
+        table
+    }
+}
+
+/// The values of a [`Lazy`] table until they become a numpy array.
+enum Values {
+    /// Made, rows x cols.
+    Made(Array2<f64>),
+    /// Still to be made from a run's record (rows x cols, column after column).
+    Recorded(Box<RecordedTable>, usize, usize),
+}
+
 /// A rows x cols table of the core, made a numpy array (owning its values)
 /// when Python first asks for it.
 struct Lazy {
-    values: Mutex<Option<Array2<f64>>>,
+    values: Mutex<Option<Values>>,
     array: PyOnceLock<Py<PyAny>>,
 }
 
 impl Lazy {
     /// `data` column by column (`columns`) or row by row.
     fn new(data: Vec<f64>, rows: usize, cols: usize, columns: bool) -> PyResult<Lazy> {
-        let shape = (rows, cols).set_f(columns);
-        let values = Array2::from_shape_vec(shape, data).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(Lazy { values: Mutex::new(Some(values)), array: PyOnceLock::new() })
+        Ok(Lazy::of(Values::Made(array(data, rows, cols, columns)?)))
+    }
+
+    /// The `rows` x `cols` table of `table`, made when first asked for.
+    fn recorded(table: RecordedTable, rows: usize, cols: usize) -> Lazy {
+        Lazy::of(Values::Recorded(Box::new(table), rows, cols))
+    }
+
+    fn of(values: Values) -> Lazy {
+        Lazy { values: Mutex::new(Some(values)), array: PyOnceLock::new() }
     }
 
     fn get<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let array = self.array.get_or_try_init(py, || {
             let values = self.values.lock().unwrap_or_else(|e| e.into_inner()).take();
-            let values = values.ok_or_else(|| errors::lost(Lost::TableTakenTwice))?;
+            let values = match values.ok_or_else(|| errors::lost(Lost::TableTakenTwice))? {
+                Values::Made(values) => values,
+                Values::Recorded(table, rows, cols) => array(table.values(), rows, cols, true)?,
+            };
             Ok::<_, PyErr>(PyArray2::from_owned_array(py, values).into_any().unbind())
         })?;
         Ok(array.bind(py).clone())
     }
+}
+
+/// `data` as a rows x cols array, column by column (`columns`) or row by row.
+fn array(data: Vec<f64>, rows: usize, cols: usize, columns: bool) -> PyResult<Array2<f64>> {
+    let shape = (rows, cols).set_f(columns);
+    Array2::from_shape_vec(shape, data).map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
 /// Where a run's buffers are.
@@ -378,7 +437,7 @@ impl Shared {
             dynamic: c.dynamics.is_some(),
             interrupted: false,
             stopped: r.report.stop.is_some(),
-            table: Lazy::new(r.table, positions, r.width, true)?,
+            table: Lazy::recorded(r.table, positions, r.width),
             coords: Lazy::new(r.coords, positions, n, false)?,
             buffers: Buffers::Own(Lazy::new(r.buffers, positions, c.buffers.len(), true)?),
             layout: self.layout.clone_ref(py),

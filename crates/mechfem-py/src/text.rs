@@ -26,7 +26,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::observe::{Full, Progress, Recording};
-use crate::run::{outcome_run, FullRun, Outcome, Run, Shared};
+use crate::run::{outcome_run, FullRun, Outcome, RecordedTable, Run, Shared};
 use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
@@ -63,24 +63,24 @@ pub fn execute(
     if let Err(refusal) = MemoryRefusal::check(steps + 1, width + n, memory_limit) {
         return (Outcome::Refused(refusal), None);
     }
-    let layout_width = full.layout.width();
-    let mut rec = Recording::new(full, layout_width, n, steps + 1, Some(order), progress, Some(cancel))
+    // The full layout keeps its own record (`Full`): the recording's table has no column.
+    let mut rec = Recording::new(full, 0, n, steps + 1, Some(order), progress, Some(cancel))
         .with_dynamics(&c.mechanism, dynamics);
     let result = c.move_through(&mut state, motion.as_deref(), &mut rec);
     let raised = rec.raised();
     let outcome = match result {
         Ok((report, sim)) => {
-            let (table, positions) = (rec.table, rec.columns.buffer_table.positions());
-            let e0 = rec.columns.layout.block("e0").map_or(0, |b| b.start);
+            let full = rec.columns;
+            let positions = full.record.positions();
             let n_rows = c.mechanism.n_prescribed() + c.mechanism.n_dependent();
-            let rows_at_1 = (0..n_rows).map(|r| if positions > 0 { table.get(0, e0 + r) } else { f64::NAN }).collect();
-            let mut buffers = rec.columns.buffer_table.into_vec();
+            let rows_at_1 = if positions > 0 { full.record.row_values(0).to_vec() } else { vec![f64::NAN; n_rows] };
+            let mut buffers = full.buffer_table(&rec.coords, n);
             if let Some(Err(e)) = bands_start.map(|s| c.fill_bands(s, &mut buffers, positions)) {
                 return (Outcome::Failed(Box::new(state), e), raised);
             }
             Outcome::Ran(Box::new(FullRun {
-                width: layout_width,
-                table: table.into_vec(),
+                width: full.layout.width(),
+                table: RecordedTable::new(full.layout, full.record),
                 buffers,
                 coords: rec.coords,
                 positions,

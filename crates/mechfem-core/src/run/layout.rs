@@ -11,7 +11,10 @@
 //! [`Quantity::dynamic_value`]) gives, to the last bit:
 //! [`Layout::quantities`] names the quantity of each column. [`Columns`]
 //! keeps such a recording column by column, as a reader of one quantity over
-//! the positions (numpy, in Fortran order) wants it.
+//! the positions (numpy, in Fortran order) wants it. A run that records
+//! everything for later reading keeps what the motion computes instead
+//! ([`TransferRecord`](super::TransferRecord)) and makes this table from it
+//! when it is asked for ([`Layout::table`]), the same values to the last bit.
 //!
 //! ```
 //! use mechfem_core::run::Layout;
@@ -108,51 +111,51 @@ impl Block {
 /// are not in it: a recorder keeps them beside it.
 #[derive(Debug, Clone)]
 pub struct Layout {
-    blocks: Vec<Block>,
-    width: usize,
-    n_dof: usize,
-    n_coords: usize,
-    n_prescribed: usize,
-    n_dependent: usize,
-    dynamic: bool,
+    pub(super) blocks: Vec<Block>,
+    pub(super) width: usize,
+    pub(super) n_dof: usize,
+    pub(super) n_coords: usize,
+    pub(super) n_prescribed: usize,
+    pub(super) n_dependent: usize,
+    pub(super) dynamic: bool,
     /// The column of each co-ordinate in the transfer functions, FIXED for a fixed one.
-    columns: Vec<usize>,
+    pub(super) columns: Vec<usize>,
     /// The input each prescribed row is, if any.
-    input_of: Vec<Option<usize>>,
+    pub(super) input_of: Vec<Option<usize>>,
     /// The prescribed rows' part of `ke1`.
-    prescribed_ke1: Vec<f64>,
+    pub(super) prescribed_ke1: Vec<f64>,
     /// The first column of each block, looked up once.
-    at: Starts,
+    pub(super) at: Starts,
     /// The rows of the `pin` block: element, x and y co-ordinate.
-    pins: Vec<(usize, usize, usize)>,
+    pub(super) pins: Vec<(usize, usize, usize)>,
 }
 
 /// The first column of every block of a [`Layout`] (its width where the
 /// layout has no such block).
 #[derive(Debug, Clone, Default)]
-struct Starts {
-    inputs: usize,
-    kx1: usize,
-    kx2: usize,
-    vx: usize,
-    ax: usize,
-    e0: usize,
-    ke1: usize,
-    ke2: usize,
-    ve: usize,
-    ae: usize,
-    sigma: usize,
-    drive: usize,
-    reaction: usize,
-    ekin: usize,
-    epot: usize,
-    power: usize,
-    mass: usize,
-    pin: usize,
-    shaking: usize,
-    loadpow: usize,
-    time: usize,
-    det: usize,
+pub(super) struct Starts {
+    pub(super) inputs: usize,
+    pub(super) kx1: usize,
+    pub(super) kx2: usize,
+    pub(super) vx: usize,
+    pub(super) ax: usize,
+    pub(super) e0: usize,
+    pub(super) ke1: usize,
+    pub(super) ke2: usize,
+    pub(super) ve: usize,
+    pub(super) ae: usize,
+    pub(super) sigma: usize,
+    pub(super) drive: usize,
+    pub(super) reaction: usize,
+    pub(super) ekin: usize,
+    pub(super) epot: usize,
+    pub(super) power: usize,
+    pub(super) mass: usize,
+    pub(super) pin: usize,
+    pub(super) shaking: usize,
+    pub(super) loadpow: usize,
+    pub(super) time: usize,
+    pub(super) det: usize,
 }
 
 impl Layout {

@@ -36,6 +36,7 @@ mod record;
 mod selection;
 mod simulate;
 pub mod tolerance;
+mod transfer_record;
 mod transmission;
 
 pub use dispatch::{motion_of, move_through, transfer_order_of, Extent, MemoryRefusal, OrderError, RunMode};
@@ -46,4 +47,5 @@ pub use observe::{Observer, PositionView, RunReport, Stop};
 pub use record::{record, record_evaluated, Quantity, Recorder};
 pub use selection::Selection;
 pub use simulate::{simulate, simulate_within, Event, Segment, SimReport};
+pub use transfer_record::TransferRecord;
 pub use transmission::transmission_angle;
