@@ -45,6 +45,7 @@ from mechfem import _core, limits
 from mechfem._version import __version__
 from mechfem.batch import Study, run_many, sweep
 from mechfem.design import Infeasible
+from mechfem.dynamic_optimise import Drive, Shaking, ShakingForce
 from mechfem.echo import Buffer, Coordinate, Element, Model, Picture, Plot, Row, Storage, Term
 from mechfem.errors import (
     AssemblyError,
@@ -152,6 +153,7 @@ __all__ = [
     "ConvergenceError",
     "Coordinate",
     "DeckError",
+    "Drive",
     "Driven",
     "Element",
     "Evaluated",
@@ -178,6 +180,8 @@ __all__ = [
     "RunReport",
     "RunStoppedError",
     "RunResult",
+    "Shaking",
+    "ShakingForce",
     "Spread",
     "Start",
     "Stop",
