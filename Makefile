@@ -74,13 +74,21 @@ browser:
 		echo "chromium is missing and cannot be installed here (needs root and apt-get): the browser test will be skipped"; \
 	fi
 
+# Chromium is installed (network and disk) while the package builds (processor). The Rust steps build without
+# incremental caches unless CARGO_INCREMENTAL says otherwise: `make test` mostly runs on a fresh clone, where a
+# cache is written and never read. pytest's summary gives the time of the slow families (browser, cluster,
+# large_run: pyproject.toml) apart from the rest.
 test: BUILD_PROFILE = quick
-test: install browser
-	cargo test --workspace --exclude mechfem-py
-	cargo clippy --workspace --all-targets -- -D warnings
-	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+test: export CARGO_INCREMENTAL ?= 0
+test:
+	$(MAKE) --no-print-directory browser & browser=$$!; \
+	$(MAKE) --no-print-directory install BUILD_PROFILE=quick; \
+	wait $$browser
 	cargo fmt --all --check
 	$(BIN)/ruff check python tests
+	cargo clippy --workspace --all-targets -- -D warnings
+	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
+	cargo test --workspace --exclude mechfem-py
 	$(BIN)/mypy --strict python/mechfem
 	$(PY) -m pytest -q -n auto tests
 

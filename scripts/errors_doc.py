@@ -29,10 +29,11 @@ def description(deck: Path) -> str:
 
 
 def runtime_message(deck: Path) -> tuple[str, int]:
-    """What `mechfem run` says on standard error for the deck, and its exit code."""
+    """What `mechfem run` says on standard error for the deck, and its exit code (without pictures and animation,
+    which change neither)."""
     out = Path("/tmp") / "mechfem-errors-doc"
     proc = subprocess.run(
-        [*MECHFEM, "run", str(deck.relative_to(ROOT)), "-o", str(out)],
+        [*MECHFEM, "run", str(deck.relative_to(ROOT)), "-o", str(out), "--no-media"],
         cwd=ROOT,
         capture_output=True,
         text=True,

@@ -57,3 +57,28 @@ def supply_with_savedata(tmp_path: Path) -> Path:
     deck.parent.mkdir()
     deck.write_text(SUPPLY.read_text())
     return deck
+
+
+# The slow families of tests (pyproject.toml's markers): `make test` runs them with the rest and shows their time
+# apart, so that a change that makes one of them slower is seen. With pytest-xdist the reports reach these hooks in
+# the controlling process, each with its test's markers among its keywords.
+SLOW_FAMILIES = ("browser", "cluster", "large_run")
+_family_time: dict[str, list[float]] = {}
+
+
+def pytest_runtest_logreport(report: pytest.TestReport) -> None:
+    family = next((f for f in SLOW_FAMILIES if f in report.keywords), "other")
+    count_and_seconds = _family_time.setdefault(family, [0, 0.0])
+    count_and_seconds[0] += report.when == "call"
+    count_and_seconds[1] += report.duration
+
+
+def pytest_terminal_summary(terminalreporter: pytest.TerminalReporter) -> None:
+    if not _family_time:
+        return
+    total = sum(s for _, s in _family_time.values())
+    terminalreporter.section("time by family (seconds of test time, all workers together)")
+    for family in (*SLOW_FAMILIES, "other"):
+        if family in _family_time:
+            n, seconds = _family_time[family]
+            terminalreporter.write_line(f"{family:>10}: {int(n):4d} tests {seconds:8.1f} s ({seconds / total:.0%})")

@@ -16,7 +16,8 @@ SUPPLY_STEPS = 72
 
 def test_run_supply_writes_print_file_and_data_set(cli: Cli, supply_with_savedata: Path, tmp_path: Path) -> None:
     out = tmp_path / "out"
-    proc = cli("run", supply_with_savedata, "-o", out)
+    # Pictures and animation of this deck: test_run_writes_pictures_and_animation.
+    proc = cli("run", supply_with_savedata, "-o", out, "--no-media")
     assert proc.returncode == 0, proc.stderr
     prt, data = out / "supply.prt", out / "supply.csv"
     assert prt.is_file() and data.is_file()
@@ -37,7 +38,7 @@ def test_run_without_savedata_writes_no_data_set(cli: Cli, tmp_path: Path) -> No
     deck.parent.mkdir()
     deck.write_text(text + "\n")
     out = tmp_path / "out"
-    proc = cli("run", deck, "-o", out)
+    proc = cli("run", deck, "-o", out, "--no-media")
     assert proc.returncode == 0, proc.stderr
     assert not (out / "supply.csv").exists()
     assert (out / "supply.prt").is_file()
@@ -55,7 +56,7 @@ def test_run_writes_pictures_and_animation(cli: Cli, tmp_path: Path) -> None:
 
 
 def test_default_output_folder_is_the_decks_folder(cli: Cli, supply_with_savedata: Path, tmp_path: Path) -> None:
-    proc = cli("run", supply_with_savedata, cwd=tmp_path)
+    proc = cli("run", supply_with_savedata, "--no-media", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert (supply_with_savedata.parent / "supply.prt").is_file()
     assert (supply_with_savedata.parent / "supply.csv").is_file()
@@ -64,7 +65,7 @@ def test_default_output_folder_is_the_decks_folder(cli: Cli, supply_with_savedat
 def test_data_set_has_full_precision(cli: Cli, supply_with_savedata: Path, tmp_path: Path) -> None:
     import mechfem
 
-    proc = cli("run", supply_with_savedata, "-o", tmp_path)
+    proc = cli("run", supply_with_savedata, "-o", tmp_path, "--no-media")
     assert proc.returncode == 0, proc.stderr
     rows = list(csv.reader((tmp_path / "supply.csv").read_text().splitlines()))
     result = mechfem.run_deck(supply_with_savedata)

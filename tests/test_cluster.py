@@ -23,6 +23,8 @@ from mechfem.cluster import TaskFailed, chunk_size, run_tasks
 from test_batch import fourbar
 from test_model_api import python_code, supply
 
+pytestmark = pytest.mark.cluster
+
 MOTION = Motion.by(72, 2 * math.pi)
 NO_DASK = "dask[distributed] is not installed: pip install mechfem[dask]"
 MEASURES = {

@@ -82,6 +82,7 @@ def test_angles_of_many_revolutions(tmp_path: Path) -> None:
     np.testing.assert_allclose(last, first, rtol=0, atol=1e-8)
 
 
+@pytest.mark.large_run
 def test_a_million_steps(tmp_path: Path) -> None:
     r = mechfem.run_deck(fourbar_deck(tmp_path, steps=1_000_000, turn=20 * math.pi))
     assert r.report.positions == 1_000_001

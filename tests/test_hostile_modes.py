@@ -71,6 +71,7 @@ def test_a_simulated_dof_without_any_mass_is_refused_clearly(tmp_path: Path, cli
     assert "massless.mec" in err and "no mass or inertia" in err
 
 
+@pytest.mark.large_run
 def test_a_very_stiff_spring_stops_the_simulation_with_its_reason_in_bounded_time(tmp_path: Path, cli: Cli):
     # k = 1e12 on the output angle: oscillations of period ~1e-6 s against outputs every 2.5 ms. The integrator
     # gives up after its step budget (2000 steps per output interval, at least 200 000) instead of running for hours.

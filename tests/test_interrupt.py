@@ -75,6 +75,7 @@ def test_model_api_run_raises_with_the_analysis_so_far() -> None:
     assert analysis.report.stop is not None and analysis.report.stop.kind == "interrupted"
 
 
+@pytest.mark.large_run
 @pytest.mark.parametrize("workers", [1, 2])
 def test_ctrl_c_stops_the_variants_of_a_study_while_they_run(workers: int) -> None:
     # Simulations of 400 s, about 4 s each: the calling thread runs one of them itself (every one with one
@@ -266,6 +267,7 @@ def csv_rows(path: Path) -> list[list[str]]:
     return body
 
 
+@pytest.mark.large_run
 def test_ctrl_c_stops_a_simulation_between_two_outputs(tmp_path: Path) -> None:
     # Outputs 2000 s apart: the first one past position 1 is many seconds of integration away. Ctrl-C half a
     # second in stops the integration within about a tenth of a second (the bound here is loose, for a busy
@@ -279,6 +281,7 @@ def test_ctrl_c_stops_a_simulation_between_two_outputs(tmp_path: Path) -> None:
     assert "interrupted after position 1 of 3" in (out / "sim.prt").read_text()
 
 
+@pytest.mark.large_run
 def test_ctrl_c_during_a_simulation_writes_every_output_reached(tmp_path: Path) -> None:
     # 2000 outputs over 200 s, a tenth of a second apart: every output reached is written, and they are the
     # outputs an uninterrupted simulation gives at the same times, to the last digit written.

@@ -13,9 +13,10 @@ import json
 import re
 import shutil
 import subprocess
+from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 import pytest
 
@@ -35,10 +36,17 @@ def find_chromium() -> str | None:
 
 
 CHROMIUM = find_chromium()
-needs_chromium = pytest.mark.skipif(
+F = TypeVar("F", bound=Callable[..., Any])
+_skip_without_chromium = pytest.mark.skipif(
     CHROMIUM is None,
     reason="no Chromium on the PATH: `make browser` installs Debian's chromium (as root); `make test` calls it",
 )
+
+
+def needs_chromium(test: F) -> F:
+    """Marks a test that drives Chromium (``browser``) and skips it, saying why, where there is none."""
+    marked: F = pytest.mark.browser(_skip_without_chromium(test))
+    return marked
 
 # Headless, no sandbox (root in a container), nothing of the browser's own: no first-run, sync, updates or
 # background traffic; host names resolve nowhere and any request that still starts goes to a closed local port.

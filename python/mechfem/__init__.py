@@ -80,9 +80,6 @@ from mechfem.run_report import AdjustInfo, Limit, RunReport, Stop
 from mechfem.timing import FreeTiming
 from mechfem.tolerance import Spread, ToleranceBands, ToleranceStudy, tolerance_bands, tolerance_study
 
-# Every module that fills a hook of a lower layer (docs/architecture.md), so that `import mechfem` has them all.
-from mechfem import deckio, figures, namespace, notebook, report, running  # noqa: F401  isort: skip
-
 Progress = _Callable[[int, int], object]
 """Called as ``progress(done, total)`` with the number of positions computed so far."""
 

@@ -33,7 +33,6 @@ import numpy.typing as npt
 import mechfem._core as _core
 from mechfem import cluster, compiled, optional
 from mechfem.errors import IncompleteRunWarning, MechfemError, RunStoppedError, user_stacklevel
-from mechfem.hooks import Hook
 from mechfem.limits import memory_limit
 from mechfem.model import Mechanism, Motion, Storage
 from mechfem.names import unknown_name
@@ -344,7 +343,9 @@ class Study:
         return optional.pandas().DataFrame(self.columns)
 
     def _repr_html_(self) -> str:
-        return HTML.call(self)
+        from mechfem import notebook
+
+        return notebook.study_html(self)
 
     def __repr__(self) -> str:
         ok = int(np.sum(self.columns["ok"])) if "ok" in self.columns else 0
@@ -582,7 +583,3 @@ def _check_arguments(model: Callable[..., Mechanism], sets: list[dict[str, Any]]
         if name not in takes:
             where = f" of the model function {getattr(model, '__name__', model)!r}"
             raise unknown_name("parameter", name, takes, where)
-
-
-# Study._repr_html_ is drawn by mechfem.notebook, a layer above (docs/architecture.md), which fills this hook.
-HTML: Hook[Callable[[Study], str]] = Hook("Study._repr_html_", "mechfem.notebook")

@@ -30,7 +30,6 @@ import numpy as np
 
 import mechfem._core as _core
 from mechfem import loads
-from mechfem import model as _model
 from mechfem.atomic import atomic_text
 from mechfem.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.deck_names import DeckNames, model_unit, names_block
@@ -585,15 +584,9 @@ def read_loads(mech: Mechanism, nb: Numbering, d: _core.DynamicsDict | None) -> 
                 mech.motor(r, ld["t0"], ld["w0"])
 
 
-@_model.TO_DECK.register
 def write_text(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> str:
     """The deck text of ``mech`` (:meth:`Mechanism.to_deck`)."""
     return write(mech, motion, storage).text
-
-
-_model.SAVE_DECK.register(save)
-_model.READ_DECK.register(read)
-_model.READ_DECK_TEXT.register(read_text)
 
 
 __all__ = ["DeckText", "Numbering", "read", "read_text", "save", "translate", "write", "FORMS"]

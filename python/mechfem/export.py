@@ -31,7 +31,6 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem import labels, optional
-from mechfem import result as _result
 from mechfem.animation import path_sample
 from mechfem.atomic import atomic_path
 from mechfem.drawing import STYLES, MechanismDrawing, Shape, arc_points
@@ -454,7 +453,6 @@ def draw_files(
     return [write(d, outdir / f"{name}.{fmt}", fmt, units or run_units(result).length) for fmt in formats]
 
 
-@_result.TO_DXF.register
 def analysis_dxf(
     a: RunResult, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str], units: str | None
 ) -> Path:
@@ -463,7 +461,6 @@ def analysis_dxf(
     return write_dxf(analysis_drawing(a, position, paths), path, units or run_units(a).length)
 
 
-@_result.TO_SVG.register
 def analysis_svg(a: RunResult, path: str | os.PathLike[str], position: int, paths: bool | Sequence[str]) -> Path:
     """:meth:`RunResult.to_svg`: as :func:`analysis_dxf`, an SVG file."""
     return write_svg(analysis_drawing(a, position, paths), path)

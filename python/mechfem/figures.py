@@ -19,8 +19,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mechfem import model as _model
-from mechfem import result as _result
 from mechfem.errors import MechfemError
 
 if TYPE_CHECKING:
@@ -274,9 +272,3 @@ def animate(
     storage = a.storage.replace(animate=target.stem, pictures=[Picture("", 0, plots)])
     info = write_animation(a.replace(storage=storage), target.parent, max_frames=max_frames or MAX_FRAMES)
     return list(info.files)
-
-
-_model.FIGURE.register(mechanism_figure)
-_model.PNG.register(mechanism_png)
-_result.PLOT.register(result_figure)
-_result.ANIMATE.register(animate)

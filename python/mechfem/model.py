@@ -37,7 +37,6 @@ from mechfem.builders import ElementMethods
 from mechfem.catalogue import FORMS, MAX_ITER, SLOTS
 from mechfem.checks import check_name, finite
 from mechfem.echo import BUFFER_ARGS
-from mechfem.hooks import Hook
 from mechfem.motion import By, Dynamic, Free, InputKey, InputMotion, Motion, Table, To, input_dof, simulation
 from mechfem.names import article, plural, suggestion, unknown_name
 from mechfem.parts import (
@@ -369,13 +368,17 @@ class Mechanism(ElementMethods):
 
         A :class:`Table` motion refers to a MOV_FUNC file: :meth:`save_deck` writes it beside the deck.
         """
-        return TO_DECK.call(self, motion or self.motion, storage or self.storage)
+        from mechfem import deckio
+
+        return deckio.write_text(self, motion or self.motion, storage or self.storage)
 
     def save_deck(
         self, path: str | os.PathLike[str], motion: Motion | None = None, storage: Storage | None = None
     ) -> Path:
         """Writes the deck (and the files of its table motions, beside it); returns the deck's path."""
-        return SAVE_DECK.call(self, Path(path), motion or self.motion, storage or self.storage)
+        from mechfem import deckio
+
+        return deckio.save(self, Path(path), motion or self.motion, storage or self.storage)
 
     @classmethod
     def from_deck(cls, path: str | os.PathLike[str]) -> Mechanism:
@@ -383,12 +386,16 @@ class Mechanism(ElementMethods):
         ``x<i>``, elements ``E<k>``, combined rows ``row<r>`` and outputs ``out<k>``; an element's own row
         is named by its label (``E1.angle``). The deck's motion and storage become :attr:`motion` and
         :attr:`storage`."""
-        return READ_DECK.call(Path(path))
+        from mechfem import deckio
+
+        return deckio.read(Path(path))
 
     @classmethod
     def from_deck_text(cls, text: str, name: str = "deck", base_dir: str | os.PathLike[str] = ".") -> Mechanism:
         """As :meth:`from_deck`, for deck text; MOV_FUNC files are read from ``base_dir``."""
-        return READ_DECK_TEXT.call(text, name, Path(base_dir))
+        from mechfem import deckio
+
+        return deckio.read_text(text, name, Path(base_dir))
 
     # -- analysis
 
@@ -418,7 +425,9 @@ class Mechanism(ElementMethods):
         (:meth:`RunResult.stop_reason` says why) and warns with :class:`~mechfem.IncompleteRunWarning`; with
         ``raise_on_stop`` it raises :class:`~mechfem.RunStoppedError` carrying that :class:`RunResult` instead.
         """
-        return RUN.call(
+        from mechfem import running
+
+        return running.run(
             self,
             motion or self.motion,
             storage or self.storage,
@@ -477,7 +486,9 @@ class Mechanism(ElementMethods):
 
     def check(self, motion: Motion | None = None) -> RunResult:
         """Computes position 1 only (with the first values of a table motion, as a run would)."""
-        return RUN.call(self, motion or self.motion, self.storage, with_motion=False)
+        from mechfem import running
+
+        return running.run(self, motion or self.motion, self.storage, with_motion=False)
 
     def __repr__(self) -> str:
         return (
@@ -487,24 +498,16 @@ class Mechanism(ElementMethods):
 
     def figure(self, names: bool = True) -> Any:
         """A figure (``matplotlib.figure.Figure``) of the mechanism at position 1, its points named."""
-        return FIGURE.call(self, names)
+        from mechfem import figures
+
+        return figures.mechanism_figure(self, names)
 
     def _repr_png_(self) -> bytes | None:
         """The mechanism at position 1 as a PNG image (for Jupyter), or None when it cannot be drawn."""
-        return PNG.call(self)
+        from mechfem import figures
 
+        return figures.mechanism_png(self)
 
-# The methods above whose work an upper layer does (docs/architecture.md): the deck writer and reader
-# (mechfem.deckio), the run (mechfem.running) and the figures (mechfem.figures) fill these when imported.
-TO_DECK: Hook[Callable[[Mechanism, Motion | None, Storage | None], str]] = Hook("Mechanism.to_deck", "mechfem.deckio")
-SAVE_DECK: Hook[Callable[[Mechanism, Path, Motion | None, Storage | None], Path]] = Hook(
-    "Mechanism.save_deck", "mechfem.deckio"
-)
-READ_DECK: Hook[Callable[[Path], Mechanism]] = Hook("Mechanism.from_deck", "mechfem.deckio")
-READ_DECK_TEXT: Hook[Callable[[str, str, Path], Mechanism]] = Hook("Mechanism.from_deck_text", "mechfem.deckio")
-RUN: Hook[Callable[..., RunResult]] = Hook("Mechanism.run", "mechfem.running")
-FIGURE: Hook[Callable[[Mechanism, bool], Any]] = Hook("Mechanism.figure", "mechfem.figures")
-PNG: Hook[Callable[[Mechanism], bytes | None]] = Hook("Mechanism._repr_png_", "mechfem.figures")
 
 _KINDS = ("point", "element", "input", "output", "prescribed value", "co-ordinate")
 """The kinds of names in the order a list of names shows them."""

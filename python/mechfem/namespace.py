@@ -21,7 +21,6 @@ from pathlib import Path
 from typing import Any
 
 from mechfem import deckio, echo
-from mechfem import result as _result
 from mechfem.deck_names import DeckNames
 from mechfem.echo import Model, ModelNames
 from mechfem.explain import PythonWords
@@ -197,7 +196,5 @@ def _aliases(model: Model, nb: Numbering, mech: Mechanism) -> dict[str, object]:
             out.setdefault(name, obj)
     return out
 
-
-_result.DECK_NAMES.register(deck_namespace)
 
 __all__ = ["Namespace", "deck_namespace", "model_result"]

@@ -25,9 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechfem import batch as _batch
 from mechfem import labels
-from mechfem import result as _result
 from mechfem.result import RunResult
 
 if TYPE_CHECKING:
@@ -274,8 +272,3 @@ def result_png(result: RunResult) -> bytes | None:
 def result_html(result: RunResult) -> str:
     """The summary of a named model's run (:func:`analysis_html`) or of a deck's run (:func:`run_result_html`)."""
     return analysis_html(result) if result.named else run_result_html(result)
-
-
-_result.PNG.register(result_png)
-_result.HTML.register(result_html)
-_batch.HTML.register(study_html)

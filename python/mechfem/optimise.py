@@ -18,7 +18,6 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 import numpy as np
 
 from mechfem import building, deckio, design, design_rules, dynamic_optimise, frame_angle
-from mechfem import result as _result
 from mechfem.design import FloatArray, Iteration
 from mechfem.frame_angle import FrameAngle
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
@@ -574,9 +573,6 @@ def _named(
         return float(f), np.asarray(g, dtype=np.float64)
 
     return call
-
-
-_result.SENSITIVITY.register(sensitivity)
 
 
 __all__ = [

@@ -38,7 +38,7 @@ from mechfem.report_charts import (
     paths,
 )
 from mechfem.result import RunResult
-from mechfem.result_tables import REPORT, SAVE_REPORT, run_units
+from mechfem.result_tables import run_units
 
 #: Most positions the report shows (slider, charts and table); longer runs are subsampled evenly.
 MAX_REPORT_POSITIONS = 2000
@@ -186,7 +186,3 @@ def save_report(result: RunResult, path: Path, optimisation: dict[str, Any] | No
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return path
-
-
-REPORT.register(render_report)
-SAVE_REPORT.register(save_report)

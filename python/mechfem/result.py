@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import copy
 import functools
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -23,7 +23,6 @@ import numpy.typing as npt
 import mechfem._core as _core
 from mechfem.converted import Converted
 from mechfem.echo import Model, ModelNames, Storage
-from mechfem.hooks import Hook
 from mechfem.inverse_dynamics import DynamicSeries, Simulation
 from mechfem.result_tables import Energy, Names, ResultTables
 from mechfem.run_report import AdjustInfo, Limit, RunReport
@@ -92,7 +91,9 @@ class RunResult(ResultTables):
     @property
     def _names(self) -> Names:
         if self._namespace is None:
-            self._namespace = DECK_NAMES.call(self)
+            from mechfem import namespace
+
+            self._namespace = namespace.deck_namespace(self)
         return self._namespace
 
     @property
@@ -204,19 +205,25 @@ class RunResult(ResultTables):
                 "Mechanism.read_deck and run that, then ask its result"
             )
         names = [wrt] if isinstance(wrt, str) else list(wrt)
-        out = SENSITIVITY.call(self, quantity, names)
+        from mechfem import optimise
+
+        out = optimise.sensitivity(self, quantity, names)
         return out[:, 0].copy() if isinstance(wrt, str) else out
 
     def plot(self, *outputs: str, **options: Any) -> Any:
         """A figure (``matplotlib.figure.Figure``): the mechanism at position 1 with the paths of its moving points,
         beside the ``outputs`` (default: every output) against the first input. Options: ``picture=k`` draws
         picture k of the storage as the deck does; ``points=[...]`` chooses the paths; ``against="time"``."""
-        return PLOT.call(self, outputs, **options)
+        from mechfem import figures
+
+        return figures.result_figure(self, outputs, **options)
 
     def animate(self, path: str | Path, points: Sequence[str] | None = None) -> list[Path]:
         """Writes an animation of the motion to ``path`` (GIF; also MP4 when ffmpeg is installed) with the paths
         of ``points`` (default: every moving point); returns the files written."""
-        return ANIMATE.call(self, path, points)
+        from mechfem import figures
+
+        return figures.animate(self, path, points)
 
     def to_dxf(
         self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True, units: str | None = None
@@ -224,17 +231,25 @@ class RunResult(ResultTables):
         """Writes the mechanism at ``position`` (1-based) as a DXF file with the paths of its moving points
         (``paths``: True, False or point names) and the points' names, one layer per kind of shape; ``units``
         ("mm", "m", ...) declares the length unit. Needs ezdxf (``pip install 'mechfem[dxf]'``)."""
-        return TO_DXF.call(self, path, position, paths, units)
+        from mechfem import export
+
+        return export.analysis_dxf(self, path, position, paths, units)
 
     def to_svg(self, path: str | Path, position: int = 1, paths: bool | Sequence[str] = True) -> Path:
         """Writes the mechanism at ``position`` (1-based) as an SVG file, as :meth:`to_dxf` does a DXF file."""
-        return TO_SVG.call(self, path, position, paths)
+        from mechfem import export
+
+        return export.analysis_svg(self, path, position, paths)
 
     def _repr_png_(self) -> bytes | None:
-        return PNG.call(self)
+        from mechfem import notebook
+
+        return notebook.result_png(self)
 
     def _repr_html_(self) -> str:
-        return HTML.call(self)
+        from mechfem import notebook
+
+        return notebook.result_html(self)
 
     def __repr__(self) -> str:
         name = self.mechanism.name if self.named else self.path
@@ -340,22 +355,5 @@ def check_result(deck: Path, d: _core.Check) -> CheckResult:
         model=_model_and_names(d.model)[0],
     )
 
-
-# The work upper layers do for this one (docs/architecture.md): names for a deck (mechanism.namespace), sensitivities
-# (mechfem.optimise), figures (mechfem.figures), drawings (mechfem.export), notebook views (mechfem.notebook).
-DECK_NAMES: Hook[Callable[[RunResult], Names]] = Hook("RunResult names of a deck", "mechfem.namespace")
-SENSITIVITY: Hook[Callable[[RunResult, Any, list[str]], FloatArray]] = Hook("RunResult.sensitivity", "mechfem.optimise")
-PLOT: Hook[Callable[..., Any]] = Hook("RunResult.plot", "mechfem.figures")
-ANIMATE: Hook[Callable[[RunResult, str | Path, Sequence[str] | None], list[Path]]] = Hook(
-    "RunResult.animate", "mechfem.figures"
-)
-TO_DXF: Hook[Callable[[RunResult, str | Path, int, bool | Sequence[str], str | None], Path]] = Hook(
-    "RunResult.to_dxf", "mechfem.export"
-)
-TO_SVG: Hook[Callable[[RunResult, str | Path, int, bool | Sequence[str]], Path]] = Hook(
-    "RunResult.to_svg", "mechfem.export"
-)
-PNG: Hook[Callable[[RunResult], bytes | None]] = Hook("RunResult._repr_png_", "mechfem.notebook")
-HTML: Hook[Callable[[RunResult], str]] = Hook("RunResult._repr_html_", "mechfem.notebook")
 
 __all__ = ["Analysis", "CheckResult", "Energy", "Names", "RunResult", "check_result", "mean_step", "run_result"]

@@ -13,9 +13,9 @@ from __future__ import annotations
 import functools
 import math
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, NamedTuple, Protocol
+from typing import Any, NamedTuple, Protocol, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -24,7 +24,6 @@ import mechfem._core as _core
 from mechfem import designer, optional
 from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import BUFFER_ARGS, Model, ModelNames, Storage
-from mechfem.hooks import Hook
 from mechfem.run_report import RunReport
 from mechfem.units import Units, check_output_unit, kind_of, scale
 from mechfem.words import Words
@@ -554,12 +553,18 @@ class ResultTables:
         """The interactive report of the run as one self-contained HTML page (the text of the file ``mechfem run
         --report`` writes): the mechanism animated, det(D^c) and the limit positions, every picture and a table of
         the buffers, named and in the model's units."""
-        return REPORT.call(self)
+        from mechfem import report
+        from mechfem.result import RunResult
+
+        return report.render_report(cast(RunResult, self))
 
     def save_report(self, path: str | os.PathLike[str]) -> Path:
         """Writes :meth:`to_html` to ``path`` (a file; its folder is made if needed), whole or not at all; returns
         the path."""
-        return SAVE_REPORT.call(self, Path(path))
+        from mechfem import report
+        from mechfem.result import RunResult
+
+        return report.save_report(cast(RunResult, self), Path(path))
 
     def to_pandas(self, coordinates: bool = True, unit: str | None = None) -> Any:
         """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...), its columns named as the model
@@ -590,8 +595,3 @@ def run_units(result: Any) -> Units:
         if isinstance(units, Units):
             return units
     return Units()
-
-
-# The report is written by mechfem.report, above this module (docs/architecture.md).
-REPORT: Hook[Callable[[Any], str]] = Hook("RunResult.to_html", "mechfem.report")
-SAVE_REPORT: Hook[Callable[[Any, Path], Path]] = Hook("RunResult.save_report", "mechfem.report")

@@ -9,14 +9,13 @@ in the items (coincident points, a zero length), from the note of the item it is
 before. A value no deck can state raises the deck writer's ``ValueError``, ``KeyError`` or ``TypeError``.
 
 :meth:`Mechanism.run <mechfem.Mechanism.run>` and :meth:`Mechanism.check <mechfem.Mechanism.check>` sit in the model
-layer, below the run: this module fills their hook (:mod:`mechfem.hooks`) when it is imported.
+layer, below the run: they import this module when they are called.
 """
 
 from __future__ import annotations
 
 import mechfem._core as _core
 from mechfem import building, compiled, deckio
-from mechfem import model as _model
 from mechfem.deckio import Progress
 from mechfem.errors import MechfemError, RunInterrupted, on_stop
 from mechfem.limits import memory_limit
@@ -27,7 +26,6 @@ from mechfem.result import RunResult
 from mechfem.storage import Storage
 
 
-@_model.RUN.register
 def run(
     mech: Mechanism,
     motion: Motion | None,

@@ -1,7 +1,8 @@
 /* The optimisation of a KIN OPT deck on its report page, from D.optimisation (mechfem.optimum_report): what the
  * optimiser did, its objective per iteration (uPlot, logarithmic axis), every design variable's start and final
  * value against its bounds, every target's residual, and the start and final designs drawn over each other at
- * position 1 with the points the targets ask for. A report without it leaves its section hidden. */
+ * position 1 with the points the targets ask for (each shape traced by page.js's traceShape). A report without it
+ * leaves its section hidden. */
 "use strict";
 (function () {
   const D = JSON.parse(document.getElementById("data").textContent);
@@ -75,18 +76,7 @@
       ctx.strokeStyle = faded ? START : st.edge;
       ctx.lineWidth = st.width * 1.25 * r;
       ctx.setLineDash(faded || st.dash ? [6 * r, 4 * r] : []);
-      ctx.beginPath();
-      if (kind === "line" || kind === "polygon") {
-        ctx.moveTo(X(d[0]), Y(d[1]));
-        for (let j = 2; j < d.length; j += 2) ctx.lineTo(X(d[j]), Y(d[j + 1]));
-        if (kind === "polygon") ctx.closePath();
-      } else if (kind === "circle") {
-        ctx.arc(X(d[0]), Y(d[1]), Math.max(d[2] * s, 0.5), 0, 2 * Math.PI);
-      } else if (kind === "arc") {
-        ctx.arc(X(d[0]), Y(d[1]), d[2] * s, -d[3], -d[4], true);
-      } else if (kind === "segments") {
-        for (let j = 0; j < d.length; j += 4) { ctx.moveTo(X(d[j]), Y(d[j + 1])); ctx.lineTo(X(d[j + 2]), Y(d[j + 3])); }
-      }
+      traceShape(ctx, kind, d, X, Y, s);
       // The start design is outlines only, so that the final one shows through it.
       if (!faded && st.fill && (kind === "polygon" || kind === "circle")) { ctx.fillStyle = st.fill; ctx.fill(); }
       ctx.stroke();

@@ -2,6 +2,30 @@
  * limit positions, the status of the run and the table of buffers, all from the JSON in <script id="data">.
  * Opened as ...#position=N it starts at position N; opened as ...#selftest it checks itself (see the end). */
 "use strict";
+
+/* The outline of one shape of a mechanism drawing (mechfem.drawing: kind "line", "polygon", "circle", "arc" or
+ * "segments", d its numbers in the model's units) as a new path on ctx, to be stroked or filled by the caller.
+ * X, Y: model to canvas pixels; s: canvas pixels per unit of length. The optimisation's designs (optimisation.js)
+ * are drawn with it too. */
+function traceShape(ctx, kind, d, X, Y, s) {
+  ctx.beginPath();
+  if (kind === "line" || kind === "polygon") {
+    ctx.moveTo(X(d[0]), Y(d[1]));
+    for (let j = 2; j < d.length; j += 2) ctx.lineTo(X(d[j]), Y(d[j + 1]));
+    if (kind === "polygon") ctx.closePath();
+  } else if (kind === "circle") {
+    ctx.arc(X(d[0]), Y(d[1]), Math.max(d[2] * s, 0.5), 0, 2 * Math.PI);
+  } else if (kind === "arc") {
+    // Counter-clockwise with y up is anticlockwise on the canvas, whose y points down.
+    ctx.arc(X(d[0]), Y(d[1]), d[2] * s, -d[3], -d[4], true);
+  } else if (kind === "segments") {
+    for (let j = 0; j < d.length; j += 4) {
+      ctx.moveTo(X(d[j]), Y(d[j + 1]));
+      ctx.lineTo(X(d[j + 2]), Y(d[j + 3]));
+    }
+  }
+}
+
 (function () {
   const errors = [];
   window.addEventListener("error", (e) => errors.push(String(e.message)));
@@ -61,22 +85,7 @@
       ctx.strokeStyle = st.edge;
       ctx.lineWidth = st.width * PT * r;
       ctx.setLineDash(st.dash ? [6 * r, 4 * r] : []);
-      ctx.beginPath();
-      if (kind === "line" || kind === "polygon") {
-        ctx.moveTo(X(d[0]), Y(d[1]));
-        for (let j = 2; j < d.length; j += 2) ctx.lineTo(X(d[j]), Y(d[j + 1]));
-        if (kind === "polygon") ctx.closePath();
-      } else if (kind === "circle") {
-        ctx.arc(X(d[0]), Y(d[1]), Math.max(d[2] * s, 0.5), 0, 2 * Math.PI);
-      } else if (kind === "arc") {
-        // Counter-clockwise with y up is anticlockwise on the canvas, whose y points down.
-        ctx.arc(X(d[0]), Y(d[1]), d[2] * s, -d[3], -d[4], true);
-      } else if (kind === "segments") {
-        for (let j = 0; j < d.length; j += 4) {
-          ctx.moveTo(X(d[j]), Y(d[j + 1]));
-          ctx.lineTo(X(d[j + 2]), Y(d[j + 3]));
-        }
-      }
+      traceShape(ctx, kind, d, X, Y, s);
       if (st.fill && (kind === "polygon" || kind === "circle")) { ctx.fillStyle = st.fill; ctx.fill(); }
       ctx.stroke();
     }
