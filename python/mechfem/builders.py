@@ -46,7 +46,7 @@ class ElementMethods:
 
         def _own(self, obj: Slot) -> Slot: ...
 
-        def _check_free(self, name: str) -> None: ...
+        def _check_free(self, name: str, kind: type | None = None) -> None: ...
 
         def _claim(self, name: str, obj: object) -> None: ...
 
@@ -80,7 +80,7 @@ class ElementMethods:
     # -- elements
 
     def _element(self, name: str, type: str, slots: Sequence[Slot], roles: Mapping[str, Role]) -> Element:
-        self._check_free(name)
+        self._check_free(name, Element)
         e = Element(name, type, slots)
         angle = self.units.angle
         rows = [role_row(FormParameter(e, f), roles.get(f), angle) for f in FORMS[type]]

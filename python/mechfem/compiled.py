@@ -159,7 +159,7 @@ def _shape(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> t
     loads = mech.loads
     return (
         mech.name,
-        len(mech._names),
+        len(mech._names) + sum(map(len, mech._shared.values())),
         [(c, c.fixed, c.number) for c in mech.coordinates],
         [(p, p.x, p.y) for p in mech.points],
         [(e, e.type, e.slots) for e in mech.elements],

@@ -115,17 +115,35 @@ class Mechanism(ElementMethods):
         self.storage: Storage | None = None
         self.loads: Loads | None = None
         self._names: dict[str, object] = {}
+        # Parts that share a name with a part of another kind (names are unique within a kind, names-units.md):
+        # ``_names`` holds the first, ``_shared`` the others, which ``find`` reaches by the kind it accepts.
+        self._shared: dict[str, list[object]] = {}
 
     # -- names
 
-    def _check_free(self, name: str) -> None:
+    def _named(self, name: str) -> list[object]:
+        """Every part called ``name``: one, or one of each kind that shares it."""
+        first = self._names.get(name)
+        return [] if first is None else [first, *self._shared.get(name, [])]
+
+    def _check_free(self, name: str, kind: type | None = None) -> None:
+        """Refuse ``name`` when a part of the same ``kind`` (any part when None) already has it."""
         check_name(name)
-        if name in self._names:
-            raise ValueError(f"the name {name!r} is already used by {self._names[name]!r}")
+        taken = [o for o in self._named(name) if kind is None or isinstance(o, kind)]
+        if taken:
+            raise ValueError(f"the name {name!r} is already used by {taken[0]!r}")
 
     def _claim(self, name: str, obj: object) -> None:
-        self._check_free(name)
-        self._names[name] = obj
+        kind = next((k for k in (Point, Coordinate, Element, Row) if isinstance(obj, k)), type(obj))
+        self._check_free(name, kind)
+        if name in self._names:
+            self._shared.setdefault(name, []).append(obj)
+        else:
+            self._names[name] = obj
+
+    def _has(self, obj: object) -> bool:
+        """Whether ``obj`` is this mechanism's part of its name."""
+        return any(o is obj for o in self._named(getattr(obj, "name", "")))
 
     def __getitem__(self, name: str) -> Any:
         """The point, co-ordinate, element or row called ``name`` (typed ``Any`` for convenience: check with
@@ -138,9 +156,11 @@ class Mechanism(ElementMethods):
         """The part called ``name`` that ``accept`` accepts (default: any); for a name the model does not have, an
         :class:`~mechfem.names.UnknownNameError` (a KeyError) naming the closest ``what`` it has (``kinds``: the
         plural in the list of those names), and a TypeError for a part that ``accept`` refuses."""
-        obj = self._names.get(name) if isinstance(name, str) else None
-        if obj is not None and (accept is None or accept(obj)):
-            return obj
+        named = self._named(name) if isinstance(name, str) else []
+        obj = named[0] if named else None
+        for part in named:
+            if accept is None or accept(part):
+                return part
         if obj is not None:
             raise TypeError(f"{name!r} is {article(kind_of(obj))} of the mechanism {self.name!r}, not {article(what)}")
         # The names of the closest one's kind only, or every name with the points first: a model has many names.
@@ -178,7 +198,7 @@ class Mechanism(ElementMethods):
         return [r for r in self.rows if r.kind == "prescribed"]
 
     def _own(self, obj: Slot) -> Slot:
-        if isinstance(obj, Point | Coordinate) and self._names.get(obj.name) is obj:
+        if isinstance(obj, Point | Coordinate) and self._has(obj):
             return obj
         if isinstance(obj, Point | Coordinate):
             raise ValueError(f"{obj!r} belongs to another mechanism")
@@ -203,7 +223,7 @@ class Mechanism(ElementMethods):
         (``"y"``: a slider on a horizontal guide)."""
         if fixed not in ("", "x", "y", "xy"):
             raise ValueError(f"fixed must be '', 'x', 'y' or 'xy', not {fixed!r}")
-        self._check_free(name)
+        self._check_free(name, Point)
         cx = self._coordinate(f"{name}.x", x, "x" in fixed, "x")
         cy = self._coordinate(f"{name}.y", y, "y" in fixed, "y")
         p = Point(name, cx, cy)
@@ -227,7 +247,7 @@ class Mechanism(ElementMethods):
             raise TypeError(f"expected a form parameter or a combination of them, got {expr!r}")
         terms = expr.terms()
         for _, p in terms:
-            if self._names.get(p.element.name) is not p.element:
+            if not self._has(p.element):
                 raise ValueError(f"{p!r} belongs to another mechanism")
         return terms
 
