@@ -48,6 +48,7 @@ def needs_chromium(test: F) -> F:
     marked: F = pytest.mark.browser(_skip_without_chromium(test))
     return marked
 
+
 # Headless, no sandbox (root in a container), nothing of the browser's own: no first-run, sync, updates or
 # background traffic; host names resolve nowhere and any request that still starts goes to a closed local port.
 FLAGS = [
