@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import shutil
+import signal
 import subprocess
 import sys
 from collections.abc import Callable
@@ -11,6 +12,12 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
+
+# A shell started without job control (`cmd &` in a script) starts its children with Ctrl-C ignored, and Python
+# then never raises KeyboardInterrupt. The interrupt tests press Ctrl-C on purpose: give it back its usual meaning
+# here, and to the processes the tests start (an ignored signal is inherited through exec, a handler is not).
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 SUPPLY = ROOT / "examples" / "supply" / "supply.mec"
 STOP_MARK = "; expect: the motion stops at a limit position"
 

@@ -186,7 +186,7 @@ BATTERY: dict[str, Callable[[], object]] = {
     "a simulation without masses": lambda: fourbar().simulate(1.0, 10),
     "a table file name with blanks": lambda: fourbar().to_deck(Motion(2, {None: Table(np.zeros(3), file="a b")})),
     "a run too large for the memory limit": lambda: fourbar().run(Motion.by(2_000_000, 1.0)),
-    "a name used twice": lambda: fourbar().point("crank", 0.0, 0.0),
+    "a name used twice": lambda: fourbar().point("A", 0.0, 0.0),
     "a form parameter of another mechanism": lambda: fourbar().output("other", fourbar()["crank"].angle),
     "a mass on a gear pair": lambda: gears().mass("mesh", 1.0),
     "a change faster than a number can hold": lambda: fourbar().run(Motion.by(3, 1e300, dt=1e-300, unit="rad")),
