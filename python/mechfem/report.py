@@ -132,6 +132,7 @@ PAGE_PARTS = {
     "UPLOT_JS": "vendor/uplot/uPlot.iife.min.js",
     "PAGE_CSS": "report_assets/report.css",
     "CHARTS_JS": "report_assets/charts.js",
+    "SCENE_JS": "report_assets/scene.js",
     "PAGE_JS": "report_assets/page.js",
     "OPT_JS": "report_assets/optimisation.js",
 }

@@ -1,7 +1,7 @@
 /* The optimisation of a KIN OPT deck on its report page, from D.optimisation (mechfem.optimum_report): what the
  * optimiser did, its objective per iteration (uPlot, logarithmic axis), every design variable's start and final
  * value against its bounds, every target's residual, and the start and final designs drawn over each other at
- * position 1 with the points the targets ask for (each shape traced by page.js's traceShape). A report without it
+ * position 1 with the points the targets ask for (each shape traced by scene.js's traceShape). A report without it
  * leaves its section hidden. */
 "use strict";
 (function () {
@@ -76,7 +76,7 @@
       ctx.strokeStyle = faded ? START : st.edge;
       ctx.lineWidth = st.width * 1.25 * r;
       ctx.setLineDash(faded || st.dash ? [6 * r, 4 * r] : []);
-      traceShape(ctx, kind, d, X, Y, s);
+      MechfemScene.traceShape(ctx, kind, d, X, Y, s);
       // The start design is outlines only, so that the final one shows through it.
       if (!faded && st.fill && (kind === "polygon" || kind === "circle")) { ctx.fillStyle = st.fill; ctx.fill(); }
       ctx.stroke();

@@ -3,29 +3,6 @@
  * Opened as ...#position=N it starts at position N; opened as ...#selftest it checks itself (see the end). */
 "use strict";
 
-/* The outline of one shape of a mechanism drawing (mechfem.drawing: kind "line", "polygon", "circle", "arc" or
- * "segments", d its numbers in the model's units) as a new path on ctx, to be stroked or filled by the caller.
- * X, Y: model to canvas pixels; s: canvas pixels per unit of length. The optimisation's designs (optimisation.js)
- * are drawn with it too. */
-function traceShape(ctx, kind, d, X, Y, s) {
-  ctx.beginPath();
-  if (kind === "line" || kind === "polygon") {
-    ctx.moveTo(X(d[0]), Y(d[1]));
-    for (let j = 2; j < d.length; j += 2) ctx.lineTo(X(d[j]), Y(d[j + 1]));
-    if (kind === "polygon") ctx.closePath();
-  } else if (kind === "circle") {
-    ctx.arc(X(d[0]), Y(d[1]), Math.max(d[2] * s, 0.5), 0, 2 * Math.PI);
-  } else if (kind === "arc") {
-    // Counter-clockwise with y up is anticlockwise on the canvas, whose y points down.
-    ctx.arc(X(d[0]), Y(d[1]), d[2] * s, -d[3], -d[4], true);
-  } else if (kind === "segments") {
-    for (let j = 0; j < d.length; j += 4) {
-      ctx.moveTo(X(d[j]), Y(d[j + 1]));
-      ctx.lineTo(X(d[j + 2]), Y(d[j + 3]));
-    }
-  }
-}
-
 (function () {
   const errors = [];
   window.addEventListener("error", (e) => errors.push(String(e.message)));
@@ -34,7 +11,6 @@ function traceShape(ctx, kind, d, X, Y, s) {
   const D = JSON.parse(document.getElementById("data").textContent);
   const F = D.frames.length;
   const C = MechfemCharts, el = C.el, fmt = C.fmt;
-  const PT = 1.25; // CSS pixels per point, for the drawing's line widths
   const RATE = 20; // positions per second at 1x, as in the animation
   const cols = D.columns;
   let cur = 0;
@@ -61,47 +37,10 @@ function traceShape(ctx, kind, d, X, Y, s) {
   D.paths.forEach((p) => pathColour(p.x, p.y));
 
   // ---- the mechanism ----
-  function shapeData(f) {
-    const sc = D.scene;
-    const out = new Array(sc.kinds.length);
-    for (const k in sc.static) out[+k] = sc.static[k];
-    sc.moving.forEach((i, j) => { out[i] = sc.frames[f][j]; });
-    return out;
-  }
-  const ORDER = D.scene.kinds.map((_, i) => i)
-    .sort((a, b) => (D.styles[D.scene.roles[a]].layer - D.styles[D.scene.roles[b]].layer) || (a - b));
-
+  const S = MechfemScene; // the drawing (scene.js)
+  const ORDER = S.layers(D);
   // X, Y: model to canvas pixels; s: canvas pixels per unit of length; r: canvas pixels per CSS pixel.
-  function drawScene(ctx, X, Y, s, f, alpha, r) {
-    const sc = D.scene, data = shapeData(f);
-    ctx.save();
-    ctx.globalAlpha = alpha;
-    ctx.lineJoin = "round";
-    ctx.lineCap = "round";
-    for (const i of ORDER) {
-      const d = data[i];
-      if (d.some((x) => x === null)) continue;
-      const st = D.styles[sc.roles[i]], kind = sc.kinds[i];
-      ctx.strokeStyle = st.edge;
-      ctx.lineWidth = st.width * PT * r;
-      ctx.setLineDash(st.dash ? [6 * r, 4 * r] : []);
-      traceShape(ctx, kind, d, X, Y, s);
-      if (st.fill && (kind === "polygon" || kind === "circle")) { ctx.fillStyle = st.fill; ctx.fill(); }
-      ctx.stroke();
-    }
-    ctx.restore();
-  }
-  function polyline(ctx, X, Y, xs, ys, upto) {
-    ctx.beginPath();
-    let pen = false;
-    const n = upto === undefined ? xs.length : Math.min(upto + 1, xs.length);
-    for (let k = 0; k < n; k++) {
-      if (xs[k] === null || ys[k] === null) { pen = false; continue; }
-      if (pen) ctx.lineTo(X(xs[k]), Y(ys[k])); else ctx.moveTo(X(xs[k]), Y(ys[k]));
-      pen = true;
-    }
-    ctx.stroke();
-  }
+  function drawScene(ctx, X, Y, s, f, alpha, r) { S.draw(D, ORDER, ctx, X, Y, s, f, alpha, r); }
 
   const mech = { canvas: $("mechanism") };
   (function mechanismBox() {
@@ -145,8 +84,8 @@ function traceShape(ctx, kind, d, X, Y, s) {
     for (const p of D.paths) {
       const colour = pathColour(p.x, p.y), xs = cols[p.x].values, ys = cols[p.y].values;
       ctx.strokeStyle = colour;
-      ctx.globalAlpha = 0.45; ctx.lineWidth = 1.5 * r; polyline(ctx, X, Y, xs, ys);
-      ctx.globalAlpha = 1; ctx.lineWidth = 2.4 * r; polyline(ctx, X, Y, xs, ys, cur);
+      ctx.globalAlpha = 0.45; ctx.lineWidth = 1.5 * r; S.polyline(ctx, X, Y, xs, ys);
+      ctx.globalAlpha = 1; ctx.lineWidth = 2.4 * r; S.polyline(ctx, X, Y, xs, ys, cur);
     }
     for (const p of D.paths) {
       const colour = pathColour(p.x, p.y), x = cols[p.x].values[cur], y = cols[p.y].values[cur];

@@ -15,7 +15,7 @@ PARTS = {
     "UPLOT_JS": PAGE_PARTS["UPLOT_JS"],
     "REPORT_CSS": PAGE_PARTS["PAGE_CSS"],
     "CHARTS_JS": PAGE_PARTS["CHARTS_JS"],
-    "SCENE_JS": "report_assets/scene.js",
+    "SCENE_JS": PAGE_PARTS["SCENE_JS"],
     "STUDIO_CSS": "studio_app/assets/studio.css",
     "STUDIO_JS": "studio_app/assets/studio.js",
 }
