@@ -72,9 +72,13 @@ class Columns:
                 "axis": with_unit(name, unit),
                 "header": with_unit(header or name, unit),
                 "text": text or name,
-                "values": nums(np.asarray(values, dtype=np.float64)[self.frames]),
+                "values": self.rounded(np.asarray(values, dtype=np.float64)[self.frames]),
             }
         return key
+
+    def rounded(self, values: np.ndarray) -> Any:
+        """A column's values as the page is sent them (:func:`nums`)."""
+        return nums(values)
 
     def buffer(self, result: RunResult, lab: Label) -> str:
         return self.add(

@@ -14,7 +14,6 @@ from typing import Any
 import numpy as np
 
 from mechfem.designer import FRAMED, transmission_angle
-from mechfem.labels import with_unit
 from mechfem.model import Mechanism
 from mechfem.parts import Element
 from mechfem.report_charts import (
@@ -51,21 +50,8 @@ def six_digits(values: Any) -> np.ndarray:
 class StudioColumns(Columns):
     """The report's columns, each rounded at once (:func:`six_digits`): a column per value costs more than a run."""
 
-    def add(
-        self, key: str, name: str, unit: str, kind: str, values: Any, header: str | None = None, text: str = ""
-    ) -> str:
-        unit = self.shown(unit)
-        if key not in self.table:
-            self.table[key] = {
-                "name": name,
-                "unit": unit,
-                "kind": kind,
-                "axis": with_unit(name, unit),
-                "header": with_unit(header or name, unit),
-                "text": text or name,
-                "values": six_digits(np.asarray(values, dtype=np.float64)[self.frames]),
-            }
-        return key
+    def rounded(self, values: np.ndarray) -> Any:
+        return six_digits(values)
 
     def values(self, key: str) -> list[float | None]:
         v = self.table[key]["values"]
