@@ -208,23 +208,34 @@ impl DesignModel {
 
     /// The dict of an infeasible design without positions.
     fn failed<'py>(&self, py: Python<'py>, kind: &str, why: String) -> PyResult<Bound<'py, PyDict>> {
-        let (nq, nv) = (self.setup.quantities.len(), self.setup.vars.len());
-        let d = PyDict::new(py);
-        d.set_item("feasible", false)?;
-        d.set_item("reason", why)?;
-        d.set_item("reason_kind", kind)?;
-        d.set_item("positions", 0)?;
-        d.set_item("position_one", py.None())?;
-        d.set_item("report", py.None())?;
-        d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
-        d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;
-        d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
-        Ok(d)
+        infeasible(py, kind, why, self.setup.quantities.len(), self.setup.vars.len())
     }
 }
 
+/// The dict of an infeasible design without positions, `nq` quantities and
+/// `nv` variables wide (a kinematic or a dynamic design alike).
+pub(crate) fn infeasible<'py>(
+    py: Python<'py>,
+    kind: &str,
+    why: String,
+    nq: usize,
+    nv: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("feasible", false)?;
+    d.set_item("reason", why)?;
+    d.set_item("reason_kind", kind)?;
+    d.set_item("positions", 0)?;
+    d.set_item("position_one", py.None())?;
+    d.set_item("report", py.None())?;
+    d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
+    d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;
+    d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
+    Ok(d)
+}
+
 /// The kind of a failure (see [`DesignModel::evaluate`]) and its words.
-fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
+pub(crate) fn reason(c: &Compiled, e: &DesignFailure) -> (&'static str, String) {
     worded::design_failure(&c.mechanism, &c.names, &c.dynamics_lines, e)
 }
 
