@@ -146,13 +146,22 @@ def _part(name: str) -> str:
     return text
 
 
+def page_template(name: str) -> str:
+    """The template of a page (the report's, the studio's) with the head they share (report_assets/head.html: the
+    page's policy, its title, uPlot's and the page's style) in place of its ``{{HEAD}}``."""
+    files = resources.files("mechfem")
+    head = files.joinpath("report_assets/head.html").read_text(encoding="utf-8").rstrip("\n")
+    return files.joinpath(name).read_text(encoding="utf-8").replace("{{HEAD}}", head, 1)
+
+
 def render_report(result: RunResult, optimisation: dict[str, Any] | None = None) -> str:
     """The report page as text: the template with the scripts, the style and the data inlined."""
-    template = resources.files("mechfem").joinpath("report_template.html").read_text(encoding="utf-8")
+    template = page_template("report_template.html")
     data = json.dumps(report_data(result, optimisation), separators=(",", ":"), allow_nan=False)
     parts = {key: _part(name) for key, name in PAGE_PARTS.items()}
     parts["DATA"] = script_safe(data)
     parts["TITLE"] = html.escape(f"{result.deck.stem} - mechfem report")
+    parts["CSP_MORE"] = ""
     # One pass, so that nothing inlined is searched for placeholders again.
     return re.sub(r"\{\{([A-Z_]+)\}\}", lambda m: parts[m.group(1)], template)
 
