@@ -84,6 +84,8 @@ def main() -> int:
     print(f"  design drawn             {quantiles([s['shown'] for s in samples])}")
     for part in ("parse", "charts", "show"):
         print(f"    page's {part:6s}         {quantiles([s[part] for s in samples])}")
+    print(f"  page's work done         {quantiles([s['committed'] for s in samples])}")
+    print(f"  next frame begins        {quantiles([s['frame'] for s in samples])}")
     print(f"  server (run + view + JSON)  {quantiles(server)}")
     print(f"    its CPU time           {quantiles([s['server_cpu'] for s in samples])}")
     print(f"  core run                 {quantiles(run)}")

@@ -25,6 +25,7 @@ import mechfem  # noqa: E402
 from mechfem import cli, compiled  # noqa: E402
 from mechfem.studio_app import missing  # noqa: E402
 from mechfem.studio_app.actions import Actions, examples  # noqa: E402
+from mechfem.studio_app.delta import GONE, changes, merged  # noqa: E402
 from mechfem.studio_app.scene import scene  # noqa: E402
 from mechfem.studio_app.server import dumps, serve_in_thread  # noqa: E402
 from mechfem.studio_app.session import EditRefused, Session  # noqa: E402
@@ -200,7 +201,9 @@ def test_server_needs_its_token_and_answers_on_loopback_only() -> None:
             assert hello["type"] == "hello" and hello["design"]["positions"] == 361
             ws.send(json.dumps({"op": "edit", "changes": {"crank.length": 1.2}}))
             reply = json.loads(ws.recv())
-            assert reply["type"] == "design" and reply["design"]["studio"]["revision"] == 1
+            # An edit's answer holds what changed of the design the page has.
+            assert reply["type"] == "design" and "design" not in reply
+            assert reply["changes"]["studio"]["revision"] == 1
         # Without the token the websocket is closed before it opens (the handshake gets 403).
         with pytest.raises(websockets.exceptions.InvalidStatus) as refused:
             websockets_sync.connect(ws_url.split("?")[0] + "?token=nope").close()
@@ -282,17 +285,34 @@ def test_answers_write_numpy_columns_and_not_finite_numbers_as_null() -> None:
 def test_the_drawing_kept_from_one_design_draws_the_next_as_a_fresh_one() -> None:
     s = Session(four_bar())
     view(s)
-    assert s.drawing_kept["maps"]
+    assert s.drawing_kept["a"].shape[1] == 10
     s.edit({"crank.length": 1.2, "coupler.v": 0.9})
     frames = np.arange(s.result.positions)
     kept, fresh = scene(s.result, frames, s.drawing_kept), scene(s.result, frames)
     assert kept["moving"] == fresh["moving"] and kept["static"] == fresh["static"] and kept["bounds"] == fresh["bounds"]
     np.testing.assert_allclose(_flat(kept["frames"]), _flat(fresh["frames"]), atol=1e-9)
-    # Maps that no longer draw the design (here: made wrong on purpose) are found anew, not used.
-    s.drawing_kept["maps"] = [None if m is None else (m[0], m[1] + 1.0) for m in s.drawing_kept["maps"]]
+    # A map that no longer draws the design (here: made wrong on purpose) is found anew, not used.
+    s.drawing_kept["a"] = s.drawing_kept["a"] + 0.5
     again = scene(s.result, frames, s.drawing_kept)
     np.testing.assert_allclose(_flat(again["frames"]), _flat(fresh["frames"]), atol=1e-9)
 
 
 def _flat(frames: list[list[np.ndarray]]) -> np.ndarray:
     return np.concatenate([np.asarray(v, dtype=np.float64).ravel() for shapes in frames for v in shapes])
+
+
+def test_an_edits_changes_put_into_the_design_shown_give_the_new_design() -> None:
+    s = Session(four_bar())
+    before = view(s)
+    s.edit({"crank.length": 1.15})
+    after = view(s)
+    change = changes(before, after)
+    # What the edit does not change is not sent: the drawing's styles and kinds, the columns' names, the cards' titles.
+    assert "styles" not in change and "kinds" not in change["scene"] and "frames" not in change
+    assert set(change["columns"]["b2"]) == {"values"}
+    assert len(dumps(change)) < len(dumps(after))
+    assert json.loads(dumps(merged(before, change))) == json.loads(dumps(after))
+    # A key the new design has not is said gone; an unchanged design changes nothing but the moving shapes (a list of
+    # arrays, sent without looking).
+    assert changes({"a": 1, "b": {"c": 2}}, {"b": {}}) == {"b": {GONE: ["c"]}, GONE: ["a"]}
+    assert list(changes(after, view(s))) == ["scene"] and list(changes(after, view(s))["scene"]) == ["frames"]

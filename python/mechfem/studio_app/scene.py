@@ -2,10 +2,11 @@
 
 The report's drawing (:class:`mechfem.drawing.MechanismDrawing`) gives the shapes at one position from all the
 co-ordinates; for pin-jointed elements (bars, plates, pivots, the frame's hatching) each shape's numbers are an affine
-function of the co-ordinates: ``d(x) = A x + b``. :func:`scene` finds ``A`` and ``b`` of each shape from the drawing
-itself (the shapes at position 1 and with each co-ordinate moved by one unit), checks that they give the drawing's
-own shapes at five positions spread over the motion, and then computes the shape at every position with one matrix
-product. A shape that fails the check (a slider's block turned by an angle, a belt's wrap) is drawn at every position
+function of the co-ordinates: ``d(x) = A x + b``. :func:`scene` finds ``A`` of all the shapes at once from the
+drawing itself (the shapes at position 1 and with each co-ordinate moved by one unit; a design edited keeps its
+mechanism's ``A``), ``b`` from the shapes at position 1, checks that they give the drawing's own shapes at three
+positions spread over the motion, and then computes every shape at every position with one matrix product. A shape
+that fails the check (a slider's block turned by an angle, a belt's wrap) is drawn at every position
 by the drawing as the report does. The result is the report's scene (:func:`mechfem.report._scene`): the same
 shapes, the numbers rounded to the 6th digit of the drawing's size.
 """
@@ -39,93 +40,132 @@ def _size(d: np.ndarray) -> float:
     return 1.0 + (float(np.abs(finite).max()) if len(finite) else 0.0)
 
 
-def _same(predicted: np.ndarray, drawn: Any, tol: float) -> bool:
-    """Equal within ``tol`` (absolute plus ``CHECK`` relative), NaN where NaN: ``np.allclose`` without its cost."""
-    actual = np.asarray(drawn, dtype=np.float64)
-    with np.errstate(invalid="ignore"):
-        close = np.abs(predicted - actual) <= tol + CHECK * np.abs(actual)
-    return bool(np.all(close | (np.isnan(predicted) & np.isnan(actual))))
-
-
-def _affine_maps(drawing: MechanismDrawing, x0: np.ndarray, d0: list[np.ndarray]) -> list[Affine | None]:
-    """``A`` and ``b`` of each shape from the drawing at ``x0`` and with each co-ordinate moved by one unit (None: a
-    shape whose number of values changes)."""
+def _affine_part(drawing: MechanismDrawing, x0: np.ndarray, flat0: np.ndarray, sizes: list[int]) -> np.ndarray:
+    """``A`` of the stacked shapes from the drawing at ``x0`` and with each co-ordinate moved by one unit (NaN rows:
+    a shape whose number of values changes)."""
     n = len(x0)
+    a = np.full((len(flat0), n), np.nan)
     # Column j of A: how each shape moves when co-ordinate j moves by one unit.
-    probes = [drawing.shapes(x0 + np.eye(n)[j]) for j in range(n)]
-    maps: list[Affine | None] = []
-    for i in range(len(d0)):
-        cols = [np.asarray(p[i].data, dtype=np.float64) - d0[i] for p in probes]
-        if any(len(c) != len(d0[i]) for c in cols):
-            maps.append(None)
+    for j in range(n):
+        probe = drawing.shapes(x0 + np.eye(n)[j])
+        if [len(s.data) for s in probe] == sizes:
+            a[:, j] = np.concatenate([np.asarray(s.data, dtype=np.float64) for s in probe]) - flat0
+    return a
+
+
+def _refused(
+    drawing: MechanismDrawing,
+    x: np.ndarray,
+    checks: list[int],
+    predicted: np.ndarray,
+    sizes: list[int],
+    tol: np.ndarray,
+) -> np.ndarray:
+    """Per shape: True where the drawing at a position of ``checks`` differs from ``predicted`` (positions x values)
+    beyond ``tol`` (absolute plus ``CHECK`` relative), NaN where NaN."""
+    edges = np.cumsum([0, *sizes])
+    bad = np.zeros(len(sizes), dtype=bool)
+    for k in checks:
+        drawn = drawing.shapes(x[k])
+        lengths = [len(s.data) for s in drawn]
+        if lengths != sizes:
+            bad |= np.array(lengths) != np.array(sizes)
             continue
-        a = np.column_stack(cols) if n else np.zeros((len(d0[i]), 0))
-        maps.append((a, d0[i] - a @ x0))
-    return maps
+        actual = np.concatenate([np.asarray(s.data, dtype=np.float64) for s in drawn]) if sizes else np.zeros(0)
+        with np.errstate(invalid="ignore"):
+            close = np.abs(predicted[k] - actual) <= tol + CHECK * np.abs(actual)
+        close |= np.isnan(predicted[k]) & np.isnan(actual)
+        bad |= [not close[edges[i] : edges[i + 1]].all() for i in range(len(sizes))]
+    return bad
 
 
 def scene(result: RunResult, frames: np.ndarray, kept: dict[str, Any] | None = None) -> dict[str, Any]:
     """The scene of the report's page (kinds, roles, static shapes, moving shapes per frame, bounds).
 
-    ``kept``: a dict the caller keeps between the scenes of one mechanism's designs (the studio's session); the affine
-    maps found for one design are tried first on the next, and found anew when the check refuses them."""
+    ``kept``: a dict the caller keeps between the scenes of one mechanism's designs (the studio's session): the
+    linear part ``A`` found for one design is tried first on the next (with its own ``b`` from position 1), and found
+    anew when the check refuses it."""
     drawing = MechanismDrawing(result.model, result.coords)
     x = np.asarray(result.coords[frames], dtype=np.float64)
     x0 = x[0]
     first = drawing.shapes(x0)
     d0 = [np.asarray(s.data, dtype=np.float64) for s in first]
-    checks = sorted({0, len(x) // 4, len(x) // 2, (3 * len(x)) // 4, len(x) - 1})
-    seen = {k: drawing.shapes(x[k]) for k in checks}
+    sizes = [len(d) for d in d0]
+    # Every shape's numbers one after the other: one map d(x) = A x + b for all of them, one product for all positions.
+    flat0 = np.concatenate(d0) if d0 else np.zeros(0)
+    tol = np.repeat([CHECK * _size(d) for d in d0], sizes)
+    # Position 1 gives b; three more (spread over the motion) check the map.
+    checks = sorted({len(x) // 3, (2 * len(x)) // 3, len(x) - 1} - {0})
+    shape_of = (len(x0), tuple(s.kind for s in first), tuple(sizes))
 
-    def checked(i: int, m: Affine | None) -> np.ndarray | None:
-        if m is None or m[0].shape != (len(d0[i]), len(x0)):
-            return None
-        a, b = m
-        tol = CHECK * _size(d0[i])
-        ok = all(len(seen[k][i].data) == len(d0[i]) and _same(a @ x[k] + b, seen[k][i].data, tol) for k in checks)
-        return x @ a.T + b if ok else None
+    def mapped(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        with np.errstate(invalid="ignore"):
+            predicted = x @ a.T + (flat0 - a @ x0)
+        return predicted, _refused(drawing, x, checks, predicted, sizes, tol)
 
-    shape_of = (len(x0), tuple(s.kind for s in first), tuple(len(d) for d in d0))
-    per_shape: list[np.ndarray | None] = []
-    if kept is not None and kept.get("shape_of") == shape_of:
-        maps = kept["maps"]
-        per_shape = [checked(i, m) for i, m in enumerate(maps)]
-        if any(m is not None and v is None for m, v in zip(maps, per_shape, strict=True)):
-            per_shape = []
-    if not per_shape:
-        maps = _affine_maps(drawing, x0, d0)
-        per_shape = [checked(i, m) for i, m in enumerate(maps)]
-        if kept is not None:
-            kept.update(shape_of=shape_of, maps=maps)
-    slow = [i for i, v in enumerate(per_shape) if v is None]
+    reused = kept is not None and kept.get("shape_of") == shape_of
+    a = kept["a"] if reused and kept is not None else _affine_part(drawing, x0, flat0, sizes)
+    predicted, bad = mapped(a)
+    if reused and bad.any():
+        a = _affine_part(drawing, x0, flat0, sizes)
+        predicted, bad = mapped(a)
+    if kept is not None:
+        kept.update(shape_of=shape_of, a=a)
+    edges = np.cumsum([0, *sizes])
+    slow = [i for i in range(len(first)) if bad[i]]
     if slow:
+        # A shape the map does not draw (a slider's block turned by an angle, a belt's wrap) is drawn at every
+        # position by the drawing, as the report draws it.
         rest = [drawing.shapes(row) for row in x]
         for i in slow:
-            per_shape[i] = np.array([np.asarray(r[i].data, dtype=np.float64) for r in rest])
-    data = [v for v in per_shape if v is not None]
-    moving = [i for i, v in enumerate(data) if not np.array_equal(v, np.broadcast_to(v[0], v.shape), equal_nan=True)]
-    # The bounds of every shape over the frames: circles and arcs by centre and radius, the rest by their points.
-    lo, hi = np.array([np.inf, np.inf]), np.array([-np.inf, -np.inf])
-    for s, v in zip(first, data, strict=True):
-        good = v[np.isfinite(v).all(axis=1)]
-        if not len(good):
-            continue
+            predicted[:, edges[i] : edges[i + 1]] = [r[i].data for r in rest]
+    return _scene_data(first, predicted, edges, len(x))
+
+
+def _scene_data(first: list[Any], d: np.ndarray, edges: np.ndarray, n: int) -> dict[str, Any]:
+    """The scene of the shapes ``first`` whose numbers at every position are the columns ``edges[i]:edges[i+1]`` of
+    ``d`` (positions x values)."""
+    shapes = range(len(first))
+    if not len(first) or not d.shape[1]:
+        return {
+            "kinds": [s.kind for s in first],
+            "roles": [s.role for s in first],
+            "static": {str(i): nums(d[0, edges[i] : edges[i + 1]]) for i in shapes},
+            "moving": [],
+            "frames": [[] for _ in range(n)],
+            "bounds": nums(np.asarray((-1.0, 1.0, -1.0, 1.0))),
+        }
+    # A shape moves when any of its numbers differs from position 1's (NaN equal to NaN).
+    same = (d == d[0]) | (np.isnan(d) & np.isnan(d[0]))
+    moving = [i for i in shapes if edges[i + 1] > edges[i] and not same[:, edges[i] : edges[i + 1]].all()]
+    # The bounds over the positions where a shape is drawn whole: circles and arcs by centre and radius, the rest by
+    # their points.
+    finite = np.isfinite(d)
+    whole = np.column_stack([finite[:, edges[i] : edges[i + 1]].all(axis=1) for i in shapes])
+    shown = np.where(np.repeat(whole, np.diff(edges), axis=1), d, np.nan)
+    xs, ys = [], []
+    for i, s in enumerate(first):
+        v = shown[:, edges[i] : edges[i + 1]]
         if s.kind in ("circle", "arc"):
-            lo = np.minimum(lo, (good[:, :2] - good[:, 2:3]).min(axis=0))
-            hi = np.maximum(hi, (good[:, :2] + good[:, 2:3]).max(axis=0))
+            xs += [v[:, 0] - v[:, 2], v[:, 0] + v[:, 2]]
+            ys += [v[:, 1] - v[:, 2], v[:, 1] + v[:, 2]]
         else:
-            xy = good.reshape(len(good), -1, 2)
-            lo, hi = np.minimum(lo, xy.min(axis=(0, 1))), np.maximum(hi, xy.max(axis=(0, 1)))
+            xs.append(v[:, 0::2].ravel())
+            ys.append(v[:, 1::2].ravel())
+    bx, by = np.concatenate(xs), np.concatenate(ys)
+    lo = np.array([np.fmin.reduce(bx, initial=np.inf), np.fmin.reduce(by, initial=np.inf)])
+    hi = np.array([np.fmax.reduce(bx, initial=-np.inf), np.fmax.reduce(by, initial=-np.inf)])
     bounds = (lo[0], hi[0], lo[1], hi[1]) if np.isfinite(lo).all() else (-1.0, 1.0, -1.0, 1.0)
     size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], 1e-300)
     decimals = max(0, 6 - int(np.ceil(np.log10(size))))
-    per_frame = [_rounded(data[i], decimals) for i in moving]
+    rounded = _rounded(d, decimals)
+    per_frame = [rounded[:, edges[i] : edges[i + 1]] for i in moving]
     return {
         "kinds": [s.kind for s in first],
         "roles": [s.role for s in first],
-        "static": {str(i): nums(data[i][0]) for i in range(len(first)) if i not in moving},
+        "static": {str(i): nums(d[0, edges[i] : edges[i + 1]]) for i in shapes if i not in moving},
         "moving": moving,
-        "frames": [list(shapes) for shapes in zip(*per_frame, strict=True)] if moving else [[] for _ in x],
+        "frames": [list(frame) for frame in zip(*per_frame, strict=True)] if moving else [[] for _ in range(n)],
         "bounds": nums(np.asarray(bounds)),
     }
 

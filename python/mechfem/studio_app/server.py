@@ -3,8 +3,8 @@
 Every request and the websocket must carry the random token of the address printed at start (``?token=...``);
 the Host header must name the loopback address the server listens on, so that a web page elsewhere can neither read
 the page (DNS rebinding) nor drive the websocket. The page is one HTML document with its scripts inlined (as the
-report is); everything else goes over the websocket as JSON messages, each answered by the new view or by the
-words saying why an edit was refused.
+report is); everything else goes over the websocket as JSON messages, each answered by the new view (after an edit:
+only what differs from the view the page has, :mod:`.delta`) or by the words saying why an edit was refused.
 
 The server reads decks only where the user points it (the path given on the command line, a file the browser sends,
 the repository's examples) and writes only the files of a save, at the path typed into the page.
@@ -36,6 +36,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from mechfem.studio_app.actions import Actions
+from mechfem.studio_app.delta import changes
 from mechfem.studio_app.page import render_page
 from mechfem.studio_app.session import Session
 
@@ -75,19 +76,24 @@ def make_app(actions: Actions, token: str, port: int) -> Starlette:
         loop = asyncio.get_running_loop()
         lock = asyncio.Lock()
 
+        # The design the page has (as sent): an edit's answer carries only what differs from it.
+        shown: list[dict[str, Any] | None] = [None]
+
         def push(message: dict[str, Any]) -> None:
-            # Called from the worker thread of a long action (an optimisation's iterations).
+            # Called from the worker thread of a long action (an optimisation's iterations, each sent whole).
+            if "design" in message:
+                shown[0] = message["design"]
             asyncio.run_coroutine_threadsafe(ws.send_text(dumps(message)), loop)
 
         def answer(message: dict[str, Any]) -> str:
             # Wall and CPU time of the answer (the CPU time of this thread: what the edit costs on an idle machine).
             started, cpu = time.perf_counter(), time.thread_time()
-            text = dumps(actions.handle(message, push))
+            text = dumps(only_changes(actions.handle(message, push), shown))
             wall, used = 1000 * (time.perf_counter() - started), 1000 * (time.thread_time() - cpu)
             # The reply is a JSON object: the two times go in before its closing brace, without a second dump.
             return f'{text[:-1]},"server_ms":{wall:.2f},"server_cpu_ms":{used:.2f}}}'
 
-        await ws.send_text(dumps(actions.hello()))
+        await ws.send_text(dumps(only_changes(actions.hello(), shown)))
         try:
             while True:
                 text = await ws.receive_text()
@@ -102,6 +108,18 @@ def make_app(actions: Actions, token: str, port: int) -> Starlette:
         middleware=[Middleware(TrustedHostMiddleware, allowed_hosts=hosts), Middleware(TokenGate, token=token)],
     )
     return app
+
+
+def only_changes(reply: dict[str, Any], shown: list[dict[str, Any] | None]) -> dict[str, Any]:
+    """``reply`` with its design replaced by what differs from ``shown[0]`` (the design the page has; then set to
+    the new one), unless it opens another design (sent whole)."""
+    design = reply.get("design")
+    if design is None:
+        return reply
+    before, shown[0] = shown[0], design
+    if before is None or reply.get("opened") or reply.get("type") == "hello":
+        return reply
+    return {**{k: v for k, v in reply.items() if k != "design"}, "changes": changes(before, design)}
 
 
 def dumps(message: dict[str, Any]) -> str:
@@ -186,4 +204,4 @@ def serve(
     server.run(sockets=[sock])
 
 
-__all__ = ["HOST", "Running", "TokenGate", "dumps", "make_app", "serve", "serve_in_thread"]
+__all__ = ["HOST", "Running", "TokenGate", "dumps", "make_app", "only_changes", "serve", "serve_in_thread"]

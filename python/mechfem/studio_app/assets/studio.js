@@ -36,11 +36,27 @@
     if (m.type === "hello") { hello(m); return; }
     if (m.type === "iteration") { state.iterations++; showDesign(m.design, false); optStatus("iteration " + m.number + ": objective " + fmt(m.objective)); return; }
     state.inflight = false;
+    if (m.changes) m.design = merge(state.D, m.changes);
     state.lastReply = m;
     reply(m);
     if (state.queued) { const q = state.queued; state.queued = null; send(q); }
   });
   ws.addEventListener("close", () => say("refused", "The connection to the studio's server is closed: start `mechfem studio` again."));
+
+  // An edit's answer holds only what differs from the design on screen (python/mechfem/studio_app/delta.py): put it
+  // into a copy of that design, object by object ("__gone__" lists the keys no longer there).
+  function merge(old, changes) {
+    const out = Object.assign({}, old);
+    for (const k of Object.keys(changes)) {
+      const v = changes[k], before = out[k];
+      if (k === "__gone__") continue;
+      const plain = (o) => o !== null && typeof o === "object" && !Array.isArray(o);
+      out[k] = plain(v) && plain(before) ? merge(before, v) : v;
+    }
+    for (const k of changes.__gone__ || []) delete out[k];
+    return out;
+  }
+  state.merge = merge;
 
   function hello(m) {
     const sel = $("examples");
@@ -56,8 +72,13 @@
       showDesign(m.design, !!m.opened);
       const drawn = performance.now() - sentAt;
       // Edit to redraw: until the frame after the new design is drawn (uPlot draws its charts in a task of their own).
-      requestAnimationFrame(() => setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, server_cpu: m.server_cpu_ms, run: m.run_ms,
-        arrive: state.arriveMs, parse: state.parseMs, charts: state.chartsMs, show: state.showMs, shown: drawn })));
+      // Until the end of the task: the charts' own drawing (uPlot draws in a microtask after the new numbers).
+      setTimeout(() => { state.committedMs = performance.now() - sentAt; }, 0);
+      requestAnimationFrame(() => {
+        const frame = performance.now() - sentAt;
+        setTimeout(() => state.latencies.push({ drawn: drawn, painted: performance.now() - sentAt, server: m.server_ms, server_cpu: m.server_cpu_ms, run: m.run_ms,
+          arrive: state.arriveMs, parse: state.parseMs, charts: state.chartsMs, show: state.showMs, shown: drawn, frame: frame, committed: state.committedMs }));
+      });
       if (m.branch) { say("branch", m.branch); state.branchGroup = state.group; }
       // A branch change during a drag stays said for the rest of that drag (until the next edit).
       else if (state.branchGroup === state.group && !m.opened && !m.optimised) void 0;
@@ -67,7 +88,7 @@
     } else if (m.type === "refused") {
       if (state.optimising) { state.optimising = false; optStatus(m.message); }
       say("refused", "Not applied: " + m.message + " The last good design is shown.");
-      if (state.D) { buildDimensions(); draw(); }
+      if (state.D) { showDimensions(true); draw(); }
     } else if (m.type === "saved") {
       state.lastSaved = m;
       say("ok", "Saved " + m.files.join(", ") + ".");
@@ -99,11 +120,13 @@
     $("save").disabled = false;
     if (!$("savepath").value) $("savepath").value = D.studio.deck ? D.studio.deck.replace(/\.mec$/i, "_studio.mec") : D.studio.name + ".mec";
     if (first) buildOptimise();
-    if (!state.drag || first) buildDimensions();
+    if (first || dimensionsOf !== dimensionNames(D)) buildDimensions();
+    else if (!state.drag) showDimensions();
     const t0 = performance.now();
     buildCharts();
     const t1 = performance.now();
-    buildLimits();
+    const limits = JSON.stringify([D.stop, D.det.limits]);
+    if (first || limits !== limitsShown) { buildLimits(); limitsShown = limits; }
     show(state.cur);
     state.chartsMs = t1 - t0;
     state.showMs = performance.now() - t1;
@@ -267,8 +290,23 @@
 
   // ---- dimensions: a slider and a number field each, in the model's units ----
   const ranges = {};
+  let dimensionsOf = null, limitsShown = null;
+  const dimensionNames = (D) => D.studio.dimensions.map((d) => d.name + "|" + d.unit).join("\n");
+  // The values of an edited design into the fields there are (a field being typed into is left alone, unless
+  // its edit was refused).
+  function showDimensions(force) {
+    for (const d of state.D.studio.dimensions) {
+      const row = dimRows[d.name];
+      if (!row) continue;
+      const text = String(Number(d.value.toPrecision(10)));
+      if ((force || document.activeElement !== row.num) && row.num.value !== text) row.num.value = text;
+      if (force || document.activeElement !== row.range) row.range.value = String(d.value);
+    }
+  }
+  const dimRows = {};
   function buildDimensions() {
     const D = state.D, host = $("dimlist");
+    dimensionsOf = dimensionNames(D);
     host.textContent = "";
     for (const d of D.studio.dimensions) {
       if (!(d.name in ranges) || state.revision === 0) {
@@ -287,6 +325,7 @@
       range.addEventListener("keydown", () => { state.group++; });
       range.addEventListener("input", () => { num.value = range.value; edit({ [d.name]: +range.value }, true); });
       num.addEventListener("change", () => { state.group++; if (num.value !== "" && isFinite(+num.value)) edit({ [d.name]: +num.value }, false); });
+      dimRows[d.name] = { range: range, num: num };
       host.append(el("div", { className: "dim" }, label, range, num));
     }
     if (!D.studio.dimensions.length) host.append(el("p", { className: "note" }, "This model has no prescribed values to change; drag its points."));
@@ -335,7 +374,7 @@
   function endDrag() {
     if (!state.drag) return;
     state.drag = null;
-    buildDimensions();
+    showDimensions();
     if (!inside(state.box)) fit(); else draw();
   }
   mech.canvas.addEventListener("pointerup", endDrag);
