@@ -316,3 +316,48 @@ def test_an_edits_changes_put_into_the_design_shown_give_the_new_design() -> Non
     # arrays, sent without looking).
     assert changes({"a": 1, "b": {"c": 2}}, {"b": {}}) == {"b": {GONE: ["c"]}, GONE: ["a"]}
     assert list(changes(after, view(s))) == ["scene"] and list(changes(after, view(s))["scene"]) == ["frames"]
+
+
+def _psi_extremes(m: mechfem.Mechanism) -> tuple[float, float]:
+    """The rocker angle's two extremes, where crank and coupler are folded (A0-B = b - a) and stretched (b + a):
+    psi = 180 deg - the angle at B0 of the triangle A0, B0, B."""
+    a, b, c = (m[n].value for n in ("crank.length", "coupler.length", "rocker.length"))
+    d = float(np.hypot(m["B0"].x.value - m["A0"].x.value, m["B0"].y.value - m["A0"].y.value))
+    at_b0 = [math.degrees(math.acos((c * c + d * d - s * s) / (2 * c * d))) for s in (b - a, b + a)]
+    return 180.0 - at_b0[1], 180.0 - at_b0[0]
+
+
+def test_optimise_makes_an_outputs_maximum_reach_a_value_and_shows_its_iterations() -> None:
+    actions = Actions(Session(four_bar(steps=72)))
+    pushed: list[dict[str, object]] = []
+    vary = ["crank.length", "coupler.length", "rocker.length"]
+    message = {"op": "optimise", "target": "extremum", "quantity": "psi", "which": "max", "goal": "value"}
+    reply = actions.handle({**message, "value": 130.0, "vary": vary}, pushed.append)
+    assert reply["type"] == "design", reply
+    assert pushed and pushed[0]["type"] == "iteration"
+    session = actions.session
+    assert session is not None and "The max of psi over the motion is 130 deg" in reply["optimised"]["said"]
+    # The motion's positions (5 deg of crank apart) reach 130; the true extremum (closed form) lies a little beyond.
+    assert float(np.max(psi(session))) == pytest.approx(130.0, abs=1e-3)
+    assert 130.0 - 1e-3 <= _psi_extremes(session.mechanism)[1] < 130.5
+    # Pushed up as far as the rocker's length may go (within half and twice its value) and the crank still turns.
+    before = _psi_extremes(session.mechanism)[1]
+    pushed_up = actions.handle({**message, "goal": "up", "vary": ["rocker.length"]}, pushed.append)
+    assert pushed_up["type"] == "design", pushed_up
+    assert _psi_extremes(session.mechanism)[1] > before + 1.0 and session.result.report.stop_reason() is None
+
+
+def test_optimise_keeps_the_transmission_angle_within_a_bound_with_the_least_change() -> None:
+    actions = Actions(Session(four_bar(steps=72)))
+    vary = ["crank.length", "coupler.length", "rocker.length"]
+    reply = actions.handle({"op": "optimise", "target": "transmission", "transmission": 60, "vary": vary}, print)
+    assert reply["type"] == "design", reply
+    m = actions.session.mechanism  # type: ignore[union-attr]
+    # Closed form: cos mu = (b^2 + c^2 - s^2) / (2 b c), s = |A B0| from d - a (crank towards B0) to d + a.
+    a, b, c = (m[n].value for n in vary)
+    mu = [math.degrees(math.acos((b * b + c * c - s * s) / (2 * b * c))) for s in (4.0 - a, 4.0 + a)]
+    assert 60.0 - 1e-4 <= min(mu) and max(mu) <= 120.0 + 1e-4
+    assert min(mu) == pytest.approx(60.0, abs=1e-3)  # the least change: on the bound, not beyond it
+    assert "stays within 60 to" in reply["optimised"]["said"]
+    refused = actions.handle({"op": "optimise", "target": "transmission", "transmission": 100, "vary": vary}, print)
+    assert refused["type"] == "refused" and "between 0 and 90" in refused["message"]

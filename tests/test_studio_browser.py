@@ -170,3 +170,35 @@ def test_new_four_bar_through_three_clicked_points_saved_as_a_deck(page: Any, se
     size = float(np.hypot(np.ptp(cx), np.ptp(cy)))
     for x, y in wanted:
         assert float(np.min(np.hypot(cx - x, cy - y))) < 0.01 * size
+
+
+def test_optimise_an_extremum_and_a_transmission_bound_from_the_page(page: Any, server: Running) -> None:
+    page.click("#template")
+    page.wait_for_function("window.mechfemStudio.D && window.mechfemStudio.D.studio.name === 'fourbar'")
+    settled(page)
+    # The rocker angle's maximum over the motion should reach 130 deg.
+    page.select_option("#opttarget", "extremum")
+    assert page.is_hidden("#optpath") and page.is_visible("#optvalue")
+    page.select_option("#optquantity", "psi")
+    page.select_option("#optwhich", "max")
+    page.select_option("#optgoal", "value")
+    page.fill("#optvalue", "130")
+    page.click("#optrun")
+    page.wait_for_function("!window.mechfemStudio.optimising", timeout=60000)
+    settled(page)
+    assert page.evaluate("window.mechfemStudio.lastReply.optimised.target") == "extremum", page.text_content("#status")
+    assert page.evaluate("window.mechfemStudio.iterations") >= 1, "no iteration was shown while optimising"
+    assert "The max of psi over the motion is 130 deg" in page.text_content("#optstatus")
+    assert float(np.nanmax(shown(page, "b2"))) == pytest.approx(130.0, abs=1e-3)
+    # Then every transmission angle within [60, 120] deg at every position, with the least change.
+    page.select_option("#opttarget", "transmission")
+    assert page.is_hidden("#optext") and page.is_visible("#opttranslo")
+    page.fill("#opttranslo", "60")
+    page.click("#optrun")
+    page.wait_for_function("!window.mechfemStudio.optimising", timeout=60000)
+    settled(page)
+    assert page.evaluate("window.mechfemStudio.lastReply.optimised.target") == "transmission"
+    mu = shown(page, "b8")
+    assert float(np.nanmin(mu)) >= 60.0 - 1e-3 and float(np.nanmax(mu)) <= 120.0 + 1e-3
+    assert "stays within 60 to" in page.text_content("#optstatus")
+    assert page.evaluate("window.mechfemStudio.errors") == []

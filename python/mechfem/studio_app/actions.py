@@ -9,6 +9,7 @@ written), ``optimised``, or ``error`` (a message the page could not act on).
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -127,19 +128,68 @@ class Actions:
     # -- optimising
 
     def op_optimise(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
-        from mechfem.studio_app.optimising import path_through
+        from mechfem.studio_app import optimising
 
         session = self._need()
-        points = [(float(x), float(y)) for x, y in message["points"]]
         vary = [str(v) for v in message["vary"]]
+        target = str(message.get("target") or "path")
+        lo = message.get("transmission")
+        least = None if lo is None or lo == "" else float(lo)
         self.optimising = True
         try:
-            found = path_through(session, str(message["point"]), points, vary, push)
+            if target == "path":
+                points = [(float(x), float(y)) for x, y in message["points"]]
+                found = optimising.path_through(session, str(message["point"]), points, vary, push)
+            elif target == "extremum":
+                quantity, which = str(message["quantity"]), str(message["which"])
+                before = self._extremum(quantity, which)
+                value = message.get("value")
+                wanted = None if value is None or value == "" else float(value)
+                found = optimising.extremum(session, quantity, which, str(message["goal"]), wanted, vary, push, least)
+            elif target == "transmission":
+                if least is None:
+                    raise ValueError("give the least transmission angle")
+                found = optimising.transmission(session, least, vary, push)
+            else:
+                raise ValueError(f"unknown target {target!r}: a path, an extremum or a transmission angle")
         finally:
             self.optimising = False
         outcome = session.edit(found["values"])
-        found["distances"] = distances(session, str(message["point"]), points)
+        found["target"] = target
+        if target == "path":
+            found["distances"] = distances(session, str(message["point"]), points)
+        said = []
+        if target == "extremum":
+            unit = self._unit(quantity)
+            now = self._extremum(quantity, which)
+            said.append(
+                f"The {which} of {quantity} over the motion is {now:.6g}{unit} (it was {before:.6g}{unit}"
+                + (f"; wanted {wanted:.6g}{unit})." if wanted is not None and message["goal"] == "value" else ").")
+            )
+        if least is not None and target != "path":
+            reached = optimising.transmission_range(session)
+            unit = f" {session.mechanism.units.angle or 'rad'}"
+            if reached is not None:
+                half = 180.0 if unit == " deg" else math.pi
+                said.append(
+                    f"The transmission angle stays within {reached[0]:.4g} to {reached[1]:.4g}{unit} "
+                    f"(wanted {least:.4g} to {half - least:.4g}{unit})."
+                )
+        found["said"] = " ".join(said)
         return self._design(outcome, optimised=found)
+
+    def _extremum(self, quantity: str, which: str) -> float:
+        values = self._need().result.value(quantity)
+        return float(np.nanmax(values) if which == "max" else np.nanmin(values))
+
+    def _unit(self, quantity: str) -> str:
+        from mechfem.parts import Row
+
+        session = self._need()
+        obj = session.mechanism.find(quantity.split(".")[0] if quantity.endswith((".x", ".y")) else quantity)
+        units = session.mechanism.units
+        unit = (units.angle or "rad") if isinstance(obj, Row) and obj.is_angle else (units.length or "")
+        return f" {unit}" if unit else ""
 
 
 def distances(session: Session, point: str, points: list[tuple[float, float]]) -> list[float]:

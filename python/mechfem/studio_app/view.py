@@ -188,6 +188,11 @@ def view(session: Session) -> dict[str, Any]:
         "units": {k: v for k, v in mech.units.as_dict().items() if v},
         "dimensions": session.dimensions(),
         "points": session.points(),
+        # What an optimisation may aim at: the named outputs and the moving points' co-ordinates (an extremum over
+        # the motion), and whether the mechanism has a transmission angle to bound.
+        "quantities": [r.name for r in mech.rows if r.kind == "output"]
+        + [f"{p['name']}.{a}" for p in session.points() if not p["fixed"] for a in "xy"],
+        "transmission": bool(transmission_pairs(mech)),
         "revision": session.revision,
         "can_undo": session.can_undo,
         "can_redo": session.can_redo,

@@ -393,6 +393,9 @@
     const moving = D.studio.points.filter((p) => !p.fixed);
     for (const p of moving) sel.append(el("option", { value: p.name }, p.name));
     if (D.paths.length) sel.value = D.paths[D.paths.length - 1].name;
+    const quantity = $("optquantity");
+    quantity.textContent = "";
+    for (const q of D.studio.quantities) quantity.append(el("option", { value: q }, q));
     vary.textContent = "";
     const names = D.studio.dimensions.filter((d) => d.kind !== "input").map((d) => d.name);
     // Every dimension and every frame pivot but the first (which keeps the design where it is) may vary.
@@ -404,8 +407,29 @@
       vary.append(el("label", {}, box, " " + n));
     }
     state.targets = [];
-    $("optpoint").parentElement.parentElement.hidden = !moving.length;
+    $("optimise").hidden = !names.length;
+    $("opttarget").querySelector("option[value=path]").disabled = !moving.length;
+    $("opttarget").querySelector("option[value=extremum]").disabled = !D.studio.quantities.length;
+    $("opttarget").querySelector("option[value=transmission]").disabled = !D.studio.transmission;
+    if ($("opttarget").selectedOptions[0].disabled) $("opttarget").value = moving.length ? "path" : "extremum";
+    targetChosen();
   }
+  // The controls of the target chosen: the clicked points of a path; the extremum's quantity and goal; the
+  // transmission angle's least value (the bound of its own target, or a bound that goes with an extremum).
+  function targetChosen() {
+    const target = $("opttarget").value, D = state.D;
+    $("optpath").hidden = target !== "path";
+    $("optext").hidden = target !== "extremum";
+    $("opttrans").hidden = target === "path" || !D || !D.studio.transmission;
+    $("opttransok").parentElement.hidden = target === "transmission";
+    $("optvalue").hidden = $("optgoal").value !== "value";
+    const unit = D && D.studio.units.angle ? D.studio.units.angle : "rad", half = unit === "deg" ? 180 : Math.PI;
+    $("opttranshi").textContent = "to " + fmt(half - (+$("opttranslo").value || 0)) + " " + unit + " at every position";
+    if (target !== "path" && state.picking) $("optclick").click();
+  }
+  $("opttarget").addEventListener("change", targetChosen);
+  $("optgoal").addEventListener("change", targetChosen);
+  $("opttranslo").addEventListener("input", targetChosen);
   $("optclick").addEventListener("click", () => {
     state.picking = !state.picking;
     $("optclick").setAttribute("aria-pressed", String(state.picking));
@@ -415,19 +439,33 @@
   $("optclear").addEventListener("click", () => { state.targets = []; optStatus(""); draw(); });
   $("optrun").addEventListener("click", () => {
     const vary = Array.from($("optvary").querySelectorAll("input:checked")).map((b) => b.value);
-    if (!state.targets.length) { optStatus("Click the points the path should pass through first."); return; }
-    if (state.picking) $("optclick").click();
+    const target = $("opttarget").value;
+    const message = { op: "optimise", target: target, vary: vary };
+    if (target === "path") {
+      if (!state.targets.length) { optStatus("Click the points the path should pass through first."); return; }
+      if (state.picking) $("optclick").click();
+      Object.assign(message, { point: $("optpoint").value, points: state.targets });
+    } else if (target === "extremum") {
+      Object.assign(message, { quantity: $("optquantity").value, which: $("optwhich").value, goal: $("optgoal").value,
+        value: $("optgoal").value === "value" ? $("optvalue").value : null,
+        transmission: $("opttransok").checked ? $("opttranslo").value : null });
+    } else {
+      message.transmission = $("opttranslo").value;
+    }
     state.optimising = true;
     state.iterations = 0;
     optStatus("optimising...");
     say("busy", "Optimising: the drawing shows the optimiser's designs as it goes.");
-    send({ op: "optimise", point: $("optpoint").value, points: state.targets, vary: vary });
+    send(message);
   });
   function optimised(o) {
     state.optimising = false;
-    const worst = Math.max(...o.distances);
-    optStatus("Done in " + o.iterations + " iterations (objective " + fmt(o.objective) + "): the path of " + $("optpoint").value +
-      " passes within " + fmt(worst) + " of every clicked point, as drawn at the motion's positions. " + o.message);
+    let text = "Done in " + o.iterations + " iterations (objective " + fmt(o.objective) + "): ";
+    if (o.target === "path") {
+      text += "the path of " + $("optpoint").value + " passes within " + fmt(Math.max(...o.distances)) +
+        " of every clicked point, as drawn at the motion's positions.";
+    } else text += o.said;
+    optStatus(text + " " + o.message);
     say("ok", "Optimised: " + Object.entries(o.values).map(([k, v]) => k + " = " + fmt(v)).join(", ") + ". Undo goes back.");
   }
 
