@@ -361,3 +361,27 @@ def test_optimise_keeps_the_transmission_angle_within_a_bound_with_the_least_cha
     assert "stays within 60 to" in reply["optimised"]["said"]
     refused = actions.handle({"op": "optimise", "target": "transmission", "transmission": 100, "vary": vary}, print)
     assert refused["type"] == "refused" and "between 0 and 90" in refused["message"]
+
+
+def test_a_kin_opt_deck_saved_from_the_studio_keeps_its_optimise_block_and_runs(tmp_path: Path) -> None:
+    actions = Actions(None)
+    assert actions.handle({"op": "example", "name": "synthesis/path.mec"}, print)["type"] == "design"
+    assert actions.handle({"op": "edit", "changes": {"B0": [2.9, 0.35]}}, print)["type"] == "design"
+    saved = actions.handle({"op": "save", "path": str(tmp_path / "mine.mec")}, print)
+    assert saved["type"] == "saved", saved
+    text = (tmp_path / "mine.mec").read_text()
+    block = text[text.index("OPTIMISE") : text.index("STORAGE")]
+    assert text.splitlines()[1] == "KIN OPT" and "TARGET 1 path_x.dat" in block and "VARYX 3 1.0 5.0" in block
+    # The block's buffers are defined once (there), its target files beside the saved deck.
+    assert (
+        text.count("BUFX0 9 1") == 1
+        and (tmp_path / "path_x.dat").read_bytes() == (ROOT / "examples" / "synthesis" / "path_x.dat").read_bytes()
+    )
+    assert "XFIX 3 2.9" in text
+    # `mechfem run` of the saved deck optimises from the edited design to the deck's known answer: B0 = (3.2, 0),
+    # crank 1, rocker 2.5 (the ten points are those of that four-bar).
+    assert cli.main(["run", str(tmp_path / "mine.mec"), "-o", str(tmp_path / "out"), "--no-media", "-q"]) == 0
+    found = mechfem.Mechanism.from_deck(tmp_path / "out" / "mine_opt.mec")
+    assert found["B0"].x.value == pytest.approx(3.2, abs=1e-6) and found["B0"].y.value == pytest.approx(0, abs=1e-6)
+    assert found["crank_length"].value == pytest.approx(1.0, abs=1e-6)
+    assert found["rocker_length"].value == pytest.approx(2.5, abs=1e-6)

@@ -72,8 +72,8 @@ class Actions:
 
     # -- opening
 
-    def _open(self, mech: Mechanism, deck: Path | None) -> dict[str, Any]:
-        self.session = Session(mech, deck)
+    def _open(self, mech: Mechanism, deck: Path | None, source: str | None = None) -> dict[str, Any]:
+        self.session = Session(mech, deck, source)
         return self._design(Outcome(), opened=True)
 
     def op_template(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
@@ -90,7 +90,8 @@ class Actions:
         # A file the browser read (file picker, drag and drop): no folder, so a deck that reads files beside it
         # says which one it misses.
         name = Path(str(message.get("name") or "deck.mec")).stem
-        return self._open(Mechanism.from_deck_text(str(message["text"]), name), None)
+        text = str(message["text"])
+        return self._open(Mechanism.from_deck_text(text, name), None, text)
 
     # -- editing
 

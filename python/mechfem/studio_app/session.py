@@ -20,6 +20,7 @@ from mechfem.errors import MechfemError
 from mechfem.model import Mechanism
 from mechfem.parts import Coordinate, Row
 from mechfem.result import RunResult
+from mechfem.studio_app.optimise_block import copy_targets, optimise_block, same_numbering, with_block
 
 #: A value a user gives: a number, or a point's (x, y).
 Value = float | tuple[float, float]
@@ -50,9 +51,14 @@ def _sign(x: float) -> int:
 class Session:
     """A mechanism under edit (``mechanism``, changed in place), its ``result`` (the last good run), undo and redo."""
 
-    def __init__(self, mechanism: Mechanism, deck: Path | None = None) -> None:
+    def __init__(self, mechanism: Mechanism, deck: Path | None = None, source: str | None = None) -> None:
         self.mechanism = mechanism
         self.deck = deck
+        #: The text of the deck the design was opened from (read from ``deck`` when not given): what the mechanism
+        #: does not hold of it (an OPTIMISE block) is saved from there (:mod:`mechfem.studio_app.optimise_block`).
+        self.source = (
+            source if source is not None or deck is None else deck.read_text(encoding="utf-8", errors="replace")
+        )
         self._undo: list[Values] = []
         self._redo: list[Values] = []
         self.result = self._run()
@@ -196,16 +202,33 @@ class Session:
     # -- saving
 
     def save(self, path: Path) -> list[Path]:
-        """Writes the design as a deck at ``path`` (NAMES and UNITS included), runs that deck as ``mechfem run``
-        would and writes its print file, data set and report beside it; returns the files written."""
+        """Writes the design as a deck at ``path`` (NAMES and UNITS included; the OPTIMISE block of the deck it
+        came from, with the files its targets read), runs that deck's motion and writes its print file, data set and
+        report beside it; returns the files written."""
         from mechfem import run_deck
         from mechfem.output import write_outputs
         from mechfem.report import write_report
 
-        deck = self.mechanism.save_deck(path)
+        block = optimise_block(self.source) if self.source else None
+        targets = []
+        if block is not None and self.source is not None:
+            folder = self.deck.parent if self.deck is not None else Path(".")
+            if not same_numbering(self.mechanism.to_deck(), self.source, folder):
+                raise ValueError(
+                    "the deck's OPTIMISE block refers to co-ordinates and rows by the deck's numbers, and the saved "
+                    "deck numbers them otherwise: it cannot be kept (save, then copy the block by hand)"
+                )
+            # The files the block's targets read first: a save that cannot take them writes no deck.
+            if self.deck is not None:
+                targets = copy_targets(block, self.deck.parent, path.parent)
+            deck = self.mechanism.save_deck(path)
+            deck.write_text(with_block(deck.read_text(encoding="utf-8"), self.source, block), encoding="utf-8")
+        else:
+            deck = self.mechanism.save_deck(path)
         result = run_deck(deck)
-        written = [deck, *write_outputs(result, deck.parent), write_report(result, deck.parent)]
+        written = [deck, *targets, *write_outputs(result, deck.parent), write_report(result, deck.parent)]
         self.deck = deck
+        self.source = deck.read_text(encoding="utf-8")
         return written
 
 
