@@ -385,3 +385,30 @@ def test_a_kin_opt_deck_saved_from_the_studio_keeps_its_optimise_block_and_runs(
     assert found["B0"].x.value == pytest.approx(3.2, abs=1e-6) and found["B0"].y.value == pytest.approx(0, abs=1e-6)
     assert found["crank_length"].value == pytest.approx(1.0, abs=1e-6)
     assert found["rocker_length"].value == pytest.approx(2.5, abs=1e-6)
+
+
+def test_a_deck_of_the_folder_is_opened_by_its_path_with_the_files_beside_it(tmp_path: Path) -> None:
+    # The slider-crank's crank follows a MOV_FUNC table (crank.dat) beside the deck.
+    (tmp_path / "sub").mkdir()
+    for name in ("slider_crank.mec", "crank.dat"):
+        (tmp_path / "sub" / name).write_bytes((ROOT / "examples" / "slider_crank" / name).read_bytes())
+    (tmp_path / ".hidden").mkdir()
+    (tmp_path / ".hidden" / "x.mec").write_text("KIN ANA\n")
+    actions = Actions(None, folder=tmp_path)
+    hello = actions.hello()
+    assert hello["folder"] == str(tmp_path) and hello["files"] == ["sub/slider_crank.mec"]
+    opened = actions.handle({"op": "open_path", "name": "sub/slider_crank.mec"}, print)
+    assert opened["type"] == "design", opened
+    assert opened["design"]["positions"] == mechfem.run_deck(tmp_path / "sub" / "slider_crank.mec").positions
+    # Only the folder's decks: nothing above it, nothing that is not a deck.
+    (tmp_path.parent / "outside.mec").write_text("KIN ANA\n")
+    for name in ("../outside.mec", str(tmp_path.parent / "outside.mec"), "sub/crank.dat", "sub/none.mec"):
+        refused = actions.handle({"op": "open_path", "name": name}, print)
+        assert refused["type"] == "refused" and "is not a deck of" in refused["message"], name
+    # The same deck sent as text by the browser has no folder: it says which file it misses.
+    text = (tmp_path / "sub" / "slider_crank.mec").read_text()
+    missing_table = actions.handle({"op": "open_text", "name": "slider_crank.mec", "text": text}, print)
+    assert missing_table["type"] == "refused" and "crank.dat" in missing_table["message"]
+    saved = actions.handle({"op": "save", "path": str(tmp_path / "sub" / "again.mec")}, print)
+    assert saved["type"] == "saved" and "sub/again.mec" in saved["decks"]
+    assert Actions(None).handle({"op": "open_path", "name": "x.mec"}, print)["type"] == "refused"

@@ -37,8 +37,12 @@ STUDIO_FLAGS = [
 
 
 @pytest.fixture(scope="module")
-def server() -> Iterator[Running]:
-    running = serve_in_thread(None)
+def server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Running]:
+    # The folder the studio is pointed at: the slider-crank, whose crank follows the table crank.dat beside it.
+    folder = tmp_path_factory.mktemp("folder")
+    for name in ("slider_crank.mec", "crank.dat"):
+        (folder / name).write_bytes((ROOT / "examples" / "slider_crank" / name).read_bytes())
+    running = serve_in_thread(None, folder=folder)
     yield running
     running.stop()
 
@@ -202,3 +206,12 @@ def test_optimise_an_extremum_and_a_transmission_bound_from_the_page(page: Any, 
     assert float(np.nanmin(mu)) >= 60.0 - 1e-3 and float(np.nanmax(mu)) <= 120.0 + 1e-3
     assert "stays within 60 to" in page.text_content("#optstatus")
     assert page.evaluate("window.mechfemStudio.errors") == []
+
+
+def test_a_deck_of_the_folder_that_reads_a_table_beside_it_opens(page: Any) -> None:
+    assert page.is_visible("#files")
+    page.select_option("#files", "slider_crank.mec")
+    page.wait_for_function("window.mechfemStudio.D && window.mechfemStudio.D.studio.name === 'slider_crank'")
+    settled(page)
+    assert page.text_content("#status").startswith("Opened")
+    assert page.evaluate("window.mechfemStudio.D.positions") == 101

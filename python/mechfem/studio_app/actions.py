@@ -10,6 +10,7 @@ written), ``optimised``, or ``error`` (a message the page could not act on).
 from __future__ import annotations
 
 import math
+import os
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -31,31 +32,67 @@ EXAMPLES = Path(mechfem.__file__).resolve().parents[2] / "examples"
 
 
 def examples(folder: Path = EXAMPLES) -> list[str]:
-    """The example decks under ``folder``, as paths relative to it (those that need no file beside them)."""
+    """The example decks under ``folder``, as paths relative to it."""
+    return decks(folder)
+
+
+#: Folders a listing of decks does not look into: the tools' own (a virtual environment, build output).
+SKIPPED = {"node_modules", "target", "__pycache__", "site-packages"}
+
+#: The most decks a listing gives, and how deep it looks below its folder.
+MOST_DECKS, DEEPEST = 2000, 6
+
+
+def decks(folder: Path) -> list[str]:
+    """The decks (``*.mec``) in ``folder`` and the folders below it, as paths relative to it (hidden folders and
+    :data:`SKIPPED` left out; at most :data:`MOST_DECKS`, :data:`DEEPEST` folders down)."""
     if not folder.is_dir():
         return []
     out = []
-    for deck in sorted(folder.rglob("*.mec")):
-        text = deck.read_text(encoding="utf-8", errors="replace").upper()
-        if "MOV_FUNC" not in text and "LOADTAB" not in text:
-            out.append(deck.relative_to(folder).as_posix())
-    return out
+    for top, dirs, files in os.walk(folder):
+        depth = len(Path(top).relative_to(folder).parts)
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIPPED and depth < DEEPEST)
+        out += [(Path(top) / f).relative_to(folder).as_posix() for f in files if f.lower().endswith(".mec")]
+        if len(out) >= MOST_DECKS:
+            break
+    return sorted(out)[:MOST_DECKS]
+
+
+def inside(folder: Path, name: str) -> Path:
+    """The deck ``name`` (relative) of ``folder``; refuses a name that leads out of it or is not a deck there."""
+    root = folder.resolve()
+    path = (root / name).resolve()
+    if not path.is_relative_to(root) or path.suffix.lower() != ".mec" or not path.is_file():
+        raise ValueError(f"{name!r} is not a deck of {folder}")
+    return path
 
 
 class Actions:
     """The studio's state, one :class:`Session` at a time (None before a deck is opened)."""
 
-    def __init__(self, session: Session | None, examples_folder: Path = EXAMPLES) -> None:
+    def __init__(self, session: Session | None, examples_folder: Path = EXAMPLES, folder: Path | None = None) -> None:
         self.session = session
         self.examples_folder = examples_folder
+        #: The folder the user pointed the studio at (``mechfem studio --folder DIR``; the deck's, or the current
+        #: one): its decks are offered and opened by path, with the files beside them (MOV_FUNC tables, targets).
+        self.folder = folder
         self.optimising = False
 
     def hello(self) -> dict[str, Any]:
-        """The first message: the examples to offer and, when a design is open, its view."""
-        out: dict[str, Any] = {"type": "hello", "examples": examples(self.examples_folder)}
+        """The first message: the examples and the folder's decks to offer and, when a design is open, its view."""
+        out: dict[str, Any] = {"type": "hello", "examples": examples(self.examples_folder), **self._listing()}
         if self.session is not None:
             out["design"] = view(self.session)
         return out
+
+    def _listing(self) -> dict[str, Any]:
+        if self.folder is None:
+            return {"folder": None, "files": []}
+        return {"folder": str(self.folder), "files": decks(self.folder)}
+
+    def op_files(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        """The folder's decks as they are now."""
+        return {"type": "files", **self._listing()}
 
     def handle(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
         op = message.get("op")
@@ -84,6 +121,13 @@ class Actions:
         if name not in examples(self.examples_folder):
             raise ValueError(f"{name!r} is not one of the examples")
         deck = self.examples_folder / name
+        return self._open(Mechanism.from_deck(deck), deck)
+
+    def op_open_path(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
+        # A deck of the folder the user pointed at, read by its path: the files beside it are read too.
+        if self.folder is None:
+            raise ValueError("the studio was started without a folder: `mechfem studio --folder DIR` offers its decks")
+        deck = inside(self.folder, str(message["name"]))
         return self._open(Mechanism.from_deck(deck), deck)
 
     def op_open_text(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
@@ -124,7 +168,15 @@ class Actions:
         if path.suffix.lower() != ".mec":
             raise ValueError(f"save as a deck: give a file name ending in .mec, not {path.name!r}")
         files = self._need().save(path)
-        return {"type": "saved", "files": [str(p) for p in files], "deck": str(files[0])}
+        listing = self._listing()
+        written = [str(p) for p in files]
+        return {
+            "type": "saved",
+            "files": written,
+            "deck": written[0],
+            "folder": listing["folder"],
+            "decks": listing["files"],
+        }
 
     # -- optimising
 

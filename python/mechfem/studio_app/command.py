@@ -1,4 +1,5 @@
-"""``mechfem studio [DECK] [--port N] [--no-browser]``: serves the studio on 127.0.0.1 and opens it in the browser."""
+"""``mechfem studio [DECK] [--folder DIR] [--port N] [--no-browser]``: serves the studio on 127.0.0.1 and opens it in
+the browser."""
 
 from __future__ import annotations
 
@@ -16,6 +17,12 @@ def add_studio(commands: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         "studio", help="edit a mechanism in the browser and see it move, live (needs mechfem[studio])"
     )
     studio.add_argument("deck", type=Path, nargs="?", metavar="DECK", help="the deck to open (default: none yet)")
+    studio.add_argument(
+        "--folder",
+        type=Path,
+        metavar="DIR",
+        help="offer the decks of DIR and the folders below it (default: the deck's folder, else the current one)",
+    )
     studio.add_argument("--port", type=port_number, default=0, metavar="N", help="the port (default: a free one)")
     studio.add_argument("--no-browser", action="store_true", help="print the address only, open no browser")
     studio.set_defaults(func=cmd_studio)
@@ -46,6 +53,10 @@ def cmd_studio(args: argparse.Namespace) -> int:
     session = None
     if args.deck is not None:
         session = Session(Mechanism.from_deck(args.deck), args.deck)
+    folder = args.folder or (args.deck.parent if args.deck is not None else Path.cwd())
+    if not folder.is_dir():
+        print(f"error: --folder {folder}: no such folder", file=sys.stderr)
+        return 1
 
     def started(url: str) -> None:
         print(f"mechfem studio: {url}", flush=True)
@@ -54,7 +65,7 @@ def cmd_studio(args: argparse.Namespace) -> int:
             webbrowser.open(url)
 
     try:
-        serve(session, args.port, on_start=started)
+        serve(session, args.port, on_start=started, folder=folder)
     except OSError as e:
         print(f"error: cannot serve on 127.0.0.1:{args.port}: {e.strerror or e}", file=sys.stderr)
         return 1

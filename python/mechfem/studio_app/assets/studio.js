@@ -62,7 +62,18 @@
     const sel = $("examples");
     for (const name of m.examples) sel.append(el("option", { value: name }, name));
     sel.hidden = !m.examples.length;
+    listFiles(m);
     if (m.design) showDesign(m.design, true);
+  }
+  // The decks of the folder the studio was pointed at (opened by their path, with the files beside them).
+  function listFiles(m) {
+    if (!("files" in m)) return;
+    const sel = $("files");
+    sel.textContent = "";
+    sel.append(el("option", { value: "" }, "Decks in " + (m.folder || "the folder") + "…"));
+    for (const name of m.files) sel.append(el("option", { value: name }, name));
+    sel.hidden = !m.folder;
+    state.files = m.files;
   }
 
   function reply(m) {
@@ -92,6 +103,9 @@
     } else if (m.type === "saved") {
       state.lastSaved = m;
       say("ok", "Saved " + m.files.join(", ") + ".");
+      listFiles({ folder: m.folder, files: m.decks });
+    } else if (m.type === "files") {
+      listFiles(m);
     } else {
       say("refused", m.message || "the server could not act on that");
     }
@@ -471,6 +485,8 @@
 
   // ---- open, undo, redo, save ----
   $("template").addEventListener("click", () => send({ op: "template" }));
+  $("files").addEventListener("change", (e) => { if (e.target.value) send({ op: "open_path", name: e.target.value }); e.target.value = ""; });
+  $("files").addEventListener("focus", () => send({ op: "files" }));
   $("examples").addEventListener("change", (e) => { if (e.target.value) send({ op: "example", name: e.target.value }); e.target.value = ""; });
   function openFile(file) { file.text().then((text) => send({ op: "open_text", name: file.name, text: text })); }
   $("file").addEventListener("change", (e) => { if (e.target.files[0]) openFile(e.target.files[0]); e.target.value = ""; });
