@@ -1,6 +1,6 @@
 """Takes the pictures of docs/studio.md (docs/images/studio_*.png) in headless Chromium: the four-bar template as
-opened, an edit refused (the design on screen stays), a drag that assembles the other branch, and an optimisation
-of the coupler point through three clicked points.
+opened, an edit refused (the design on screen stays), a drag that assembles the other branch, an optimisation of the
+coupler point through three clicked points, and one of the rocker angle's maximum with a transmission-angle bound.
 
     .venv/bin/python scripts/studio_screenshots.py
 
@@ -76,6 +76,19 @@ def main() -> int:
             page.evaluate("document.getElementById('optimise').scrollIntoView()")
             page.evaluate("window.scrollTo(0, 0)")
             shot(page, "optimised")
+            # The rocker angle's maximum to 130 deg, every transmission angle within [40, 140] deg.
+            page.click("#undo")
+            settle(page)
+            page.select_option("#opttarget", "extremum")
+            page.select_option("#optquantity", "psi")
+            page.fill("#optvalue", "130")
+            page.check("#opttransok")
+            page.click("#optrun")
+            page.wait_for_function("!window.mechfemStudio.optimising", timeout=120000)
+            settle(page)
+            page.evaluate("document.getElementById('optimise').scrollIntoView()")
+            page.screenshot(path=str(IMAGES / "studio_extremum.png"), full_page=False)
+            print(f"wrote {IMAGES / 'studio_extremum.png'}")
             browser.close()
     finally:
         running.stop()

@@ -224,8 +224,8 @@
       ctx.fillStyle = "#1f3b57";
       ctx.fillText(p.name, x + 9 * r, y - 9 * r);
     }
-    // The clicked target points of an optimisation.
-    state.targets.forEach((t, k) => {
+    // The clicked target points of a path's optimisation.
+    if ($("opttarget").value === "path") state.targets.forEach((t, k) => {
       const x = X(t[0]), y = Y(t[1]);
       ctx.strokeStyle = "#c0392b"; ctx.lineWidth = 2 * r;
       ctx.beginPath(); ctx.moveTo(x - 6 * r, y - 6 * r); ctx.lineTo(x + 6 * r, y + 6 * r);
@@ -440,6 +440,7 @@
     const unit = D && D.studio.units.angle ? D.studio.units.angle : "rad", half = unit === "deg" ? 180 : Math.PI;
     $("opttranshi").textContent = "to " + fmt(half - (+$("opttranslo").value || 0)) + " " + unit + " at every position";
     if (target !== "path" && state.picking) $("optclick").click();
+    draw();
   }
   $("opttarget").addEventListener("change", targetChosen);
   $("optgoal").addEventListener("change", targetChosen);
