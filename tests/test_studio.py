@@ -412,3 +412,18 @@ def test_a_deck_of_the_folder_is_opened_by_its_path_with_the_files_beside_it(tmp
     saved = actions.handle({"op": "save", "path": str(tmp_path / "sub" / "again.mec")}, print)
     assert saved["type"] == "saved" and "sub/again.mec" in saved["decks"]
     assert Actions(None).handle({"op": "open_path", "name": "x.mec"}, print)["type"] == "refused"
+
+
+def test_the_studio_page_and_the_report_share_one_head() -> None:
+    from mechfem.report import render_report
+    from mechfem.studio_app.page import render_page
+
+    page = render_page("127.0.0.1:8765")
+    report = render_report(Session(four_bar(steps=12)).result)
+    assert "{{" not in page and "<title>mechfem studio</title>" in page
+    assert "img-src data: blob:; connect-src ws://127.0.0.1:8765" in page
+    policy = """content="default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:"""
+    # The report's policy allows no connection at all; the rest of the head is the same text in both pages.
+    assert policy + '">' in report and "connect-src" not in report.split("</head>")[0]
+    common = '<meta name="viewport" content="width=device-width, initial-scale=1">\n<title>'
+    assert common in page and common in report

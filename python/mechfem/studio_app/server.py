@@ -13,6 +13,7 @@ the repository's examples) and writes only the files of a save, at the path type
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import hmac
 import json
 import secrets
@@ -79,11 +80,13 @@ def make_app(actions: Actions, token: str, port: int) -> Starlette:
         # The design the page has (as sent): an edit's answer carries only what differs from it.
         shown: list[dict[str, Any] | None] = [None]
 
+        pushed: list[concurrent.futures.Future[None]] = []
+
         def push(message: dict[str, Any]) -> None:
             # Called from the worker thread of a long action (an optimisation's iterations, each sent whole).
             if "design" in message:
                 shown[0] = message["design"]
-            asyncio.run_coroutine_threadsafe(ws.send_text(dumps(message)), loop)
+            pushed.append(asyncio.run_coroutine_threadsafe(ws.send_text(dumps(message)), loop))
 
         def answer(message: dict[str, Any]) -> str:
             # Wall and CPU time of the answer (the CPU time of this thread: what the edit costs on an idle machine).
@@ -98,7 +101,12 @@ def make_app(actions: Actions, token: str, port: int) -> Starlette:
             while True:
                 text = await ws.receive_text()
                 async with lock:
-                    await ws.send_text(await asyncio.to_thread(answer, json.loads(text)))
+                    reply = await asyncio.to_thread(answer, json.loads(text))
+                    # The answer's changes are to the last design pushed: it goes after every push.
+                    for sent in pushed:
+                        await asyncio.wrap_future(sent)
+                    pushed.clear()
+                    await ws.send_text(reply)
         except WebSocketDisconnect:
             return
 
