@@ -427,3 +427,18 @@ def test_the_studio_page_and_the_report_share_one_head() -> None:
     assert policy + '">' in report and "connect-src" not in report.split("</head>")[0]
     common = '<meta name="viewport" content="width=device-width, initial-scale=1">\n<title>'
     assert common in page and common in report
+
+
+def test_a_mechanism_with_a_shape_no_map_draws_keeps_its_map_between_edits() -> None:
+    deck = ROOT / "examples" / "gears" / "belt_swing_arm.mec"
+    s = Session(mechfem.Mechanism.from_deck(deck), deck)
+    view(s)
+    a, slow = s.drawing_kept["a"], s.drawing_kept["slow"]
+    assert slow.any() and not slow.all()  # the belt's wraps are drawn by the drawing, the rest by the map
+    pivot = next(p for p in s.points() if p["fixed"])
+    s.edit({pivot["name"]: (pivot["given"][0] + 0.01, pivot["given"][1])})
+    frames = np.arange(s.result.positions)
+    kept, fresh = scene(s.result, frames, s.drawing_kept), scene(s.result, frames)
+    assert s.drawing_kept["a"] is a
+    assert kept["static"] == fresh["static"] and kept["bounds"] == fresh["bounds"]
+    np.testing.assert_allclose(_flat(kept["frames"]), _flat(fresh["frames"]), atol=1e-9)

@@ -24,9 +24,6 @@ from mechfem.result import RunResult
 #: Relative tolerance of the affinity check.
 CHECK = 1e-9
 
-#: A shape's affine map: ``A`` and ``b`` of ``d(x) = A x + b``.
-Affine = tuple[np.ndarray, np.ndarray]
-
 
 def _rounded(a: np.ndarray, decimals: int) -> np.ndarray:
     """``a`` rounded to ``decimals`` (the 6th digit of the drawing's size: far below a pixel, and short in JSON), NaN
@@ -106,11 +103,13 @@ def scene(result: RunResult, frames: np.ndarray, kept: dict[str, Any] | None = N
     reused = kept is not None and kept.get("shape_of") == shape_of
     a = kept["a"] if reused and kept is not None else _affine_part(drawing, x0, flat0, sizes)
     predicted, bad = mapped(a)
-    if reused and bad.any():
+    # A kept map that refuses a shape its mechanism's own map drew (not a slider's block, which no map draws) is
+    # found anew.
+    if reused and kept is not None and (bad & ~kept["slow"]).any():
         a = _affine_part(drawing, x0, flat0, sizes)
         predicted, bad = mapped(a)
     if kept is not None:
-        kept.update(shape_of=shape_of, a=a)
+        kept.update(shape_of=shape_of, a=a, slow=bad)
     edges = np.cumsum([0, *sizes])
     slow = [i for i in range(len(first)) if bad[i]]
     if slow:
