@@ -5,7 +5,9 @@ until the page has drawn the new design and the browser has painted the frame af
     .venv/bin/python benches/bench_studio.py [--edits 60]
 
 prints, over the edits, the median and 90th percentile of: the whole latency (edit sent -> frame painted), the
-page's part (JSON parsed, mechanism and charts drawn), the server's part (run + view + JSON) and the core's run.
+page's part (JSON parsed, the edit's changes put in, mechanism and charts drawn, the task's end and the next frame),
+the server's part (run + view + changes + JSON, wall and CPU time) and the core's run. Give the load average of the
+machine with the numbers (`uptime`): the wall times grow with it, the CPU times much less.
 The target is 50 ms for the whole. Needs Chromium (Debian's, /usr/bin/chromium) and mechfem[studio] + playwright.
 """
 
