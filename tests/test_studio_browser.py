@@ -27,7 +27,7 @@ needs_chromium = pytest.mark.skipif(
     CHROMIUM is None,
     reason="no Chromium on the PATH: `make browser` installs Debian's chromium (as root); `make test` calls it",
 )
-pytestmark = needs_chromium
+pytestmark = [pytest.mark.browser, needs_chromium]
 # The report's flags, but the page's own server on 127.0.0.1 resolves and is reached directly.
 STUDIO_FLAGS = [
     "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1" if f.startswith("--host-resolver-rules") else f
