@@ -345,6 +345,11 @@ def test_optimise_makes_an_outputs_maximum_reach_a_value_and_shows_its_iteration
     pushed_up = actions.handle({**message, "goal": "up", "vary": ["rocker.length"]}, pushed.append)
     assert pushed_up["type"] == "design", pushed_up
     assert _psi_extremes(session.mechanism)[1] > before + 1.0 and session.result.report.stop_reason() is None
+    # A point's co-ordinate (a length): the coupler point's lowest y over the motion (0.9 in the template) to 1.2.
+    fresh = Actions(Session(four_bar(steps=72)))
+    low = {"op": "optimise", "target": "extremum", "quantity": "C.y", "which": "min", "goal": "value", "value": 1.2}
+    assert fresh.handle({**low, "vary": ["coupler.v"]}, pushed.append)["type"] == "design"
+    assert float(np.min(fresh.session.result.value("C.y"))) == pytest.approx(1.2, abs=1e-6)  # type: ignore[union-attr]
 
 
 def test_optimise_keeps_the_transmission_angle_within_a_bound_with_the_least_change() -> None:

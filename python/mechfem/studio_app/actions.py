@@ -239,7 +239,7 @@ class Actions:
         from mechfem.parts import Row
 
         session = self._need()
-        obj = session.mechanism.find(quantity.split(".")[0] if quantity.endswith((".x", ".y")) else quantity)
+        obj = session.mechanism.find(quantity)
         units = session.mechanism.units
         unit = (units.angle or "rad") if isinstance(obj, Row) and obj.is_angle else (units.length or "")
         return f" {unit}" if unit else ""

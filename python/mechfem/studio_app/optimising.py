@@ -141,7 +141,7 @@ def _extent(session: Session) -> tuple[np.ndarray, np.ndarray]:
 def si_factor(session: Session, name: str) -> float:
     """What a value of the quantity ``name`` (a row, an output or a co-ordinate) in the model's units is multiplied by
     to give it in the optimiser's SI units."""
-    obj = session.mechanism.find(name.split(".")[0] if name.endswith((".x", ".y")) else name)
+    obj = session.mechanism.find(name)
     angle = isinstance(obj, Row) and obj.is_angle
     units = session.mechanism.units
     return scale(units.angle or "rad", "rad") if angle else scale(units.length or "m", "m")
