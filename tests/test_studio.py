@@ -447,3 +447,8 @@ def test_a_mechanism_with_a_shape_no_map_draws_keeps_its_map_between_edits() -> 
     assert s.drawing_kept["a"] is a
     assert kept["static"] == fresh["static"] and kept["bounds"] == fresh["bounds"]
     np.testing.assert_allclose(_flat(kept["frames"]), _flat(fresh["frames"]), atol=1e-9)
+
+
+def test_cli_refuses_a_folder_that_is_not_there(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert cli.main(["studio", "--folder", str(tmp_path / "none"), "--no-browser"]) == 1
+    assert f"--folder {tmp_path / 'none'}: no such folder" in capsys.readouterr().err
