@@ -39,17 +39,21 @@ def examples(folder: Path = EXAMPLES) -> list[str]:
 #: Folders a listing of decks does not look into: the tools' own (a virtual environment, build output).
 SKIPPED = {"node_modules", "target", "__pycache__", "site-packages"}
 
-#: The most decks a listing gives, and how deep it looks below its folder.
-MOST_DECKS, DEEPEST = 2000, 6
+#: The most decks a listing gives, how deep it looks below its folder and how many folders it looks into (a
+#: listing of a home folder stays quick).
+MOST_DECKS, DEEPEST, MOST_FOLDERS = 2000, 6, 5000
 
 
 def decks(folder: Path) -> list[str]:
     """The decks (``*.mec``) in ``folder`` and the folders below it, as paths relative to it (hidden folders and
-    :data:`SKIPPED` left out; at most :data:`MOST_DECKS`, :data:`DEEPEST` folders down)."""
+    :data:`SKIPPED` left out; at most :data:`MOST_DECKS`, :data:`DEEPEST` folders down, :data:`MOST_FOLDERS`
+    folders)."""
     if not folder.is_dir():
         return []
     out = []
-    for top, dirs, files in os.walk(folder):
+    for seen, (top, dirs, files) in enumerate(os.walk(folder)):
+        if seen >= MOST_FOLDERS:
+            break
         depth = len(Path(top).relative_to(folder).parts)
         dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIPPED and depth < DEEPEST)
         out += [(Path(top) / f).relative_to(folder).as_posix() for f in files if f.lower().endswith(".mec")]
