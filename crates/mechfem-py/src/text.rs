@@ -129,7 +129,7 @@ pub fn run_variant(
 /// [`Compiled::transfer_order`]); quantities made from ones not computed are NaN.
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
-/// reason in `report["stop"]`; a deck mistake raises `DeckError`, a failure
+/// reason in `report.stop`; a deck mistake raises `DeckError`, a failure
 /// at position 1 `AssemblyError`, `ConvergenceError` or `LimitPositionError`.
 /// Ctrl-C returns the positions so far with `interrupted` set, as `run_deck`;
 /// results that would take more than `memory_limit` bytes raise
