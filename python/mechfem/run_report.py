@@ -219,9 +219,7 @@ class RunReport:
     """The mean distance the moving co-ordinates moved per step: the ds a stop message suggests for MOV_FREE."""
 
     @classmethod
-    def from_core(
-        cls, r: _core.Report, input_names: Sequence[str] = (), free_step: float | None = None
-    ) -> RunReport:
+    def from_core(cls, r: _core.Report, input_names: Sequence[str] = (), free_step: float | None = None) -> RunReport:
         return cls(
             adjust=AdjustInfo.from_core(r.adjust),
             positions=r.positions,
