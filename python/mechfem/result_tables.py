@@ -512,40 +512,65 @@ class ResultTables:
         several inputs), ``q_dot`` and ``q_ddot`` (velocity, acceleration). A deck's run gives those its buffers
         recorded. Numbers are in the model's units; ``unit`` gives every angle or every length in that unit, as
         for :meth:`value`."""
+        return self._table_columns(coordinates, unit)[0]
+
+    def table_units(self, coordinates: bool = True, unit: str | None = None) -> dict[str, str]:
+        """The unit of every column of :meth:`table` (``mm``, ``deg``, ``mm/deg``, ``deg/s``, ``N·mm``, ``J``;
+        ``-`` for a ratio of one unit; ``""`` where the model gives no unit, e.g. a length without UNITS)."""
+        return self._table_columns(coordinates, unit)[1]
+
+    def _table_columns(self, coordinates: bool, unit: str | None) -> tuple[dict[str, FloatArray], dict[str, str]]:
+        """:meth:`table` and :meth:`table_units`."""
+        from mechfem import labels
+
+        me = cast(Any, self)
         inputs, outputs, coords = self._names.columns(coordinates)
         names = [r.name for r in inputs]
         single = len(names) == 1
         out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
+        units = {"time": labels.unit_in(me, "s"), "det": labels.unit_in(me, labels.det_unit(me))}
+        per = [labels.input_unit(me, j) for j in range(1, len(names) + 1)]
 
-        def put(key: str, get: Any, *args: Any) -> None:
+        def put(key: str, words: str, get: Any, *args: Any) -> None:
             try:
                 try:
                     out[key] = get(*args, unit=unit)
+                    units[key] = labels.unit_in(me, words, unit)
                 except NotOfKindError:
                     out[key] = get(*args)
+                    units[key] = labels.unit_in(me, words)
             except KeyError:
                 if self.named:
                     raise
 
-        def add(name: str, ref: object) -> None:
-            put(name, self.value, ref)
+        def add(name: str, ref: object, base: str) -> None:
+            put(name, base, self.value, ref)
             for j, a in enumerate(names):
-                put(f"{name}'" if single else f"{name}'({a})", self.value, ref, 1, j + 1)
+                put(f"{name}'" if single else f"{name}'({a})", labels.over(base, per[j]), self.value, ref, 1, j + 1)
                 for m, b in enumerate(names[j:], j):
-                    put(f"{name}''" if single else f"{name}''({a},{b})", self.value, ref, 2, j + 1, m + 1)
-            put(f"{name}_dot", self.velocity, ref)
-            put(f"{name}_ddot", self.acceleration, ref)
+                    den = labels.squared(per[j], per[m])
+                    key = f"{name}''" if single else f"{name}''({a},{b})"
+                    put(key, labels.over(base, den), self.value, ref, 2, j + 1, m + 1)
+            put(f"{name}_dot", labels.over(base, "s"), self.velocity, ref)
+            put(f"{name}_ddot", labels.over(base, "s^2"), self.acceleration, ref)
 
-        for r in inputs:
-            put(r.name, self.input, r)
-            put(f"{r.name}_dot", self.velocity, r)
-            put(f"{r.name}_ddot", self.acceleration, r)
+        def unit_of(ref: object) -> str:
+            try:
+                return labels.value_unit(me, ref)
+            except KeyError:
+                return ""
+
+        for j, r in enumerate(inputs):
+            put(r.name, per[j], self.input, r)
+            put(f"{r.name}_dot", labels.over(per[j], "s"), self.velocity, r)
+            put(f"{r.name}_ddot", labels.over(per[j], "s^2"), self.acceleration, r)
         for r in outputs:
-            add(r.name, r)
+            add(r.name, r, unit_of(r))
         for c in coords:
-            add(c.name, c)
+            add(c.name, c, unit_of(c))
         out.update(designer.dynamic_columns(self))
-        return out
+        units.update(designer.dynamic_units(self))
+        return out, {k: units.get(k, "") for k in out}
 
     # -- the report
 
@@ -568,10 +593,13 @@ class ResultTables:
 
     def to_pandas(self, coordinates: bool = True, unit: str | None = None) -> Any:
         """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...), its columns named as the model
-        names its parts (``unit``: as for :meth:`table`). Needs pandas (``pip install 'mechfem[pandas]'``)."""
+        names its parts (``unit``: as for :meth:`table`), with ``attrs["units"]`` mapping each column to its unit
+        (:meth:`table_units`). Needs pandas (``pip install 'mechfem[pandas]'``)."""
         pd = optional.pandas()
-        frame = pd.DataFrame(self.table(coordinates, unit))
+        columns, units = self._table_columns(coordinates, unit)
+        frame = pd.DataFrame(columns)
         frame.index = pd.RangeIndex(1, self.coords.shape[0] + 1, name="position")
+        frame.attrs["units"] = units
         return frame
 
 
