@@ -213,7 +213,40 @@ impl Units {
             value * s
         }
     }
+
+    /// `value`, a number of the core that a model gave in `dim`'s units
+    /// ([`Units::to_core`]), as the model gave it. [`Units::from_core`] can
+    /// miss the given number by an ulp (26.252 mm is 0.026252 m, and that
+    /// times 1000 is 26.252000000000002), so that a model written and read
+    /// again would drift: of the numbers a few ulps around it that
+    /// [`Units::to_core`] takes to `value`, this is the one with the fewest
+    /// decimal digits (the nearest of those). Every such number is the same
+    /// number to the core.
+    pub fn as_written(&self, dim: Dim, value: f64) -> f64 {
+        let back = self.from_core(dim, value);
+        if dim.scale(self) == 1.0 || !back.is_finite() {
+            return back;
+        }
+        let digits = |v: f64| format!("{v:e}").len();
+        let (mut best, mut best_digits) = (None, usize::MAX);
+        // Nearest first, so that among equally short numbers the nearest wins.
+        let (mut up, mut down) = (back, back);
+        for k in 0..=WRITTEN_ULPS {
+            let candidates = if k == 0 { [Some(back), None] } else { [Some(up), Some(down)] };
+            for v in candidates.into_iter().flatten() {
+                if self.to_core(dim, v) == value && digits(v) < best_digits {
+                    (best, best_digits) = (Some(v), digits(v));
+                }
+            }
+            (up, down) = (up.next_up(), down.next_down());
+        }
+        best.unwrap_or(back)
+    }
 }
+
+/// How many ulps around the converted number [`Units::as_written`] looks
+/// for the given one (a conversion there and back is off by one or two).
+const WRITTEN_ULPS: usize = 4;
 
 /// The kind of a quantity: its exponents of length, angle, mass, force and
 /// time.
@@ -574,6 +607,35 @@ mod tests {
         for d in [Dim::LENGTH, Dim::INERTIA, k, Dim::ENERGY.over(Dim::TIME)] {
             let back = u.from_core(d, u.to_core(d, 123.456));
             assert!((back - 123.456).abs() < 1e-12, "{d:?}");
+        }
+    }
+
+    #[test]
+    fn a_number_given_in_the_models_units_is_written_back_as_given() {
+        let inch = Units { length: Some(Length::In), mass: Some(Mass::G), ..mm_deg() };
+        let k = Dim::ANGLE.generalised_force().over(Dim::ANGLE);
+        let dims = [Dim::LENGTH, Dim::ANGLE, Dim::INERTIA, Dim::MASS, k, Dim::LENGTH.over(Dim::TIME)];
+        // Numbers of up to three decimals, as a designer writes them (a seeded sweep).
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut drifted = 0;
+        for _ in 0..5000 {
+            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            let (int, frac) = ((seed >> 40) % 100_000, (seed >> 20) % 1000);
+            let sign = if seed & 1 == 0 { "" } else { "-" };
+            let w: f64 = format!("{sign}{int}.{frac:03}").parse().unwrap();
+            for units in [&mm_deg(), &inch] {
+                for d in dims {
+                    let core = units.to_core(d, w);
+                    drifted += usize::from(units.from_core(d, core) != w);
+                    assert_eq!(units.as_written(d, core), w, "{w} {d:?}");
+                }
+            }
+        }
+        // The plain conversion back misses some of them: the sweep shows what `as_written` is for.
+        assert!(drifted > 100, "{drifted}");
+        // Without units a number is left as it is, bit for bit.
+        for v in [0.1, -3.7e-300, f64::MAX, f64::NAN] {
+            assert_eq!(Units::NONE.as_written(Dim::LENGTH, v).to_bits(), v.to_bits());
         }
     }
 

@@ -220,7 +220,7 @@ pub fn describe_deck_text<'py>(
     d.set_item("dependent", convert::rows(py, &dependent, &[])?)?;
     d.set_item("names", crate::described_names::names(py, &c)?)?;
     d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
-    d.set_item("tol", c.units.from_core(mechfem_core::Dim::LENGTH, c.params.tol))?;
+    d.set_item("tol", c.units.as_written(mechfem_core::Dim::LENGTH, c.params.tol))?;
     d.set_item("max_iter", c.params.max_iter)?;
     let motion = match &motion {
         None => None,
