@@ -69,6 +69,7 @@ def test_the_dynamics_columns_carry_the_units_of_their_buffers() -> None:
     by_name = {b.name: b.unit for b in result.storage.buffers}
     for column in ("drive(alpha)", "Ekin", "Epot", "power", "sigma(link.length)", "reaction(A0.x)"):
         assert units[column] == by_name[column] != ""
+    assert (units["drive(alpha)"], units["Ekin"], units["power"]) == ("N·m", "J", "W")
     assert units["A.x"] == "m" and units["alpha"] == "rad"
 
 
@@ -76,4 +77,5 @@ def test_a_named_models_dynamics_columns_are_in_its_units() -> None:
     m = fourbar_mm_deg({"length": "mm", "mass": "kg", "force": "N"})
     m.mass("coupler", 0.2, J=0.01)
     units = m.run(Motion.by(4, 360)).to_pandas().attrs["units"]
-    assert units["drive(phi)"] == "N·mm" and units["power"] != ""
+    # A torque in N·mm, work of the same exponents in mJ, power in mW (N·mm/s).
+    assert units["drive(phi)"] == "N·mm" and units["Ekin"] == units["Epot"] == "mJ" and units["power"] == "mW"

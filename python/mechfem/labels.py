@@ -27,7 +27,7 @@ import mechfem._core as _core
 from mechfem.echo import Buffer, Model, Row
 from mechfem.result import RunResult
 from mechfem.result_tables import run_units
-from mechfem.units import Units, kind_of, watts
+from mechfem.units import Units, joules, kind_of, watts
 
 ANGLE = "rad"
 LENGTH = "length"
@@ -180,7 +180,7 @@ def _words(units: Units) -> dict[str, str | None]:
         "s": units.time,
         "force": force,
         "torque": moment,
-        "energy": moment,
+        "energy": None if moment is None else joules(units.as_dict()) or moment,
         "power": None if moment is None else watts(units.as_dict()) or f"{moment}/{units.time}",
         "mass": units.mass,
     }

@@ -249,29 +249,34 @@ impl Units {
 const WRITTEN_ULPS: usize = 4;
 
 /// The kind of a quantity: its exponents of length, angle, mass, force and
-/// time.
+/// time, and whether it is work (an energy). Work and a torque have the same
+/// exponents (force x length; the radian a torque is per does not count),
+/// but work is shown in joules (`J`, `mJ`) and a torque in `N·m`, `N·mm`:
+/// the second field tells them apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct Dim(pub [i8; KINDS]);
+pub struct Dim(pub [i8; KINDS], pub bool);
 
 impl Dim {
     /// A pure number.
-    pub const NONE: Dim = Dim([0; KINDS]);
+    pub const NONE: Dim = Dim([0; KINDS], false);
     /// A length.
-    pub const LENGTH: Dim = Dim([1, 0, 0, 0, 0]);
+    pub const LENGTH: Dim = Dim([1, 0, 0, 0, 0], false);
     /// An angle.
-    pub const ANGLE: Dim = Dim([0, 1, 0, 0, 0]);
+    pub const ANGLE: Dim = Dim([0, 1, 0, 0, 0], false);
     /// A mass.
-    pub const MASS: Dim = Dim([0, 0, 1, 0, 0]);
+    pub const MASS: Dim = Dim([0, 0, 1, 0, 0], false);
     /// A force.
-    pub const FORCE: Dim = Dim([0, 0, 0, 1, 0]);
+    pub const FORCE: Dim = Dim([0, 0, 0, 1, 0], false);
     /// A time.
-    pub const TIME: Dim = Dim([0, 0, 0, 0, 1]);
-    /// An energy (force x length): also a torque, work per radian.
-    pub const ENERGY: Dim = Dim([1, 0, 0, 1, 0]);
+    pub const TIME: Dim = Dim([0, 0, 0, 0, 1], false);
+    /// Work, an energy (force x length).
+    pub const ENERGY: Dim = Dim([1, 0, 0, 1, 0], true);
+    /// A torque (force x length, per radian).
+    pub const TORQUE: Dim = Dim([1, 0, 0, 1, 0], false);
     /// A moment of inertia (mass x length²).
-    pub const INERTIA: Dim = Dim([2, 0, 1, 0, 0]);
+    pub const INERTIA: Dim = Dim([2, 0, 1, 0, 0], false);
     /// A power (force x length / time).
-    pub const POWER: Dim = Dim([1, 0, 0, 1, -1]);
+    pub const POWER: Dim = Dim([1, 0, 0, 1, -1], false);
 
     /// The kind of a catalogue dimension (`Any` taken as a length).
     pub fn of(d: Dimension) -> Dim {
@@ -284,17 +289,17 @@ impl Dim {
 
     /// `self x other`.
     pub fn times(self, other: Dim) -> Dim {
-        Dim(std::array::from_fn(|k| self.0[k] + other.0[k]))
+        Dim(std::array::from_fn(|k| self.0[k] + other.0[k]), false)
     }
 
     /// `self / other`.
     pub fn over(self, other: Dim) -> Dim {
-        Dim(std::array::from_fn(|k| self.0[k] - other.0[k]))
+        Dim(std::array::from_fn(|k| self.0[k] - other.0[k]), false)
     }
 
     /// `self` to the power `n`.
     pub fn pow(self, n: i8) -> Dim {
-        Dim(self.0.map(|e| e * n))
+        Dim(self.0.map(|e| e * n), self.1 && n == 1)
     }
 
     /// `self` without its angle: what a generalised force divides work by.
@@ -333,6 +338,11 @@ impl Dim {
         if self == Dim::POWER {
             if let Some(watt) = watts(self.scale(units)) {
                 return watt.to_string();
+            }
+        }
+        if self == Dim::ENERGY {
+            if let Some(joule) = joules(self.scale(units)) {
+                return joule.to_string();
             }
         }
         let part = |positive: bool| {
@@ -375,6 +385,16 @@ impl Dim {
 /// `mW`); `None` for any other size (N·in/s keeps its compound symbol).
 fn watts(size: f64) -> Option<&'static str> {
     [(1e-6, "µW"), (1e-3, "mW"), (1.0, "W"), (1e3, "kW"), (1e6, "MW")]
+        .into_iter()
+        .find(|&(w, _)| (size - w).abs() <= 1e-12 * w)
+        .map(|(_, name)| name)
+}
+
+/// Work whose unit is `size` joules, by the joule's name where `size` is one
+/// of its decimal multiples (N·m and kN·mm are `J`, N·mm is `mJ`); `None`
+/// for any other size (N·cm, N·in keep their compound symbol).
+fn joules(size: f64) -> Option<&'static str> {
+    [(1e-3, "mJ"), (1.0, "J"), (1e3, "kJ")]
         .into_iter()
         .find(|&(w, _)| (size - w).abs() <= 1e-12 * w)
         .map(|(_, name)| name)
@@ -546,8 +566,19 @@ mod tests {
         assert_eq!(Dim::POWER.symbol(&with(Length::Mm, Force::N, Time::Ms)), "W");
         assert_eq!(Dim::POWER.symbol(&with(Length::M, Force::KN, Time::S)), "kW");
         assert_eq!(Dim::POWER.symbol(&with(Length::In, Force::N, Time::S)), "N·in/s");
-        // A torque and an energy keep force x length: they share one kind.
-        assert_eq!(Dim::ENERGY.symbol(&with(Length::M, Force::N, Time::S)), "N·m");
+        // Work is named by the joule; a torque, of the same exponents, keeps force x length.
+        assert_eq!(Dim::ENERGY.symbol(&with(Length::M, Force::N, Time::S)), "J");
+        assert_eq!(Dim::ENERGY.symbol(&with(Length::Mm, Force::N, Time::S)), "mJ");
+        assert_eq!(Dim::ENERGY.symbol(&with(Length::M, Force::KN, Time::S)), "kJ");
+        assert_eq!(Dim::ENERGY.symbol(&with(Length::Mm, Force::KN, Time::S)), "J");
+        assert_eq!(Dim::ENERGY.symbol(&with(Length::In, Force::N, Time::S)), "N·in");
+        assert_eq!(Dim::TORQUE.symbol(&with(Length::M, Force::N, Time::S)), "N·m");
+        assert_eq!(Dim::ANGLE.generalised_force(), Dim::TORQUE);
+        assert_eq!(Dim::ENERGY.over(Dim::TIME), Dim::POWER);
+        assert_eq!(
+            Dim::ENERGY.scale(&with(Length::Mm, Force::N, Time::S)),
+            Dim::TORQUE.scale(&with(Length::Mm, Force::N, Time::S))
+        );
     }
 
     #[test]
