@@ -70,3 +70,12 @@ def test_a_check_hands_its_adjustment_typed() -> None:
     check = mechfem.check_deck(FOURBAR)
     assert check.adjust.iterations >= 1 and check.adjust.stages >= 1
     assert check.adjust.residual < 1e-9
+
+
+def test_a_report_reads_as_the_call_that_makes_it() -> None:
+    r = mechfem.run_deck(LIMITS / "slider_dead_centre.mec")._raw.report
+    assert r.stop is not None and r.stop.limit is not None
+    text = repr(r)
+    assert text.startswith(f"Report(adjust=Adjust(iterations={r.adjust.iterations}, ")
+    assert f"positions={r.positions}, steps={r.steps}" in text and f"last_good={r.stop.last_good}" in text
+    assert f"kind={r.stop.kind!r}".replace("'", '"') in text and 'limit=Limit(kind="input_limit"' in text

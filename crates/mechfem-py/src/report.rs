@@ -40,6 +40,15 @@ impl Adjust {
         other.cast::<Adjust>().is_ok_and(|o| *o.get() == *self)
     }
 
+    /// Every number, as Python writes a call.
+    fn __repr__(&self) -> String {
+        let a = &self.0;
+        format!(
+            "Adjust(iterations={}, stages={}, initial_deformations={:?}, residual={:?})",
+            a.iterations, a.stages, a.initial_deformations, a.residual
+        )
+    }
+
     /// Newton iterations in all.
     #[getter]
     fn iterations(&self) -> usize {
@@ -100,6 +109,19 @@ impl Limit {
     /// Equal limit positions have equal values.
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
         other.cast::<Limit>().is_ok_and(|o| *o.get() == *self)
+    }
+
+    /// Every value, as Python writes a call.
+    fn __repr__(&self) -> String {
+        let l = &self.0;
+        format!(
+            "Limit(kind={:?}, after={}, inputs={:?}, coords={:?}, det={:?})",
+            self.kind(),
+            self.after(),
+            l.inputs,
+            l.coords,
+            l.det
+        )
     }
 
     /// `near_zero`, `input_limit` or `passed`.
@@ -196,6 +218,15 @@ impl Stop {
         let same = (self.last_good, &self.inputs, &self.last_inputs, &self.kind, &self.message, &self.limit)
             == (o.last_good, &o.inputs, &o.last_inputs, &o.kind, &o.message, &o.limit);
         Ok(same && self.parts.bind(other.py()).eq(o.parts.bind(other.py()))?)
+    }
+
+    /// Every value but the parts, as Python writes a call.
+    fn __repr__(&self) -> String {
+        let limit = self.limit.as_ref().map_or("None".to_string(), Limit::__repr__);
+        format!(
+            "Stop(last_good={}, inputs={:?}, last_inputs={:?}, kind={:?}, message={:?}, limit={limit})",
+            self.last_good, self.inputs, self.last_inputs, self.kind, self.message
+        )
     }
 }
 
@@ -319,5 +350,20 @@ impl Report {
             (Some(a), Some(b)) => a.bind(other.py()).eq(b.bind(other.py())),
             _ => Ok(false),
         }
+    }
+
+    /// Every value, as Python writes a call.
+    fn __repr__(&self) -> String {
+        let limits = self.limits.iter().map(Limit::__repr__).collect::<Vec<_>>().join(", ");
+        let stop = self.stop.as_ref().map_or("None".to_string(), |s| s.get().__repr__());
+        format!(
+            "Report(adjust={}, positions={}, steps={}, subdivided_steps={}, limits=[{limits}], \
+             singular_positions={:?}, stop={stop})",
+            self.adjust.__repr__(),
+            self.positions,
+            self.steps,
+            self.subdivided_steps,
+            self.singular_positions
+        )
     }
 }
