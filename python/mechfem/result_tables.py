@@ -521,56 +521,9 @@ class ResultTables:
 
     def _table_columns(self, coordinates: bool, unit: str | None) -> tuple[dict[str, FloatArray], dict[str, str]]:
         """:meth:`table` and :meth:`table_units`."""
-        from mechfem import labels
+        from mechfem import table_columns
 
-        me = cast(Any, self)
-        inputs, outputs, coords = self._names.columns(coordinates)
-        names = [r.name for r in inputs]
-        single = len(names) == 1
-        out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
-        units = {"time": labels.unit_in(me, "s"), "det": labels.unit_in(me, labels.det_unit(me))}
-        per = [labels.input_unit(me, j) for j in range(1, len(names) + 1)]
-
-        def put(key: str, words: str, get: Any, *args: Any) -> None:
-            try:
-                try:
-                    out[key] = get(*args, unit=unit)
-                    units[key] = labels.unit_in(me, words, unit)
-                except NotOfKindError:
-                    out[key] = get(*args)
-                    units[key] = labels.unit_in(me, words)
-            except KeyError:
-                if self.named:
-                    raise
-
-        def add(name: str, ref: object, base: str) -> None:
-            put(name, base, self.value, ref)
-            for j, a in enumerate(names):
-                put(f"{name}'" if single else f"{name}'({a})", labels.over(base, per[j]), self.value, ref, 1, j + 1)
-                for m, b in enumerate(names[j:], j):
-                    den = labels.squared(per[j], per[m])
-                    key = f"{name}''" if single else f"{name}''({a},{b})"
-                    put(key, labels.over(base, den), self.value, ref, 2, j + 1, m + 1)
-            put(f"{name}_dot", labels.over(base, "s"), self.velocity, ref)
-            put(f"{name}_ddot", labels.over(base, "s^2"), self.acceleration, ref)
-
-        def unit_of(ref: object) -> str:
-            try:
-                return labels.value_unit(me, ref)
-            except KeyError:
-                return ""
-
-        for j, r in enumerate(inputs):
-            put(r.name, per[j], self.input, r)
-            put(f"{r.name}_dot", labels.over(per[j], "s"), self.velocity, r)
-            put(f"{r.name}_ddot", labels.over(per[j], "s^2"), self.acceleration, r)
-        for r in outputs:
-            add(r.name, r, unit_of(r))
-        for c in coords:
-            add(c.name, c, unit_of(c))
-        out.update(designer.dynamic_columns(self))
-        units.update(designer.dynamic_units(self))
-        return out, {k: units.get(k, "") for k in out}
+        return table_columns.columns(cast(Any, self), coordinates, unit)
 
     # -- the report
 
