@@ -125,7 +125,7 @@ def test_a_study_is_the_deck_texts_bit_for_bit() -> None:
         b = _core.run_deck_variants([built.builder], variants, "v.mec", base, 1, None, None, 2)
     for x, y in zip(a, b, strict=True):
         assert not isinstance(x, Exception) and not isinstance(y, Exception)
-        assert _field(x, "report")["stop"] is None and _field(y, "report")["stop"] is None
+        assert _field(x, "report").stop is None and _field(y, "report").stop is None
         for name in ("table", "coords"):
             assert np.array_equal(_field(x, name), _field(y, name))
 

@@ -79,12 +79,12 @@ def test_the_print_file_says_the_units_and_gives_the_dynamics_in_the_decks_numbe
     _, si_text = outputs(si, tmp_path / "si")
     mm_row5, si_row5 = line_with(text, "row    5:"), line_with(si_text, "row    5:")
     assert mm_row5.endswith("deg") and numbers(mm_row5)[1] == pytest.approx(numbers(si_row5)[1] * DEG)
-    # The summary: the drive in N·mm at an input in degrees, the energies in N·mm, power in W (N·mm/ms).
+    # The summary: the drive in N·mm at an input in degrees, the energies in mJ (N·mm of work), power in W (N·mm/ms).
     drive, si_drive = line_with(text, "drive of DOF 1"), line_with(si_text, "drive of DOF 1")
     assert "N·mm at position" in drive and "deg)," in drive
     assert numbers(drive)[1] == pytest.approx(numbers(si_drive)[1] * L, rel=1e-8)
     assert "W" in line_with(text, "work of the drives").split()
-    assert line_with(text, "kinetic energy").endswith("N·mm")
+    assert line_with(text, "kinetic energy").endswith("mJ")
     # Without UNITS the print file says so and shows no unit.
     assert "units: none declared" in si_text and "N·mm" not in si_text
 

@@ -42,8 +42,13 @@ def test_a_powers_unit_is_the_watt_where_the_units_make_one() -> None:
     assert shown("power", mm_ms) == "W" and symbol(mm_ms.as_dict(), force=1, length=1, time=-1) == "W"
     assert shown("power", Units(length="mm", force="N")) == "mW"
     assert shown("power", Units(length="in", force="N")) == "N·in/s"
-    # A torque and an energy keep force x length.
-    assert shown("torque", mm_ms) == "N·mm" and shown("energy", mm_ms) == "N·mm"
+    # A torque keeps force x length; work of the same exponents is named by the joule where the units make one.
+    assert shown("torque", mm_ms) == "N·mm" and shown("energy", mm_ms) == "mJ"
+    assert shown("energy", Units(length="m", force="N")) == "J"
+    assert shown("energy", Units(length="mm", force="kN")) == "J"
+    assert shown("energy", Units(length="in", force="N")) == "N·in"
+    assert symbol(mm_ms.as_dict(), True, force=1, length=1) == "mJ"
+    assert symbol(mm_ms.as_dict(), force=1, length=1) == "N·mm"
 
 
 def test_a_model_in_mm_read_from_a_deck_without_accuracy_writes_none_and_reads_back_unchanged(tmp_path: Path) -> None:

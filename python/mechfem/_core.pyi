@@ -29,6 +29,10 @@ __all__ = [
     "Check",
     "DeckFiles",
     "Simulation",
+    "Adjust",
+    "Limit",
+    "Stop",
+    "Report",
     "Storage",
     "Buffer",
     "Picture",
@@ -130,45 +134,111 @@ class LimitPositionError(MechfemError):
     reason: str
     parts: list[_Part]
 
-@type_check_only
-class AdjustDict(TypedDict):
-    iterations: int
-    stages: int
-    initial_deformations: list[float]
-    """Per prescribed row: value at the given co-ordinates minus the prescribed value."""
-    residual: float
+@final
+class Adjust:
+    """The Newton adjustment of the given co-ordinates that makes position 1."""
 
-@type_check_only
-class LimitDict(TypedDict):
-    kind: str
-    """``near_zero``, ``input_limit`` or ``passed``."""
-    after: int
-    """The position before it."""
-    inputs: list[float]
-    coords: list[float]
-    det: float
+    def __new__(cls, iterations: int, stages: int, initial_deformations: list[float], residual: float) -> Adjust: ...
+    def __getnewargs__(self) -> tuple[int, int, list[float], float]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    def __repr__(self) -> str: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def stages(self) -> int: ...
+    @property
+    def initial_deformations(self) -> list[float]:
+        """Per prescribed row: value at the given co-ordinates minus the prescribed value."""
+    @property
+    def residual(self) -> float: ...
 
-@type_check_only
-class StopDict(TypedDict):
-    last_good: int
-    inputs: list[float]
-    last_inputs: list[float]
-    kind: str
-    """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``non_finite_dynamics``,
-    ``unsupported``, ``not_computed``, ``interrupted`` or ``simulation`` (the integrator of a simulation gave up)."""
-    message: str
-    parts: list[_Part]
-    limit: LimitDict | None
+@final
+class Limit:
+    """A limit position met during the motion."""
 
-@type_check_only
-class ReportDict(TypedDict):
-    adjust: AdjustDict
-    positions: int
-    steps: int
-    subdivided_steps: int
-    limits: list[LimitDict]
-    singular_positions: list[int]
-    stop: StopDict | None
+    def __new__(cls, kind: str, after: int, inputs: list[float], coords: list[float], det: float) -> Limit: ...
+    def __getnewargs__(self) -> tuple[str, int, list[float], list[float], float]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    def __repr__(self) -> str: ...
+    @property
+    def kind(self) -> str:
+        """``near_zero``, ``input_limit`` or ``passed``."""
+    @property
+    def after(self) -> int:
+        """The position before it."""
+    @property
+    def inputs(self) -> list[float]: ...
+    @property
+    def coords(self) -> list[float]: ...
+    @property
+    def det(self) -> float: ...
+
+@final
+class Stop:
+    """Why a motion stopped before its last position."""
+
+    def __new__(
+        cls,
+        last_good: int,
+        inputs: list[float],
+        last_inputs: list[float],
+        kind: str,
+        message: str,
+        parts: list[_Part],
+        limit: Limit | None,
+    ) -> Stop: ...
+    def __getnewargs__(self) -> tuple[int, list[float], list[float], str, str, list[_Part], Limit | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    def __repr__(self) -> str: ...
+    @property
+    def last_good(self) -> int: ...
+    @property
+    def inputs(self) -> list[float]: ...
+    @property
+    def last_inputs(self) -> list[float]: ...
+    @property
+    def kind(self) -> str:
+        """``singular``, ``no_convergence``, ``branch_jump``, ``element``, ``non_finite``, ``non_finite_dynamics``,
+        ``unsupported``, ``not_computed``, ``interrupted`` or ``simulation`` (the integrator of a simulation gave
+        up)."""
+    @property
+    def message(self) -> str: ...
+    @property
+    def parts(self) -> list[_Part]: ...
+    @property
+    def limit(self) -> Limit | None: ...
+
+@final
+class Report:
+    """What a run did (``Run.report``)."""
+
+    def __new__(
+        cls,
+        adjust: Adjust,
+        positions: int,
+        steps: int,
+        subdivided_steps: int,
+        limits: list[Limit],
+        singular_positions: list[int],
+        stop: Stop | None,
+    ) -> Report: ...
+    def __getnewargs__(self) -> tuple[Adjust, int, int, int, list[Limit], list[int], Stop | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    def __repr__(self) -> str: ...
+    @property
+    def adjust(self) -> Adjust: ...
+    @property
+    def positions(self) -> int: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def subdivided_steps(self) -> int: ...
+    @property
+    def limits(self) -> list[Limit]: ...
+    @property
+    def singular_positions(self) -> list[int]: ...
+    @property
+    def stop(self) -> Stop | None: ...
 
 @type_check_only
 class ElementDict(TypedDict):
@@ -408,7 +478,7 @@ class Check:
     def coords(self) -> _F64:
         """Every co-ordinate at position 1, in the deck's units."""
     @property
-    def adjust(self) -> AdjustDict: ...
+    def adjust(self) -> Adjust: ...
     @property
     def model(self) -> ModelDict: ...
 
@@ -497,7 +567,7 @@ class Run:
         """Ctrl-C stopped the run; the positions before it are here."""
     @property
     def stopped(self) -> bool:
-        """The motion stopped before its end (``report["stop"]`` says why)."""
+        """The motion stopped before its end (``report.stop`` says why)."""
     @property
     def table(self) -> _F64:
         """positions x the columns of ``layout`` (Fortran order: each column contiguous)."""
@@ -527,7 +597,7 @@ class Run:
     def hodograph_coords(self) -> list[int]:
         """The co-ordinates of the ``hodograph`` block (empty without it)."""
     @property
-    def report(self) -> ReportDict: ...
+    def report(self) -> Report: ...
     @property
     def model(self) -> ModelDict: ...
     @property

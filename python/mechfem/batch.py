@@ -437,7 +437,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
             # A stopped run counts as failed: its measures would cover part of the motion only.
             reason = a.stop_reason() or ""
             kept[k] = RunStoppedError(reason, a) if c.keep else None
-            done = [False, False, a.positions, len(report["limits"]), reason]
+            done = [False, False, a.positions, len(report.limits), reason]
             rows[k] = [*(_plain(p.get(n, math.nan)) for n in c.names), *done, *(math.nan,) * len(c.measures)]
             return
         values, errors = [], []
@@ -447,7 +447,7 @@ def _study_rows(c: _Chunk, progress: Progress = False) -> Rows:
             except Exception as err:
                 values.append(math.nan)
                 errors.append(f"measure {name!r}: {type(err).__name__}: {err}")
-        done = [True, not o.stopped, a.positions, len(report["limits"]), "; ".join(errors)]
+        done = [True, not o.stopped, a.positions, len(report.limits), "; ".join(errors)]
         rows[k] = [*(_plain(p.get(n, math.nan)) for n in c.names), *done, *values]
 
     _run_variants(built, c.variants, c.workers, progress, take, c.order)

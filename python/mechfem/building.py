@@ -30,7 +30,7 @@ from mechfem.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointM
 from mechfem.model import By, Dynamic, Element, Free, Mechanism, Motion, Storage, Table, To
 from mechfem.numbering import DeckText, Numbering
 from mechfem.stopping import stop_buffer
-from mechfem.storage import check_file_names
+from mechfem.storage import check_animate_name, check_table_names
 from mechfem.units import Units
 
 
@@ -69,14 +69,15 @@ def builder(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> 
     b = _core.ModelBuilder(f"{mech.name}.mec", loads.mode(mech, simulated))
     notes = _Notes(b)
     mode = loads.mode(mech, simulated)
-    # The output name first, as the deck writer checks it: the same refusal from run, to_deck and save_deck.
-    check_file_names(mech.name, storage, {})
+    # The output name before the items, the table names after them (the items make the tables): the same refusals
+    # as the deck writer's (check_file_names), from run, to_deck and save_deck.
+    check_animate_name(mech.name, storage)
     try:
         _builder(b, notes, mech, motion, storage, nb, tables)
     except DeckError as e:
         # The builder names the item it refuses by the name it was given.
         raise refused(e, Built(b, nb, tables, simulated, f"{mech.name}.mec", notes.lines(), mode), mech.name) from None
-    check_file_names(mech.name, None, tables)
+    check_table_names(mech.name, tables)
     return Built(b, nb, tables, simulated, f"{mech.name}.mec", notes.lines(), mode)
 
 

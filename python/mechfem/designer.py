@@ -260,28 +260,49 @@ def dynamic_columns(result: Any) -> dict[str, FloatArray]:
     """The columns :meth:`~mechfem.RunResult.table` adds for a run with masses or loads: drive torques, stresses,
     reactions, pin forces, shaking, energies and power (a named model's run: all of them; a deck's run: those its
     buffers record, under their labels, with its transmission angles)."""
+    return {k: v for k, (v, _) in _dynamic(result).items()}
+
+
+def dynamic_units(result: Any) -> dict[str, str]:
+    """The unit of each of :func:`dynamic_columns`, in the run's units ("" where the model gives none)."""
+    return {k: u for k, (_, u) in _dynamic(result).items()}
+
+
+def _dynamic(result: Any) -> dict[str, tuple[FloatArray, str]]:
+    """:func:`dynamic_columns` with the unit of each."""
+    from mechfem import labels
+
     layout = result._layout
-    out: dict[str, FloatArray] = {}
+    out: dict[str, tuple[FloatArray, str]] = {}
     if result.named and "drive" not in layout:
         return out
     if not result.named:
-        labels = {b.number: b.name for b in result.storage.buffers}
+        names = {b.number: b.name for b in result.storage.buffers}
         for b in result.storage.buffers:
             if b.keyword in TABLED and b.number in result.buffers:
-                out[labels.get(b.number) or f"{b.keyword}{b.number}"] = result.buffers[b.number].copy()
+                out[names.get(b.number) or f"{b.keyword}{b.number}"] = (result.buffers[b.number].copy(), b.unit)
         return out
     model = result.model
-    names = result._names
+    names_ = result._names
+
+    def unit(words: str) -> str:
+        return labels.display_unit(result, words)
+
     for j in range(len(model.dofs)):
-        out[f"drive({names.input(j).name})"] = result._series("drive", j).copy()
+        out[f"drive({names_.input(j).name})"] = (
+            result._series("drive", j).copy(),
+            unit(labels.stress_unit(labels.input_unit(result, j + 1))),
+        )
     for r, row in enumerate(model.prescribed):
         label = getattr(row, "name", None) or f"row{r + 1}"
         if result.named:
             label = result.numbering.prescribed[r].name
-        out[f"sigma({label})"] = result._series("sigma", r).copy()
+        sigma = unit(labels.stress_unit(labels.row_dest_unit(result, r + 1)))
+        out[f"sigma({label})"] = (result._series("sigma", r).copy(), sigma)
     for i, c in enumerate(model.coordinates):
         if not c.moving:
-            out[f"reaction({names.coordinate(i + 1).name})"] = result._series("reaction", i).copy()
+            reaction = unit(labels.stress_unit(labels.coordinate_unit(result, i + 1)))
+            out[f"reaction({names_.coordinate(i + 1).name})"] = (result._series("reaction", i).copy(), reaction)
     pins = result._block("pin") if "pin" in layout else None
     if pins is not None:
         k = 0
@@ -289,14 +310,15 @@ def dynamic_columns(result: Any) -> dict[str, FloatArray]:
             for x, y in points_of(e):
                 point = _point_name(result, x, y)
                 for c, axis in enumerate(("x", "y")):
-                    out[f"pin({e.name or e.number},{point}).{axis}"] = np.asarray(pins[:, k, c]).copy()
+                    out[f"pin({e.name or e.number},{point}).{axis}"] = (np.asarray(pins[:, k, c]).copy(), unit("force"))
                 k += 1
     if "shaking" in layout:
         for c, axis in enumerate(("x", "y", "M")):
-            out[f"shaking.{axis}"] = np.asarray(result._block("shaking")[:, c]).copy()
-    out["Ekin"] = result._series("ekin").copy()
-    out["Epot"] = result._series("epot").copy()
-    out["power"] = result._series("power").copy()
+            words = "torque" if axis == "M" else "force"
+            out[f"shaking.{axis}"] = (np.asarray(result._block("shaking")[:, c]).copy(), unit(words))
+    out["Ekin"] = (result._series("ekin").copy(), unit("energy"))
+    out["Epot"] = (result._series("epot").copy(), unit("energy"))
+    out["power"] = (result._series("power").copy(), unit("power"))
     return out
 
 

@@ -211,29 +211,16 @@ def _outputs_axes(
 def _in(a: RunResult, base: str, unit: str | None) -> str:
     """The unit ``base`` (in the words of the unit algebra) in the run's units, its angles or lengths in ``unit``
     when given."""
-    from mechfem.labels import display_unit, shown
-    from mechfem.result_tables import run_units
-    from mechfem.units import Units, kind_of
+    from mechfem.labels import unit_in
 
-    if unit is None:
-        return display_unit(a, base)
-    kind = kind_of(unit)
-    units = run_units(a).as_dict()
-    if kind is not None:
-        units[kind] = unit
-    return shown(base, Units.of(units))
+    return unit_in(a, base, unit)
 
 
 def _unit(a: RunResult, name: str) -> str:
     """The unit of what ``a.value(name)`` gives: an output's or row's, a co-ordinate's, a point's (a length)."""
-    from mechfem.labels import coordinate_unit, row_dest_unit
+    from mechfem.labels import value_unit
 
-    t = a._any(name)
-    if t.kind == "row":
-        return row_dest_unit(a, t.numbers[0])
-    if t.kind == "coordinate":
-        return coordinate_unit(a, t.numbers[0])
-    return "length"
+    return value_unit(a, name)
 
 
 def _png(fig: Figure) -> bytes:

@@ -42,9 +42,10 @@ class Said:
     row_names: Mapping[int, str] = field(default_factory=dict)
     """The named rows by destination."""
 
-    def unit(self, exponents: Exponents) -> str:
-        """`` mm`` (with its space) for a quantity of that kind, "" without a unit."""
-        u = symbol(self.units, **exponents)
+    def unit(self, exponents: Exponents, work: bool = False) -> str:
+        """`` mm`` (with its space) for a quantity of that kind (``work``: force x length that is work, in joules
+        where it can be), "" without a unit."""
+        u = symbol(self.units, work, **exponents)
         return f" {u}" if u else ""
 
     def point(self, x: int, y: int) -> str:
@@ -212,7 +213,7 @@ def summary_lines(series: DynamicSeries, time: FloatArray, said: Said | None = N
         return []
     said = said or Said()
     u = said.unit
-    energy, power = u(ENERGY), u(over(ENERGY, TIME))
+    energy, power = u(ENERGY, True), u(over(ENERGY, TIME))
     out = ["DYNAMICS"]
     for j in range(series.drive.shape[1]):
         d = series.drive[:, j]
@@ -336,7 +337,7 @@ class Simulation:
         the units of the deck (``said``; the numbers are in them already)."""
         said = said or Said()
         s = said.unit(TIME)
-        energy = said.unit(ENERGY)
+        energy = said.unit(ENERGY, True)
         out = [
             "SIMULATION",
             f"  integrator: {self.method}",

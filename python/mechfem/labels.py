@@ -27,7 +27,7 @@ import mechfem._core as _core
 from mechfem.echo import Buffer, Model, Row
 from mechfem.result import RunResult
 from mechfem.result_tables import run_units
-from mechfem.units import Units, watts
+from mechfem.units import Units, joules, kind_of, watts
 
 ANGLE = "rad"
 LENGTH = "length"
@@ -180,7 +180,7 @@ def _words(units: Units) -> dict[str, str | None]:
         "s": units.time,
         "force": force,
         "torque": moment,
-        "energy": moment,
+        "energy": None if moment is None else joules(units.as_dict()) or moment,
         "power": None if moment is None else watts(units.as_dict()) or f"{moment}/{units.time}",
         "mass": units.mass,
     }
@@ -430,6 +430,34 @@ def input_unit(result: RunResult, j: int) -> str:
 def display_unit(result: RunResult, unit: str) -> str:
     """``unit`` (in the words of the unit algebra) in the run's units (:func:`shown`)."""
     return shown(unit, run_units(result))
+
+
+def value_unit(result: RunResult, name: object) -> str:
+    """The unit of what ``result.value(name)`` gives, in the words of the unit algebra: an output's or row's, a
+    co-ordinate's, a point's (a length)."""
+    t = result._any(name)
+    if t.kind == "row":
+        return row_dest_unit(result, t.numbers[0])
+    if t.kind == "coordinate":
+        return coordinate_unit(result, t.numbers[0])
+    return LENGTH
+
+
+def det_unit(result: RunResult) -> str:
+    """The unit of det(D^c), in the words of the unit algebra."""
+    return words(_labels_of(result).det()[3])
+
+
+def unit_in(result: RunResult, unit: str, given: str | None = None) -> str:
+    """``unit`` (in the words of the unit algebra) in the run's units, its angles or lengths in ``given`` when given
+    (the ``unit=`` of :meth:`~mechfem.RunResult.value`)."""
+    if given is None:
+        return display_unit(result, unit)
+    kind = kind_of(given)
+    units = run_units(result).as_dict()
+    if kind is not None:
+        units[kind] = given
+    return shown(unit, Units.of(units))
 
 
 def buffer_name(model: Model | None, number: int) -> str:

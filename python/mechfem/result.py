@@ -127,7 +127,7 @@ class RunResult(ResultTables):
         """What the run did: the adjustment of position 1, the limit positions met, why it stopped."""
         d = self._raw.report
         names = _model_and_names(self._raw.model)[1]
-        if d["stop"] is not None:
+        if d.stop is not None:
             return RunReport.from_core(d, names, mean_step(self.coords, self.model))
         return _CONVERTED.get(d, lambda r: RunReport.from_core(r, names))
 
@@ -279,7 +279,7 @@ class PickledRun:
     layout: dict[str, tuple[int, tuple[int, ...]]]
     buffer_numbers: list[int]
     hodograph_coords: list[int]
-    report: _core.ReportDict
+    report: _core.Report
     model: _core.ModelDict
     storage: _core.Storage
     simulation: _core.Simulation | None

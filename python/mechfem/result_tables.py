@@ -512,40 +512,18 @@ class ResultTables:
         several inputs), ``q_dot`` and ``q_ddot`` (velocity, acceleration). A deck's run gives those its buffers
         recorded. Numbers are in the model's units; ``unit`` gives every angle or every length in that unit, as
         for :meth:`value`."""
-        inputs, outputs, coords = self._names.columns(coordinates)
-        names = [r.name for r in inputs]
-        single = len(names) == 1
-        out: dict[str, FloatArray] = {"time": self.time.copy(), "det": self.det.copy()}
+        return self._table_columns(coordinates, unit)[0]
 
-        def put(key: str, get: Any, *args: Any) -> None:
-            try:
-                try:
-                    out[key] = get(*args, unit=unit)
-                except NotOfKindError:
-                    out[key] = get(*args)
-            except KeyError:
-                if self.named:
-                    raise
+    def table_units(self, coordinates: bool = True, unit: str | None = None) -> dict[str, str]:
+        """The unit of every column of :meth:`table` (``mm``, ``deg``, ``mm/deg``, ``deg/s``, ``N·mm``, ``J``;
+        ``-`` for a ratio of one unit; ``""`` where the model gives no unit, e.g. a length without UNITS)."""
+        return self._table_columns(coordinates, unit)[1]
 
-        def add(name: str, ref: object) -> None:
-            put(name, self.value, ref)
-            for j, a in enumerate(names):
-                put(f"{name}'" if single else f"{name}'({a})", self.value, ref, 1, j + 1)
-                for m, b in enumerate(names[j:], j):
-                    put(f"{name}''" if single else f"{name}''({a},{b})", self.value, ref, 2, j + 1, m + 1)
-            put(f"{name}_dot", self.velocity, ref)
-            put(f"{name}_ddot", self.acceleration, ref)
+    def _table_columns(self, coordinates: bool, unit: str | None) -> tuple[dict[str, FloatArray], dict[str, str]]:
+        """:meth:`table` and :meth:`table_units`."""
+        from mechfem import table_columns
 
-        for r in inputs:
-            put(r.name, self.input, r)
-            put(f"{r.name}_dot", self.velocity, r)
-            put(f"{r.name}_ddot", self.acceleration, r)
-        for r in outputs:
-            add(r.name, r)
-        for c in coords:
-            add(c.name, c)
-        out.update(designer.dynamic_columns(self))
-        return out
+        return table_columns.columns(cast(Any, self), coordinates, unit)
 
     # -- the report
 
@@ -568,10 +546,13 @@ class ResultTables:
 
     def to_pandas(self, coordinates: bool = True, unit: str | None = None) -> Any:
         """:meth:`table` as a ``pandas.DataFrame`` indexed by position (1, 2, ...), its columns named as the model
-        names its parts (``unit``: as for :meth:`table`). Needs pandas (``pip install 'mechfem[pandas]'``)."""
+        names its parts (``unit``: as for :meth:`table`), with ``attrs["units"]`` mapping each column to its unit
+        (:meth:`table_units`). Needs pandas (``pip install 'mechfem[pandas]'``)."""
         pd = optional.pandas()
-        frame = pd.DataFrame(self.table(coordinates, unit))
+        columns, units = self._table_columns(coordinates, unit)
+        frame = pd.DataFrame(columns)
         frame.index = pd.RangeIndex(1, self.coords.shape[0] + 1, name="position")
+        frame.attrs["units"] = units
         return frame
 
 

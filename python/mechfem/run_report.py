@@ -1,5 +1,5 @@
 """What a run did: the adjustment of position 1, the limit positions met, and why a motion stopped, built from
-the compiled module's dictionaries and said in words.
+the compiled module's typed report (``_core.Report``) and said in words.
 
 Numbers that name things (co-ordinates, rows, positions) are the deck's own, 1-based and signed.
 """
@@ -27,8 +27,8 @@ class AdjustInfo:
     """Largest deformation after the adjustment."""
 
     @classmethod
-    def from_core(cls, d: _core.AdjustDict) -> AdjustInfo:
-        return cls(d["iterations"], d["stages"], list(d["initial_deformations"]), d["residual"])
+    def from_core(cls, a: _core.Adjust) -> AdjustInfo:
+        return cls(a.iterations, a.stages, a.initial_deformations, a.residual)
 
     def largest(self) -> tuple[int, float] | None:
         """The row (1-based) with the largest initial deformation and that deformation, or None without rows."""
@@ -55,8 +55,8 @@ class Limit:
     """det(D^c) there: zero up to rounding, except at a ``near_zero`` minimum."""
 
     @classmethod
-    def from_core(cls, d: _core.LimitDict) -> Limit:
-        return cls(d["kind"], d["after"], list(d["inputs"]), list(d["coords"]), d["det"])
+    def from_core(cls, x: _core.Limit) -> Limit:
+        return cls(x.kind, x.after, x.inputs, x.coords, x.det)
 
     @property
     def where(self) -> str:
@@ -108,11 +108,9 @@ class Stop:
     :meth:`describe` words it from (from ``message`` alone when empty)."""
 
     @classmethod
-    def from_core(cls, d: _core.StopDict) -> Stop:
-        limit = None if d["limit"] is None else Limit.from_core(d["limit"])
-        return cls(
-            d["last_good"], list(d["inputs"]), list(d["last_inputs"]), d["kind"], d["message"], limit, list(d["parts"])
-        )
+    def from_core(cls, s: _core.Stop) -> Stop:
+        limit = None if s.limit is None else Limit.from_core(s.limit)
+        return cls(s.last_good, s.inputs, s.last_inputs, s.kind, s.message, limit, list(s.parts))
 
     def describe(
         self,
@@ -221,17 +219,15 @@ class RunReport:
     """The mean distance the moving co-ordinates moved per step: the ds a stop message suggests for MOV_FREE."""
 
     @classmethod
-    def from_core(
-        cls, d: _core.ReportDict, input_names: Sequence[str] = (), free_step: float | None = None
-    ) -> RunReport:
+    def from_core(cls, r: _core.Report, input_names: Sequence[str] = (), free_step: float | None = None) -> RunReport:
         return cls(
-            adjust=AdjustInfo.from_core(d["adjust"]),
-            positions=d["positions"],
-            steps=d["steps"],
-            subdivided_steps=d["subdivided_steps"],
-            limits=[Limit.from_core(x) for x in d["limits"]],
-            singular_positions=list(d["singular_positions"]),
-            stop=None if d["stop"] is None else Stop.from_core(d["stop"]),
+            adjust=AdjustInfo.from_core(r.adjust),
+            positions=r.positions,
+            steps=r.steps,
+            subdivided_steps=r.subdivided_steps,
+            limits=[Limit.from_core(x) for x in r.limits],
+            singular_positions=r.singular_positions,
+            stop=None if r.stop is None else Stop.from_core(r.stop),
             input_names=list(input_names),
             free_step=free_step,
         )

@@ -102,21 +102,31 @@ def from_described(s: _core.Storage, name: Callable[[str, int], Ref]) -> Storage
 def check_file_names(mechanism: str, storage: Storage | None, tables: Mapping[str, str]) -> None:
     """Refuses an output name (ANIMATE) or a table file name that is not a plain file name: a run writes into its
     output folder only, and :meth:`Mechanism.save_deck` writes the tables beside the deck only."""
+    check_animate_name(mechanism, storage)
+    check_table_names(mechanism, tables)
 
-    def problem_of(name: str) -> str | None:
-        if any(c.isspace() for c in name.strip()):
-            return "holds a blank, which a deck cannot write"
-        return name_problem(name)
 
+def _file_name_problem(name: str) -> str | None:
+    if any(c.isspace() for c in name.strip()):
+        return "holds a blank, which a deck cannot write"
+    return name_problem(name)
+
+
+def check_animate_name(mechanism: str, storage: Storage | None) -> None:
+    """Refuses an ANIMATE name that is not a plain file name (see :func:`check_file_names`)."""
     if storage is not None and storage.animate is not None:
-        problem = problem_of(storage.animate)
+        problem = _file_name_problem(storage.animate)
         if problem is not None:
             raise ValueError(
                 f"the storage of mechanism {mechanism!r}: the ANIMATE name {storage.animate!r} {problem}; give a "
                 "plain file name such as 'film' (the animation is written as film.gif into the output folder only)"
             )
+
+
+def check_table_names(mechanism: str, tables: Mapping[str, str]) -> None:
+    """Refuses a table file name that is not a plain file name (see :func:`check_file_names`)."""
     for file in tables:
-        problem = problem_of(file)
+        problem = _file_name_problem(file)
         if problem is not None:
             raise ValueError(
                 f"mechanism {mechanism!r}: the table file name {file!r} {problem}; give a plain file name such as "

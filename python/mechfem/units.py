@@ -206,23 +206,43 @@ def watts(units: Mapping[str, str | None]) -> str | None:
     return next((name for w, name in _WATTS if abs(size - w) <= 1e-12 * w), None)
 
 
+#: The joule's decimal multiples by name, as the core writes work.
+_JOULES = ((1e-3, "mJ"), (1.0, "J"), (1e3, "kJ"))
+
+
+def joules(units: Mapping[str, str | None]) -> str | None:
+    """The unit of work (an energy) in ``units`` by the joule's name where force x length is one of its decimal
+    multiples (N·m and kN·mm are ``J``, N·mm is ``mJ``); None otherwise (N·cm, N·in, or a unit not declared). A
+    torque, of the same exponents, keeps force x length."""
+    length, force = units.get("length"), units.get("force")
+    if length is None or force is None:
+        return None
+    size = SI["force"][force] * SI["length"][length]
+    return next((name for w, name in _JOULES if abs(size - w) <= 1e-12 * w), None)
+
+
 #: The base kinds in the order of a :func:`symbol`'s exponents; force and mass are written first, as in ``N·mm``
 #: and ``kg·mm²``.
 _ORDER = ("force", "mass", "length", "angle", "time")
 _POWER = {2: "²", 3: "³"}
 
 
-def symbol(units: Mapping[str, str | None], **exponents: int) -> str:
+def symbol(units: Mapping[str, str | None], work: bool = False, **exponents: int) -> str:
     """The unit of a quantity of the given ``exponents`` of ``length``, ``angle``, ``mass``, ``force`` and
     ``time`` in a model's ``units`` (its echo's ``units``, None where not declared), written as the core writes a
     buffer's unit: ``N·mm``, ``kg·mm²``, ``mm/s²``, ``mm/deg``, ``-`` for a pure number (deg/deg); "" when the model
-    declares no units, or no unit of a kind the quantity needs."""
+    declares no units, or no unit of a kind the quantity needs. ``work`` says that force x length is work (an
+    energy), named by the joule where it can be (:func:`joules`), not a torque."""
     if not any(units.values()):
         return ""
     if any(e and not units.get(k) for k, e in exponents.items()):
         return ""
     if {k: e for k, e in exponents.items() if e} == {"force": 1, "length": 1, "time": -1}:
         named = watts(units)
+        if named is not None:
+            return named
+    if work and {k: e for k, e in exponents.items() if e} == {"force": 1, "length": 1}:
+        named = joules(units)
         if named is not None:
             return named
 
@@ -259,6 +279,7 @@ __all__ = [
     "looks_like_degrees",
     "looks_like_radians",
     "scale",
+    "joules",
     "symbol",
     "to_radians",
     "watts",

@@ -213,32 +213,70 @@ impl Units {
             value * s
         }
     }
+
+    /// `value`, a number of the core that a model gave in `dim`'s units
+    /// ([`Units::to_core`]), as the model gave it. [`Units::from_core`] can
+    /// miss the given number by an ulp (26.252 mm is 0.026252 m, and that
+    /// times 1000 is 26.252000000000002), so that a model written and read
+    /// again would drift: of the numbers a few ulps around it that
+    /// [`Units::to_core`] takes to `value`, this is the one with the fewest
+    /// decimal digits (the nearest of those). Every such number is the same
+    /// number to the core.
+    pub fn as_written(&self, dim: Dim, value: f64) -> f64 {
+        let back = self.from_core(dim, value);
+        if dim.scale(self) == 1.0 || !back.is_finite() {
+            return back;
+        }
+        let digits = |v: f64| format!("{v:e}").len();
+        let (mut best, mut best_digits) = (None, usize::MAX);
+        // Nearest first, so that among equally short numbers the nearest wins.
+        let (mut up, mut down) = (back, back);
+        for k in 0..=WRITTEN_ULPS {
+            let candidates = if k == 0 { [Some(back), None] } else { [Some(up), Some(down)] };
+            for v in candidates.into_iter().flatten() {
+                if self.to_core(dim, v) == value && digits(v) < best_digits {
+                    (best, best_digits) = (Some(v), digits(v));
+                }
+            }
+            (up, down) = (up.next_up(), down.next_down());
+        }
+        best.unwrap_or(back)
+    }
 }
 
+/// How many ulps around the converted number [`Units::as_written`] looks
+/// for the given one (a conversion there and back is off by one or two).
+const WRITTEN_ULPS: usize = 4;
+
 /// The kind of a quantity: its exponents of length, angle, mass, force and
-/// time.
+/// time, and whether it is work (an energy). Work and a torque have the same
+/// exponents (force x length; the radian a torque is per does not count),
+/// but work is shown in joules (`J`, `mJ`) and a torque in `N·m`, `N·mm`:
+/// the second field tells them apart.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
-pub struct Dim(pub [i8; KINDS]);
+pub struct Dim(pub [i8; KINDS], pub bool);
 
 impl Dim {
     /// A pure number.
-    pub const NONE: Dim = Dim([0; KINDS]);
+    pub const NONE: Dim = Dim([0; KINDS], false);
     /// A length.
-    pub const LENGTH: Dim = Dim([1, 0, 0, 0, 0]);
+    pub const LENGTH: Dim = Dim([1, 0, 0, 0, 0], false);
     /// An angle.
-    pub const ANGLE: Dim = Dim([0, 1, 0, 0, 0]);
+    pub const ANGLE: Dim = Dim([0, 1, 0, 0, 0], false);
     /// A mass.
-    pub const MASS: Dim = Dim([0, 0, 1, 0, 0]);
+    pub const MASS: Dim = Dim([0, 0, 1, 0, 0], false);
     /// A force.
-    pub const FORCE: Dim = Dim([0, 0, 0, 1, 0]);
+    pub const FORCE: Dim = Dim([0, 0, 0, 1, 0], false);
     /// A time.
-    pub const TIME: Dim = Dim([0, 0, 0, 0, 1]);
-    /// An energy (force x length): also a torque, work per radian.
-    pub const ENERGY: Dim = Dim([1, 0, 0, 1, 0]);
+    pub const TIME: Dim = Dim([0, 0, 0, 0, 1], false);
+    /// Work, an energy (force x length).
+    pub const ENERGY: Dim = Dim([1, 0, 0, 1, 0], true);
+    /// A torque (force x length, per radian).
+    pub const TORQUE: Dim = Dim([1, 0, 0, 1, 0], false);
     /// A moment of inertia (mass x length²).
-    pub const INERTIA: Dim = Dim([2, 0, 1, 0, 0]);
+    pub const INERTIA: Dim = Dim([2, 0, 1, 0, 0], false);
     /// A power (force x length / time).
-    pub const POWER: Dim = Dim([1, 0, 0, 1, -1]);
+    pub const POWER: Dim = Dim([1, 0, 0, 1, -1], false);
 
     /// The kind of a catalogue dimension (`Any` taken as a length).
     pub fn of(d: Dimension) -> Dim {
@@ -251,17 +289,17 @@ impl Dim {
 
     /// `self x other`.
     pub fn times(self, other: Dim) -> Dim {
-        Dim(std::array::from_fn(|k| self.0[k] + other.0[k]))
+        Dim(std::array::from_fn(|k| self.0[k] + other.0[k]), false)
     }
 
     /// `self / other`.
     pub fn over(self, other: Dim) -> Dim {
-        Dim(std::array::from_fn(|k| self.0[k] - other.0[k]))
+        Dim(std::array::from_fn(|k| self.0[k] - other.0[k]), false)
     }
 
     /// `self` to the power `n`.
     pub fn pow(self, n: i8) -> Dim {
-        Dim(self.0.map(|e| e * n))
+        Dim(self.0.map(|e| e * n), self.1 && n == 1)
     }
 
     /// `self` without its angle: what a generalised force divides work by.
@@ -300,6 +338,11 @@ impl Dim {
         if self == Dim::POWER {
             if let Some(watt) = watts(self.scale(units)) {
                 return watt.to_string();
+            }
+        }
+        if self == Dim::ENERGY {
+            if let Some(joule) = joules(self.scale(units)) {
+                return joule.to_string();
             }
         }
         let part = |positive: bool| {
@@ -342,6 +385,16 @@ impl Dim {
 /// `mW`); `None` for any other size (N·in/s keeps its compound symbol).
 fn watts(size: f64) -> Option<&'static str> {
     [(1e-6, "µW"), (1e-3, "mW"), (1.0, "W"), (1e3, "kW"), (1e6, "MW")]
+        .into_iter()
+        .find(|&(w, _)| (size - w).abs() <= 1e-12 * w)
+        .map(|(_, name)| name)
+}
+
+/// Work whose unit is `size` joules, by the joule's name where `size` is one
+/// of its decimal multiples (N·m and kN·mm are `J`, N·mm is `mJ`); `None`
+/// for any other size (N·cm, N·in keep their compound symbol).
+fn joules(size: f64) -> Option<&'static str> {
+    [(1e-3, "mJ"), (1.0, "J"), (1e3, "kJ")]
         .into_iter()
         .find(|&(w, _)| (size - w).abs() <= 1e-12 * w)
         .map(|(_, name)| name)
@@ -485,108 +538,4 @@ impl ModelDims {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn mm_deg() -> Units {
-        Units {
-            declared: true,
-            length: Some(Length::Mm),
-            angle: Some(Angle::Deg),
-            mass: Some(Mass::Kg),
-            force: Some(Force::N),
-            time: None,
-        }
-    }
-
-    #[test]
-    fn a_power_is_named_by_the_watt_where_its_units_make_one() {
-        let with = |length, force, time| Units {
-            declared: true,
-            length: Some(length),
-            angle: None,
-            mass: None,
-            force: Some(force),
-            time: Some(time),
-        };
-        assert_eq!(Dim::POWER.symbol(&with(Length::M, Force::N, Time::S)), "W");
-        assert_eq!(Dim::POWER.symbol(&with(Length::Mm, Force::N, Time::Ms)), "W");
-        assert_eq!(Dim::POWER.symbol(&with(Length::M, Force::KN, Time::S)), "kW");
-        assert_eq!(Dim::POWER.symbol(&with(Length::In, Force::N, Time::S)), "N·in/s");
-        // A torque and an energy keep force x length: they share one kind.
-        assert_eq!(Dim::ENERGY.symbol(&with(Length::M, Force::N, Time::S)), "N·m");
-    }
-
-    #[test]
-    fn derived_units_are_written_from_their_kinds() {
-        let u = mm_deg();
-        assert_eq!(Dim::LENGTH.symbol(&u), "mm");
-        assert_eq!(Dim::ANGLE.over(Dim::ANGLE).symbol(&u), "-");
-        assert_eq!(Dim::LENGTH.over(Dim::ANGLE).symbol(&u), "mm/deg");
-        assert_eq!(Dim::ANGLE.over(Dim::TIME).symbol(&u), "deg/s");
-        assert_eq!(Dim::LENGTH.over(Dim::TIME.pow(2)).symbol(&u), "mm/s²");
-        assert_eq!(Dim::ANGLE.generalised_force().symbol(&u), "N·mm");
-        assert_eq!(Dim::LENGTH.generalised_force().symbol(&u), "N");
-        assert_eq!(Dim::INERTIA.symbol(&u), "kg·mm²");
-        assert_eq!(Dim::ANGLE.generalised_force().over(Dim::ANGLE).symbol(&u), "N·mm/deg");
-        assert_eq!(Dim::LENGTH.over(Dim::ANGLE.times(Dim::ANGLE)).symbol(&u), "mm/deg²");
-        assert_eq!(Dim::NONE.over(Dim::TIME).symbol(&u), "1/s");
-        assert_eq!(Dim::LENGTH.over(Dim::ANGLE.times(Dim::TIME)).symbol(&u), "mm/(deg·s)");
-        // A power is named by the watt where its size is one of the watt's multiples.
-        assert_eq!(Dim::POWER.symbol(&u), "mW");
-        assert_eq!(Dim::ENERGY.over(Dim::TIME).symbol(&u), "mW");
-        // Without a UNITS line nothing is shown; a kind whose base unit is
-        // not declared is not shown either.
-        assert_eq!(Dim::ANGLE.symbol(&Units::NONE), "");
-        let angle_only = Units { declared: true, angle: Some(Angle::Deg), ..Units::NONE };
-        assert_eq!(Dim::ANGLE.symbol(&angle_only), "deg");
-        assert_eq!(Dim::LENGTH.over(Dim::ANGLE).symbol(&angle_only), "");
-        assert_eq!(Dim::TIME.symbol(&angle_only), "s");
-        // Shown without UNITS: radians and seconds, nothing with a length.
-        assert_eq!(Dim::ANGLE.over(Dim::TIME).shown(&Units::NONE), "rad/s");
-        assert_eq!(Dim::ANGLE.over(Dim::ANGLE).shown(&Units::NONE), "-");
-        assert_eq!(Dim::LENGTH.shown(&Units::NONE), "");
-        assert_eq!(Dim::LENGTH.over(Dim::ANGLE).shown(&u), "mm/deg");
-    }
-
-    #[test]
-    fn scales_convert_to_si_and_back() {
-        let u = mm_deg();
-        assert_eq!(u.to_core(Dim::LENGTH, 250.0), 0.25);
-        assert!((u.to_core(Dim::ANGLE, 180.0) - PI).abs() < 1e-15);
-        // A torsion spring of 1 N·mm/deg is 180/pi * 1e-3 N·m/rad.
-        let k = Dim::ANGLE.generalised_force().over(Dim::ANGLE);
-        assert!((u.to_core(k, 1.0) - 1e-3 * 180.0 / PI).abs() < 1e-15);
-        // An inertia of 1 kg·mm² is 1e-6 kg·m²; 1 g is 1e-3 kg; 1 kN 1000 N; 1 ms 1e-3 s.
-        assert!((u.to_core(Dim::INERTIA, 1.0) - 1e-6).abs() < 1e-21);
-        let other = Units {
-            declared: true,
-            mass: Some(Mass::G),
-            force: Some(Force::KN),
-            time: Some(Time::Ms),
-            length: Some(Length::In),
-            angle: None,
-        };
-        assert_eq!(other.to_core(Dim::MASS, 1.0), 1e-3);
-        assert_eq!(other.to_core(Dim::FORCE, 2.0), 2e3);
-        assert_eq!(other.to_core(Dim::TIME, 5.0), 5e-3);
-        assert_eq!(other.to_core(Dim::LENGTH, 1.0), 0.0254);
-        for d in [Dim::LENGTH, Dim::INERTIA, k, Dim::ENERGY.over(Dim::TIME)] {
-            let back = u.from_core(d, u.to_core(d, 123.456));
-            assert!((back - 123.456).abs() < 1e-12, "{d:?}");
-        }
-    }
-
-    #[test]
-    fn no_units_leave_every_number_as_it_is() {
-        let u = Units::NONE;
-        assert!(u.is_identity());
-        for v in [0.1, -3.7e-300, f64::MAX] {
-            assert_eq!(u.to_core(Dim::INERTIA, v).to_bits(), v.to_bits());
-            assert_eq!(u.from_core(Dim::LENGTH.over(Dim::ANGLE), v).to_bits(), v.to_bits());
-        }
-        let si = Units { declared: true, length: Some(Length::M), angle: Some(Angle::Rad), ..Units::NONE };
-        assert!(si.is_identity());
-        assert!(!mm_deg().is_identity());
-    }
-}
+mod tests;

@@ -211,7 +211,7 @@ impl Compiled {
         for (rows, prescribed) in [(&mut prescribed, true), (&mut dependent, false)] {
             for (k, r) in rows.iter_mut().enumerate() {
                 let row = self.dims.form(if prescribed { FormRef::Prescribed(k) } else { FormRef::Dependent(k) });
-                r.para = r.para.map(|p| self.units.from_core(row, p));
+                r.para = r.para.map(|p| self.units.as_written(row, p));
                 for t in &mut r.terms {
                     // The core's factor turns the term's core number into the row's: f s_term / s_row.
                     let (a, b) = (row.out_scale(&self.units), term_dim(t).out_scale(&self.units));

@@ -23,6 +23,8 @@ use pyo3::types::PyDict;
 use mechfem_deck::ast::{Deck, LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostics};
 
+use crate::report::Report;
+
 /// How many compiled decks are kept (the least recently used goes first).
 const CAPACITY: usize = 16;
 
@@ -46,7 +48,7 @@ pub struct Echo {
 /// what its runs' dicts hold that depends on the deck alone
 /// ([`EchoSlot::shape`]).
 #[derive(Default)]
-pub struct EchoSlot(Mutex<Option<Echo>>, Mutex<Option<(Vec<u64>, Py<PyDict>)>>, Mutex<Option<[Py<PyAny>; 3]>>);
+pub struct EchoSlot(Mutex<Option<Echo>>, Mutex<Option<(Vec<u64>, Py<Report>)>>, Mutex<Option<[Py<PyAny>; 3]>>);
 
 impl EchoSlot {
     /// The model echo and storage dicts for a run whose position 1 is
@@ -69,7 +71,7 @@ impl EchoSlot {
         Ok((model, storage))
     }
 
-    /// The report dict of a run that met no limit position and did not
+    /// The report of a run that met no limit position and did not
     /// stop, described by `numbers` (its adjustment, positions and steps,
     /// as bit patterns): the one given for the last such run with the same
     /// numbers, else the one `make` builds (then kept). Such a report holds
@@ -78,8 +80,8 @@ impl EchoSlot {
         &self,
         py: Python<'py>,
         numbers: Vec<u64>,
-        make: impl FnOnce() -> PyResult<Bound<'py, PyDict>>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+        make: impl FnOnce() -> PyResult<Bound<'py, Report>>,
+    ) -> PyResult<Bound<'py, Report>> {
         let lock = || self.1.lock().unwrap_or_else(|e| e.into_inner());
         if let Some((_, d)) = lock().as_ref().filter(|(k, _)| *k == numbers) {
             return Ok(d.bind(py).clone());

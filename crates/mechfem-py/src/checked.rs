@@ -25,8 +25,8 @@ pub struct Check {
     pub det: f64,
     /// Every co-ordinate at position 1.
     pub coords: Py<PyArray1<f64>>,
-    /// The adjustment to position 1 (see `convert::adjust`).
-    pub adjust: Py<PyDict>,
+    /// The adjustment to position 1.
+    pub adjust: crate::report::Adjust,
     /// The model echo (see `convert::model`).
     pub model: Py<PyDict>,
 }

@@ -4,15 +4,13 @@
 
 use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::Block;
-use mechfem_core::{AdjustInfo, DesignVar, FormRef, LimitKind, LimitPosition, Mechanism, Names, RunReport, Stop};
+use mechfem_core::{DesignVar, FormRef};
 use mechfem_deck::{Compiled, Optimise, RowInfo, Sense, TargetKind};
 use numpy::ndarray::{Array2, ShapeError};
 use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
-
-use crate::errors;
 
 /// A row-major `rows x cols` array.
 pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
@@ -34,91 +32,6 @@ pub fn layout<'py>(py: Python<'py>, blocks: &[Block]) -> PyResult<Bound<'py, PyD
         d.set_item(b.name, (b.start, PyTuple::new(py, &b.shape)?))?;
     }
     Ok(d)
-}
-
-/// `AdjustInfo` as a dict.
-pub fn adjust<'py>(py: Python<'py>, a: &AdjustInfo) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("iterations", a.iterations)?;
-    d.set_item("stages", a.stages)?;
-    d.set_item("initial_deformations", a.initial_deformations.clone())?;
-    d.set_item("residual", a.residual)?;
-    Ok(d)
-}
-
-fn limit_kind(kind: LimitKind) -> &'static str {
-    match kind {
-        LimitKind::NearZero => "near_zero",
-        LimitKind::InputLimit => "input_limit",
-        LimitKind::Passed => "passed",
-    }
-}
-
-fn limit<'py>(py: Python<'py>, l: &LimitPosition) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("kind", limit_kind(l.kind))?;
-    d.set_item("after", l.after + 1)?;
-    d.set_item("inputs", l.inputs.clone())?;
-    d.set_item("coords", l.coords.clone())?;
-    d.set_item("det", l.det)?;
-    Ok(d)
-}
-
-fn stop<'py>(
-    py: Python<'py>,
-    mech: &Mechanism,
-    names: &Names,
-    lines: errors::Lines<'_>,
-    s: &Stop,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("last_good", s.last_good + 1)?;
-    d.set_item("inputs", s.inputs.clone())?;
-    d.set_item("last_inputs", s.last_inputs.clone())?;
-    d.set_item("kind", s.error.code())?;
-    let worded = s.error.worded(mech, names, lines);
-    d.set_item("message", worded.to_string())?;
-    d.set_item("parts", errors::parts_object(py, &worded)?)?;
-    d.set_item("limit", s.limit.as_ref().map(|l| limit(py, l)).transpose()?)?;
-    Ok(d)
-}
-
-/// `RunReport` as a dict; `steps` is the number of steps the motion asked
-/// for, `names` the model's names and `lines` the DYNAMICS lines a stop's
-/// fault may name.
-pub fn report<'py>(
-    py: Python<'py>,
-    mech: &Mechanism,
-    names: &Names,
-    lines: errors::Lines<'_>,
-    r: &RunReport,
-    steps: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("adjust", adjust(py, &r.adjust)?)?;
-    d.set_item("positions", r.positions)?;
-    d.set_item("steps", steps)?;
-    d.set_item("subdivided_steps", r.subdivided_steps)?;
-    let limits = r.limits.iter().map(|l| limit(py, l)).collect::<PyResult<Vec<_>>>()?;
-    d.set_item("limits", limits)?;
-    d.set_item("singular_positions", r.singular_positions.iter().map(|k| k + 1).collect::<Vec<_>>())?;
-    d.set_item("stop", r.stop.as_ref().map(|s| stop(py, mech, names, lines, s)).transpose()?)?;
-    Ok(d)
-}
-
-/// Every number [`report`] converts from a run that met nothing to tell of
-/// (no stop, limit or singular position): two such runs with equal keys
-/// have equal report dicts, so one dict can serve both. `None` for a run
-/// that did meet something.
-pub fn plain_report_key(r: &RunReport, steps: usize) -> Option<Vec<u64>> {
-    if r.stop.is_some() || !r.limits.is_empty() || !r.singular_positions.is_empty() {
-        return None;
-    }
-    let a = &r.adjust;
-    let mut numbers = vec![a.iterations as u64, a.stages as u64, a.residual.to_bits()];
-    numbers.extend([r.positions, r.subdivided_steps, steps].map(|k| k as u64));
-    numbers.extend(a.initial_deformations.iter().map(|v| v.to_bits()));
-    Some(numbers)
 }
 
 /// The elements of a deck as dicts, with the deck's numbering.

@@ -16,6 +16,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::report::Report;
 use crate::text::compile_text;
 use crate::{convert, errors};
 
@@ -177,7 +178,7 @@ impl DesignModel {
                 d.set_item("positions", run.positions)?;
                 d.set_item(
                     "report",
-                    convert::report(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?,
+                    Report::of(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?,
                 )?;
                 d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
                 let g = PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?;

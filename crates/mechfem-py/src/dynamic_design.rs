@@ -19,6 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::design::{infeasible, reason};
+use crate::report::Report;
 use crate::text::compile_text;
 use crate::{convert, errors};
 
@@ -269,10 +270,7 @@ impl DynamicDesignModel {
         d.set_item("reason_kind", why.as_ref().map(|_| "stopped"))?;
         d.set_item("reason", why)?;
         d.set_item("positions", run.positions)?;
-        d.set_item(
-            "report",
-            convert::report(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?,
-        )?;
+        d.set_item("report", Report::of(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?)?;
         d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
         d.set_item("gradient", PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?)?;
         d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;

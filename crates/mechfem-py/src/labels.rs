@@ -206,13 +206,13 @@ impl Labels {
     /// The unit of a kind given by its exponents of length, angle, mass,
     /// force and time: `(stated, shown)`.
     fn unit(&self, dim: [i8; 5]) -> (String, String) {
-        (Dim(dim).symbol(&self.units), Dim(dim).shown(&self.units))
+        (Dim(dim, false).symbol(&self.units), Dim(dim, false).shown(&self.units))
     }
 
     /// What a number of the core of a kind given by its exponents is
     /// multiplied by to be given in the model's units (1 without UNITS).
     fn scale(&self, dim: [i8; 5]) -> f64 {
-        Dim(dim).out_scale(&self.units)
+        Dim(dim, false).out_scale(&self.units)
     }
 
     /// These labels with a named model's own names for its co-ordinates,

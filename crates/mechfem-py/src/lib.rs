@@ -52,6 +52,7 @@ mod labels;
 mod model;
 mod names;
 mod observe;
+mod report;
 mod run;
 mod simulated;
 mod storage;
@@ -229,7 +230,7 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<checked::Check> {
         n_dof: mech.n_dof(),
         det: det * c.out_scale(Quantity::Det),
         coords: PyArray1::from_vec(py, at_1).unbind(),
-        adjust: convert::adjust(py, &report.adjust)?.unbind(),
+        adjust: report::Adjust::of(&report.adjust),
         model: model.unbind(),
     })
 }
@@ -238,7 +239,7 @@ fn check_deck(py: Python<'_>, path: PathBuf) -> PyResult<checked::Check> {
 ///
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
-/// reason in `report["stop"]`; only a failure at position 1 raises. Ctrl-C
+/// reason in `report.stop`; only a failure at position 1 raises. Ctrl-C
 /// (KeyboardInterrupt from a signal or from `progress`) stops the run and
 /// returns the positions so far with `interrupted` set: the caller writes
 /// them and then raises. A run whose results would take more than
@@ -296,10 +297,10 @@ fn run_deck(
     }
     names::table(&c, rec.columns.quantities(), &mut table, positions, &mut coords);
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
-    let report_dict = || convert::report(py, mech, &c.names, &c.dynamics_lines, &report, steps);
-    let report_dict = match convert::plain_report_key(&report, steps).filter(|_| sim.is_none()) {
-        Some(key) => slot.report(py, key, report_dict)?,
-        None => report_dict()?,
+    let report_of = || Bound::new(py, report::Report::of(py, mech, &c.names, &c.dynamics_lines, &report, steps)?);
+    let report_of = match report::Report::plain_key(&report, steps).filter(|_| sim.is_none()) {
+        Some(key) => slot.report(py, key, report_of)?,
+        None => report_of()?,
     };
     let simulation = sim.as_ref().map(|s| Py::new(py, simulated::Simulation::of(s))).transpose()?;
     let parts = run::DeckRun {
@@ -310,7 +311,8 @@ fn run_deck(
         n_coords: n,
         buffers,
         shape,
-        dicts: [report_dict, model],
+        report: report_of,
+        model,
         storage,
         simulation,
         interrupted,
@@ -345,6 +347,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<checked::Check>()?;
     m.add_class::<checked::DeckFiles>()?;
     m.add_class::<simulated::Simulation>()?;
+    m.add_class::<report::Adjust>()?;
+    m.add_class::<report::Limit>()?;
+    m.add_class::<report::Stop>()?;
+    m.add_class::<report::Report>()?;
     m.add_class::<storage::Storage>()?;
     m.add_class::<storage::Buffer>()?;
     m.add_class::<storage::Picture>()?;

@@ -22,6 +22,7 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PySlice, PyTuple};
 
+use crate::report::Report;
 use crate::simulated::Simulation;
 use crate::{convert, errors};
 
@@ -178,7 +179,7 @@ pub struct Run {
     layout: Py<PyDict>,
     buffer_numbers: Py<PyAny>,
     hodograph_coords: Py<PyAny>,
-    report: Py<PyDict>,
+    report: Py<Report>,
     model: Py<PyDict>,
     storage: Py<PyAny>,
     simulation: Option<Py<Simulation>>,
@@ -279,7 +280,7 @@ impl Run {
 
     /// What the run did: the adjustment of position 1, limit positions, why it stopped.
     #[getter]
-    fn report<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+    fn report<'py>(&self, py: Python<'py>) -> Bound<'py, Report> {
         self.report.bind(py).clone()
     }
 
@@ -319,8 +320,10 @@ pub struct DeckRun<'py> {
     pub buffers: (usize, usize),
     /// The layout, buffer numbers and hodograph co-ordinates every run of the deck shares.
     pub shape: [Bound<'py, PyAny>; 3],
-    /// Report and model echo.
-    pub dicts: [Bound<'py, PyDict>; 2],
+    /// The run's report.
+    pub report: Bound<'py, Report>,
+    /// The model echo.
+    pub model: Bound<'py, PyDict>,
     /// The storage requests (`_core.Storage`).
     pub storage: Bound<'py, PyAny>,
     /// The simulation report.
@@ -336,7 +339,7 @@ impl Run {
     pub fn of_deck(c: &Compiled, r: DeckRun<'_>) -> PyResult<Run> {
         let mech = &c.mechanism;
         let [layout, buffer_numbers, hodograph_coords] = r.shape;
-        let [report, model] = r.dicts;
+        let (report, model) = (r.report, r.model);
         Ok(Run {
             positions: r.positions,
             n_coords: r.n_coords,
@@ -374,16 +377,16 @@ pub struct Shared {
     /// they were made from (bit patterns): a run with the same numbers
     /// hands Python the same dicts, which it converted once.
     last_echo: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
-    last_report: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    last_report: Mutex<Option<(Vec<u64>, Py<Report>)>>,
 }
 
-/// The dict kept in `slot` for `key`, else the one `make` builds (then kept).
-fn kept<'py>(
+/// The object kept in `slot` for `key`, else the one `make` builds (then kept).
+fn kept<'py, T>(
     py: Python<'py>,
-    slot: &Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    slot: &Mutex<Option<(Vec<u64>, Py<T>)>>,
     key: Vec<u64>,
-    make: impl FnOnce() -> PyResult<Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyDict>> {
+    make: impl FnOnce() -> PyResult<Bound<'py, T>>,
+) -> PyResult<Bound<'py, T>> {
     let lock = || slot.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, d)) = lock().as_ref().filter(|(k, _)| *k == key) {
         return Ok(d.bind(py).clone());
@@ -423,8 +426,8 @@ impl Shared {
         let echo = &self.echo;
         let model =
             kept(py, &self.last_echo, key, || echo.model(py, &r.given, at_1, prescribed, dependent, Some(&r.para)))?;
-        let report = || convert::report(py, mech, &c.names, &c.dynamics_lines, &r.report, r.steps);
-        let report = match convert::plain_report_key(&r.report, r.steps).filter(|_| r.sim.is_none()) {
+        let report = || Bound::new(py, Report::of(py, mech, &c.names, &c.dynamics_lines, &r.report, r.steps)?);
+        let report = match Report::plain_key(&r.report, r.steps).filter(|_| r.sim.is_none()) {
             Some(key) => kept(py, &self.last_report, key, report)?,
             None => report()?,
         };

@@ -129,7 +129,7 @@ pub fn run_variant(
 /// [`Compiled::transfer_order`]); quantities made from ones not computed are NaN.
 /// `progress(done, total)` is called about every 1% of the positions. A
 /// motion that stops early returns every position computed so far and the
-/// reason in `report["stop"]`; a deck mistake raises `DeckError`, a failure
+/// reason in `report.stop`; a deck mistake raises `DeckError`, a failure
 /// at position 1 `AssemblyError`, `ConvergenceError` or `LimitPositionError`.
 /// Ctrl-C returns the positions so far with `interrupted` set, as `run_deck`;
 /// results that would take more than `memory_limit` bytes raise
@@ -220,7 +220,7 @@ pub fn describe_deck_text<'py>(
     d.set_item("dependent", convert::rows(py, &dependent, &[])?)?;
     d.set_item("names", crate::described_names::names(py, &c)?)?;
     d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
-    d.set_item("tol", c.units.from_core(mechfem_core::Dim::LENGTH, c.params.tol))?;
+    d.set_item("tol", c.units.as_written(mechfem_core::Dim::LENGTH, c.params.tol))?;
     d.set_item("max_iter", c.params.max_iter)?;
     let motion = match &motion {
         None => None,

@@ -3,6 +3,8 @@
 //! every value the parser would refuse is refused, with the item named as
 //! the caller names it.
 
+use mechfem_core::units::Dim;
+
 use crate::diagnostic::{real, DiagnosticKind, Spanned};
 use crate::keywords::Keyword;
 use crate::statements::dynamics::{out_of_bounds, LARGEST, SMALLEST};
@@ -46,11 +48,29 @@ pub(super) fn bounded(b: &DeckBuilder, line: usize, v: f64, what: &str) -> Resul
     }
 }
 
-/// A number of the dynamics ([`bounded`]) that is not negative.
-pub(super) fn not_negative(b: &DeckBuilder, line: usize, v: f64, what: &str) -> Result<Spanned<f64>, Refused> {
+/// `v` as a message gives it: with its unit of kind `dim` in the model's
+/// units (`-0.5 kg`), bare where the model gives none or the kind is not
+/// known (`None`).
+fn valued(b: &DeckBuilder, v: f64, dim: Option<Dim>) -> String {
+    let units = b.deck.units.as_ref().map(|u| u.units);
+    match dim.zip(units).map(|(d, u)| d.symbol(&u)) {
+        Some(unit) if !unit.is_empty() && unit != "-" => format!("{} {unit}", real(v)),
+        _ => real(v),
+    }
+}
+
+/// A number of the dynamics ([`bounded`]) that is not negative, of kind
+/// `dim` (for the message's unit; `None` where the kind is not known yet).
+pub(super) fn not_negative(
+    b: &DeckBuilder,
+    line: usize,
+    v: f64,
+    what: &str,
+    dim: Option<Dim>,
+) -> Result<Spanned<f64>, Refused> {
     let v = bounded(b, line, v, what)?;
     if v.value < 0.0 {
-        let message = format!("{what} must not be negative, got {}", real(v.value));
+        let message = format!("{what} must not be negative, got {}", valued(b, v.value, dim));
         return Err(b.refuse(DiagnosticKind::BadValue, line, message));
     }
     Ok(v)
@@ -82,7 +102,8 @@ pub(super) fn steps(b: &DeckBuilder, line: usize, steps: i64, dt: f64) -> Result
     }
     let dt = finite(b, line, dt, "the time of a step (dt)")?;
     if dt <= 0.0 || !(steps as f64 * dt).is_finite() {
-        let message = format!("the time of a step (dt) is {}: give a positive time, n * dt finite", real(dt));
+        let dt = valued(b, dt, Some(Dim::TIME));
+        let message = format!("the time of a step (dt) is {dt}: give a positive time, n * dt finite");
         return Err(b.refuse(DiagnosticKind::BadValue, line, message));
     }
     Ok(())

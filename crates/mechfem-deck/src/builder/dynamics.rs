@@ -1,5 +1,7 @@
 //! The masses and loads of a built deck (its DYNAMICS block).
 
+use mechfem_core::units::Dim;
+
 use crate::ast::{Dynamics, ForceDef, GravityDef, InertiaDef, LoadDef, LoadDefKind, MassDef, PointMassDef};
 use crate::diagnostic::DiagnosticKind;
 use crate::keywords::Keyword;
@@ -39,10 +41,11 @@ impl DeckBuilder {
     pub fn mass(&mut self, element: i64, mass: f64, u: f64, v: f64, inertia: f64, what: &str) -> Result<(), Refused> {
         let (line, w) = self.dynamics_block(Keyword::Mass, what)?;
         checks::whole(self, line, element, &w)?;
-        let mass = checks::not_negative(self, line, mass, &format!("the mass of {w}"))?;
+        let mass = checks::not_negative(self, line, mass, &format!("the mass of {w}"), Some(Dim::MASS))?;
         let u = checks::bounded(self, line, u, &format!("the centre of mass u of {w}"))?;
         let v = checks::bounded(self, line, v, &format!("the centre of mass v of {w}"))?;
-        let inertia = checks::not_negative(self, line, inertia, &format!("the moment of inertia of {w}"))?;
+        let inertia =
+            checks::not_negative(self, line, inertia, &format!("the moment of inertia of {w}"), Some(Dim::INERTIA))?;
         let def = MassDef { line, element: at(element, line), mass, u, v, inertia: Some(inertia) };
         self.dyn_mut().masses.push(def);
         Ok(())
@@ -52,7 +55,7 @@ impl DeckBuilder {
     pub fn point_mass(&mut self, x: i64, y: i64, mass: f64, what: &str) -> Result<(), Refused> {
         let (line, w) = self.dynamics_block(Keyword::Pmass, what)?;
         let (x, y) = checks::point(self, line, x, y, &w)?;
-        let mass = checks::not_negative(self, line, mass, &format!("the mass of {w}"))?;
+        let mass = checks::not_negative(self, line, mass, &format!("the mass of {w}"), Some(Dim::MASS))?;
         self.dyn_mut().point_masses.push(PointMassDef { line, x, y, mass });
         Ok(())
     }
@@ -61,7 +64,7 @@ impl DeckBuilder {
     pub fn inertia(&mut self, coord: i64, inertia: f64, what: &str) -> Result<(), Refused> {
         let (line, w) = self.dynamics_block(Keyword::Inertia, what)?;
         checks::whole(self, line, coord, &w)?;
-        let inertia = checks::not_negative(self, line, inertia, &format!("the moment of inertia of {w}"))?;
+        let inertia = checks::not_negative(self, line, inertia, &format!("the moment of inertia of {w}"), None)?;
         self.dyn_mut().inertias.push(InertiaDef { line, coord: at(coord, line), inertia });
         Ok(())
     }
@@ -122,9 +125,9 @@ impl DeckBuilder {
     pub fn spring(&mut self, row: i64, k: f64, e0: f64, c: f64, what: &str) -> Result<(), Refused> {
         self.load_def(Keyword::Spring, row, what, |b, line, w| {
             Ok(LoadDefKind::Spring {
-                k: checks::not_negative(b, line, k, &format!("the stiffness of {w}"))?,
+                k: checks::not_negative(b, line, k, &format!("the stiffness of {w}"), None)?,
                 e0: checks::bounded(b, line, e0, &format!("the free value of {w}"))?,
-                c: Some(checks::not_negative(b, line, c, &format!("the damping of {w}"))?),
+                c: Some(checks::not_negative(b, line, c, &format!("the damping of {w}"), None)?),
             })
         })
     }

@@ -174,3 +174,30 @@ fn a_mistake_the_compiler_finds_names_the_item_by_its_number() {
     let model: Vec<usize> = d.iter().filter(|d| d.kind == DiagnosticKind::Model).map(|d| d.line).collect();
     assert_eq!(model, vec![crank], "{d:?}");
 }
+
+#[test]
+fn a_refused_value_is_said_in_the_models_units() {
+    let model = |units: bool| {
+        let mut d = DeckBuilder::new("d.mec", Mode::DynAna).unwrap();
+        if units {
+            d.units(Some("mm"), Some("deg"), Some("g"), Some("N"), Some("ms")).unwrap();
+        }
+        d.element("BIN", &[1, 2, 3, 4], None).unwrap();
+        d.form("LENL", 1, 1, 1.0, None).unwrap();
+        d.form("ANGB", 1, 2, 1.0, None).unwrap();
+        d.nrdof(1).unwrap();
+        d
+    };
+    let mut d = model(true);
+    d.dynamics().unwrap();
+    let e = d.mass(1, -0.5, 0.0, 0.0, 0.0, "crank").unwrap_err();
+    assert!(e.message.ends_with("the mass of crank must not be negative, got -0.5 g"), "{}", e.message);
+    let e = d.mass(1, 1.0, 0.0, 0.0, -2.0, "crank").unwrap_err();
+    assert!(e.message.ends_with("got -2 g·mm²"), "{}", e.message);
+    assert!(d.movement(10, -1.0).unwrap_err().message.contains("(dt) is -1 ms:"));
+    // Without UNITS the numbers are bare, as the deck's own.
+    let mut d = model(false);
+    d.dynamics().unwrap();
+    assert!(d.mass(1, -0.5, 0.0, 0.0, 0.0, "crank").unwrap_err().message.ends_with("got -0.5"));
+    assert!(d.movement(10, -1.0).unwrap_err().message.contains("(dt) is -1:"));
+}

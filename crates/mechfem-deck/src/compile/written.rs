@@ -13,7 +13,7 @@ impl Compiled {
     /// its units.
     pub fn coords_as_written(&self) -> Vec<f64> {
         let (u, d) = (&self.units, &self.dims);
-        self.state.x.iter().enumerate().map(|(i, &x)| u.from_core(d.coord(i), x)).collect()
+        self.state.x.iter().enumerate().map(|(i, &x)| u.as_written(d.coord(i), x)).collect()
     }
 
     /// The motion in the deck's units (steps, increments, tables, speeds).
@@ -23,13 +23,13 @@ impl Compiled {
         if u.is_identity() {
             return Some(m);
         }
-        m.dt = u.from_core(Dim::TIME, m.dt);
+        m.dt = u.as_written(Dim::TIME, m.dt);
         for (j, input) in m.inputs.iter_mut().enumerate() {
             let e = self.dims.input(&self.mechanism, j);
             match input {
-                InputMotion::Relative { delta: v } | InputMotion::Absolute { end: v } => *v = u.from_core(e, *v),
-                InputMotion::Free { ds } => *ds = u.from_core(Dim::LENGTH, *ds),
-                InputMotion::Dynamic { v0 } => *v0 = u.from_core(e.over(Dim::TIME), *v0),
+                InputMotion::Relative { delta: v } | InputMotion::Absolute { end: v } => *v = u.as_written(e, *v),
+                InputMotion::Free { ds } => *ds = u.as_written(Dim::LENGTH, *ds),
+                InputMotion::Dynamic { v0 } => *v0 = u.as_written(e.over(Dim::TIME), *v0),
                 InputMotion::Table { rows } => {
                     let k = [Dim::TIME, e, e.over(Dim::TIME), e.over(Dim::TIME.pow(2))].map(|d| d.out_scale(u));
                     for row in rows.iter_mut() {
@@ -51,41 +51,41 @@ impl Compiled {
             return Some(d);
         }
         for b in &mut d.bodies {
-            b.mass = u.from_core(Dim::MASS, b.mass);
-            b.u = u.from_core(Dim::LENGTH, b.u);
-            b.v = u.from_core(Dim::LENGTH, b.v);
-            b.inertia = u.from_core(Dim::INERTIA, b.inertia);
+            b.mass = u.as_written(Dim::MASS, b.mass);
+            b.u = u.as_written(Dim::LENGTH, b.u);
+            b.v = u.as_written(Dim::LENGTH, b.v);
+            b.inertia = u.as_written(Dim::INERTIA, b.inertia);
         }
         for p in &mut d.point_masses {
-            p.mass = u.from_core(Dim::MASS, p.mass);
+            p.mass = u.as_written(Dim::MASS, p.mass);
         }
         for i in &mut d.inertias {
-            i.inertia = u.from_core(inertia_on(self.dims.coord(i.coord)), i.inertia);
+            i.inertia = u.as_written(inertia_on(self.dims.coord(i.coord)), i.inertia);
         }
         let accel = Dim::LENGTH.over(Dim::TIME.pow(2));
-        d.gravity = d.gravity.map(|g| u.from_core(accel, g));
+        d.gravity = d.gravity.map(|g| u.as_written(accel, g));
         for f in &mut d.forces {
-            f.f = f.f.map(|v| u.from_core(Dim::FORCE, v));
+            f.f = f.f.map(|v| u.as_written(Dim::FORCE, v));
         }
         for l in &mut d.loads {
             let e = self.dims.form(l.form);
             let q = e.generalised_force();
             match &mut l.kind {
-                LoadKind::Constant(v) => *v = u.from_core(q, *v),
+                LoadKind::Constant(v) => *v = u.as_written(q, *v),
                 LoadKind::Table(rows) => {
                     for row in rows.iter_mut() {
-                        row[0] = u.from_core(Dim::TIME, row[0]);
-                        row[1] = u.from_core(q, row[1]);
+                        row[0] = u.as_written(Dim::TIME, row[0]);
+                        row[1] = u.as_written(q, row[1]);
                     }
                 }
                 LoadKind::Spring { k, e0, c } => {
-                    *k = u.from_core(q.over(e), *k);
-                    *e0 = u.from_core(e, *e0);
-                    *c = u.from_core(q.over(e).times(Dim::TIME), *c);
+                    *k = u.as_written(q.over(e), *k);
+                    *e0 = u.as_written(e, *e0);
+                    *c = u.as_written(q.over(e).times(Dim::TIME), *c);
                 }
                 LoadKind::Motor { t0, w0 } => {
-                    *t0 = u.from_core(q, *t0);
-                    *w0 = u.from_core(e.over(Dim::TIME), *w0);
+                    *t0 = u.as_written(q, *t0);
+                    *w0 = u.as_written(e.over(Dim::TIME), *w0);
                 }
             }
         }
@@ -106,19 +106,19 @@ impl Compiled {
         }
         let (u, d, mech) = (&self.units, &self.dims, &self.mechanism);
         for (k, e) in r.adjust.initial_deformations.iter_mut().enumerate() {
-            *e = u.from_core(d.form(FormRef::Prescribed(k)), *e);
+            *e = u.as_written(d.form(FormRef::Prescribed(k)), *e);
         }
         let inputs = |values: &mut [f64]| {
             for (j, v) in values.iter_mut().enumerate() {
-                *v = u.from_core(d.input(mech, j), *v);
+                *v = u.as_written(d.input(mech, j), *v);
             }
         };
         let limit = |l: &mut LimitPosition| {
             inputs(&mut l.inputs);
             for (i, x) in l.coords.iter_mut().enumerate() {
-                *x = u.from_core(d.coord(i), *x);
+                *x = u.as_written(d.coord(i), *x);
             }
-            l.det = u.from_core(d.det(mech), l.det);
+            l.det = u.as_written(d.det(mech), l.det);
         };
         r.limits.iter_mut().for_each(limit);
         if let Some(s) = &mut r.stop {
@@ -138,13 +138,13 @@ impl Compiled {
         let mut e = e.clone();
         match &mut e {
             SolveError::Element { source: ElementError::NoBeltSpan { l, d }, .. } => {
-                *l = u.from_core(Dim::LENGTH, *l);
-                *d = u.from_core(Dim::LENGTH, *d);
+                *l = u.as_written(Dim::LENGTH, *l);
+                *d = u.as_written(Dim::LENGTH, *d);
             }
-            SolveError::Simulation { time, .. } => *time = u.from_core(Dim::TIME, *time),
+            SolveError::Simulation { time, .. } => *time = u.as_written(Dim::TIME, *time),
             SolveError::DetSignChange { before, after } => {
-                *before = u.from_core(det, *before);
-                *after = u.from_core(det, *after);
+                *before = u.as_written(det, *before);
+                *after = u.as_written(det, *after);
             }
             _ => {}
         }
@@ -162,7 +162,7 @@ impl Compiled {
             return s;
         }
         let (u, d, mech) = (&self.units, &self.dims, &self.mechanism);
-        let time = |t: &mut f64| *t = u.from_core(Dim::TIME, *t);
+        let time = |t: &mut f64| *t = u.as_written(Dim::TIME, *t);
         time(&mut s.reached);
         for g in &mut s.segments {
             time(&mut g.from);
@@ -171,10 +171,10 @@ impl Compiled {
         if let Some(e) = &mut s.event {
             time(&mut e.time);
             if let Some(b) = self.buffers.iter().find(|b| b.number == e.buffer) {
-                e.value = u.from_core(d.quantity(mech, b.quantity), e.value);
+                e.value = u.as_written(d.quantity(mech, b.quantity), e.value);
             }
             for (j, v) in e.inputs.iter_mut().enumerate() {
-                *v = u.from_core(d.input(mech, j), *v);
+                *v = u.as_written(d.input(mech, j), *v);
             }
         }
         s.run = self.report_as_written(&s.run);
