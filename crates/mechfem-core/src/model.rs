@@ -321,10 +321,22 @@ impl Clone for State {
     }
 
     /// Copies into the existing buffers (no allocation when the sizes match).
+    /// A driven run copies its state once a position into buffers of the
+    /// same sizes: those are copied as slices, without `Vec::clone_from`'s
+    /// truncation and extension.
     fn clone_from(&mut self, source: &Self) {
-        self.x.clone_from(&source.x);
-        self.target.clone_from(&source.target);
-        self.branch.clone_from(&source.branch);
+        let same = self.x.len() == source.x.len()
+            && self.target.len() == source.target.len()
+            && self.branch.len() == source.branch.len();
+        if same {
+            self.x.copy_from_slice(&source.x);
+            self.target.copy_from_slice(&source.target);
+            self.branch.copy_from_slice(&source.branch);
+        } else {
+            self.x.clone_from(&source.x);
+            self.target.clone_from(&source.target);
+            self.branch.clone_from(&source.branch);
+        }
     }
 }
 
