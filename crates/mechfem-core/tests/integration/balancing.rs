@@ -8,7 +8,7 @@
 //! first harmonic `-r w^2 cos(theta)` and otherwise only even ones, which an
 //! even number of samples does not alias onto the first.
 
-#[path = "../examples/balancing.rs"]
+#[path = "../../examples/balancing.rs"]
 mod example;
 
 #[test]

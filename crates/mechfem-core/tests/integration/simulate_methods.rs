@@ -3,8 +3,7 @@
 //! explicit method, the automatic choice switching, and a STOPWHEN event
 //! located against a closed form.
 
-#[path = "common/dynamics.rs"]
-mod models;
+use crate::common_dynamics as models;
 
 use mechfem_core::dynamics::{Integration, Integrator, Load, LoadKind, StopWhen};
 use mechfem_core::run::{simulate, InverseDynamics, SimReport};

@@ -6,9 +6,10 @@
 //! what they found is kept in `tests/decks/hostile` and replayed here.
 //!
 //! Replay a fuzz input with
-//! `HOSTILE_INPUT=path cargo test -p mechfem-deck --test hostile replay -- --ignored --nocapture`
+//! `HOSTILE_INPUT=path cargo test -p mechfem-deck --test integration hostile::replay -- --ignored --nocapture`
 //! (`HOSTILE_GRAMMAR=1` for an input of the `deck_grammar` target).
 
+#[path = "../support/mod.rs"]
 mod support;
 
 use std::path::{Path, PathBuf};

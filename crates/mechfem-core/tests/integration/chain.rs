@@ -3,8 +3,7 @@
 //! closed form of the four-bar, including the transfer functions of the
 //! last rocker.
 
-#[path = "common/chain.rs"]
-mod chain;
+use crate::common_chain as chain;
 
 use chain::{chain, exact};
 use mechfem_core::{

@@ -4,8 +4,7 @@
 //! masses, the work-energy balance under a constant drive torque and a
 //! spring, and the round trip inverse -> forward dynamics.
 
-#[path = "common/dynamics.rs"]
-mod models;
+use crate::common_dynamics as models;
 
 use mechfem_core::dynamics::{Body, Dynamics, Integration, Load, LoadKind, PointMass};
 use mechfem_core::run::{simulate, simulate_within, InverseDynamics};

@@ -3,8 +3,7 @@
 //! `2 asin(k sn(K - w t, k))` from the bottom (k = sin(theta0 / 2),
 //! w = sqrt(g / l), sn Jacobi's elliptic function).
 
-#[path = "common/dynamics.rs"]
-mod models;
+use crate::common_dynamics as models;
 
 use mechfem_core::dynamics::{Integration, Integrator, StopWhen};
 use mechfem_core::run::{simulate, SimReport};

@@ -4,8 +4,7 @@
 //! global allocator counts the allocations of the measuring thread (a count,
 //! not a timing).
 
-#[path = "common/chain.rs"]
-mod chain;
+use crate::common_chain as chain;
 
 use mechfem_core::{
     run, ElementType, InputMotion, Mechanism, MechanismBuilder, Motion, Observer, Params, PositionView, State, Term,

@@ -3,8 +3,7 @@
 //! automatic choice reaches a tight tolerance on a stiff motion at the
 //! implicit method's cost.
 
-#[path = "common/dynamics.rs"]
-mod models;
+use crate::common_dynamics as models;
 
 use mechfem_core::dynamics::{Dynamics, Integration, Integrator, Load, LoadKind, PointMass};
 use mechfem_core::run::{simulate, InverseDynamics, SimReport};

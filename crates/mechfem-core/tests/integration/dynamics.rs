@@ -4,8 +4,7 @@
 //! against the virtual work of gravity (finite differences of V over the
 //! prescribed values), and numbering independence.
 
-#[path = "common/dynamics.rs"]
-mod models;
+use crate::common_dynamics as models;
 
 use mechfem_core::dynamics::{Body, Dynamics};
 use mechfem_core::{run, InputMotion, Motion, Params, Quantity, Recorder};

@@ -6,8 +6,7 @@
 //! and every kind of mass variable, on a four-bar carrying every kind of
 //! mass and load and on an offset slider-crank.
 
-#[path = "common/dynamics.rs"]
-mod models;
+use crate::common_dynamics as models;
 
 use mechfem_core::dynamic_design::evaluate;
 use mechfem_core::dynamics::{Component, Dynamics, MassVar};

@@ -2,8 +2,7 @@
 //! closed-form solution of the loop a e^{i theta} + b e^{i delta} = d + c e^{i gamma}
 //! and its first and second derivatives, over several crank revolutions.
 
-#[path = "common/fourbar.rs"]
-mod fourbar;
+use crate::common_fourbar as fourbar;
 
 use fourbar::{A, ALPHA, B, C, D, P};
 use mechfem_core::{
