@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import mechfem
+from mechfem import optimise_deck
 from mechfem.optimise import TargetAt
 
 THETAS = (40.0, 75.0, 110.0, 145.0)
@@ -87,3 +89,38 @@ def test_a_varied_angle_without_a_range_spans_half_a_turn_either_side_in_degrees
     assert _span(four_bar("rad"), "theta", None) == pytest.approx(
         (math.radians(THETAS[0]) - math.pi, math.radians(THETAS[0]) + math.pi)
     )
+
+
+def deck(tmp_path: Path, unit: str) -> Path:
+    """The problem above as a KIN OPT deck in ``unit`` (FREETIME 6 ORDERED; the motion's values, the known crank
+    angles, are the start values; the crank starts at 11)."""
+    pts = points()
+    folder = tmp_path / unit
+    folder.mkdir()
+    for k, c in enumerate("xy"):
+        (folder / f"p{c}.dat").write_text("".join(f"{float(v)!r}\n" for v in pts[:, k]))
+    block = (
+        "OPTIMISE\nVARY 1 5 15\nBUFX0 9 1\nBUFX0 10 2\nTARGET 1 px.dat\nTARGET 2 py.dat\nFREETIME 6 ORDERED\n"
+        "OPTFTOL 1E-14 1E-24\n"
+    )
+    text = four_bar(unit, crank=11.0).to_deck().replace("KIN ANA", "KIN OPT").replace("\nEND", "\n" + block + "END")
+    path = folder / "timing.mec"
+    path.write_text(text)
+    return path
+
+
+def test_free_ordered_timing_in_a_deck_in_degrees_is_the_one_in_radians(tmp_path: Path) -> None:
+    found = {}
+    for unit in ("deg", "rad"):
+        path = deck(tmp_path, unit)
+        opt = optimise_deck.describe(path)["optimise"]
+        assert opt is not None
+        out = optimise_deck.optimise(path, opt)
+        assert out.synthesis is not None
+        found[unit] = (out.solution, out.synthesis.inputs(out.solution.x))
+    (deg, t_deg), (rad, t_rad) = found["deg"], found["rad"]
+    assert deg.start_objective == pytest.approx(rad.start_objective, rel=1e-9)
+    assert deg.objective < 1e-16 and rad.objective < 1e-16
+    assert deg.x[0] == pytest.approx(10.0, abs=1e-7)
+    assert np.asarray(t_deg) == pytest.approx(np.degrees(t_rad), abs=1e-6)
+    assert np.asarray(t_deg) == pytest.approx(THETAS, abs=1e-6)
