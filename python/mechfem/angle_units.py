@@ -11,10 +11,14 @@ so its results stay bit for bit those of the core's models."""
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from mechfem.model import Mechanism
+    from mechfem.timing import Plan
 
 DEGREE = math.pi / 180.0
 
@@ -70,4 +74,49 @@ class ScaledBuilder:
         return ScaledModel(model, factors, [k for k, b in enumerate(buffers) if b in self.angle_buffers])
 
 
-__all__ = ["DEGREE", "ScaledBuilder", "ScaledModel"]
+def whole_turn(mech: Mechanism) -> float:
+    """One turn in the mechanism's unit of angle: 2 pi, or 360 when its angles are in degrees."""
+    return 360.0 if mech.units.angle == "deg" else 2.0 * math.pi
+
+
+def degree_variables(
+    mech: Mechanism,
+    vary: Mapping[str, tuple[float, float] | None],
+    variables: Sequence[tuple[int, int, float]],
+    timed: Plan | None,
+) -> set[tuple[int, int]]:
+    """The variables (core numbering) of ``optimize`` that are angles, the free timing's input among them."""
+    from mechfem.dynamic_optimise import is_mass
+    from mechfem.model import Coordinate
+    from mechfem.optimise import _lookup
+
+    out: set[tuple[int, int]] = set()
+    for name, (kind, number, _) in zip(vary, variables, strict=True):
+        if is_mass(kind):
+            continue
+        obj = _lookup(mech, name)
+        if obj.kind == "angle" if isinstance(obj, Coordinate) else obj.is_angle:
+            out.add((kind, number))
+    if timed is not None and timed.angle:
+        out.add(timed.input_var)
+    return out
+
+
+def angle_buffers(keys: Mapping[tuple[str, tuple[object, ...]], int]) -> set[int]:
+    """Of the buffers ``keys`` (``optimize``'s (keyword, arguments) -> number), those that hold an angle's value:
+    an angle co-ordinate or row (order 0), a transmission angle."""
+    from mechfem.model import Coordinate, FormParameter, Row
+
+    out = set()
+    for (keyword, args), number in keys.items():
+        obj = args[0] if args else None
+        if keyword == "BUFTRA":
+            out.add(number)
+        elif keyword == "BUFX0" and isinstance(obj, Coordinate) and obj.kind == "angle":
+            out.add(number)
+        elif keyword == "BUFE0" and isinstance(obj, Row | FormParameter) and bool(obj.is_angle):
+            out.add(number)
+    return out
+
+
+__all__ = ["DEGREE", "ScaledBuilder", "ScaledModel", "angle_buffers", "degree_variables", "whole_turn"]

@@ -124,19 +124,6 @@ class _Deck:
             dofs = (j,) if spec.order == 1 else (j, input_dof(spec.wrt2 if spec.wrt2 is not None else j, inputs))
         return self._numbered((keyword, (obj, *dofs)), keyword, obj, *dofs)
 
-    def angle_buffers(self) -> set[int]:
-        """The buffers that hold an angle's value: an angle co-ordinate or row (order 0), a transmission angle."""
-        out = set()
-        for (keyword, args), number in self.keys.items():
-            obj = args[0] if args else None
-            if keyword == "BUFTRA":
-                out.add(number)
-            elif keyword == "BUFX0" and isinstance(obj, Coordinate) and obj.kind == "angle":
-                out.add(number)
-            elif keyword == "BUFE0" and isinstance(obj, Row | FormParameter) and bool(obj.is_angle):
-                out.add(number)
-        return out
-
     def _numbered(self, key: tuple[str, tuple[object, ...]], keyword: str | None, *args: Any) -> int:
         if key not in self.keys:
             number = len(self.keys) + 1
@@ -178,43 +165,16 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
 
 
 def _model(
-    builder: Any,
-    base: str,
-    timed: Plan | None,
-    full_rotation: bool,
-    mechanism: Mechanism,
-    storage: Storage,
-    angles: set[tuple[int, int]] | None = None,
+    builder: Any, base: str, timed: Plan | None, full: bool, mechanism: Mechanism, storage: Storage, angles: Any = None
 ) -> design.DesignModelOf:
-    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if asked."""
+    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if ``full``;
+    ``angles``: the variables in degrees (:mod:`mechfem.angle_units`)."""
     of = design.built_model(builder, base) if timed is None else _timed_model(timed, base)
-    if not full_rotation:
+    if not full:
         return of
     from mechfem import full_rotation as _full
 
     return _full.checked(of, mechanism, storage, base, angles)
-
-
-def _degree_angles(
-    mech: Mechanism,
-    vary: Mapping[str, tuple[float, float] | None],
-    variables: Sequence[tuple[int, int, float]],
-    timed: Plan | None,
-) -> set[tuple[int, int]]:
-    """In a model whose angles are in degrees, the variables (core numbering) that are angles, the free timing's
-    input among them: the core takes them in radians (:mod:`mechfem.angle_units`). Empty in a model in radians."""
-    if mech.units.angle != "deg":
-        return set()
-    out: set[tuple[int, int]] = set()
-    for name, (kind, number, _) in zip(vary, variables, strict=True):
-        if dynamic_optimise.is_mass(kind):
-            continue
-        obj = _lookup(mech, name)
-        if obj.kind == "angle" if isinstance(obj, Coordinate) else obj.is_angle:
-            out.add((kind, number))
-    if timed is not None and timed.angle:
-        out.add(timed.input_var)
-    return out
 
 
 def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
@@ -241,12 +201,7 @@ def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> b
         if not angle:
             raise ValueError(f"{name!r} is not an angle: give its range (lo, hi); only an angle may go without one")
         return True
-    return angle and design_rules.full_turn(float(span[0]), float(span[1]), whole_turn(mech))
-
-
-def whole_turn(mech: Mechanism) -> float:
-    """One turn in the mechanism's unit of angle: 2 pi, or 360 when its angles are in degrees."""
-    return 360.0 if mech.units.angle == "deg" else 2.0 * math.pi
+    return angle and design_rules.full_turn(float(span[0]), float(span[1]), angle_units.whole_turn(mech))
 
 
 def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple[float, float]:
@@ -254,7 +209,7 @@ def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple
     if span is not None:
         return float(span[0]), float(span[1])
     value = float(getattr(mech[name], "value", None) or 0.0)
-    return value - whole_turn(mech) / 2.0, value + whole_turn(mech) / 2.0
+    return value - angle_units.whole_turn(mech) / 2.0, value + angle_units.whole_turn(mech) / 2.0
 
 
 def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable[[Iteration], object] | None:
@@ -407,11 +362,12 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
-    angles = _degree_angles(mechanism, vary, variables, timed)
     degrees = mechanism.units.angle == "deg"
-    angle_buffers = deck.angle_buffers() if degrees else set()
+    angles = angle_units.degree_variables(mechanism, vary, variables, timed) if degrees else set()
+    angle_buffers = angle_units.angle_buffers(deck.keys) if degrees else set()
     if degrees and timed is not None:
         timed.builders = [angle_units.ScaledBuilder(b, angles, angle_buffers) for b in timed.builders]
+    builder = angle_units.ScaledBuilder(built.builder, angles, angle_buffers) if degrees else built.builder
     free_input = None if timing is None else timing.input
     turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     for term in terms:
@@ -429,7 +385,7 @@ def optimize(
         False if dynamic_optimise.is_mass(v[0]) else _periodic(mechanism, name, span)
         for (name, span), v in zip(vary.items(), variables, strict=True)
     ]
-    half = whole_turn(mechanism) / 2.0
+    half = angle_units.whole_turn(mechanism) / 2.0
     ranges = [(s - half, s + half) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)]
     lo = np.array([float(v[0]) for v in ranges])
     hi = np.array([float(v[1]) for v in ranges])
@@ -446,15 +402,7 @@ def optimize(
         model = (
             dynamic_optimise.model(built.builder, base)
             if dynamic
-            else _model(
-                angle_units.ScaledBuilder(built.builder, angles, angle_buffers) if degrees else built.builder,
-                base,
-                timed,
-                full_rotation,
-                mechanism,
-                deck.storage,
-                angles,
-            )
+            else _model(builder, base, timed, full_rotation, mechanism, deck.storage, angles)
         )
         problem = synthesis_problem(
             model,
@@ -466,7 +414,7 @@ def optimize(
             frame=framed,
             turn=turn,
             timed=timed,
-            whole_turn=whole_turn(mechanism),
+            whole_turn=angle_units.whole_turn(mechanism),
             terms=terms,
             bounds=bound_terms,
             objective=goal,
