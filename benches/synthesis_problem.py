@@ -5,10 +5,8 @@ compared on it.
 The problem is constructed, not taken from the literature. Its targets are the coupler-point positions of a known
 four-bar, the one of ``bench_peers.py`` and ``examples/fourbar`` (crank 1, coupler 3, rocker 2.5, frame 3.2 along
 x; the coupler point 1.8 from the crank pin A at 0.6 rad from A->B), at ten crank angles 36 degrees apart, so the
-known optimum is that four-bar with error 0. (The classic published cases, e.g. the six points on a straight line
-with prescribed timing of Kunjur & Krishnamurty 1997, reused by Cabrera, Simon & Prado 2002, have no exact solution:
-their "optimum" is only the best error reported so far, and their data could not be checked here against a
-citable source, so they are not used.)
+known optimum is that four-bar with error 0. (The classic published cases have only best-known errors; they are
+stated in examples/synthesis/benchmarks.py and compared in bench_published.py.)
 
 Geometry. Frame pivots A0 = (0, 0) (fixed) and B0 = (x_b0, y_b0); crank A0A of length ``a`` at the prescribed angle
 theta from the global x axis, counter-clockwise; coupler AB of length ``b``; rocker B0B of length ``c``; the coupler

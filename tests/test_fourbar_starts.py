@@ -90,16 +90,29 @@ def test_the_closed_form_position_one_is_the_solved_one_on_the_mechanisms_branch
             assert abs(float(at[name].value) - x) < 1e-9 * (1.0 + abs(x))
 
 
-@pytest.mark.parametrize("full_rotation", [False, True])
-def test_at_least_four_draws_in_five_become_starts(full_rotation: bool) -> None:
+def test_at_least_four_draws_in_five_become_starts_when_the_crank_turns_fully() -> None:
     mech = sl.four_bar()
     timing = mechfem.FreeTiming("theta", sl.STARTS)
-    kwargs = {"timing": timing, "full_rotation": full_rotation}
-    # Without full_rotation the draws close over the two radians of the start angles only.
+    kwargs = {"timing": timing, "full_rotation": True}
     base = {name: float(mech[name].value) for name in LINE_BOX}
     begins, reached, rejected, looked = multistart.screened(mech, base, LINE_BOX, 10, 2, kwargs)
     assert len(begins) == len(reached) == 10
     assert 10 / looked >= 0.8, rejected
+
+
+def test_without_a_full_turn_every_other_start_is_a_plain_draw_of_the_box() -> None:
+    """The starts alternate: plain draws of the box that can do the motion (the first of them first), and draws made
+    to close over the sweep. The plain ones are the box's own draws, in order, lengths untouched."""
+    mech = sl.four_bar()
+    kwargs = {"timing": mechfem.FreeTiming("theta", sl.STARTS)}
+    base = {name: float(mech[name].value) for name in LINE_BOX}
+    begins, reached, _, looked = multistart.screened(mech, base, LINE_BOX, 6, 2, kwargs)
+    assert len(begins) == len(reached) == 6
+    plain = multistart.draws(LINE_BOX, multistart.SCREEN * 3, 2)
+    kept = [d for d in plain if any(all(b[k] == d[k] for k in d) for b in begins)]
+    assert [all(begins[k][n] == kept[k // 2][n] for n in kept[k // 2]) for k in (0, 2, 4)] == [True] * 3
+    assert not any(any(all(begins[k][n] == d[n] for n in d) for d in plain) for k in (1, 3, 5))
+    assert looked > 6  # plain draws are screened: some cannot do the motion
 
 
 def test_an_optimum_reports_the_usable_fraction_of_its_draws() -> None:

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechfem import design, design_rules, frame_angle, full_rotation, timing
+from mechfem import angle_units, design, design_rules, frame_angle, full_rotation, timing
 from mechfem.frame_angle import FrameAngle, TurnedModel
 from mechfem.optimise import _timed_model, synthesis_problem
 from mechfem.timing import FreeTiming, Plan
@@ -105,6 +105,9 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
                 "timing wraps an angle input's values at the points as a turn; drive the mechanism by an angle"
             )
         timed = _plan(deck, mech, storage, free_name, bool(free["ordered"]), numbering, int(free["line"]))
+        if mech.units.angle == "deg":
+            # The points' input in the deck's degrees; the core takes radians (mechfem.angle_units).
+            timed.builders = [angle_units.ScaledBuilder(b, {timed.input_var}, set()) for b in timed.builders]
         of = _timed(timed, base)
     if full:
         line = full["line"]
@@ -136,6 +139,8 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
         steps=p.steps,
         tol=p.tol,
         stop=p.stop,
+        # A turn of the free timing's input in the deck's unit (its values are reported within one).
+        whole_turn=timed.turn if timed is not None else design_rules.TURN,
     )
     return Synthesis(q, turn, timed, input_row)
 

@@ -121,6 +121,8 @@ class Problem:
     """Per variable (empty: none): an angle that wraps. The optimiser sees it without bounds; it is evaluated at
     the value a whole number of turns away that lies within half a turn of its start value, and reported within
     ``[lo, lo + 2 pi)``."""
+    whole_turn: float = TURN
+    """One turn in the angles' unit: 2 pi, or 360 in a model whose angles are in degrees."""
 
 
 @dataclass
@@ -230,7 +232,8 @@ class Evaluator:
         if self._turns is None or self._centre is None:
             return x
         d = x - self._centre
-        return np.where(self._turns, self._centre + (d - TURN * np.round(d / TURN)), x)
+        turn = self.problem.whole_turn
+        return np.where(self._turns, self._centre + (d - turn * np.round(d / turn)), x)
 
     @property
     def runs(self) -> int:

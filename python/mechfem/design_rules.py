@@ -50,9 +50,10 @@ _EPS = float(np.finfo(np.float64).eps)
 TURN = 2.0 * math.pi
 
 
-def full_turn(lo: float, hi: float) -> bool:
-    """Whether ``[lo, hi]`` is one whole turn (radians): an angle variable with this range wraps."""
-    return math.isclose(hi - lo, TURN, rel_tol=1e-9, abs_tol=1e-12)
+def full_turn(lo: float, hi: float, turn: float = TURN) -> bool:
+    """Whether ``[lo, hi]`` is one whole turn (``turn``: 2 pi in radians, 360 in degrees): an angle variable with
+    this range wraps."""
+    return math.isclose(hi - lo, turn, rel_tol=1e-9, abs_tol=1e-12)
 
 
 def _optimiser_bounds(problem: Problem) -> tuple[FloatArray, FloatArray]:
@@ -68,7 +69,7 @@ def _reported(problem: Problem, x: FloatArray) -> FloatArray:
     if not any(problem.periodic):
         return x
     free = np.array(problem.periodic, dtype=bool)
-    return np.where(free, problem.lo + np.mod(x - problem.lo, TURN), x)
+    return np.where(free, problem.lo + np.mod(x - problem.lo, problem.whole_turn), x)
 
 
 _FEASIBLE = 1e-10

@@ -221,14 +221,11 @@ def draws(
     draw)."""
     from scipy.stats import qmc
 
+    from mechfem.multistart import unit_draws
+
     if n <= 0:
         return []
-    names = sorted(box)
-    lo = np.array([float(box[k][0]) for k in names])
-    hi = np.array([float(box[k][1]) for k in names])
-    if not np.all(lo < hi):
-        raise ValueError(f"the start box {dict(box)} has an empty range")
-    unit = qmc.Halton(d=len(names), scramble=True, seed=np.random.default_rng(seed)).random(n)
+    names, lo, hi, unit = unit_draws(box, n, seed)
     out: list[tuple[dict[str, float], str]] = []
     for row in unit:
         draw = dict(zip(names, map(float, qmc.scale(row[None, :], lo, hi)[0]), strict=True))

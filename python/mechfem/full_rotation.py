@@ -59,15 +59,24 @@ class FullRotation:
 TURN = 2.0 * math.pi
 
 
-def checked(of: DesignModelOf, mechanism: Mechanism, storage: Storage, base: str) -> DesignModelOf:
-    """``of`` with every design also checked for a full turn of the mechanism's only input (an angle)."""
-    from mechfem import building
+def checked(
+    of: DesignModelOf,
+    mechanism: Mechanism,
+    storage: Storage,
+    base: str,
+    angles: set[tuple[int, int]] | None = None,
+) -> DesignModelOf:
+    """``of`` with every design also checked for a full turn of the mechanism's only input (an angle); ``angles``:
+    the variables given in degrees (:mod:`mechfem.angle_units`)."""
+    from mechfem import angle_units, building
     from mechfem.motion import Motion
 
     inputs = [r for r in mechanism.rows if r.kind == "input"]
     if len(inputs) != 1 or not inputs[0].is_angle:
         raise ValueError("full_rotation needs a mechanism with one input, an angle (a crank)")
-    builder = building.builder(mechanism, Motion.by(STEPS, TURN, unit="rad"), storage).builder
+    core = building.builder(mechanism, Motion.by(STEPS, TURN, unit="rad"), storage).builder
+    # The turn's model records no buffer: only whether the design turns fully.
+    builder: Any = angle_units.ScaledBuilder(core, angles, set()) if angles else core
 
     def wrapped(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
         shared = [v for v in variables if v[0] != 2]

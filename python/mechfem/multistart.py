@@ -53,14 +53,25 @@ def draws(box: Mapping[str, tuple[float, float]], n: int, seed: int | None) -> l
 
     if n <= 0:
         return []
+    names, lo, hi, unit = unit_draws(box, n, seed)
+    points = qmc.scale(unit, lo, hi)
+    return [dict(zip(names, map(float, p), strict=True)) for p in points]
+
+
+def unit_draws(
+    box: Mapping[str, tuple[float, float]], n: int, seed: int | None
+) -> tuple[list[str], np.ndarray, np.ndarray, np.ndarray]:
+    """The box's names (sorted: the draws do not depend on their order), lower and upper ends, and ``n`` scrambled
+    Halton points in the unit cube of that order (n x names)."""
+    from scipy.stats import qmc
+
     names = sorted(box)
     lo = np.array([float(box[k][0]) for k in names])
     hi = np.array([float(box[k][1]) for k in names])
     if not np.all(lo < hi):
         raise ValueError(f"the start box {dict(box)} has an empty range")
     unit = qmc.Halton(d=len(names), scramble=True, seed=np.random.default_rng(seed)).random(n)
-    points = qmc.scale(unit, lo, hi)
-    return [dict(zip(names, map(float, p), strict=True)) for p in points]
+    return names, lo, hi, unit
 
 
 def assembled(mechanism: Mechanism, values: Mapping[str, float]) -> Mechanism | str:
@@ -155,17 +166,54 @@ def screened(
 ) -> tuple[list[dict[str, float]], list[Mechanism], list[tuple[dict[str, float], str]], int]:
     """The first ``n`` draws of ``box`` (in the sequence's order, at most ``SCREEN * n`` looked at) that assemble
     and do the problem's motion: their designs, their assembled mechanisms, the draws passed over with the reason,
-    and how many draws were looked at."""
+    and how many draws were looked at.
+
+    A four-bar with free timing and no whole turn of the crank asked takes every other start from plain draws of
+    the box (the first of them first), assembled by continuation as any mechanism's, the rest from the draws made
+    to close over the sweep of the start values. That sweep is no constraint of the problem (the timing moves), and
+    the fitted draws crowd where the lengths' intervals are narrow; the plain draws that pass the check cover every
+    linkage that reaches the start values evenly, rockers and linkages with a long crank on a short frame among
+    them (where the straight line's exact solutions lie), on either assembly branch the continuation reaches. With
+    a prescribed motion or a whole turn, the fitted draws are those of the constraint stated, and all starts are."""
+    four_bar = _four_bar(mechanism, kwargs)
+    if four_bar is None:
+        plain = [(d, "") for d in draws(box, SCREEN * n, seed)]
+        return _screen(mechanism, base, plain, n, kwargs, None)
+    fb, branch, sweep = four_bar
+    fitted = fourbar_starts.draws(fb, mechanism, box, SCREEN * n, seed, sweep)
+    if sweep is None or kwargs.get("timing") is None:
+        return _screen(mechanism, base, fitted, n, kwargs, (fb, branch))
+    half = (n + 1) // 2
+    plain = [(d, "") for d in draws(box, SCREEN * half, seed)]
+    one = _screen(mechanism, base, plain, half, kwargs, None)
+    other = _screen(mechanism, base, fitted, n - len(one[0]), kwargs, (fb, branch))
+    order = _alternate(len(one[0]), len(other[0]))
+    begins = [(one[0] if k < 0 else other[0])[abs(k) - 1] for k in order]
+    reached = [(one[1] if k < 0 else other[1])[abs(k) - 1] for k in order]
+    return begins, reached, one[2] + other[2], one[3] + other[3]
+
+
+def _alternate(first: int, second: int) -> list[int]:
+    """The order of two lists' items taken in turn, the first's first: -k for the first's k-th (1-based), +k for
+    the second's."""
+    out: list[int] = []
+    for k in range(max(first, second)):
+        out += ([-(k + 1)] if k < first else []) + ([k + 1] if k < second else [])
+    return out
+
+
+def _screen(
+    mechanism: Mechanism,
+    base: Mapping[str, float],
+    candidates: Sequence[tuple[dict[str, float], str]],
+    n: int,
+    kwargs: Mapping[str, Any],
+    four_bar: tuple[fourbar_starts.FourBar, float] | None,
+) -> tuple[list[dict[str, float]], list[Mechanism], list[tuple[dict[str, float], str]], int]:
     begins: list[dict[str, float]] = []
     reached: list[Mechanism] = []
     rejected: list[tuple[dict[str, float], str]] = []
     looked = 0
-    four_bar = _four_bar(mechanism, kwargs)
-    if four_bar is None:
-        candidates = [(d, "") for d in draws(box, SCREEN * n, seed)]
-    else:
-        fb, branch, sweep = four_bar
-        candidates = fourbar_starts.draws(fb, mechanism, box, SCREEN * n, seed, sweep)
     for d, why in candidates:
         if len(begins) == n:
             break
@@ -174,7 +222,11 @@ def screened(
         if why:
             rejected.append((begin, why))
             continue
-        at = assembled(mechanism, begin) if four_bar is None else fourbar_starts.assembled(fb, mechanism, branch, begin)
+        at = (
+            assembled(mechanism, begin)
+            if four_bar is None
+            else fourbar_starts.assembled(four_bar[0], mechanism, four_bar[1], begin)
+        )
         why = f"cannot be assembled: {at}" if isinstance(at, str) else runs_through(at, kwargs)
         if why or isinstance(at, str):
             rejected.append((begin, why))
@@ -285,4 +337,4 @@ def multi_start(
     return dataclasses.replace(best, starts=outcomes, usable=len(found) / len(begins), drawn=drawn, rejected=passed)
 
 
-__all__ = ["SCREEN", "assembled", "draws", "multi_start", "runs_through", "screened"]
+__all__ = ["SCREEN", "assembled", "draws", "multi_start", "runs_through", "screened", "unit_draws"]

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 
 import numpy as np
 
-from mechfem import building, deckio, design, design_rules, dynamic_optimise, frame_angle
+from mechfem import angle_units, building, deckio, design, design_rules, dynamic_optimise, frame_angle
 from mechfem.design import FloatArray, Iteration
 from mechfem.frame_angle import FrameAngle
 from mechfem.model import Coordinate, FormParameter, InputKey, Point, Row
@@ -165,15 +165,16 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
 
 
 def _model(
-    builder: Any, base: str, timed: Plan | None, full_rotation: bool, mechanism: Mechanism, storage: Storage
+    builder: Any, base: str, timed: Plan | None, full: bool, mechanism: Mechanism, storage: Storage, angles: Any = None
 ) -> design.DesignModelOf:
-    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if asked."""
+    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if ``full``;
+    ``angles``: the variables in degrees (:mod:`mechfem.angle_units`)."""
     of = design.built_model(builder, base) if timed is None else _timed_model(timed, base)
-    if not full_rotation:
+    if not full:
         return of
     from mechfem import full_rotation as _full
 
-    return _full.checked(of, mechanism, storage, base)
+    return _full.checked(of, mechanism, storage, base, angles)
 
 
 def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
@@ -182,7 +183,7 @@ def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
     def of(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
         shared = [v for v in variables if v[0] != 2]
         points = [b.design(base, [*shared, timed.input_var], buffers, extrema) for b in timed.builders]
-        return TimedModel(points, len(shared), timed.thetas, timed.ordered, timed.angle)
+        return TimedModel(points, len(shared), timed.thetas, timed.ordered, timed.angle, timed.turn)
 
     return of
 
@@ -200,7 +201,7 @@ def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> b
         if not angle:
             raise ValueError(f"{name!r} is not an angle: give its range (lo, hi); only an angle may go without one")
         return True
-    return angle and design_rules.full_turn(float(span[0]), float(span[1]))
+    return angle and design_rules.full_turn(float(span[0]), float(span[1]), angle_units.whole_turn(mech))
 
 
 def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple[float, float]:
@@ -208,7 +209,7 @@ def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple
     if span is not None:
         return float(span[0]), float(span[1])
     value = float(getattr(mech[name], "value", None) or 0.0)
-    return value - math.pi, value + math.pi
+    return value - angle_units.whole_turn(mech) / 2.0, value + angle_units.whole_turn(mech) / 2.0
 
 
 def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable[[Iteration], object] | None:
@@ -361,6 +362,12 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
+    degrees = mechanism.units.angle == "deg"
+    angles = angle_units.degree_variables(mechanism, vary, variables, timed) if degrees else set()
+    angle_buffers = angle_units.angle_buffers(deck.keys) if degrees else set()
+    if degrees and timed is not None:
+        timed.builders = [angle_units.ScaledBuilder(b, angles, angle_buffers) for b in timed.builders]
+    builder = angle_units.ScaledBuilder(built.builder, angles, angle_buffers) if degrees else built.builder
     free_input = None if timing is None else timing.input
     turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     for term in terms:
@@ -378,9 +385,8 @@ def optimize(
         False if dynamic_optimise.is_mass(v[0]) else _periodic(mechanism, name, span)
         for (name, span), v in zip(vary.items(), variables, strict=True)
     ]
-    ranges = [
-        (s - math.pi, s + math.pi) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)
-    ]
+    half = angle_units.whole_turn(mechanism) / 2.0
+    ranges = [(s - half, s + half) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)]
     lo = np.array([float(v[0]) for v in ranges])
     hi = np.array([float(v[1]) for v in ranges])
     for name, (_, _, start), a, b in zip(vary, variables, lo, hi, strict=True):
@@ -396,7 +402,7 @@ def optimize(
         model = (
             dynamic_optimise.model(built.builder, base)
             if dynamic
-            else _model(built.builder, base, timed, full_rotation, mechanism, deck.storage)
+            else _model(builder, base, timed, full_rotation, mechanism, deck.storage, angles)
         )
         problem = synthesis_problem(
             model,
@@ -408,6 +414,7 @@ def optimize(
             frame=framed,
             turn=turn,
             timed=timed,
+            whole_turn=angle_units.whole_turn(mechanism),
             terms=terms,
             bounds=bound_terms,
             objective=goal,

@@ -69,8 +69,16 @@ class TimedModel:
     """N single-point models as one model of N positions: the shared variables, then the timing variables (the
     input at each point, or with ``ordered`` the first point's input and the advances)."""
 
-    def __init__(self, points: list[_core.DesignModel], shared: int, thetas: FloatArray, ordered: bool, angle: bool):
-        self.points, self.shared, self.ordered, self.angle = points, shared, ordered, angle
+    def __init__(
+        self,
+        points: list[_core.DesignModel],
+        shared: int,
+        thetas: FloatArray,
+        ordered: bool,
+        angle: bool,
+        turn: float = TURN,
+    ):
+        self.points, self.shared, self.ordered, self.angle, self.turn = points, shared, ordered, angle, turn
         self.thetas0 = np.asarray(thetas, dtype=np.float64)
         n = len(points)
         # theta = T y: the inputs at the points from the timing variables.
@@ -106,7 +114,7 @@ class TimedModel:
             # The same position a whole number of turns away, nearest the point's own start: its model's
             # continuation from the start design never goes round the long way.
             d = thetas - self.thetas0
-            thetas = self.thetas0 + (d - TURN * np.round(d / TURN))
+            thetas = self.thetas0 + (d - self.turn * np.round(d / self.turn))
         rows, grads, first = [], [], None
         for k, (model, theta) in enumerate(zip(self.points, thetas, strict=True)):
             got = model.start_at([*shared, float(theta)]) if start else model.evaluate([*shared, float(theta)])
@@ -153,6 +161,8 @@ class Plan:
     periodic: list[bool]
     angle: bool
     ordered: bool
+    turn: float = TURN
+    """One turn in the input's unit: 2 pi, or 360 in a model whose angles are in degrees."""
 
 
 POINT_MOTION_STEP = 1e-9
@@ -171,6 +181,7 @@ def plan(mechanism: Mechanism, timing: FreeTiming, storage: Storage, numbering: 
     if getattr(row, "kind", None) != "input":
         raise ValueError(f"{timing.input!r} is not an input: free timing gives an input a value at every point")
     angle = bool(row.is_angle)
+    turn = 360.0 if mechanism.units.angle == "deg" else TURN
     if timing.span is None and not angle:
         raise ValueError(f"{timing.input!r} is not an angle: give the span its values may take")
     kind, number, start = _variable(mechanism, numbering, timing.input)
@@ -193,17 +204,17 @@ def plan(mechanism: Mechanism, timing: FreeTiming, storage: Storage, numbering: 
     n = len(thetas)
     names = [f"{timing.input}@{k + 1}" for k in range(n)]
     if timing.ordered:
-        t1 = _range(timing.span, thetas[0], angle)
-        width = TURN if timing.span is None else timing.span[1] - timing.span[0]
+        t1 = _range(timing.span, thetas[0], turn)
+        width = turn if timing.span is None else timing.span[1] - timing.span[0]
         lo = np.array([t1[0]] + [0.0] * (n - 1))
         hi = np.array([t1[1]] + [width] * (n - 1))
         periodic = [timing.span is None] + [False] * (n - 1)
         names = [names[0]] + [f"{timing.input}@{k + 1}-{k}" for k in range(1, n)]
     else:
-        spans = [_range(timing.span, t, angle) for t in thetas]
+        spans = [_range(timing.span, t, turn) for t in thetas]
         lo, hi = np.array([a for a, _ in spans]), np.array([b for _, b in spans])
         periodic = [timing.span is None] * n
-    return Plan(builders, (kind, number), thetas, names, lo, hi, periodic, angle, timing.ordered)
+    return Plan(builders, (kind, number), thetas, names, lo, hi, periodic, angle, timing.ordered, turn)
 
 
 def timed_inputs(timed: Plan, y: FloatArray) -> FloatArray:
@@ -213,10 +224,10 @@ def timed_inputs(timed: Plan, y: FloatArray) -> FloatArray:
     return np.asarray(t @ np.asarray(y, dtype=np.float64), dtype=np.float64)
 
 
-def _range(span: tuple[float, float] | None, theta: float, angle: bool) -> tuple[float, float]:
+def _range(span: tuple[float, float] | None, theta: float, turn: float) -> tuple[float, float]:
     if span is not None:
         return float(span[0]), float(span[1])
-    return theta - math.pi, theta + math.pi
+    return theta - turn / 2.0, theta + turn / 2.0
 
 
 def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> list[float]:
@@ -227,7 +238,9 @@ def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> 
     moving = [c for c in mechanism.coordinates if not c.fixed]
     if theta == start:
         return [c.value for c in moving]
-    steps = max(1, math.ceil(abs(theta - start) / math.radians(2.0)))
+    # Steps of 2 degrees at most, in the model's unit of angle.
+    step = 2.0 if mechanism.units.angle == "deg" else math.radians(2.0)
+    steps = max(1, math.ceil(abs(theta - start) / step))
     try:
         with warnings.catch_warnings():
             # A motion stopped on the way is said below, as the reason this start cannot be used.
