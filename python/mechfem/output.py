@@ -23,8 +23,9 @@ from mechfem.atomic import atomic_text
 from mechfem.datasets import write_binary
 from mechfem.designer import print_lines as designer_lines
 from mechfem.echo import Model, Storage
-from mechfem.inverse_dynamics import Exponents, Said, summary_lines
+from mechfem.inverse_dynamics import summary_lines
 from mechfem.labels import Label, buffer_labels, coordinate_unit, input_unit, row_dest_unit
+from mechfem.masses import Exponents, Said
 from mechfem.result import RunResult
 from mechfem.words import with_unit
 
