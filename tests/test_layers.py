@@ -1,5 +1,5 @@
-"""The package's layers: module-level imports point one way (no circle), convenience methods reach the module that
-does their work when called, and the public names."""
+"""The package's layers: module-level imports point one way (no circle), each sub-package imports only the
+sub-packages below it, convenience methods reach the module that does their work when called, and the public names."""
 
 from __future__ import annotations
 
@@ -12,6 +12,21 @@ from pathlib import Path
 import mechfem
 
 PACKAGE = Path(mechfem.__file__).parent
+
+# The sub-packages, lowest first (docs/architecture.md): a module of one imports at module level only from the
+# sub-packages before it, from its own, and from the top-level modules (errors, _version, the compiled module).
+LAYERS = ["_util", "model", "results", "deck", "run", "studies", "design", "viz", "report", "output", "studio_app"]
+LAYERS += ["cli"]
+
+
+def _name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE).with_suffix("").parts
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(("mechfem", *parts))
+
+
+MODULES = {_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
 
 
 def _module_imports(path: Path) -> set[str]:
@@ -28,16 +43,23 @@ def _module_imports(path: Path) -> set[str]:
         elif isinstance(node, ast.Import):
             out.update(a.name for a in node.names if a.name.startswith("mechfem."))
         elif isinstance(node, ast.ImportFrom) and node.module is not None and node.level == 0:
-            if node.module == "mechfem":
-                out.update(f"mechfem.{a.name}" for a in node.names)
-            elif node.module.startswith("mechfem."):
-                out.add(node.module)
+            if node.module == "mechfem" or node.module.startswith("mechfem."):
+                # ``from mechfem.deck import deckio`` imports a module of the sub-package; ``from mechfem.deck
+                # import DeckNames`` imports the sub-package's __init__.
+                for a in node.names:
+                    out.add(f"{node.module}.{a.name}" if f"{node.module}.{a.name}" in MODULES else node.module)
     return out
 
 
 def _graph() -> dict[str, set[str]]:
-    modules = {f"mechfem.{p.stem}": p for p in PACKAGE.glob("*.py") if p.stem != "__init__"}
+    modules = {m: p for m, p in MODULES.items() if m != "mechfem"}
     return {m: {d for d in _module_imports(p) if d in modules and d != m} for m, p in modules.items()}
+
+
+def _layer(module: str) -> int:
+    """The place of ``module``'s sub-package in LAYERS; -1 for a top-level module, which any module may import."""
+    parts = module.split(".")
+    return LAYERS.index(parts[1]) if len(parts) > 1 and parts[1] in LAYERS else -1
 
 
 def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
@@ -70,6 +92,17 @@ def test_module_level_imports_form_no_circle() -> None:
     graph = _graph()
     assert len(graph) > 40
     assert _cycle(graph) is None, " -> ".join(_cycle(graph) or [])
+
+
+def test_sub_packages_import_only_the_sub_packages_below_them() -> None:
+    upward = [f"{m} -> {d}" for m, deps in sorted(_graph().items()) for d in sorted(deps) if _layer(d) > _layer(m) >= 0]
+    assert not upward, "module-level imports that point up: " + ", ".join(upward)
+
+
+def test_the_layer_check_finds_an_upward_import() -> None:
+    assert _layer("mechfem.deck.deckio") == 3
+    assert _layer("mechfem.errors") == -1
+    assert _layer("mechfem.viz.plots") > _layer("mechfem.results.result") > 0
 
 
 def test_the_circle_finder_finds_a_circle() -> None:

@@ -55,10 +55,11 @@ from mechfem.errors import (
 )
 from mechfem.limits import DEFAULT_MEMORY_LIMIT, ENV, memory_limit, parse_size
 from mechfem.media import Media
-from mechfem.output import FinishOnInterrupt, count, det_words, write_outputs
+from mechfem.output import FinishOnInterrupt, det_words, write_outputs
 from mechfem.output_folder import locked, plan
 from mechfem.progress import Console, ProgressBar
 from mechfem.report import write_report
+from mechfem.words import count
 
 if TYPE_CHECKING:
     from mechfem._core import OptimiseDict

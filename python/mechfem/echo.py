@@ -14,7 +14,7 @@ from mechfem._core import Buffer as Buffer
 from mechfem._core import Picture as Picture
 from mechfem._core import Plot as Plot
 from mechfem._core import Storage as Storage
-from mechfem.inverse_dynamics import DynamicsModel
+from mechfem.masses import DynamicsModel
 
 
 @dataclass(frozen=True)

@@ -55,7 +55,6 @@ from mechfem.parts import (
     Slot,
     kind_of,
 )
-from mechfem.result import RunResult
 from mechfem.storage import Picture, Ref, Storage
 from mechfem.units import Unit, Units, angle_in, check_unit
 
@@ -74,6 +73,7 @@ if TYPE_CHECKING:
         RowRef,
         Spring,
     )
+    from mechfem.result import RunResult
 
 
 class Mechanism(ElementMethods):

@@ -23,8 +23,8 @@ from mechfem.catalogue import coordinate_dimensions, form_dimension
 from mechfem.echo import Model
 from mechfem.errors import MechfemError
 from mechfem.labels import buffer_name, coordinate_units, core_input, core_value, row_unit, shown
-from mechfem.output import count
 from mechfem.units import Units
+from mechfem.words import count
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

@@ -23,21 +23,17 @@ from mechfem.atomic import atomic_text
 from mechfem.datasets import write_binary
 from mechfem.designer import print_lines as designer_lines
 from mechfem.echo import Model, Storage
-from mechfem.inverse_dynamics import Exponents, Said, summary_lines
+from mechfem.inverse_dynamics import summary_lines
 from mechfem.labels import Label, buffer_labels, coordinate_unit, input_unit, row_dest_unit
+from mechfem.masses import Exponents, Said
 from mechfem.result import RunResult
-from mechfem.words import with_unit
+from mechfem.words import count, with_unit
 
 if TYPE_CHECKING:
     from mechfem.progress import ProgressBar
 
 #: Buffers per table in the print file, so that a table fits an ordinary terminal or page.
 COLUMNS_PER_TABLE = 6
-
-
-def count(n: int, singular: str, plural: str | None = None) -> str:
-    """``1 stage``, ``2 stages``; ``plural`` when adding an s is not right."""
-    return f"{n} {singular if n == 1 else plural or singular + 's'}"
 
 
 def write_outputs(

@@ -69,6 +69,11 @@ def with_unit(value: str, unit: str) -> str:
     return f"{value} {unit}" if unit and unit != "-" else value
 
 
+def count(n: int, singular: str, plural: str | None = None) -> str:
+    """``1 stage``, ``2 stages``; ``plural`` when adding an s is not right."""
+    return f"{n} {singular if n == 1 else plural or singular + 's'}"
+
+
 def input_name(j: int, names: Sequence[str] = ()) -> str:
     """``the input of DOF j``, with its row and form parameters when ``names`` has them."""
     return f"the input of DOF {j} ({names[j - 1]})" if len(names) >= j else f"the input of DOF {j}"
