@@ -60,7 +60,7 @@ demo: install
 	@echo "written to out/supply:"
 	@ls -l out/supply
 
-# Headless Chromium for tests/test_report_browser.py. Installed with apt-get when it is missing and we are root;
+# Headless Chromium for tests/report/test_report_browser.py. Installed with apt-get when it is missing and we are root;
 # otherwise that test is skipped and says why.
 browser:
 	@if command -v chromium >/dev/null 2>&1; then \

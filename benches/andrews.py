@@ -351,7 +351,7 @@ def ggl_residual(t: float, y: Any, yp: Any, res: Any) -> None:
 
 def ggl_jacobian(t: float, y: Any, yp: Any, res: Any, cj: float, jj: Any) -> None:
     """The GGL residual's Jacobian ``dres/dy + cj dres/dyp`` (26 x 26) into ``jj``, derived by hand (checked
-    against central differences by ``tests/test_bench_simulation.py``)."""
+    against central differences by ``tests/docs/test_bench_simulation.py``)."""
     q, v, vp, lam, mu = y[:7], y[7:14], yp[7:14], y[14:20], y[20:26]
     m, _ = _one(q.tolist(), v.tolist())
     a = ARM_C @ q + ARM_O

@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import differential_evolution
 
-from mechfem import _core, optimise_deck
+from mechfem import _core
+from mechfem.design import optimise_deck
 
 DECK = Path(__file__).resolve().parent.parent / "examples" / "balancing" / "slider_crank_balance.mec"
 R, L, A, M_CRANK, M_ROD, M_PISTON = 0.1, 0.35, 0.1, 2.0, 1.2, 1.5

@@ -89,7 +89,7 @@ def main() -> None:
         # Warm up: every worker imports mechfem once.
         study(2 * slots, 8, executor=client, chunk_size=1, progress=False)
         remote, t_remote = study(n, args.steps, executor=client, chunk_size=args.chunk_size, progress=False)
-        size = mechfem.cluster.chunk_size(n, args.steps + 1, client, args.chunk_size)
+        size = mechfem.studies.cluster.chunk_size(n, args.steps + 1, client, args.chunk_size)
         chunks = math.ceil(n / size)
         where = args.scheduler or f"LocalCluster of {args.workers} processes x 1 thread"
         print(f"on the cluster ({where}), {chunks} chunks of {size}:")

@@ -189,7 +189,7 @@ def main() -> None:
 
     import mechfem
     from mechfem import Motion
-    from mechfem.model import Storage
+    from mechfem.model.mechanism import Storage
 
     print(f"machine: {machine()}")
     print(f"versions: numpy {np.__version__}, scipy {scipy.__version__}")

@@ -125,8 +125,9 @@ class Mechfem(Solver):
         return self._read(result)
 
     def run_fresh(self, tol: float) -> Run:
-        from mechfem import _core, limits
-        from mechfem.result import run_result
+        from mechfem import _core
+        from mechfem._util import limits
+        from mechfem.results.result import run_result
 
         path = self.deck(tol)
         raw = _core.run_deck_text(path.read_text(), path, path.parent, memory_limit=limits.memory_limit(None))

@@ -2,7 +2,7 @@
 the deck that triggers it and the message itself.
 
 The deck mistakes are the invalid golden decks of the deck reader; the run
-failures are the decks in tests/decks. tests/test_errors_doc.py checks that
+failures are the decks in tests/decks. tests/docs/test_errors_doc.py checks that
 the page is up to date, so it cannot drift from the program.
 
     .venv/bin/python scripts/errors_doc.py > docs/errors.md
@@ -17,7 +17,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 INVALID = Path("crates/mechfem-deck/tests/decks/invalid")
 RUNTIME = Path("tests/decks")
-MECHFEM = [sys.executable, "-m", "mechfem.cli"]
+MECHFEM = [sys.executable, "-m", "mechfem.cli.command"]
 
 
 def description(deck: Path) -> str:

@@ -97,7 +97,7 @@ def write_report(deck: Path, outdir: Path, optimise: bool) -> Path:
     name = str(deck.relative_to(ROOT))
     command = ["run", name, "-o", str(outdir), "--report"] if optimise else ["report", name, "-o", str(outdir)]
     proc = subprocess.run(
-        [sys.executable, "-m", "mechfem.cli", *command],
+        [sys.executable, "-m", "mechfem.cli.command", *command],
         cwd=ROOT,
         capture_output=True,
         text=True,

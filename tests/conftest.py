@@ -37,7 +37,7 @@ def mechfem_command() -> list[str]:
     if script.exists():
         return [str(script)]
     found = shutil.which("mechfem")
-    return [found] if found else [sys.executable, "-m", "mechfem.cli"]
+    return [found] if found else [sys.executable, "-m", "mechfem.cli.command"]
 
 
 @pytest.fixture

@@ -112,12 +112,12 @@ def test_the_circle_finder_finds_a_circle() -> None:
 
 def test_convenience_methods_work_with_only_their_own_module_imported() -> None:
     # Mechanism.run, to_deck and RunResult.to_html import the modules that do their work when called, so a script
-    # that imports mechfem.model alone still gets them.
+    # that imports mechfem.model.mechanism alone still gets them.
     code = (
         "import math\n"
-        "from mechfem.model import Mechanism\n"
-        "from mechfem.motion import Motion\n"
-        "from mechfem.parts import Driven, Output\n"
+        "from mechfem.model.mechanism import Mechanism\n"
+        "from mechfem.model.motion import Motion\n"
+        "from mechfem.model.parts import Driven, Output\n"
         "m = Mechanism('fourbar')\n"
         "A0, B0 = m.fixed('A0', 0, 0), m.fixed('B0', 4, 0)\n"
         "A, B = m.point('A', 1, 0), m.point('B', 3.5, 2.5)\n"

@@ -3,8 +3,8 @@ vertical line, (20, 20), (20, 25), ..., (20, 45), at crank angles left free (``F
 turns fully (``full_rotation``), from one start design.
 
 The same problem as a deck: ``mechfem run examples/synthesis/straight_line.mec`` (``FREETIME 6``, ``FULLROT 6``);
-both state the same problem and give the same result (``tests/test_optimise_deck_synthesis.py``). A multi-start of
-it: ``benches/bench_multistart.py``.
+both state the same problem and give the same result (``tests/design/test_optimise_deck_synthesis.py``). A multi-start
+of it: ``benches/bench_multistart.py``.
 """
 
 from __future__ import annotations

@@ -19,14 +19,14 @@ or build a mechanism in Python with named points and elements (:class:`Mechanism
     r.output("out1", order=1)
 
 Masses and loads on a mechanism (:meth:`Mechanism.mass`, :meth:`Mechanism.gravity`, ...; see
-:mod:`mechfem.loads`) make its run an inverse dynamics: ``r.drive_torque()``, ``r.stress(row)``,
+:mod:`mechfem.model.loads`) make its run an inverse dynamics: ``r.drive_torque()``, ``r.stress(row)``,
 ``r.reaction(point)``, ``r.energy()``, ``r.power()``, ``r.mass_matrix()``; with them,
 :meth:`Mechanism.simulate` finds the motion the forces make (a simulation, ``r.simulation``).
 
 Deck mistakes raise :class:`DeckError`; a model that cannot reach position 1
 raises :class:`AssemblyError`, :class:`ConvergenceError` or
 :class:`LimitPositionError`; a run whose results would not fit in the memory
-limit (:mod:`mechfem.limits`) raises :class:`ResourceError` before it starts.
+limit (:mod:`mechfem._util.limits`) raises :class:`ResourceError` before it starts.
 A motion that stops later is not an error: the result holds every position up
 to the last good one, says why it stopped and warns with
 :class:`IncompleteRunWarning` (or, with ``raise_on_stop=True``, raises
@@ -41,12 +41,25 @@ from collections.abc import Callable as _Callable
 from pathlib import Path as _Path
 from typing import Any as _Any
 
-from mechfem import _core, limits
+from mechfem import _core
+from mechfem._util import limits
 from mechfem._version import __version__
-from mechfem.batch import Study, run_many, sweep
-from mechfem.design import Infeasible
-from mechfem.dynamic_optimise import Drive, Shaking, ShakingForce
-from mechfem.echo import Buffer, Coordinate, Element, Model, Picture, Plot, Row, Storage, Term
+from mechfem.design.dynamic_optimise import Drive, Shaking, ShakingForce
+from mechfem.design.engine import Infeasible
+from mechfem.design.frame_angle import FrameAngle
+from mechfem.design.optimise import (
+    Bound,
+    Evaluated,
+    Optimum,
+    Q,
+    Start,
+    Target,
+    TargetAt,
+    TargetExtremum,
+    Transmission,
+    optimize,
+)
+from mechfem.design.timing import FreeTiming
 from mechfem.errors import (
     AssemblyError,
     ConvergenceError,
@@ -60,25 +73,13 @@ from mechfem.errors import (
     UnitWarning,
     on_stop,
 )
-from mechfem.export import export_drawing
-from mechfem.frame_angle import FrameAngle
-from mechfem.model import Driven, Keep, Mechanism, Motion, Output
-from mechfem.optimise import (
-    Bound,
-    Evaluated,
-    Optimum,
-    Q,
-    Start,
-    Target,
-    TargetAt,
-    TargetExtremum,
-    Transmission,
-    optimize,
-)
-from mechfem.result import Analysis, CheckResult, RunResult, check_result, run_result
-from mechfem.run_report import AdjustInfo, Limit, RunReport, Stop
-from mechfem.timing import FreeTiming
-from mechfem.tolerance import Spread, ToleranceBands, ToleranceStudy, tolerance_bands, tolerance_study
+from mechfem.model.echo import Buffer, Coordinate, Element, Model, Picture, Plot, Row, Storage, Term
+from mechfem.model.mechanism import Driven, Keep, Mechanism, Motion, Output
+from mechfem.results.result import Analysis, CheckResult, RunResult, check_result, run_result
+from mechfem.results.run_report import AdjustInfo, Limit, RunReport, Stop
+from mechfem.studies.batch import Study, run_many, sweep
+from mechfem.studies.tolerance import Spread, ToleranceBands, ToleranceStudy, tolerance_bands, tolerance_study
+from mechfem.viz.export import export_drawing
 
 Progress = _Callable[[int, int], object]
 """Called as ``progress(done, total)`` with the number of positions computed so far."""
@@ -95,7 +96,7 @@ def run_deck(
     """Reads the deck at ``path`` and runs it through its whole motion.
 
     ``progress``, if given, is called about every 1% of the positions. ``memory_limit`` (bytes, or a size
-    such as ``"4G"``; default :func:`mechfem.limits.memory_limit`) bounds the memory the results may take:
+    such as ``"4G"``; default :func:`mechfem._util.limits.memory_limit`) bounds the memory the results may take:
     a run that would need more raises :class:`ResourceError` before it starts. Ctrl-C raises
     :class:`RunInterrupted` with the positions computed so far in its ``result``. A motion that stops early
     returns the positions up to there and warns with :class:`IncompleteRunWarning`, or with ``raise_on_stop``

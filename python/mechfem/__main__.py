@@ -2,6 +2,6 @@
 
 import sys
 
-from mechfem.cli import main
+from mechfem.cli.command import main
 
 sys.exit(main())

@@ -50,7 +50,7 @@ __all__ = [
 ]
 
 _F64 = npt.NDArray[np.float64]
-_Part = str | tuple[str, Any, str]  # words, or a thing named as (kind, value, deck words): mechfem.words.Part
+_Part = str | tuple[str, Any, str]  # words, or a thing named as (kind, value, deck words): mechfem.results.words.Part
 
 class MechfemError(Exception):
     """Base class of every error mechfem raises."""

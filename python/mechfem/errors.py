@@ -15,10 +15,10 @@ All of them derive from :class:`MechfemError`:
 * :class:`LimitPositionError` — D^c is singular at position 1.
 * the errors of position 1 carry ``parts``: the core's message in pieces, the
   things it names (elements, co-ordinates, rows, deck terms) as structure
-  (:data:`mechfem.words.Part`), which the Python API words with the model's
+  (:data:`mechfem.results.words.Part`), which the Python API words with the model's
   names;
 * :class:`ResourceError` — the results would take more memory than the limit
-  (:mod:`mechfem.limits`); the run was refused before it started.
+  (:mod:`mechfem._util.limits`); the run was refused before it started.
 
 A motion that stops after position 1 is not an error: the run returns what
 it computed and says why it stopped (:attr:`mechfem.RunReport.stop`), and

@@ -11,7 +11,7 @@
 //! requests as Python was given them after a run. They depend only on the
 //! deck and on its position 1, so a run of the same text that reaches the
 //! same position 1 hands Python the very same objects again, and Python
-//! converts them once (`mechfem.result` keeps what it made of them). So
+//! converts them once (`mechfem.results.result` keeps what it made of them). So
 //! does the layout of its runs' tables, which depends on the deck alone.
 
 use std::path::{Path, PathBuf};

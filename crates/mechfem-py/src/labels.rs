@@ -1,6 +1,6 @@
 //! The names and units of a compiled model's things, as the core decides
 //! them ([`mechfem_core::Names`], [`mechfem_core::ModelDims`],
-//! [`mechfem_core::Units`]), for Python's labels (`mechfem.labels`): every
+//! [`mechfem_core::Units`]), for Python's labels (`mechfem.results.labels`): every
 //! data-set header, axis, legend, title and sentence asks these getters.
 //!
 //! Numbers are the deck's: co-ordinates and inputs 1-based, a row by its

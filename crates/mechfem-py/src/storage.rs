@@ -21,7 +21,7 @@ pub struct Buffer {
     args: Vec<i64>,
     /// The line of the BUF keyword.
     line: usize,
-    /// Its label (see `mechfem.echo.Buffer`).
+    /// Its label (see `mechfem.model.echo.Buffer`).
     name: String,
     /// The unit its values are in; "" without UNITS.
     unit: String,

@@ -5,7 +5,7 @@ The parts, each importing only the ones above it:
 * :mod:`.template`: the four-bar a new design starts from.
 * :mod:`.session`: one design being edited (no web at all): its named dimensions and points, an edit that re-runs
   the whole motion on the kept compiled model, the last good design, undo and redo, saving.
-* :mod:`.view`: what the page draws of a run, the report's data (:func:`mechfem.report.report_data`) and more.
+* :mod:`.view`: what the page draws of a run, the report's data (:func:`mechfem.report.html.report_data`) and more.
 * :mod:`.server`: the Starlette application (HTTP and one websocket) behind a random token, served by uvicorn on
   127.0.0.1 only.
 * :mod:`.command`: ``mechfem studio [DECK] [--port N] [--no-browser]``.

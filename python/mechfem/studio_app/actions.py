@@ -20,8 +20,8 @@ import numpy as np
 
 import mechfem
 from mechfem.errors import MechfemError
-from mechfem.model import Mechanism
-from mechfem.studio_app.session import EditRefused, Outcome, Session
+from mechfem.model.mechanism import Mechanism
+from mechfem.studio_app.session import EditOutcome, EditRefused, Session
 from mechfem.studio_app.template import four_bar
 from mechfem.studio_app.view import view
 
@@ -115,7 +115,7 @@ class Actions:
 
     def _open(self, mech: Mechanism, deck: Path | None, source: str | None = None) -> dict[str, Any]:
         self.session = Session(mech, deck, source)
-        return self._design(Outcome(), opened=True)
+        return self._design(EditOutcome(), opened=True)
 
     def op_template(self, message: dict[str, Any], push: Push) -> dict[str, Any]:
         return self._open(four_bar(), None)
@@ -148,7 +148,7 @@ class Actions:
             raise ValueError("open a deck or the four-bar template first")
         return self.session
 
-    def _design(self, outcome: Outcome, **more: Any) -> dict[str, Any]:
+    def _design(self, outcome: EditOutcome, **more: Any) -> dict[str, Any]:
         session = self._need()
         return {"type": "design", "design": view(session), "branch": outcome.branch, **more}
 
@@ -240,7 +240,7 @@ class Actions:
         return float(np.nanmax(values) if which == "max" else np.nanmin(values))
 
     def _unit(self, quantity: str) -> str:
-        from mechfem.parts import Row
+        from mechfem.model.parts import Row
 
         session = self._need()
         obj = session.mechanism.find(quantity)

@@ -46,7 +46,7 @@ def cmd_studio(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return 1
-    from mechfem.model import Mechanism
+    from mechfem.model.mechanism import Mechanism
     from mechfem.studio_app.server import serve
     from mechfem.studio_app.session import Session
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from mechfem.optimise_deck import deck_mode
+from mechfem.design.optimise_deck import deck_mode
 
 #: The words that open a block of a deck (and END, which closes the deck).
 HEADERS = ("TOPOLOGY", "GEOMETRY", "NAMES", "DYNAMICS", "MOVEMENT", "OPTIMISE", "STORAGE", "TOLERANCE", "END")

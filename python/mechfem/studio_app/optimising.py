@@ -2,7 +2,7 @@
 towards one of three targets:
 
 * a path: a point of the mechanism should pass through points the user clicked, at input values left free
-  (:class:`mechfem.timing.FreeTiming`): :func:`path_through`;
+  (:class:`mechfem.design.timing.FreeTiming`): :func:`path_through`;
 * an extremum: the largest or smallest value over the motion of a named output or a point's co-ordinate should reach
   a value, or be pushed up or down as far as the dimensions' ranges allow (a Python objective on the quantity's
   values and gradients at every position): :func:`extremum`;
@@ -23,13 +23,13 @@ from typing import Any
 
 import numpy as np
 
-from mechfem.design import Iteration
-from mechfem.optimise import Bound, Evaluated, Q, Target, Transmission, optimize
-from mechfem.parts import Coordinate, Row
+from mechfem.design.engine import Iteration
+from mechfem.design.optimise import Bound, Evaluated, Q, Target, Transmission, optimize
+from mechfem.design.timing import FreeTiming
+from mechfem.model.parts import Coordinate, Row
+from mechfem.model.units import scale
 from mechfem.studio_app.session import Session
 from mechfem.studio_app.view import transmission_pairs, view
-from mechfem.timing import FreeTiming
-from mechfem.units import scale
 
 #: Least time between two iterations shown on the page, in seconds.
 SHOW_EVERY = 0.25
@@ -168,7 +168,7 @@ def _transmission_bounds(session: Session, lo: float) -> list[Bound]:
 
 def transmission_range(session: Session) -> tuple[float, float] | None:
     """The least and largest transmission angle over the last good run (model's angle unit; None: none)."""
-    from mechfem.designer import transmission_angle
+    from mechfem.results.designer import transmission_angle
 
     pairs = transmission_pairs(session.mechanism)
     if not pairs:

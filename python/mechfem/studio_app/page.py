@@ -1,12 +1,12 @@
 """The studio's page: one HTML document with uPlot, the report's chart and drawing scripts and the studio's own
 script inlined (as the report is), allowed to connect to its own server's websocket only. Its head is the report's
-(:func:`mechfem.report.page_template`)."""
+(:func:`mechfem.report.html.page_template`)."""
 
 from __future__ import annotations
 
 import re
 
-from mechfem.report import PAGE_PARTS, _part, page_template
+from mechfem.report.html import PAGE_PARTS, _part, page_template
 
 #: The page's parts, by the template's placeholder: the report's (uPlot, its style, its charts, the drawing) and the
 #: studio's own (python/mechfem/studio_app/assets).

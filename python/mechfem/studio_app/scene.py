@@ -1,13 +1,13 @@
 """The mechanism's shapes at every position, fast enough to redraw a whole motion on every edit.
 
-The report's drawing (:class:`mechfem.drawing.MechanismDrawing`) gives the shapes at one position from all the
+The report's drawing (:class:`mechfem.viz.drawing.MechanismDrawing`) gives the shapes at one position from all the
 co-ordinates; for pin-jointed elements (bars, plates, pivots, the frame's hatching) each shape's numbers are an affine
 function of the co-ordinates: ``d(x) = A x + b``. :func:`scene` finds ``A`` of all the shapes at once from the
 drawing itself (the shapes at position 1 and with each co-ordinate moved by one unit; a design edited keeps its
 mechanism's ``A``), ``b`` from the shapes at position 1, checks that they give the drawing's own shapes at three
 positions spread over the motion, and then computes every shape at every position with one matrix product. A shape
 that fails the check (a slider's block turned by an angle, a belt's wrap) is drawn at every position
-by the drawing as the report does. The result is the report's scene (:func:`mechfem.report._scene`): the same
+by the drawing as the report does. The result is the report's scene (:func:`mechfem.report.html._scene`): the same
 shapes, the numbers rounded to the 6th digit of the drawing's size.
 """
 
@@ -17,9 +17,9 @@ from typing import Any
 
 import numpy as np
 
-from mechfem.drawing import MechanismDrawing
-from mechfem.report_charts import nums
-from mechfem.result import RunResult
+from mechfem.report.charts import nums
+from mechfem.results.result import RunResult
+from mechfem.viz.drawing import MechanismDrawing
 
 #: Relative tolerance of the affinity check.
 CHECK = 1e-9

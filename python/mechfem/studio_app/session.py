@@ -1,7 +1,7 @@
 """One design being edited: a :class:`~mechfem.Mechanism`, its last good run, and the history of its edits.
 
 An edit changes values of the mechanism in place (:meth:`Mechanism.set`, in the model's units) and re-runs the whole
-motion. The mechanism keeps its compiled model per topology (:mod:`mechfem.compiled`), so a changed number is a
+motion. The mechanism keeps its compiled model per topology (:mod:`mechfem.run.compiled`), so a changed number is a
 parameter of the kept model: nothing is re-read or recompiled. An edit whose position 1 cannot be assembled, or
 whose motion stops where the last good design's did not, is undone at once and said in words; the last good design
 stays. A moving point's value is only the start estimate of position 1: dragging it chooses the assembly branch, and
@@ -17,9 +17,9 @@ from pathlib import Path
 from typing import Any
 
 from mechfem.errors import MechfemError
-from mechfem.model import Mechanism
-from mechfem.parts import Coordinate, Row
-from mechfem.result import RunResult
+from mechfem.model.mechanism import Mechanism
+from mechfem.model.parts import Coordinate, Row
+from mechfem.results.result import RunResult
 from mechfem.studio_app.optimise_block import copy_targets, optimise_block, same_numbering, with_block
 
 #: A value a user gives: a number, or a point's (x, y).
@@ -33,7 +33,7 @@ class EditRefused(Exception):
 
 
 @dataclass
-class Outcome:
+class EditOutcome:
     """What an accepted edit did: ``branch`` says in words that the assembly branch changed (None if not)."""
 
     branch: str | None = None
@@ -124,7 +124,7 @@ class Session:
         for obj, v in values.items():
             obj.value = v
 
-    def edit(self, changes: dict[str, Value], group: object = None) -> Outcome:
+    def edit(self, changes: dict[str, Value], group: object = None) -> EditOutcome:
         """Sets ``changes`` (name -> value, a point's (x, y)) and re-runs the motion; raises :class:`EditRefused`
         (the design unchanged) when the new design cannot be assembled or stops where the last good one did not.
         Edits of one ``group`` (not None: the moves of one drag) are undone together."""
@@ -141,7 +141,7 @@ class Session:
         text = e.args[0] if isinstance(e, KeyError) and e.args else str(e)
         return f"{type(e).__name__}: {text}" if not isinstance(e, MechfemError) else str(text)
 
-    def _accept(self, before: Values, result: RunResult, group: object = None) -> Outcome:
+    def _accept(self, before: Values, result: RunResult, group: object = None) -> EditOutcome:
         stop = result.report.stop_reason()
         if stop and result.positions < self.result.positions:
             self._restore(before)
@@ -153,7 +153,7 @@ class Session:
         self._redo.clear()
         self.result = result
         self.revision += 1
-        return Outcome(branch=branch)
+        return EditOutcome(branch=branch)
 
     def _branch(self, result: RunResult) -> str | None:
         old, new = _sign(float(self.result.det[0])), _sign(float(result.det[0]))
@@ -165,7 +165,7 @@ class Session:
             )
         return None
 
-    def _step(self, source: list[Values], target: list[Values]) -> Outcome:
+    def _step(self, source: list[Values], target: list[Values]) -> EditOutcome:
         if not source:
             raise EditRefused("nothing to " + ("undo" if source is self._undo else "redo"))
         before = self._values()
@@ -181,13 +181,13 @@ class Session:
         branch = self._branch(result)
         self.result = result
         self.revision += 1
-        return Outcome(branch=branch)
+        return EditOutcome(branch=branch)
 
-    def undo(self) -> Outcome:
+    def undo(self) -> EditOutcome:
         """Goes back one edit."""
         return self._step(self._undo, self._redo)
 
-    def redo(self) -> Outcome:
+    def redo(self) -> EditOutcome:
         """Does again the edit last undone."""
         return self._step(self._redo, self._undo)
 
@@ -206,8 +206,8 @@ class Session:
         came from, with the files its targets read), runs that deck's motion and writes its print file, data set and
         report beside it; returns the files written."""
         from mechfem import run_deck
-        from mechfem.output import write_outputs
-        from mechfem.report import write_report
+        from mechfem.output.files import write_outputs
+        from mechfem.report.html import write_report
 
         block = optimise_block(self.source) if self.source else None
         targets = []
@@ -232,4 +232,4 @@ class Session:
         return written
 
 
-__all__ = ["EditRefused", "Outcome", "Session", "Value"]
+__all__ = ["EditRefused", "EditOutcome", "Session", "Value"]

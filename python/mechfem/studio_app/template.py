@@ -7,10 +7,10 @@ degrees, so that every dimension and chart speaks them.
 
 from __future__ import annotations
 
-from mechfem.model import Mechanism
-from mechfem.motion import Motion
-from mechfem.parts import Driven, Output
-from mechfem.storage import Storage
+from mechfem.model.mechanism import Mechanism
+from mechfem.model.motion import Motion
+from mechfem.model.parts import Driven, Output
+from mechfem.model.storage import Storage
 
 #: Positions per turn of the template's crank, plus the first one again.
 STEPS = 360

@@ -1,8 +1,8 @@
-"""What the studio's page draws of a design: the data of the report's page (:func:`mechfem.report.report_data`: the
+"""What the studio's page draws of a design: the data of the report's page (:func:`mechfem.report.html.report_data`: the
 mechanism per position, det(D^c) with its limit positions, the deck's pictures as charts, the paths) for its last
 good run, with the transmission angles, the named dimensions and the points to drag.
 
-It is put together from the report's own parts (:mod:`mechfem.report_charts`), with the mechanism's shapes from
+It is put together from the report's own parts (:mod:`mechfem.report.charts`), with the mechanism's shapes from
 :func:`mechfem.studio_app.scene.scene` (the report's shapes, computed for all positions at once) and without what
 the page of the studio does not show (the table of buffers, the print file's lines), so that a four-bar's view
 takes a few milliseconds."""
@@ -13,10 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from mechfem.designer import FRAMED, transmission_angle
-from mechfem.model import Mechanism
-from mechfem.parts import Element
-from mechfem.report_charts import (
+from mechfem.model.mechanism import Mechanism
+from mechfem.model.parts import Element
+from mechfem.report.charts import (
     Columns,
     all_labels,
     function_charts,
@@ -26,16 +25,17 @@ from mechfem.report_charts import (
     page_styles,
     paths,
 )
-from mechfem.result import RunResult
-from mechfem.result_tables import run_units
+from mechfem.results.designer import FRAMED, transmission_angle
+from mechfem.results.result import RunResult
+from mechfem.results.result_tables import run_units
 from mechfem.studio_app.scene import scene
 from mechfem.studio_app.session import Session
 
 
 def six_digits(values: Any) -> np.ndarray:
     """``values`` to 6 significant digits, NaN where not finite (written as null: :func:`mechfem.studio_app.server`
-    writes numpy arrays as they are): :func:`mechfem.report_charts.nums` for a whole column at once
-    (tests/test_studio.py compares the two)."""
+    writes numpy arrays as they are): :func:`mechfem.report.charts.nums` for a whole column at once
+    (tests/studio/test_studio.py compares the two)."""
     v = np.asarray(values, dtype=np.float64).ravel()
     finite = np.isfinite(v) & (v != 0.0)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):

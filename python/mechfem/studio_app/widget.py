@@ -15,7 +15,7 @@ from typing import Any
 import anywidget
 import traitlets
 
-from mechfem.model import Mechanism
+from mechfem.model.mechanism import Mechanism
 from mechfem.studio_app.server import Running, serve_in_thread
 from mechfem.studio_app.session import Session
 

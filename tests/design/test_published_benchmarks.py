@@ -1,0 +1,89 @@
+"""The published four-bar benchmarks as mechfem states them (examples/synthesis/benchmarks.py and the decks beside
+it): the deck and the Python problem are the same problem, and mechfem's objective at its optimum is the source's
+objective, computed again from the source's formula in the source's variables (not by mechfem's kinematics)."""
+
+from __future__ import annotations
+
+import math
+import shutil
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import mechfem
+from mechfem.design import fourbar_starts, optimise_deck
+
+SYNTHESIS = Path(__file__).resolve().parents[2] / "examples" / "synthesis"
+sys.path.insert(0, str(SYNTHESIS))
+import benchmarks as bm  # noqa: E402
+
+
+def one_start(key: str, steps: int) -> mechfem.Optimum:
+    mech, vary, kwargs = bm.problem(bm.BENCHMARKS[key])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return mechfem.optimize(mech, vary, **{**kwargs, "steps": steps})
+
+
+def test_the_five_points_deck_is_the_python_problem(tmp_path: Path) -> None:
+    for name in ("five_x.dat", "five_y.dat"):
+        shutil.copy(SYNTHESIS / name, tmp_path)
+    deck = tmp_path / "five_points.mec"
+    deck.write_text((SYNTHESIS / "five_points.mec").read_text().replace("OPTSTEPS 200", "OPTSTEPS 15"))
+    opt = optimise_deck.describe(deck)["optimise"]
+    assert opt is not None
+    out = optimise_deck.optimise(deck, opt)
+    py = one_start("five_points", 15)
+    assert out.solution.start_objective == pytest.approx(py.start_objective, rel=1e-9)
+    assert out.solution.objective == pytest.approx(py.objective, rel=1e-6)
+    for x, name in zip(out.solution.x, bm.BENCHMARKS["five_points"].vary, strict=True):
+        assert x == pytest.approx(py.values[name], rel=1e-5)
+
+
+@pytest.mark.parametrize("key", ["five_points", "closed_curve", "ellipse"])
+def test_mechfems_objective_is_the_sources(key: str) -> None:
+    """The start design and a few iterations: mechfem's sum of squared distances equals the source's objective of
+    the same design, on the source's assembly branch."""
+    bench = bm.BENCHMARKS[key]
+    opt = one_start(key, 5)
+    d = bm.published_design(bench, opt)
+    assert bm.published_error(bench, d) == pytest.approx(opt.objective, rel=1e-9)
+    assert d["theta2"].shape == (len(bench.points),)
+
+
+def test_the_published_design_of_the_straight_line_is_evaluated_as_published() -> None:
+    """The design of the source's test_cost.py, in its variables: a Grashof linkage with the crank the shortest, its
+    crank angles in order, error 1.31e-11 by the source's objective."""
+    x = [14.201369, 8.0143127, 16.309922, 12.253871, 27.797721, 11.305412, -2.3095310, 45.695083, 4.5172417]
+    d = dict(zip(("r1", "r2", "r3", "r4", "rcx", "rcy", "x0", "y0", "theta0"), x, strict=True))
+    d["theta2"] = np.array([6.2532447, 2.4038981, 2.9362397, 3.4905751, 4.0650776, 5.2095019])
+    bench = bm.BENCHMARKS["straight_line"]
+    assert bm.published_error(bench, d) == pytest.approx(1.31e-11, rel=1e-2)
+    assert bm.grashof(d) == (True, True) and bm.ordered(d) and bm.within_published_ranges(bench, d)
+    # The same design stated the mechfem way and evaluated by mechfem (one run of each point, no optimisation).
+    r1, _, _, _, _, _, x0, y0, t0 = x
+    crank = t0 + d["theta2"]
+    mech = bm.four_bar(bench)
+    mech.set("A0.x", x0)
+    mech.set("A0.y", y0)
+    mech.set("B0.x", x0 + r1 * math.cos(t0))
+    mech.set("B0.y", y0 + r1 * math.sin(t0))
+    for name, value in zip(
+        ("crank.length", "coupler.length", "rocker.length", "coupler.u", "coupler.v"), x[1:6], strict=True
+    ):
+        mech.set(name, value)
+    mech.set("theta", float(np.unwrap(crank)[0]))
+    fb = fourbar_starts.recognised(mech)
+    assert fb is not None
+    # Position 1 in closed form on the source's branch (B to the left of A -> B0).
+    at = fourbar_starts.assembled(fb, mech, 1.0, {})
+    assert not isinstance(at, str)
+    _, vary, kwargs = bm.problem(bench)
+    kwargs["timing"] = mechfem.FreeTiming("theta", list(np.unwrap(crank)), ordered=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        opt = mechfem.optimize(at, vary, **{**kwargs, "steps": 1})
+    assert opt.start_objective == pytest.approx(1.31e-11, rel=1e-2)
