@@ -59,7 +59,9 @@ def main() -> None:
     print(f"{args.variants} variants of the supply mechanism, {args.steps} steps each, {cores} cores")
 
     def study(workers: int) -> mechfem.Study:
-        return mechfem.sweep(base, {"kappa": kappas}, {"stroke": stroke}, motion=motion, workers=workers, progress=False)
+        return mechfem.sweep(
+            base, {"kappa": kappas}, {"stroke": stroke}, motion=motion, workers=workers, progress=False
+        )
 
     reference = study(1)
     assert reference["complete"].all()
