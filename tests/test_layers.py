@@ -141,3 +141,41 @@ def test_all_lists_public_names_only() -> None:
     for leaked in ("os", "Path", "Callable", "version", "PackageNotFoundError"):
         assert leaked not in mechfem.__all__
         assert leaked not in dir(mechfem), leaked
+
+
+def test_the_top_level_holds_only_the_public_api_and_what_every_layer_needs() -> None:
+    # Every other module lives in the sub-package of its stage (docs/architecture.md, "The Python package").
+    top = sorted(p.stem for p in PACKAGE.glob("*.py"))
+    assert top == ["__init__", "__main__", "_version", "errors"]
+    subpackages = sorted(p.parent.name for p in PACKAGE.glob("*/__init__.py"))
+    assert subpackages == sorted(LAYERS)
+
+
+def test_every_sub_package_says_what_it_holds_and_may_import() -> None:
+    for name in LAYERS:
+        doc = ast.get_docstring(ast.parse((PACKAGE / name / "__init__.py").read_text(encoding="utf-8")))
+        assert doc and "import" in doc.lower(), name
+
+
+def test_no_module_is_over_600_lines() -> None:
+    long = {m: n for m, p in MODULES.items() if (n := len(p.read_text(encoding="utf-8").splitlines())) > 600}
+    assert not long, long
+
+
+def test_no_two_classes_of_the_package_share_a_name() -> None:
+    # The model's parts (mechfem.model.parts) and the compiled model's echo (mechfem.model.echo, whose classes are
+    # the public mechfem.Coordinate, Element, Row, Storage, Picture) still share these names.
+    shared_today = {"Coordinate", "Element", "Point", "Row", "Storage", "Picture"}
+    where: dict[str, list[str]] = {}
+    for module, path in MODULES.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in tree.body:
+            if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
+                where.setdefault(node.name, []).append(module)
+            elif isinstance(node, ast.ImportFrom) and node.module == "mechfem._core":
+                # ``from mechfem._core import Storage as Storage`` hands the compiled class on under its name.
+                for a in node.names:
+                    if a.asname == a.name:
+                        where.setdefault(a.name, []).append(f"{module} (mechfem._core)")
+    twice = {name: modules for name, modules in where.items() if len(modules) > 1 and name not in shared_today}
+    assert not twice, twice
