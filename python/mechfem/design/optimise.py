@@ -1,9 +1,8 @@
 """Design sensitivities and optimisation of a named mechanism: :func:`optimize` and the targets it takes.
 
-A quantity is named as for :meth:`RunResult.value`: a co-ordinate (``"C.x"``, an angle), a row or an output, as a
-name or the object, with ``order`` 0 (the value), 1 or 2 (its transfer function with respect to an input) — write
-:class:`Q` for order 1 and 2, a plain name for the value. The model is written as a deck with one buffer for each
-quantity and evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.design.engine`).
+A quantity is named as for :meth:`RunResult.value` (a co-ordinate such as ``"C.x"``, a row or an output; :class:`Q`
+for its transfer function of order 1 or 2 with respect to an input). Each quantity becomes a buffer of a model
+evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.design.engine`).
 """
 
 from __future__ import annotations

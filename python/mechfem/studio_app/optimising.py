@@ -11,8 +11,9 @@ towards one of three targets:
   :class:`mechfem.Transmission`), with the least change of the dimensions: :func:`transmission`; the bound may also
   go with an extremum.
 
-Each iteration's design is run and sent to the page, so the mechanism is seen moving towards the target. The
-optimiser works in SI units (metres, radians): a value the user gives in the model's units is converted."""
+Each iteration's design is run and sent to the page, so the mechanism is seen moving towards the target.
+:func:`mechfem.optimize` takes angles in the model's angle unit and lengths in metres: a length the user gives in the
+model's units is converted."""
 
 from __future__ import annotations
 
@@ -140,11 +141,11 @@ def _extent(session: Session) -> tuple[np.ndarray, np.ndarray]:
 
 def si_factor(session: Session, name: str) -> float:
     """What a value of the quantity ``name`` (a row, an output or a co-ordinate) in the model's units is multiplied by
-    to give it in the optimiser's SI units."""
+    to give it in the optimiser's units: an angle stays in the model's angle unit, a length goes to metres."""
     obj = session.mechanism.find(name)
-    angle = isinstance(obj, Row) and obj.is_angle
-    units = session.mechanism.units
-    return scale(units.angle or "rad", "rad") if angle else scale(units.length or "m", "m")
+    if (isinstance(obj, Row) and obj.is_angle) or (isinstance(obj, Coordinate) and obj.kind == "angle"):
+        return 1.0
+    return scale(session.mechanism.units.length or "m", "m")
 
 
 def _half_turn(session: Session) -> float:
@@ -162,8 +163,7 @@ def _transmission_bounds(session: Session, lo: float) -> list[Bound]:
     half = _half_turn(session)
     if not 0.0 < lo < half / 2:
         raise ValueError(f"the least transmission angle is between 0 and {half / 2:g}, not {lo:g}")
-    f = scale(session.mechanism.units.angle or "rad", "rad")
-    return [Bound(Transmission(c.name, link.name), lo * f, (half - lo) * f) for c, link, _ in pairs]
+    return [Bound(Transmission(c.name, link.name), lo, half - lo) for c, link, _ in pairs]
 
 
 def transmission_range(session: Session) -> tuple[float, float] | None:
