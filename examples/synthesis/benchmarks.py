@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import straight_line
 
 import mechfem
 
@@ -154,21 +155,7 @@ def four_bar(bench: Benchmark) -> mechfem.Mechanism:
     a0 = (0.0, 0.0) if bench.frame_fixed else (float(centre[0]) - size, float(centre[1]) - size)
     d, r2, r3, r4, u, v = 1.2 * size, 0.4 * size, 1.1 * size, 1.0 * size, 0.5 * size, 0.5 * size
     b0 = (a0[0] + d, a0[1])
-    theta = float(bench.thetas[0])
-    m = mechfem.Mechanism(bench.case)
-    A0, B0 = m.fixed("A0", *a0), m.fixed("B0", *b0)
-    ax, ay = a0[0] + r2 * math.cos(theta), a0[1] + r2 * math.sin(theta)
-    dx, dy = b0[0] - ax, b0[1] - ay
-    dist = math.hypot(dx, dy)
-    along = (r3 * r3 - r4 * r4 + dist * dist) / (2 * dist)
-    h = math.sqrt(max(r3 * r3 - along * along, 0.0))
-    bx, by = ax + (along * dx - h * dy) / dist, ay + (along * dy + h * dx) / dist
-    ex, ey = (bx - ax) / r3, (by - ay) / r3
-    pa, pb = m.point("A", ax, ay), m.point("B", bx, by)
-    p = m.point("P", ax + u * ex - v * ey, ay + u * ey + v * ex)
-    m.bar("crank", A0, pa, length=r2, angle=mechfem.Driven(theta, name="theta"))
-    m.ternary2("coupler", pa, pb, p, length=r3, u=u, v=v)
-    m.bar("rocker", B0, pb, length=r4)
+    m = straight_line.four_bar(a0, b0, r2, r3, r4, u, v, float(bench.thetas[0]), name=bench.case)
     steps = len(bench.thetas) - 1
     m.motion = mechfem.Motion.by(steps, float(bench.thetas[-1] - bench.thetas[0]))
     return m

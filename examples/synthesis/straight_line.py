@@ -31,9 +31,9 @@ STARTS = [0.5 + 0.4 * k for k in range(6)]
 """The crank angle at each point to start from: the deck's motion (0.5 rad, five steps of 0.4 rad)."""
 
 
-def four_bar(a0=(0.0, 0.0), b0=(40.0, 0.0), r2=10.0, r3=30.0, r4=35.0, u=10.0, v=15.0, theta=0.5):  # type: ignore[no-untyped-def]
+def four_bar(a0=(0.0, 0.0), b0=(40.0, 0.0), r2=10.0, r3=30.0, r4=35.0, u=10.0, v=15.0, theta=0.5, name="straight_line"):  # type: ignore[no-untyped-def]
     """A crank-rocker with its position 1 in closed form (B to the left of A -> B0)."""
-    m = mechfem.Mechanism("straight_line")
+    m = mechfem.Mechanism(name)
     A0, B0 = m.fixed("A0", *a0), m.fixed("B0", *b0)
     ax, ay = a0[0] + r2 * math.cos(theta), a0[1] + r2 * math.sin(theta)
     dx, dy = b0[0] - ax, b0[1] - ay
