@@ -91,15 +91,8 @@ def path_through(
         # The points are met at three input values, but the crank no longer turns all the way: search again among
         # the designs whose crank does (slower: each design is also turned once round).
         found = optimize(mech, box, full_rotation=True, **problem)  # type: ignore[arg-type]
-    return {
-        "values": {name: float(found.values[name]) for name in vary},
-        "objective": float(found.objective),
-        "start_objective": float(found.start_objective),
-        "iterations": len(found.history),
-        "success": bool(found.success),
-        "message": str(found.message),
-        "timing": [float(t) for t in found.timing] if found.timing is not None else None,
-    }
+    timing = [float(t) for t in found.timing] if found.timing is not None else None
+    return {**_found(found, vary), "timing": timing}
 
 
 def _shower(session: Session, vary: list[str], push: Callable[[dict[str, Any]], object]) -> Callable[[Iteration], None]:
