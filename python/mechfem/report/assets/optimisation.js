@@ -106,14 +106,9 @@
   }
   const drawn = { targets: 0 };
   function drawDesigns() {
-    const b = box(), w = Math.max(240, canvas.parentElement.clientWidth);
-    const aspect = (b[3] - b[2]) / Math.max(b[1] - b[0], 1e-12);
-    const h = Math.round(Math.max(220, Math.min(w * aspect, 520)));
-    const r = window.devicePixelRatio || 1;
-    canvas.width = Math.round(w * r); canvas.height = Math.round(h * r);
-    canvas.style.width = w + "px"; canvas.style.height = h + "px";
-    const s = Math.min((w - 12) / Math.max(b[1] - b[0], 1e-12), (h - 12) / Math.max(b[3] - b[2], 1e-12));
-    const cx = (b[0] + b[1]) / 2, cy = (b[2] + b[3]) / 2;
+    const f = MechfemScene.fit(box(), Math.max(240, canvas.parentElement.clientWidth), 220, 520);
+    const w = f.w, h = f.h, r = f.r, s = f.s, cx = f.cx, cy = f.cy;
+    MechfemScene.size(canvas, f);
     const X = (x) => (w / 2 + (x - cx) * s) * r, Y = (y) => (h / 2 - (y - cy) * s) * r;
     const ctx = canvas.getContext("2d");
     ctx.fillStyle = "#ffffff";

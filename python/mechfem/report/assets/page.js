@@ -55,18 +55,11 @@
 
   // The drawing takes the stage's whole width, as high as its shape needs and the window allows.
   function layoutMechanism() {
-    const b = mech.box, w = Math.max(240, $("canvaswrap").clientWidth);
-    const aspect = (b[3] - b[2]) / Math.max(b[1] - b[0], 1e-12);
-    const h = Math.round(Math.max(240, Math.min(w * aspect, window.innerHeight - 200)));
-    const r = window.devicePixelRatio || 1;
+    const f = MechfemScene.fit(mech.box, Math.max(240, $("canvaswrap").clientWidth), 240, window.innerHeight - 200);
+    const w = f.w, h = f.h, r = f.r, s = f.s, cx = f.cx, cy = f.cy;
     if (mech.w === w && mech.h === h && mech.r === r) return;
     Object.assign(mech, { w: w, h: h, r: r });
-    mech.canvas.width = Math.round(w * r);
-    mech.canvas.height = Math.round(h * r);
-    mech.canvas.style.width = w + "px";
-    mech.canvas.style.height = h + "px";
-    const s = Math.min((w - 12) / Math.max(b[1] - b[0], 1e-12), (h - 12) / Math.max(b[3] - b[2], 1e-12));
-    const cx = (b[0] + b[1]) / 2, cy = (b[2] + b[3]) / 2;
+    MechfemScene.size(mech.canvas, f);
     mech.X = (x) => (w / 2 + (x - cx) * s) * r;
     mech.Y = (y) => (h / 2 - (y - cy) * s) * r;
     mech.s = s * r;

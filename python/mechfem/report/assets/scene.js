@@ -69,5 +69,20 @@ const MechfemScene = (function () {
     }
     ctx.stroke();
   }
-  return { draw: draw, layers: layers, polyline: polyline, traceShape: traceShape };
+  /* How a drawing of the model's box b ([xmin, xmax, ymin, ymax]) fits w CSS pixels of width: as high as its shape
+   * needs between hMin and hMax, its scale s (CSS pixels per model unit), the box's centre and the device pixel ratio. */
+  function fit(b, w, hMin, hMax) {
+    const aspect = (b[3] - b[2]) / Math.max(b[1] - b[0], 1e-12);
+    const h = Math.round(Math.max(hMin, Math.min(w * aspect, hMax)));
+    const s = Math.min((w - 12) / Math.max(b[1] - b[0], 1e-12), (h - 12) / Math.max(b[3] - b[2], 1e-12));
+    return { w: w, h: h, r: window.devicePixelRatio || 1, s: s, cx: (b[0] + b[1]) / 2, cy: (b[2] + b[3]) / 2 };
+  }
+  /* The canvas holds the fit f in device pixels and is shown at its size in CSS pixels, sharp on any screen. */
+  function size(canvas, f) {
+    canvas.width = Math.round(f.w * f.r);
+    canvas.height = Math.round(f.h * f.r);
+    canvas.style.width = f.w + "px";
+    canvas.style.height = f.h + "px";
+  }
+  return { draw: draw, fit: fit, layers: layers, polyline: polyline, size: size, traceShape: traceShape };
 })();
