@@ -147,11 +147,15 @@ def _part(name: str) -> str:
 
 
 def page_template(name: str) -> str:
-    """The template of a page (the report's, the studio's) with the head they share (report/assets/head.html: the
-    page's policy, its title, uPlot's and the page's style) in place of its ``{{HEAD}}``."""
+    """The template of a page (the report's, the studio's) with the markup they share in place of its placeholders:
+    ``{{HEAD}}`` (report/assets/head.html: the page's policy, its title, uPlot's and the page's style) and
+    ``{{LIMITS}}`` (report/assets/limits.html: the panel of det(D^c) and the limit positions)."""
     files = resources.files("mechfem")
-    head = files.joinpath("report/assets/head.html").read_text(encoding="utf-8").rstrip("\n")
-    return files.joinpath(name).read_text(encoding="utf-8").replace("{{HEAD}}", head, 1)
+    text = files.joinpath(name).read_text(encoding="utf-8")
+    for key, shared in (("HEAD", "head.html"), ("LIMITS", "limits.html")):
+        part = files.joinpath(f"report/assets/{shared}").read_text(encoding="utf-8").rstrip("\n")
+        text = text.replace("{{" + key + "}}", part, 1)
+    return text
 
 
 def render_report(result: RunResult, optimisation: dict[str, Any] | None = None) -> str:
