@@ -163,9 +163,6 @@ def test_no_module_is_over_600_lines() -> None:
 
 
 def test_no_two_classes_of_the_package_share_a_name() -> None:
-    # The model's parts (mechfem.model.parts) and the compiled model's echo (mechfem.model.echo, whose classes are
-    # the public mechfem.Coordinate, Element, Row, Storage, Picture) still share these names.
-    shared_today = {"Coordinate", "Element", "Point", "Row", "Storage", "Picture"}
     where: dict[str, list[str]] = {}
     for module, path in MODULES.items():
         tree = ast.parse(path.read_text(encoding="utf-8"))
@@ -177,5 +174,5 @@ def test_no_two_classes_of_the_package_share_a_name() -> None:
                 for a in node.names:
                     if a.asname == a.name:
                         where.setdefault(a.name, []).append(f"{module} (mechfem._core)")
-    twice = {name: modules for name, modules in where.items() if len(modules) > 1 and name not in shared_today}
+    twice = {name: modules for name, modules in where.items() if len(modules) > 1}
     assert not twice, twice

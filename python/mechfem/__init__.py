@@ -73,8 +73,10 @@ from mechfem.errors import (
     UnitWarning,
     on_stop,
 )
-from mechfem.model.echo import Buffer, Coordinate, Element, Model, Picture, Plot, Row, Storage, Term
+from mechfem.model.echo import Buffer, Model, Plot, Term
 from mechfem.model.mechanism import Driven, Keep, Mechanism, Motion, Output
+from mechfem.model.parts import Coordinate, Element, Row
+from mechfem.model.storage import Picture, Storage
 from mechfem.results.result import Analysis, CheckResult, RunResult, check_result, run_result
 from mechfem.results.run_report import AdjustInfo, Limit, RunReport, Stop
 from mechfem.studies.batch import Study, run_many, sweep

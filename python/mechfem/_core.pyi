@@ -33,9 +33,9 @@ __all__ = [
     "Limit",
     "Stop",
     "Report",
-    "Storage",
+    "EchoStorage",
     "Buffer",
-    "Picture",
+    "EchoPicture",
     "Plot",
     "DesignModel",
     "Model",
@@ -409,10 +409,10 @@ class Plot:
     def b(self) -> int: ...
 
 @final
-class Picture:
+class EchoPicture:
     """One BEGINPIC ... ENDPIC block."""
 
-    def __new__(cls, title: str, line: int, plots: list[Plot]) -> Picture: ...
+    def __new__(cls, title: str, line: int, plots: list[Plot]) -> EchoPicture: ...
     def __getnewargs__(self) -> tuple[str, int, list[Plot]]: ...
     def __eq__(self, other: object, /) -> bool: ...
     @property
@@ -423,7 +423,7 @@ class Picture:
     def plots(self) -> list[Plot]: ...
 
 @final
-class Storage:
+class EchoStorage:
     """What the STORAGE block asks to be done with the buffers."""
 
     def __new__(
@@ -432,11 +432,11 @@ class Storage:
         printbuf: list[int] | None,
         savedata: list[int],
         animate: str | None,
-        pictures: list[Picture],
-    ) -> Storage: ...
+        pictures: list[EchoPicture],
+    ) -> EchoStorage: ...
     def __getnewargs__(
         self,
-    ) -> tuple[list[Buffer], list[int] | None, list[int], str | None, list[Picture]]: ...
+    ) -> tuple[list[Buffer], list[int] | None, list[int], str | None, list[EchoPicture]]: ...
     def __eq__(self, other: object, /) -> bool: ...
     @property
     def buffers(self) -> list[Buffer]: ...
@@ -450,8 +450,8 @@ class Storage:
     @property
     def animate(self) -> str | None: ...
     @property
-    def pictures(self) -> list[Picture]: ...
-    def replace(self, **changes: Any) -> Storage:
+    def pictures(self) -> list[EchoPicture]: ...
+    def replace(self, **changes: Any) -> EchoStorage:
         """This storage with the requests named changed (``buffers``, ``printbuf``, ``savedata``, ``animate``,
         ``pictures``)."""
     def buffer(self, number: int) -> Buffer:
@@ -601,7 +601,7 @@ class Run:
     @property
     def model(self) -> ModelDict: ...
     @property
-    def storage(self) -> Storage: ...
+    def storage(self) -> EchoStorage: ...
     @property
     def simulation(self) -> Simulation | None:
         """What the integrator did, for a DYN SIM deck whose motion was simulated; None otherwise."""
@@ -817,7 +817,7 @@ class DescribedDeckDict(TypedDict):
     tol: float
     max_iter: int
     motion: DescribedMotionDict | None
-    storage: Storage
+    storage: EchoStorage
     mode: str
     """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
     dynamics: DynamicsDict | None

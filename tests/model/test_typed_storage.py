@@ -1,5 +1,5 @@
-"""A run's storage requests are the compiled module's own objects (``_core.Storage``): read through attributes,
-equal when they hold the same, picklable, changed by ``replace``."""
+"""A run's storage requests are the compiled module's own objects (``mechfem.model.echo.EchoStorage``): read through
+attributes, equal when they hold the same, picklable, changed by ``replace``."""
 
 from __future__ import annotations
 
@@ -10,24 +10,25 @@ import pytest
 
 import mechfem
 from mechfem import _core
+from mechfem.model.echo import EchoPicture, EchoStorage
 
 ROOT = Path(__file__).resolve().parents[2]
 FOURBAR = ROOT / "examples" / "fourbar" / "fourbar.mec"
 
 
 @pytest.fixture(scope="module")
-def storage() -> mechfem.Storage:
+def storage() -> EchoStorage:
     return mechfem.run_deck(FOURBAR).storage
 
 
-def test_the_storage_is_the_compiled_modules_object(storage: mechfem.Storage) -> None:
-    assert type(storage) is _core.Storage is mechfem.Storage
+def test_the_storage_is_the_compiled_modules_object(storage: EchoStorage) -> None:
+    assert type(storage) is _core.EchoStorage is EchoStorage
     assert isinstance(storage.buffers[0], mechfem.Buffer)
-    assert isinstance(storage.pictures[0], mechfem.Picture)
+    assert isinstance(storage.pictures[0], EchoPicture)
     assert isinstance(storage.pictures[0].plots[0], mechfem.Plot)
 
 
-def test_the_storage_says_what_the_deck_asks_for(storage: mechfem.Storage) -> None:
+def test_the_storage_says_what_the_deck_asks_for(storage: EchoStorage) -> None:
     # fourbar.mec: BUFKE1 -1 1 22 at line 83, PRINTBUF 1 2 11 12 21 30, two SAVEDATA lines, ANIMATE fourbar.
     b = storage.buffer(22)
     assert (b.number, b.keyword, b.args, b.line, b.part) == (22, "BUFKE1", [-1, 1], 83, 0)
@@ -44,15 +45,15 @@ def test_the_storage_says_what_the_deck_asks_for(storage: mechfem.Storage) -> No
         storage.buffer(99)
 
 
-def test_the_storage_pickles_and_compares_by_value(storage: mechfem.Storage) -> None:
+def test_the_storage_pickles_and_compares_by_value(storage: EchoStorage) -> None:
     again = pickle.loads(pickle.dumps(storage))
     assert again == storage and again is not storage
     assert pickle.loads(pickle.dumps(storage.buffers[3])) == storage.buffers[3]
     assert storage.buffers[0] != storage.buffers[1]
 
 
-def test_replace_changes_only_what_it_names(storage: mechfem.Storage) -> None:
-    changed = storage.replace(animate="film", pictures=[mechfem.Picture("empty", 0, [])])
+def test_replace_changes_only_what_it_names(storage: EchoStorage) -> None:
+    changed = storage.replace(animate="film", pictures=[EchoPicture("empty", 0, [])])
     assert (changed.animate, [p.title for p in changed.pictures]) == ("film", ["empty"])
     assert (changed.buffers, changed.printbuf, changed.savedata) == (
         storage.buffers,

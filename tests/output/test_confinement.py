@@ -159,11 +159,11 @@ def test_a_stopped_motion_warns_in_the_python_api() -> None:
 
 
 def test_media_draw_a_picture_without_plots(tmp_path: Path) -> None:
-    from mechfem.model.echo import Picture
+    from mechfem.model.echo import EchoPicture
     from mechfem.output.media import Media
 
     r = mechfem.run_deck(fourbar_copy(tmp_path / "deck", steps=6))
-    pictures = [Picture("empty", 0, []), *r.storage.pictures]
+    pictures = [EchoPicture("empty", 0, []), *r.storage.pictures]
     r = r.replace(storage=r.storage.replace(pictures=pictures))
     media = Media(r, tmp_path / "out", max_frames=3, report=True)
     assert "picture 1 'empty' (line 0: no plots)" in "\n".join(media.print_lines())

@@ -100,7 +100,9 @@ impl Plot {
 }
 
 /// One BEGINPIC ... ENDPIC block.
-#[pyclass(module = "mechfem._core", frozen, eq, get_all, from_py_object)]
+/// Python calls it `EchoPicture`: `mechfem.Picture` is the picture a
+/// `Mechanism`'s storage is given.
+#[pyclass(module = "mechfem._core", name = "EchoPicture", frozen, eq, get_all, from_py_object)]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Picture {
     /// Its title (may be empty).
@@ -125,12 +127,14 @@ impl Picture {
     }
 
     fn __repr__(&self) -> String {
-        format!("Picture(title={:?}, line={}, plots={})", self.title, self.line, self.plots.len())
+        format!("EchoPicture(title={:?}, line={}, plots={})", self.title, self.line, self.plots.len())
     }
 }
 
 /// What the STORAGE block asks to be done with the buffers.
-#[pyclass(module = "mechfem._core", frozen, eq, get_all, from_py_object)]
+/// Python calls it `EchoStorage`: `mechfem.Storage` is the storage a
+/// `Mechanism` is run with.
+#[pyclass(module = "mechfem._core", name = "EchoStorage", frozen, eq, get_all, from_py_object)]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Storage {
     /// The buffers, in deck order.
@@ -169,7 +173,7 @@ impl Storage {
 
     fn __repr__(&self) -> String {
         format!(
-            "Storage(buffers={}, printbuf={:?}, savedata={:?}, animate={:?}, pictures={})",
+            "EchoStorage(buffers={}, printbuf={:?}, savedata={:?}, animate={:?}, pictures={})",
             self.buffers.len(),
             self.printbuf,
             self.savedata,

@@ -1,6 +1,8 @@
 """The model and the storage requests of a run as the deck declares them (the echo of the print file). The storage
-requests are the compiled module's own objects (:class:`Storage`, :class:`Buffer`, :class:`Picture`, :class:`Plot`:
-owned by Rust, read through their attributes, equal when they hold the same, picklable).
+requests are the compiled module's own objects (:class:`EchoStorage`, :class:`Buffer`, :class:`EchoPicture`,
+:class:`Plot`: owned by Rust, read through their attributes, equal when they hold the same, picklable). The classes
+are ``Echo*`` where a class of the model a :class:`~mechfem.Mechanism` is built of has the plain name
+(:class:`~mechfem.Element`, :class:`~mechfem.Storage`, ...).
 
 Numbers that name things (co-ordinates, elements, rows, buffers) are the deck's own, 1-based and signed.
 """
@@ -11,14 +13,14 @@ from dataclasses import dataclass, field
 
 import mechfem._core as _core
 from mechfem._core import Buffer as Buffer
-from mechfem._core import Picture as Picture
+from mechfem._core import EchoPicture as EchoPicture
+from mechfem._core import EchoStorage as EchoStorage
 from mechfem._core import Plot as Plot
-from mechfem._core import Storage as Storage
 from mechfem.model.masses import DynamicsModel
 
 
 @dataclass(frozen=True)
-class Element:
+class EchoElement:
     """One ELEM line."""
 
     number: int
@@ -43,7 +45,7 @@ class Term:
 
 
 @dataclass(frozen=True)
-class Row:
+class EchoRow:
     """A prescribed row of D^c (``dest > 0``) or a dependent form parameter (``dest < 0``)."""
 
     dest: int
@@ -71,7 +73,7 @@ class Row:
 
 
 @dataclass(frozen=True)
-class Coordinate:
+class EchoCoordinate:
     """One co-ordinate: fixed or moving, its given value and its value at position 1."""
 
     number: int
@@ -83,7 +85,7 @@ class Coordinate:
 
 
 @dataclass(frozen=True)
-class Point:
+class EchoPoint:
     """A point the NAMES block names: co-ordinates ``x`` and ``y`` (1-based) are ``name.x`` and ``name.y``."""
 
     x: int
@@ -95,12 +97,12 @@ class Point:
 class Model:
     """The model as compiled from the deck, for the echo in the print file."""
 
-    elements: list[Element]
-    prescribed: list[Row]
-    dependent: list[Row]
+    elements: list[EchoElement]
+    prescribed: list[EchoRow]
+    dependent: list[EchoRow]
     dofs: list[int]
     """For DOF j (1-based, list index j - 1): the prescribed row that is its input."""
-    coordinates: list[Coordinate]
+    coordinates: list[EchoCoordinate]
     mode: str = "KIN ANA"
     """The deck's mode line."""
     dynamics: DynamicsModel | None = None
@@ -109,32 +111,32 @@ class Model:
     """The deck's UNITS: ``length``, ``angle``, ``mass``, ``force``, ``time`` to a symbol (``mm``, ``deg``) or None
     where the deck declares none (all None without a UNITS line; with one, ``angle`` and ``time`` default to
     ``rad`` and ``s``). Every number of a run is in these units."""
-    points: list[Point] = field(default_factory=list)
+    points: list[EchoPoint] = field(default_factory=list)
     """The points the NAMES block names (``POINT 9 10 C``)."""
     labels: _core.Labels | None = field(default=None, compare=False, repr=False)
     """The names and units of its co-ordinates, rows, inputs and buffers, as the core decides them."""
 
     @classmethod
     def from_core(cls, d: _core.ModelDict) -> Model:
-        def row(r: _core.RowDict) -> Row:
+        def row(r: _core.RowDict) -> EchoRow:
             terms = [Term(t["element"], t["form"], t["factor"], t["seq"], t["line"]) for t in r["terms"]]
-            return Row(r["dest"], terms, r["para"], r["input"], r["value"], r["name"])
+            return EchoRow(r["dest"], terms, r["para"], r["input"], r["value"], r["name"])
 
         return cls(
             elements=[
-                Element(e["number"], e["type"], list(e["coords"]), list(e["coord_names"]), e["line"], e["name"])
+                EchoElement(e["number"], e["type"], list(e["coords"]), list(e["coord_names"]), e["line"], e["name"])
                 for e in d["elements"]
             ],
             prescribed=[row(r) for r in d["prescribed"]],
             dependent=[row(r) for r in d["dependent"]],
             dofs=list(d["dofs"]),
             coordinates=[
-                Coordinate(c["number"], c["moving"], c["given"], c["adjusted"], c["name"]) for c in d["coordinates"]
+                EchoCoordinate(c["number"], c["moving"], c["given"], c["adjusted"], c["name"]) for c in d["coordinates"]
             ],
             mode=d.get("mode", "KIN ANA"),
             dynamics=None if d.get("dynamics") is None else DynamicsModel.from_core(d["dynamics"]),  # type: ignore[arg-type]
             units=dict(d.get("units", {})),
-            points=[Point(p["x"], p["y"], p["name"]) for p in d.get("points", [])],
+            points=[EchoPoint(p["x"], p["y"], p["name"]) for p in d.get("points", [])],
             labels=d.get("labels"),
         )
 

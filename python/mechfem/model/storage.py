@@ -71,7 +71,7 @@ class Storage:
         return self
 
 
-def from_described(s: _core.Storage, name: Callable[[str, int], Ref]) -> Storage | None:
+def from_described(s: _core.EchoStorage, name: Callable[[str, int], Ref]) -> Storage | None:
     """The storage of a deck the reader described (None without one); ``name(kind, number)`` names a deck number of
     a kind of :data:`BUFFER_ARGS` (``i`` co-ordinate, ``r`` row, ``j`` input)."""
     if not (s.buffers or s.printbuf is not None or s.savedata or s.animate or s.pictures):

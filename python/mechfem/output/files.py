@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from mechfem._util.atomic import atomic_text
-from mechfem.model.echo import Model, Storage
+from mechfem.model.echo import EchoStorage, Model
 from mechfem.model.masses import Exponents, Said
 from mechfem.output.datasets import write_binary
 from mechfem.results.designer import print_lines as designer_lines
@@ -390,7 +390,7 @@ def numbers_text(items: Sequence[object]) -> str:
     return text[0] if len(text) == 1 else ", ".join(text[:-1]) + " and " + text[-1]
 
 
-def buffers_text(storage: Storage, numbers: list[int]) -> str:
+def buffers_text(storage: EchoStorage, numbers: list[int]) -> str:
     """``3 (BUFKE1 -1 1) and 5 (BUFKX1 9 1)``."""
     return numbers_text([f"{n} ({storage.buffer(n).label()})" for n in numbers])
 

@@ -17,7 +17,7 @@ import numpy.typing as npt
 from mechfem.model.catalogue import SLOTS
 
 if TYPE_CHECKING:
-    from mechfem.model.echo import Element
+    from mechfem.model.echo import EchoElement
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -25,9 +25,9 @@ FloatArray = npt.NDArray[np.float64]
 FRAMED = ("BIN", "TR2", "HLF", "TR1")
 
 
-def element(result: Any, ref: object) -> Element:
+def element(result: Any, ref: object) -> EchoElement:
     """The element ``ref`` names: its deck number (1, 2, ...), its name, or for a named model the element itself."""
-    elements: list[Element] = list(result.model.elements)
+    elements: list[EchoElement] = list(result.model.elements)
     if isinstance(ref, int) and not isinstance(ref, bool):
         if 1 <= ref <= len(elements):
             return elements[ref - 1]
@@ -44,7 +44,7 @@ def element(result: Any, ref: object) -> Element:
     raise KeyError(f"{ref!r} is no element of this model (named elements: {known})")
 
 
-def points_of(e: Element) -> list[tuple[int, int]]:
+def points_of(e: EchoElement) -> list[tuple[int, int]]:
     """The points of element ``e`` as (x, y) deck numbers, in the order of its co-ordinates."""
     out, at = [], 0
     for slot in SLOTS[e.type]:
@@ -56,7 +56,7 @@ def points_of(e: Element) -> list[tuple[int, int]]:
     return out
 
 
-def _point(result: Any, e: Element, point: object) -> tuple[int, int]:
+def _point(result: Any, e: EchoElement, point: object) -> tuple[int, int]:
     t = result._target(point, "point", ("point",))
     xy = (t.numbers[0], t.numbers[1])
     pins = points_of(e)
@@ -122,7 +122,7 @@ def shaking(result: Any) -> FloatArray:
     return np.column_stack(parts)
 
 
-def _direction(e: Element, coords: FloatArray) -> FloatArray:
+def _direction(e: EchoElement, coords: FloatArray) -> FloatArray:
     if e.type not in FRAMED:
         raise KeyError(f"element {e.number} is a {e.type}, which has no side to measure a transmission angle on")
     c = [i - 1 for i in e.coords]

@@ -24,7 +24,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import mechfem._core as _core
-from mechfem.model.echo import Buffer, Model, Row
+from mechfem.model.echo import Buffer, EchoRow, Model
 from mechfem.model.units import Units, joules, kind_of, watts
 from mechfem.results.result import RunResult
 from mechfem.results.result_tables import run_units
@@ -159,7 +159,7 @@ def coordinate_units(model: Model) -> dict[int, str]:
     return {c.number: words(labels.coordinate(c.number)[3]) for c in model.coordinates}
 
 
-def row_unit(model: Model, row: Row, coords: dict[int, str] | None = None) -> str:
+def row_unit(model: Model, row: EchoRow, coords: dict[int, str] | None = None) -> str:
     """The unit of a (possibly combined) row, in the words of the unit algebra (``coords`` is not needed: the core
     knows the co-ordinates' units)."""
     return words(_core_labels(model).row(row.dest)[3])

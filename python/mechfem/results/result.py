@@ -21,7 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 import mechfem._core as _core
-from mechfem.model.echo import Model, ModelNames, Storage
+from mechfem.model.echo import EchoStorage, Model, ModelNames
 from mechfem.results.converted import Converted
 from mechfem.results.inverse_dynamics import DynamicSeries, Simulation
 from mechfem.results.result_tables import Energy, Names, ResultTables
@@ -118,7 +118,7 @@ class RunResult(ResultTables):
         return _model_and_names(self._raw.model)[0]
 
     @functools.cached_property
-    def storage(self) -> Storage:
+    def storage(self) -> EchoStorage:
         """The storage requests: buffers, tables, data set, pictures, animation."""
         return self._raw.storage
 
@@ -281,7 +281,7 @@ class PickledRun:
     hodograph_coords: list[int]
     report: _core.Report
     model: _core.ModelDict
-    storage: _core.Storage
+    storage: _core.EchoStorage
     simulation: _core.Simulation | None
 
     @classmethod

@@ -23,7 +23,7 @@ import numpy.typing as npt
 import mechfem._core as _core
 from mechfem._util import optional
 from mechfem.model.catalogue import coordinate_dimensions, form_dimension
-from mechfem.model.echo import BUFFER_ARGS, Model, ModelNames, Storage
+from mechfem.model.echo import BUFFER_ARGS, EchoStorage, Model, ModelNames
 from mechfem.model.units import Units, check_output_unit, kind_of, scale
 from mechfem.results import designer
 from mechfem.results.run_report import RunReport
@@ -163,7 +163,7 @@ class ResultTables:
         raise NotImplementedError
 
     @property
-    def storage(self) -> Storage:
+    def storage(self) -> EchoStorage:
         raise NotImplementedError
 
     @property

@@ -163,7 +163,7 @@ def deck_namespace(result: RunResult) -> Namespace:
     return Namespace(mech, numbering, named=False, aliases=_aliases(model, numbering, mech))
 
 
-def _declared_row(r: echo.Row) -> deckio.DeclaredRow:
+def _declared_row(r: echo.EchoRow) -> deckio.DeclaredRow:
     return deckio.DeclaredRow(r.dest, [(t.element, t.form, t.factor) for t in r.terms], r.para, r.input)
 
 

@@ -249,13 +249,13 @@ def animate(
 ) -> list[Path]:
     """Writes the animation of the motion to ``path`` (``name.gif``, and ``name.mp4`` when ffmpeg is installed),
     with the paths and velocity arrows of ``points`` (default: every moving point); returns the files."""
-    from mechfem.model.echo import Picture, Plot
+    from mechfem.model.echo import EchoPicture, Plot
     from mechfem.viz.animation import MAX_FRAMES, write_animation
 
     target = Path(path)
     plots = [
         Plot("PLOTHODO", a.numbering.coord_number[p.x], a.numbering.coord_number[p.y]) for p in a._traced_points(points)
     ]
-    storage = a.storage.replace(animate=target.stem, pictures=[Picture("", 0, plots)])
+    storage = a.storage.replace(animate=target.stem, pictures=[EchoPicture("", 0, plots)])
     info = write_animation(a.replace(storage=storage), target.parent, max_frames=max_frames or MAX_FRAMES)
     return list(info.files)

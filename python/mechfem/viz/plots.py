@@ -25,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from mechfem._util.atomic import atomic_path
-from mechfem.model.echo import Picture, Plot
+from mechfem.model.echo import EchoPicture, Plot
 from mechfem.results.labels import Label, buffer_labels, coordinate_axis, input_name, label, point_name
 from mechfem.results.result import RunResult
 from mechfem.viz.drawing import MechanismDrawing
@@ -257,7 +257,7 @@ def picture_figure(result: RunResult, index: int, drawing: MechanismDrawing | No
     """The matplotlib figure of picture ``index`` (0-based)."""
     from matplotlib.figure import Figure
 
-    pic: Picture = result.storage.pictures[index]
+    pic: EchoPicture = result.storage.pictures[index]
     funcs = [p for p in pic.plots if p.keyword == "PLOTFUNC"]
     curves = [p for p in pic.plots if p.keyword != "PLOTFUNC"]
     hodos = [p for p in curves if p.keyword == "PLOTHODO"]
