@@ -98,8 +98,8 @@ def test_scale_converts_within_one_kind_only() -> None:
 
 
 def test_the_names_block_names_points_elements_rows_and_outputs_by_deck_number() -> None:
-    from mechfem.deck.deck_names import names_block
     from mechfem.deck.deckio import number_model
+    from mechfem.deck.naming import names_block
 
     m = fourbar()
     m.scalar("ratio", 2.0)

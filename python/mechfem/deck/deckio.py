@@ -5,7 +5,7 @@ the numbering of this module, and the model compiled from them is the one its de
 (:mod:`mechfem.run.compiled` keeps it per topology). This module
 
 * writes a mechanism with its motion and storage as deck text (:func:`write`), one keyword per line, its units on
-  the ``UNITS`` line and its names in the ``NAMES`` block (:mod:`mechfem.deck.deck_names`), keeping a note of what each
+  the ``UNITS`` line and its names in the ``NAMES`` block (:mod:`mechfem.deck.naming`), keeping a note of what each
   line declares;
 * numbers a mechanism as its deck does (:func:`number_model`), and the arguments of its buffers and plots
   (:func:`buffer_numbers`, :func:`plot_numbers`);
@@ -30,9 +30,8 @@ import numpy as np
 
 import mechfem._core as _core
 from mechfem._util.atomic import atomic_text
-from mechfem.deck.deck_names import DeckNames, model_unit, names_block
 from mechfem.deck.explain import translate
-from mechfem.deck.numbering import DeckText, Numbering, number
+from mechfem.deck.naming import DeckNames, DeckText, Numbering, model_unit, names_block, number
 from mechfem.model import loads
 from mechfem.model.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.model.mechanism import (

@@ -29,7 +29,7 @@ from mechfem.model.parts import ELEMENT_WORDS, Coordinate, Element, Point, Row
 from mechfem.results.words import Part, Words, with_unit
 
 if TYPE_CHECKING:
-    from mechfem.deck.numbering import DeckText, Numbering
+    from mechfem.deck.naming import DeckText, Numbering
 
 
 def element_words(e: Element) -> str:

@@ -28,7 +28,7 @@ from mechfem.model.catalogue import FRAMES
 from mechfem.model.parts import ELEMENT_WORDS, Combination, Coordinate, Element, Expression, FormParameter, Point, Row
 
 if TYPE_CHECKING:
-    from mechfem.deck.numbering import Numbering
+    from mechfem.deck.naming import Numbering
 
 
 class MechanismLoads(Protocol):

@@ -109,7 +109,7 @@ class RunResult(ResultTables):
 
     @property
     def numbering(self) -> Any:
-        """The deck numbers of the mechanism's parts (:class:`~mechfem.deck.numbering.Numbering`)."""
+        """The deck numbers of the mechanism's parts (:class:`~mechfem.deck.naming.Numbering`)."""
         return self._names.numbering
 
     @functools.cached_property

@@ -106,7 +106,7 @@ class Names(Protocol):
 
     @property
     def numbering(self) -> Any:
-        """Its :class:`~mechfem.deck.numbering.Numbering`: the deck numbers of its parts."""
+        """Its :class:`~mechfem.deck.naming.Numbering`: the deck numbers of its parts."""
 
     @property
     def named(self) -> bool:

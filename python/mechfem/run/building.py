@@ -9,7 +9,7 @@ deck's NAMES block and UNITS line give them (``ModelBuilder.name``, ``ModelBuild
 the ones its deck says. Table motions and load tables are handed over as the files the deck would name, in a
 temporary folder; no deck text is written or read.
 
-Each item is noted with what it is and its name in the Python model (as :attr:`mechfem.deck.numbering.DeckText.notes`
+Each item is noted with what it is and its name in the Python model (as :attr:`mechfem.deck.naming.DeckText.notes`
 notes the lines of a written deck): a mistake the builder or the compiler finds (coincident points, a point on no
 element, a zero length) names the item it is about by its number (the diagnostic's ``line``), and :func:`explain`
 words it by the model's names from the notes, without deck text. A value no deck can state raises the deck writer's
@@ -23,9 +23,8 @@ from typing import NamedTuple
 
 import mechfem._core as _core
 from mechfem.deck import deckio
-from mechfem.deck.deck_names import names_block
 from mechfem.deck.explain import _DECK_FIELDS, _RULES, _Context, translate, with_attributes
-from mechfem.deck.numbering import DeckText, Numbering
+from mechfem.deck.naming import DeckText, Numbering, names_block
 from mechfem.errors import DeckError, MechfemError
 from mechfem.model import loads
 from mechfem.model.loads import Body, Force, Gravity, Inertia, Load, LoadTable, PointMass, Spring

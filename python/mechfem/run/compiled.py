@@ -35,7 +35,7 @@ from typing import Any
 
 import mechfem._core as _core
 from mechfem.deck import deckio
-from mechfem.deck.numbering import Numbering, number
+from mechfem.deck.naming import Numbering, number
 from mechfem.model.loads import Loads, LoadTable
 from mechfem.model.mechanism import Mechanism
 from mechfem.model.motion import Free, Motion, Table, To, check_units, input_dof

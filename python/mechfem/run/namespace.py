@@ -22,9 +22,8 @@ from typing import Any
 
 from mechfem._util.names import UnknownNameError
 from mechfem.deck import deckio
-from mechfem.deck.deck_names import DeckNames
 from mechfem.deck.explain import PythonWords
-from mechfem.deck.numbering import Numbering
+from mechfem.deck.naming import DeckNames, Numbering
 from mechfem.model import echo
 from mechfem.model.echo import Model, ModelNames
 from mechfem.model.mechanism import Coordinate, FormParameter, Mechanism, Point, Row
