@@ -20,8 +20,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechfem.design import angle_units, frame_angle, full_rotation, timing
 from mechfem.design import engine as design
+from mechfem.design import frame_angle, full_rotation, model_units, timing
 from mechfem.design import rules as design_rules
 from mechfem.design.frame_angle import FrameAngle, TurnedModel
 from mechfem.design.optimise import _timed_model, synthesis_problem
@@ -109,8 +109,10 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
             )
         timed = _plan(deck, mech, storage, free_name, bool(free["ordered"]), numbering, int(free["line"]))
         if mech.units.angle == "deg":
-            # The points' input in the deck's degrees; the core takes radians (mechfem.design.angle_units).
-            timed.builders = [angle_units.ScaledBuilder(b, {timed.input_var}, set()) for b in timed.builders]
+            # The points' input in the deck's degrees; the core takes radians (mechfem.design.model_units).
+            timed.builders = [
+                model_units.ScaledBuilder(b, {timed.input_var: model_units.DEGREE}, {}) for b in timed.builders
+            ]
         of = _timed(timed, base)
     if full:
         line = full["line"]

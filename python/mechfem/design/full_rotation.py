@@ -12,6 +12,7 @@ inequality: no gradient of it is taken.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import mechfem._core as _core
@@ -64,11 +65,11 @@ def checked(
     mechanism: Mechanism,
     storage: Storage,
     base: str,
-    angles: set[tuple[int, int]] | None = None,
+    factors: Mapping[tuple[int, int], float] | None = None,
 ) -> DesignModelOf:
-    """``of`` with every design also checked for a full turn of the mechanism's only input (an angle); ``angles``:
-    the variables given in degrees (:mod:`mechfem.design.angle_units`)."""
-    from mechfem.design import angle_units
+    """``of`` with every design also checked for a full turn of the mechanism's only input (an angle); ``factors``:
+    the variables given in units other than the core's (:mod:`mechfem.design.model_units`)."""
+    from mechfem.design import model_units
     from mechfem.model.motion import Motion
     from mechfem.run import building
 
@@ -77,7 +78,7 @@ def checked(
         raise ValueError("full_rotation needs a mechanism with one input, an angle (a crank)")
     core = building.builder(mechanism, Motion.by(STEPS, TURN, unit="rad"), storage).builder
     # The turn's model records no buffer: only whether the design turns fully.
-    builder: Any = angle_units.ScaledBuilder(core, angles, set()) if angles else core
+    builder: Any = model_units.ScaledBuilder(core, factors, {}) if factors else core
 
     def wrapped(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
         shared = [v for v in variables if v[0] != 2]

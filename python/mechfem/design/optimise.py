@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any, Literal, TypeAlias
 import numpy as np
 
 from mechfem.deck import deckio
-from mechfem.design import angle_units, dynamic_optimise, frame_angle
+from mechfem.design import dynamic_optimise, frame_angle, model_units
 from mechfem.design import engine as design
 from mechfem.design import rules as design_rules
 from mechfem.design.engine import FloatArray, Iteration
@@ -168,16 +168,16 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
 
 
 def _model(
-    builder: Any, base: str, timed: Plan | None, full: bool, mechanism: Mechanism, storage: Storage, angles: Any = None
+    builder: Any, base: str, timed: Plan | None, full: bool, mechanism: Mechanism, storage: Storage, factors: Any = None
 ) -> design.DesignModelOf:
     """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if ``full``;
-    ``angles``: the variables in degrees (:mod:`mechfem.design.angle_units`)."""
+    ``factors``: the factors of the variables in units other than the core's (:mod:`mechfem.design.model_units`)."""
     of = design.built_model(builder, base) if timed is None else _timed_model(timed, base)
     if not full:
         return of
     from mechfem.design import full_rotation as _full
 
-    return _full.checked(of, mechanism, storage, base, angles)
+    return _full.checked(of, mechanism, storage, base, factors)
 
 
 def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
@@ -205,7 +205,7 @@ def _periodic(mech: Mechanism, name: str, span: tuple[float, float] | None) -> b
         if not angle:
             raise ValueError(f"{name!r} is not an angle: give its range (lo, hi); only an angle may go without one")
         return True
-    return angle and design_rules.full_turn(float(span[0]), float(span[1]), angle_units.whole_turn(mech))
+    return angle and design_rules.full_turn(float(span[0]), float(span[1]), model_units.whole_turn(mech))
 
 
 def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple[float, float]:
@@ -213,7 +213,7 @@ def _span(mech: Mechanism, name: str, span: tuple[float, float] | None) -> tuple
     if span is not None:
         return float(span[0]), float(span[1])
     value = float(getattr(mech[name], "value", None) or 0.0)
-    return value - angle_units.whole_turn(mech) / 2.0, value + angle_units.whole_turn(mech) / 2.0
+    return value - model_units.whole_turn(mech) / 2.0, value + model_units.whole_turn(mech) / 2.0
 
 
 def _progress(progress: bool | Callable[[Iteration], object] | None) -> Callable[[Iteration], object] | None:
@@ -366,12 +366,11 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
-    degrees = mechanism.units.angle == "deg"
-    angles = angle_units.degree_variables(mechanism, vary, variables, timed) if degrees else set()
-    angle_buffers = angle_units.angle_buffers(deck.keys) if degrees else set()
-    if degrees and timed is not None:
-        timed.builders = [angle_units.ScaledBuilder(b, angles, angle_buffers) for b in timed.builders]
-    builder = angle_units.ScaledBuilder(built.builder, angles, angle_buffers) if degrees else built.builder
+    # Variables, buffers and position 1 in the model's units (mm, degrees): the core's models work in its own.
+    factors, in_units = model_units.variable_factors(mechanism, vary, variables, timed), deck.keys
+    if timed is not None:
+        timed.builders = [model_units.builder(mechanism, b, factors, in_units, built.numbering) for b in timed.builders]
+    builder = model_units.builder(mechanism, built.builder, factors, in_units, built.numbering)
     free_input = None if timing is None else timing.input
     turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     for term in terms:
@@ -389,7 +388,7 @@ def optimize(
         False if dynamic_optimise.is_mass(v[0]) else _periodic(mechanism, name, span)
         for (name, span), v in zip(vary.items(), variables, strict=True)
     ]
-    half = angle_units.whole_turn(mechanism) / 2.0
+    half = model_units.whole_turn(mechanism) / 2.0
     ranges = [(s - half, s + half) if v is None else v for (_, _, s), v in zip(variables, vary.values(), strict=True)]
     lo = np.array([float(v[0]) for v in ranges])
     hi = np.array([float(v[1]) for v in ranges])
@@ -406,7 +405,7 @@ def optimize(
         model = (
             dynamic_optimise.model(built.builder, base)
             if dynamic
-            else _model(builder, base, timed, full_rotation, mechanism, deck.storage, angles)
+            else _model(builder, base, timed, full_rotation, mechanism, deck.storage, factors)
         )
         problem = synthesis_problem(
             model,
@@ -418,7 +417,7 @@ def optimize(
             frame=framed,
             turn=turn,
             timed=timed,
-            whole_turn=angle_units.whole_turn(mechanism),
+            whole_turn=model_units.whole_turn(mechanism),
             terms=terms,
             bounds=bound_terms,
             objective=goal,
@@ -544,8 +543,9 @@ def sensitivity(analysis: RunResult, quantity: Quantity, wrt: Sequence[str]) -> 
     b = deck.buffer(quantity)
     built = building.builder(mech, motion, deck.storage)
     variables = [_variable(mech, built.numbering, name) for name in wrt]
+    core = model_units.builder(mech, built.builder, model_units.variable_factors(mech, wrt, variables, None), deck.keys)
     with deckio.tables_dir(built.tables) as base:
-        model = built.builder.design(base, [(k, n) for k, n, _ in variables], [b], [])
+        model = core.design(base, [(k, n) for k, n, _ in variables], [b], [])
         d = model.evaluate([v for _, _, v in variables])
     if not d["feasible"]:
         raise design.Infeasible(str(d["reason"]))

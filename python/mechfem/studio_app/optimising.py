@@ -12,8 +12,7 @@ towards one of three targets:
   go with an extremum.
 
 Each iteration's design is run and sent to the page, so the mechanism is seen moving towards the target.
-:func:`mechfem.optimize` takes angles in the model's angle unit and lengths in metres: a length the user gives in the
-model's units is converted."""
+:func:`mechfem.optimize` works in the model's units, as the page does: nothing is converted on the way."""
 
 from __future__ import annotations
 
@@ -28,7 +27,6 @@ from mechfem.design.engine import Iteration
 from mechfem.design.optimise import Bound, Evaluated, Q, Target, Transmission, optimize
 from mechfem.design.timing import FreeTiming
 from mechfem.model.parts import Coordinate, Row
-from mechfem.model.units import scale
 from mechfem.studio_app.session import Session
 from mechfem.studio_app.view import transmission_pairs, view
 
@@ -79,9 +77,8 @@ def path_through(
     starts = [float(along[int(np.argmin(np.hypot(xs - x, ys - y)))]) for x, y in points]
     size = float(np.hypot(np.ptp(xs), np.ptp(ys))) or 1.0
     box = {name: _span(session, name, size) for name in vary}
-    f = si_factor(session, f"{point}.x")
     problem = {
-        "targets": [Target(f"{point}.x", [x * f for x, _ in points]), Target(f"{point}.y", [y * f for _, y in points])],
+        "targets": [Target(f"{point}.x", [x for x, _ in points]), Target(f"{point}.y", [y for _, y in points])],
         "timing": FreeTiming(phi.name, starts),
         "steps": steps,
         "progress": _shower(session, vary, push),
@@ -130,15 +127,6 @@ def _extent(session: Session) -> tuple[np.ndarray, np.ndarray]:
     xs = [result.coords[:, nb.coord_number[p.x] - 1] for p in session.mechanism.points if p.x in nb.coord_number]
     ys = [result.coords[:, nb.coord_number[p.y] - 1] for p in session.mechanism.points if p.y in nb.coord_number]
     return np.concatenate(xs) if xs else np.zeros(1), np.concatenate(ys) if ys else np.zeros(1)
-
-
-def si_factor(session: Session, name: str) -> float:
-    """What a value of the quantity ``name`` (a row, an output or a co-ordinate) in the model's units is multiplied by
-    to give it in the optimiser's units: an angle stays in the model's angle unit, a length goes to metres."""
-    obj = session.mechanism.find(name)
-    if (isinstance(obj, Row) and obj.is_angle) or (isinstance(obj, Coordinate) and obj.kind == "angle"):
-        return 1.0
-    return scale(session.mechanism.units.length or "m", "m")
 
 
 def _half_turn(session: Session) -> float:
@@ -192,11 +180,10 @@ def extremum(
         raise ValueError("give the value the extremum should reach")
     box = _checked_vary(session, vary)
     before = session.result.value(quantity)
-    f = si_factor(session, quantity)
-    # The objective's unit: the quantity's span over the start design (SI), so that it is about 1 at the start.
-    span = max(float(np.nanmax(before) - np.nanmin(before)) * f, abs(value or 0.0) * f * 1e-3, 1e-12)
+    # The objective's unit: the quantity's span over the start design, so that it is about 1 at the start.
+    span = max(float(np.nanmax(before) - np.nanmin(before)), abs(value or 0.0) * 1e-3, 1e-12)
     sign = 1.0 if which == "max" else -1.0
-    wanted = None if value is None else value * f
+    wanted = value
     q = Q(quantity)
 
     def objective(e: Evaluated) -> tuple[float, np.ndarray]:
@@ -268,4 +255,4 @@ def _runs_whole_motion(mech: Any) -> bool:
         return False
 
 
-__all__ = ["extremum", "path_through", "si_factor", "transmission", "transmission_range"]
+__all__ = ["extremum", "path_through", "transmission", "transmission_range"]
