@@ -38,7 +38,7 @@ it out)."""
 @dataclass(frozen=True)
 class FrameAngle:
     """The frame turned by a design variable ``name`` about its fixed point ``pivot`` (a point's name), within
-    ``span`` (radians; None: periodic, a whole turn)."""
+    ``span`` (in the model's angle unit; None: periodic, a whole turn)."""
 
     pivot: str
     name: str = "frame"
@@ -62,9 +62,11 @@ class Turn:
     values: dict[tuple[int, int], float]
     names: dict[tuple[int, int], str]
     """The name of each of them in the mechanism (``"B0.x"``, ``"theta"``)."""
+    unit: float = 1.0
+    """Radians per unit of the frame angle, which is in the mechanism's angle unit (pi/180 for degrees)."""
 
 
-def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: str | None) -> Turn:
+def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: str | None, unit: float = 1.0) -> Turn:
     """The turn of ``mechanism``'s frame; ``free_input`` (an input with free timing) is not turned: its values at
     the points are design variables of their own."""
     from mechfem.design.optimise import _variable
@@ -87,7 +89,7 @@ def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: st
     inputs = [r for r in mechanism.rows if r.kind == "input" and r.is_angle and r.name != free_input]
     angles += [number(r.name) for r in inputs]
     flat = [v for pair in points for v in pair]
-    return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names)
+    return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names, unit)
 
 
 class TurnedModel:
@@ -110,8 +112,8 @@ class TurnedModel:
 
     def mapped(self, z: list[float]) -> tuple[list[float], FloatArray]:
         """y = g(z) and dy/dz."""
-        theta = float(z[self.at])
-        c, s = math.cos(theta), math.sin(theta)
+        theta, unit = float(z[self.at]), self.turn.unit
+        c, s = math.cos(theta * unit), math.sin(theta * unit)
         y = [0.0] * len(self.core)
         jac = np.zeros((len(self.core), len(z)))
         done: set[int] = set()
@@ -122,7 +124,7 @@ class TurnedModel:
             dx, dy = px - cx, py - cy
             ix, iy = self.core.index(vx), self.core.index(vy)
             y[ix], y[iy] = cx + c * dx - s * dy, cy + s * dx + c * dy
-            jac[ix, self.at], jac[iy, self.at] = -s * dx - c * dy, c * dx - s * dy
+            jac[ix, self.at], jac[iy, self.at] = (-s * dx - c * dy) * unit, (c * dx - s * dy) * unit
             for k, d in ((kpx, (c, s)), (kpy, (-s, c)), (kcx, (1.0 - c, -s)), (kcy, (s, 1.0 - c))):
                 if k is not None:
                     jac[ix, k] += d[0]
@@ -175,8 +177,8 @@ def turned(of: DesignModelOf, turn: Turn) -> DesignModelOf:
 
 
 def apply(mechanism: Mechanism, turn: Turn, theta: float) -> None:
-    """Turns ``mechanism``'s frame (its variables already at their final values) by ``theta``."""
-    c, s = math.cos(theta), math.sin(theta)
+    """Turns ``mechanism``'s frame (its variables already at their final values) by ``theta`` (the turn's unit)."""
+    c, s = math.cos(theta * turn.unit), math.sin(theta * turn.unit)
     cx, cy = (float(mechanism[turn.names[v]].value) for v in turn.pivot)
     for i in range(0, len(turn.points), 2):
         nx, ny = turn.names[turn.points[i]], turn.names[turn.points[i + 1]]

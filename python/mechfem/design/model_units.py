@@ -21,6 +21,7 @@ from mechfem.model.catalogue import coordinate_dimensions, form_dimension
 from mechfem.model.units import scale
 
 if TYPE_CHECKING:
+    from mechfem.design.frame_angle import Turn
     from mechfem.design.timing import Plan
     from mechfem.model.mechanism import Mechanism
     from mechfem.model.parts import Coordinate
@@ -169,9 +170,10 @@ def variable_factors(
     vary: Mapping[str, tuple[float, float] | None] | Sequence[str],
     variables: Sequence[tuple[int, int, float]],
     timed: Plan | None,
+    turn: Turn | None = None,
 ) -> dict[tuple[int, int], float]:
     """The factor of each variable (core numbering) of ``optimize`` that has a unit other than the core's, the
-    free timing's input among them. Masses keep the core's units."""
+    free timing's input and what a frame angle's ``turn`` moves among them. Masses keep the core's units."""
     from mechfem.design.dynamic_optimise import is_mass
     from mechfem.design.optimise import _lookup
     from mechfem.model.mechanism import Coordinate
@@ -189,6 +191,9 @@ def variable_factors(
         f = units.angle if timed.angle else units.length
         if f != 1.0:
             out[timed.input_var] = f
+    if turn is not None:
+        moved = [v for v in turn.names if v not in out]
+        out |= variable_factors(mech, [turn.names[v] for v in moved], [(k, n, 0.0) for k, n in moved], None)
     return out
 
 

@@ -8,7 +8,6 @@ evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.design.engine`
 from __future__ import annotations
 
 import copy
-import math
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -366,13 +365,13 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
+    free_input, unit = None if timing is None else timing.input, model_units.Factors(mechanism).angle
+    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input, unit)
     # Variables, buffers and position 1 in the model's units (mm, degrees): the core's models work in its own.
-    factors, in_units = model_units.variable_factors(mechanism, vary, variables, timed), deck.keys
+    factors, in_units = model_units.variable_factors(mechanism, vary, variables, timed, turn), deck.keys
     if timed is not None:
         timed.builders = [model_units.builder(mechanism, b, factors, in_units, built.numbering) for b in timed.builders]
     builder = model_units.builder(mechanism, built.builder, factors, in_units, built.numbering)
-    free_input = None if timing is None else timing.input
-    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
@@ -399,7 +398,7 @@ def optimize(
             raise ValueError(f"{name!r} starts at {start}, outside its range ({a}, {b})")
     framed = None
     if frame is not None:
-        span = frame.span or (-math.pi, math.pi)
+        span = frame.span or (-half, half)
         framed = (frame.name, float(span[0]), float(span[1]), frame.span is None)
     with deckio.tables_dir(built.tables) as base:
         model = (
