@@ -77,7 +77,8 @@ browser:
 # Chromium is installed (network and disk) while the package builds (processor). The Rust steps build without
 # incremental caches unless CARGO_INCREMENTAL says otherwise: `make test` mostly runs on a fresh clone, where a
 # cache is written and never read. pytest's summary gives the time of the slow families (browser, cluster,
-# large_run: pyproject.toml) apart from the rest.
+# large_run: pyproject.toml) apart from the rest. mypy (one process) checks the Python package while clippy checks
+# the crates, so that the second core is not idle; its report is shown when clippy is done.
 test: BUILD_PROFILE = quick
 test: export CARGO_INCREMENTAL ?= 0
 test:
@@ -86,10 +87,11 @@ test:
 	wait $$browser
 	cargo fmt --all --check
 	$(BIN)/ruff check python tests
-	cargo clippy --workspace --all-targets -- -D warnings
+	$(BIN)/mypy --strict python/mechfem > .venv/mypy.log 2>&1 & mypy=$$!; \
+	cargo clippy --workspace --all-targets -- -D warnings; \
+	wait $$mypy || { cat .venv/mypy.log; exit 1; }; cat .venv/mypy.log
 	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
 	cargo test --workspace --exclude mechfem-py
-	$(BIN)/mypy --strict python/mechfem
 	$(PY) -m pytest -q -n auto tests
 
 # The documentation site: docs/*.md with mkdocs (a dev dependency) into site/; --strict fails on any warning,
