@@ -9,9 +9,9 @@ import re
 from pathlib import Path
 
 import numpy as np
+from test_names_units import DEG, EXAMPLES, SUPPLY_NAMES, L, close, converted, run, supply_rules
 
 import mechfem
-from test_names_units import DEG, EXAMPLES, L, SUPPLY_NAMES, close, converted, run, supply_rules
 
 MS = 1000.0
 
