@@ -109,12 +109,27 @@ def deck(tmp_path: Path, unit: str) -> Path:
     return path
 
 
-def test_free_ordered_timing_in_a_deck_in_degrees_is_the_one_in_radians(tmp_path: Path) -> None:
+def rocker_target(path: Path, unit: str) -> None:
+    """Adds the rocker angle at the known points (B about B0 = (40, 0)) as a third TARGET, in ``unit``."""
+    run = four_bar("deg").run()
+    phi = np.degrees(np.arctan2(np.asarray(run.value("B.y")), np.asarray(run.value("B.x")) - 40.0))
+    values = phi if unit == "deg" else np.radians(phi)
+    (path.parent / "phi.dat").write_text("".join(f"{float(v)!r}\n" for v in values))
+    text = path.read_text().replace("FORM 6 ANGB 1 6 1.0\n", "FORM 6 ANGB 1 6 1.0\nFORM 7 ANGB 3 -1 1.0\n")
+    path.write_text(text.replace("TARGET 2 py.dat\n", "TARGET 2 py.dat\nBUFE0 -1 3\nTARGET 3 phi.dat\n"))
+
+
+# With the rocker angle as a target too, its values are read in the deck's own angle unit: in degrees they are the
+# radian deck's converted, so both decks start and end alike.
+@pytest.mark.parametrize("rocker", [False, True], ids=["points", "points and rocker angle"])
+def test_free_ordered_timing_in_a_deck_in_degrees_is_the_one_in_radians(tmp_path: Path, rocker: bool) -> None:
     found = {}
     for unit in ("deg", "rad"):
         path = deck(tmp_path, unit)
+        if rocker:
+            rocker_target(path, unit)
         opt = optimise_deck.describe(path)["optimise"]
-        assert opt is not None
+        assert opt is not None and len(opt["targets"]) == (3 if rocker else 2)
         out = optimise_deck.optimise(path, opt)
         assert out.synthesis is not None
         found[unit] = (out.solution, out.synthesis.inputs(out.solution.x))
@@ -124,27 +139,3 @@ def test_free_ordered_timing_in_a_deck_in_degrees_is_the_one_in_radians(tmp_path
     assert deg.x[0] == pytest.approx(10.0, abs=1e-7)
     assert np.asarray(t_deg) == pytest.approx(np.degrees(t_rad), abs=1e-6)
     assert np.asarray(t_deg) == pytest.approx(THETAS, abs=1e-6)
-
-
-def test_a_target_of_an_angle_under_free_timing_is_read_in_the_decks_degrees(tmp_path: Path) -> None:
-    # The rocker angle at the known points (B about B0 = (40, 0)) as a third TARGET, in the deck's own angle unit:
-    # read in degrees, it is the radian deck's target converted, so both decks start and end alike.
-    run = four_bar("deg").run()
-    phi = np.degrees(np.arctan2(np.asarray(run.value("B.y")), np.asarray(run.value("B.x")) - 40.0))
-    found = {}
-    for unit in ("deg", "rad"):
-        path = deck(tmp_path, unit)
-        values = phi if unit == "deg" else np.radians(phi)
-        (path.parent / "phi.dat").write_text("".join(f"{float(v)!r}\n" for v in values))
-        text = path.read_text().replace("FORM 6 ANGB 1 6 1.0\n", "FORM 6 ANGB 1 6 1.0\nFORM 7 ANGB 3 -1 1.0\n")
-        path.write_text(text.replace("TARGET 2 py.dat\n", "TARGET 2 py.dat\nBUFE0 -1 3\nTARGET 3 phi.dat\n"))
-        opt = optimise_deck.describe(path)["optimise"]
-        assert opt is not None and len(opt["targets"]) == 3
-        out = optimise_deck.optimise(path, opt)
-        assert out.synthesis is not None
-        found[unit] = (out.solution, out.synthesis.inputs(out.solution.x))
-    (deg, t_deg), (rad, t_rad) = found["deg"], found["rad"]
-    assert deg.start_objective == pytest.approx(rad.start_objective, rel=1e-9)
-    assert deg.objective < 1e-16 and rad.objective < 1e-16
-    assert np.asarray(t_deg) == pytest.approx(THETAS, abs=1e-6)
-    assert np.asarray(t_deg) == pytest.approx(np.degrees(t_rad), abs=1e-6)
