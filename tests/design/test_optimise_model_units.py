@@ -111,3 +111,18 @@ def test_a_frame_angle_is_found_in_the_models_units() -> None:
     assert found["mm"].values["frame"] == pytest.approx(np.degrees(0.4), abs=1e-7)
     assert found["mm"].values["crank.length"] == pytest.approx(1000.0, rel=1e-9)
     assert found["mm"].mechanism["theta"].value == pytest.approx(np.degrees(0.4), abs=1e-7)
+
+
+def test_a_transfer_function_target_is_in_the_models_derived_unit() -> None:
+    # dB.x/dphi at the last position asked for in m/deg and in mm/deg (both models in degrees): the same design.
+    found = {}
+    for unit, f in (("m", 1.0), ("mm", 1000.0)):
+        q = mechfem.Q("B.x", 1)
+        o = mechfem.optimize(
+            fourbar(unit), {"coupler.length": (3.0 * f, 4.0 * f)}, targets=[TargetAt(q, 10, -0.015 * f)], motion=MOTION
+        )
+        found[unit] = o.values["coupler.length"] / f
+        assert o.objective < 1e-16 * f * f
+        assert o.run().value("B.x", 1)[-1] == pytest.approx(-0.015 * f, rel=1e-6)
+    assert found["mm"] == pytest.approx(found["m"], rel=1e-7)
+    assert 3.5 < found["m"] < 3.8

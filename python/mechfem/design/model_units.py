@@ -6,8 +6,9 @@ gradient and the co-ordinates at position 1 in them too. :func:`mechfem.optimize
 (ranges, start values, free timing and its order, a whole turn of 360, a TargetAt or Bound of a length or an
 angle): the models here hand the core a variable times its unit's factor (pi/180 for degrees, 1/1000 for mm) and
 scale its gradient column by the same factor (d/d degree = pi/180 d/d radian), and give a length's or an angle's
-value, its gradient and the co-ordinates at position 1 divided by it. Transfer functions, velocities and masses keep
-the core's units. A model in metres and radians is not wrapped, so its results stay bit for bit the core's."""
+value, its gradient and the co-ordinates at position 1 divided by it; a transfer function is divided by its
+quantity's factor over its inputs' (mm/deg). Velocities and masses keep the core's units. A model in metres and
+radians is not wrapped, so its results stay bit for bit the core's."""
 
 from __future__ import annotations
 
@@ -198,8 +199,9 @@ def variable_factors(
 
 
 def buffer_factors(mech: Mechanism, keys: Mapping[tuple[str, tuple[object, ...]], int]) -> dict[int, float]:
-    """Of the buffers ``keys`` (``optimize``'s (keyword, arguments) -> number), those that hold a length's or an
-    angle's value (a co-ordinate or a row, order 0; a transmission angle), with their factor."""
+    """Of the buffers ``keys`` (``optimize``'s (keyword, arguments) -> number), those whose unit in the model is not
+    the core's, with their factor: a length's or an angle's value (a co-ordinate or a row; a transmission angle)
+    and a transfer function of one (its unit over its inputs' units)."""
     from mechfem.model.mechanism import Coordinate, FormParameter, Row
 
     units = Factors(mech)
@@ -213,6 +215,13 @@ def buffer_factors(mech: Mechanism, keys: Mapping[tuple[str, tuple[object, ...]]
             f = units.coordinate(obj)
         elif keyword == "BUFE0" and isinstance(obj, Row | FormParameter):
             f = units.form(obj)
+        elif keyword in ("BUFKX1", "BUFKX2", "BUFKE1", "BUFKE2") and isinstance(obj, Coordinate | Row | FormParameter):
+            # A transfer function in the model's derived unit (mm/deg, deg/deg): the quantity's factor over the
+            # factor of each input it is taken with respect to.
+            f = units.coordinate(obj) if isinstance(obj, Coordinate) else units.form(obj)
+            inputs = [r for r in mech.rows if r.kind == "input"]
+            for j in args[1:]:
+                f /= units.form(inputs[int(j) - 1])  # type: ignore[call-overload]
         if f != 1.0:
             out[number] = f
     return out
