@@ -126,7 +126,8 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
         if pivot is None:
             raise AssertionError("the deck reader checks that VARYFRAME names a fixed point")
         span = (float(frame["lo"]), float(frame["hi"]))
-        turn = frame_angle.plan(mech, FrameAngle(pivot.name, span=span), numbering, free_name)
+        # The deck's problem is in the core's units: its frame angle in radians.
+        turn = frame_angle.plan(mech, FrameAngle(pivot.name, span=span), numbering, free_name, unit=1.0)
         framed = ("frame", span[0], span[1], design_rules.full_turn(*span))
     q = synthesis_problem(
         of,

@@ -66,9 +66,12 @@ class Turn:
     """Radians per unit of the frame angle, which is in the mechanism's angle unit (pi/180 for degrees)."""
 
 
-def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: str | None, unit: float = 1.0) -> Turn:
+def plan(
+    mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: str | None, unit: float | None = None
+) -> Turn:
     """The turn of ``mechanism``'s frame; ``free_input`` (an input with free timing) is not turned: its values at
-    the points are design variables of their own."""
+    the points are design variables of their own. ``unit``: radians per unit of the frame angle (default: the
+    mechanism's angle unit, in which :func:`mechfem.optimize` takes it)."""
     from mechfem.design.optimise import _variable
 
     fixed = [p for p in mechanism.points if p.fixed]
@@ -89,6 +92,8 @@ def plan(mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: st
     inputs = [r for r in mechanism.rows if r.kind == "input" and r.is_angle and r.name != free_input]
     angles += [number(r.name) for r in inputs]
     flat = [v for pair in points for v in pair]
+    if unit is None:
+        unit = math.pi / 180.0 if mechanism.units.angle == "deg" else 1.0
     return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names, unit)
 
 

@@ -161,6 +161,31 @@ class ScaledBuilder:
         )
 
 
+def dynamic_in_core_units(mech: Mechanism, factors: Mapping[tuple[int, int], float], dynamic: bool) -> None:
+    """Refuses a dynamic optimisation whose numbers would not be the core's: the dynamic design models take masses,
+    inertias and lengths and give drive torques and forces in SI units only, so a model in other units of length,
+    mass, force or time, or with a varied angle in degrees, is refused rather than optimised in mixed units."""
+    units = mech.units
+    other = [
+        f"{kind} in {unit}"
+        for kind, unit, core in (
+            ("lengths", units.length, "m"),
+            ("masses", units.mass, "kg"),
+            ("forces", units.force, "N"),
+            ("time", units.time, "s"),
+        )
+        if unit not in (None, core)
+    ]
+    if any(f == DEGREE for f in factors.values()):
+        other.append("a varied angle in degrees")
+    if dynamic and other:
+        raise ValueError(
+            f"a dynamic optimisation (masses varied, or a drive or shaking judged) works in SI units, and the "
+            f"mechanism {mech.name!r} has {', '.join(other)}: state it in metres, kilograms, newtons, seconds and "
+            "radians for the optimisation (Mechanism(..., length='m', mass='kg', force='N', time='s', angle='rad'))"
+        )
+
+
 def whole_turn(mech: Mechanism) -> float:
     """One turn in the mechanism's unit of angle: 2 pi, or 360 when its angles are in degrees."""
     return 360.0 if mech.units.angle == "deg" else 2.0 * math.pi
@@ -257,6 +282,7 @@ __all__ = [
     "buffer_factors",
     "builder",
     "coordinate_factors",
+    "dynamic_in_core_units",
     "variable_factors",
     "whole_turn",
 ]

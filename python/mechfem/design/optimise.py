@@ -365,8 +365,8 @@ def optimize(
             raise ValueError("a TargetExtremum needs a motion: with free timing the positions are the target points")
         timed = plan(mechanism, timing, deck.storage, built.numbering)
         positions = len(timed.thetas)
-    free_input, unit = None if timing is None else timing.input, model_units.Factors(mechanism).angle
-    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input, unit)
+    free_input = None if timing is None else timing.input
+    turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
     # Variables, buffers and position 1 in the model's units (mm, degrees): the core's models work in its own.
     factors, in_units = model_units.variable_factors(mechanism, vary, variables, timed, turn), deck.keys
     if timed is not None:
@@ -383,6 +383,7 @@ def optimize(
             "a dynamic optimisation (masses varied, or a drive or shaking judged) is judged at the instants of the "
             "motion: free timing, full_rotation, frame and TargetExtremum belong to kinematic synthesis"
         )
+    model_units.dynamic_in_core_units(mechanism, factors, dynamic)
     periodic = [
         False if dynamic_optimise.is_mass(v[0]) else _periodic(mechanism, name, span)
         for (name, span), v in zip(vary.items(), variables, strict=True)
