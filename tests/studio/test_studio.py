@@ -453,3 +453,28 @@ def test_a_mechanism_with_a_shape_no_map_draws_keeps_its_map_between_edits() -> 
 def test_cli_refuses_a_folder_that_is_not_there(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert cli.main(["studio", "--folder", str(tmp_path / "none"), "--no-browser"]) == 1
     assert f"--folder {tmp_path / 'none'}: no such folder" in capsys.readouterr().err
+
+
+def _four_bar_in_mm(steps: int) -> mechfem.Mechanism:
+    """The template four-bar with its lengths in mm (every length times 1000)."""
+    m = mechfem.Mechanism("fourbar_mm", length="mm", angle="deg")
+    a0, b0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 4000.0, 0.0)
+    a, b, c = m.point("A", 1000.0, 0.0), m.point("B", 3200.0, 2800.0), m.point("C", 1900.0, 1500.0)
+    m.bar("crank", a0, a, length=1000.0, angle=mechfem.Driven(0.0, name="phi"))
+    m.ternary2("coupler", a, b, c, length=3500.0, u=1500.0, v=1200.0)
+    m.bar("rocker", b0, b, length=3000.0, angle=mechfem.Output("psi"))
+    m.motion = mechfem.Motion.by(steps, 360.0, unit="deg")
+    return m
+
+
+def test_optimise_in_a_model_in_mm_reaches_the_value_given_in_mm() -> None:
+    # The coupler point's lowest y (900 mm in the template) asked to reach 1200 mm, as in metres above: the page's
+    # value, the dimensions and the result all in the model's mm.
+    actions = Actions(Session(_four_bar_in_mm(72)))
+    low = {"op": "optimise", "target": "extremum", "quantity": "C.y", "which": "min", "goal": "value", "value": 1200.0}
+    reply = actions.handle({**low, "vary": ["coupler.v"]}, lambda _: None)
+    assert reply["type"] == "design", reply
+    session = actions.session
+    assert session is not None
+    assert float(np.min(session.result.value("C.y"))) == pytest.approx(1200.0, abs=1e-3)
+    assert 1200.0 < session.mechanism["coupler.v"].value < 2400.0
