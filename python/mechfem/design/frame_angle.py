@@ -23,6 +23,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from mechfem.design.model_units import Factors
+
 if TYPE_CHECKING:
     from mechfem.design.engine import DesignModelOf, FloatArray
     from mechfem.model.mechanism import Mechanism
@@ -93,7 +95,7 @@ def plan(
     angles += [number(r.name) for r in inputs]
     flat = [v for pair in points for v in pair]
     if unit is None:
-        unit = math.pi / 180.0 if mechanism.units.angle == "deg" else 1.0
+        unit = Factors(mechanism).angle
     return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names, unit)
 
 

@@ -164,7 +164,10 @@ class ScaledBuilder:
 def dynamic_in_core_units(mech: Mechanism, factors: Mapping[tuple[int, int], float], dynamic: bool) -> None:
     """Refuses a dynamic optimisation whose numbers would not be the core's: the dynamic design models take masses,
     inertias and lengths and give drive torques and forces in SI units only, so a model in other units of length,
-    mass, force or time, or with a varied angle in degrees, is refused rather than optimised in mixed units."""
+    mass, force or time, or with a varied angle in degrees, is refused rather than optimised in mixed units (a
+    kinematic optimisation, ``dynamic`` False, is not)."""
+    if not dynamic:
+        return
     units = mech.units
     other = [
         f"{kind} in {unit}"
@@ -178,7 +181,7 @@ def dynamic_in_core_units(mech: Mechanism, factors: Mapping[tuple[int, int], flo
     ]
     if any(f == DEGREE for f in factors.values()):
         other.append("a varied angle in degrees")
-    if dynamic and other:
+    if other:
         raise ValueError(
             f"a dynamic optimisation (masses varied, or a drive or shaking judged) works in SI units, and the "
             f"mechanism {mech.name!r} has {', '.join(other)}: state it in metres, kilograms, newtons, seconds and "

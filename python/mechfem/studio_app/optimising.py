@@ -183,15 +183,14 @@ def extremum(
     # The objective's unit: the quantity's span over the start design, so that it is about 1 at the start.
     span = max(float(np.nanmax(before) - np.nanmin(before)), abs(value or 0.0) * 1e-3, 1e-12)
     sign = 1.0 if which == "max" else -1.0
-    wanted = value
     q = Q(quantity)
 
     def objective(e: Evaluated) -> tuple[float, np.ndarray]:
         v, g = e.value(q), e.gradient(q)
         k = int(np.nanargmax(sign * v))
         if goal == "value":
-            assert wanted is not None
-            d = (v[k] - wanted) / span
+            assert value is not None
+            d = (v[k] - value) / span
             return d * d, 2.0 * d / span * g[k]
         up = 1.0 if goal == "up" else -1.0
         return -up * v[k] / span, -up * g[k] / span
