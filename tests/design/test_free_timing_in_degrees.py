@@ -131,8 +131,8 @@ def test_free_ordered_timing_in_a_deck_in_degrees_is_the_one_in_radians(tmp_path
         opt = optimise_deck.describe(path)["optimise"]
         assert opt is not None and len(opt["targets"]) == (3 if rocker else 2)
         out = optimise_deck.optimise(path, opt)
-        assert out.synthesis is not None
-        found[unit] = (out.solution, out.synthesis.inputs(out.solution.x))
+        assert out.deck.synthesis is not None
+        found[unit] = (out, out.deck.synthesis.inputs(out.x))
     (deg, t_deg), (rad, t_rad) = found["deg"], found["rad"]
     assert deg.start_objective == pytest.approx(rad.start_objective, rel=1e-9)
     assert deg.objective < 1e-16 and rad.objective < 1e-16

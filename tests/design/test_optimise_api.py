@@ -87,6 +87,10 @@ def test_function_generation_follows_the_logarithm() -> None:
     assert opt.objective < 1e-3 * opt.start_objective
     r = opt.run()
     assert np.abs(r.output("phi") - fg.wanted()).max() < math.radians(1.0)
+    # The optimum says how far its one target is left, and where: as the optimised mechanism's run shows.
+    left = np.abs(r.output("phi") - fg.wanted())
+    ((largest, where),) = opt.misses
+    assert largest == pytest.approx(left.max(), rel=1e-9) and where == int(np.argmax(left))
 
 
 def test_bounds_and_minimise_with_slsqp() -> None:

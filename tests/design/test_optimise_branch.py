@@ -5,6 +5,7 @@ optimiser reported."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import subprocess
 from pathlib import Path
@@ -169,8 +170,9 @@ def test_the_report_counts_the_designs_whose_motion_changes_branch(deck: Path) -
     p = optimise_deck.problem(deck, text, opt)
     s = design.solve(p)
     assert s.infeasible == sum(k for k, _ in s.reasons.values()) > 0
-    outcome = optimise_deck.Outcome(deck, opt, p, s, [], design.misses(p, s.final))
-    lines = "\n".join(optimise_deck.print_lines(outcome, None))
+    lines = "\n".join(
+        optimise_deck.print_lines(dataclasses.replace(s, deck=optimise_deck.DeckProblem(deck, opt, p)), None)
+    )
     for kind, (n, first) in s.reasons.items():
         assert f"{n} infeasible: {optimise_deck.INFEASIBLE_KINDS[kind]} (the first: {first})" in lines
     # The optimiser meets designs whose motion jumps over a limit position: said, unless the stepper stops there.
@@ -208,6 +210,6 @@ def test_a_synthesis_returns_the_objective_of_its_final_design_evaluated_afresh(
     problem = optimise_deck.problem(deck, deck.read_text(), opt)
     s = design.solve(problem)
     fresh = design.Evaluator(problem)
-    fresh.start_at(s.start)
+    fresh.start_at(s.x_start)
     assert design.objective(problem, fresh(s.x))[0] == s.objective
     assert abs(s.objective - final) <= 1e-9 * final

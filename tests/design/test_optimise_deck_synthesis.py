@@ -35,7 +35,7 @@ def limited(tmp_path: Path) -> Path:
     return deck
 
 
-def solved(deck: Path) -> optimise_deck.Outcome:
+def solved(deck: Path) -> mechfem.Optimum:
     opt = optimise_deck.describe(deck)["optimise"]
     assert opt is not None
     return optimise_deck.optimise(deck, opt)
@@ -44,22 +44,22 @@ def solved(deck: Path) -> optimise_deck.Outcome:
 def test_free_timing_in_the_deck_is_the_python_problem(tmp_path: Path) -> None:
     out = solved(limited(tmp_path))
     py = sl.synthesise(steps=STEPS)
-    s = out.solution
-    assert out.synthesis is not None
+    s = out
+    assert out.deck.synthesis is not None
     assert s.objective == pytest.approx(py.objective, rel=1e-6, abs=1e-18)
     assert s.start_objective == pytest.approx(py.start_objective, rel=1e-12)
     n = len(sl.VARY)
     for x, name in zip(s.x[:n], sl.VARY, strict=True):
         assert x == pytest.approx(py.values[name], rel=1e-6, abs=1e-6)
-    assert out.synthesis.inputs(s.x) == pytest.approx(py.timing, abs=1e-6)
+    assert out.deck.synthesis.inputs(s.x) == pytest.approx(py.timing, abs=1e-6)
     assert py.timing is not None and len(py.timing) == 6
 
 
 def test_the_written_design_of_a_free_timing_deck_passes_its_points(tmp_path: Path) -> None:
     out = solved(limited(tmp_path))
     written = optimise_deck.write_design_deck(out, tmp_path / "out")
-    assert out.synthesis is not None
-    inputs = out.synthesis.inputs(out.solution.x)
+    assert out.deck.synthesis is not None
+    inputs = out.deck.synthesis.inputs(out.x)
     assert inputs is not None
     m = mechfem.Mechanism.from_deck(written)
     assert m["theta"].value == pytest.approx(inputs[0], abs=1e-12)
@@ -70,7 +70,7 @@ def test_the_written_design_of_a_free_timing_deck_passes_its_points(tmp_path: Pa
         steps = max(1, math.ceil(abs(theta - inputs[0]) / 0.02))
         r = m.run(mechfem.Motion.by(steps, theta - inputs[0] if theta != inputs[0] else 1e-12))
         total += (r.value("P.x")[-1] - x) ** 2 + (r.value("P.y")[-1] - y) ** 2
-    assert total == pytest.approx(out.solution.objective, rel=1e-6, abs=1e-12)
+    assert total == pytest.approx(out.objective, rel=1e-6, abs=1e-12)
 
 
 def _turned_path_deck(tmp_path: Path, extra: str, phi: float) -> Path:
@@ -101,8 +101,8 @@ def test_a_frame_angle_in_the_deck_is_the_python_problem(tmp_path: Path) -> None
         rows = (tmp_path / file).read_text().split()
         targets.append(mechfem.Target(name, np.array([math.nan if r == "*" else float(r) for r in rows])))
     py = mechfem.optimize(ps.four_bar((3.2, 0.0, *ps.START[2:])), vary, targets=targets, frame=FrameAngle("A0"))
-    assert out.solution.objective < 1e-18 and py.objective < 1e-18
-    assert out.solution.x[len(vary)] == pytest.approx(phi, abs=1e-8)
+    assert out.objective < 1e-18 and py.objective < 1e-18
+    assert out.x[len(vary)] == pytest.approx(phi, abs=1e-8)
     assert py.values["frame"] == pytest.approx(phi, abs=1e-8)
     # The written deck holds the turned frame: B0 on the line at phi, the crank starting at phi.
     written = optimise_deck.write_design_deck(out, tmp_path / "out")
@@ -121,8 +121,8 @@ def test_a_full_turn_in_the_deck_is_the_python_problem(tmp_path: Path) -> None:
     out = solved(deck)
     vary = {n: (lo, hi) for n, lo, hi in zip(ps.NAMES, ps.LOWER, ps.UPPER, strict=True)}
     py = mechfem.optimize(ps.four_bar(), vary, targets=ps.targets(), full_rotation=True)
-    assert out.solution.objective < 1e-18 and py.objective < 1e-18
-    for x, name in zip(out.solution.x, ps.NAMES, strict=True):
+    assert out.objective < 1e-18 and py.objective < 1e-18
+    for x, name in zip(out.x, ps.NAMES, strict=True):
         assert x == pytest.approx(py.values[name], abs=1e-8)
 
 
@@ -146,10 +146,10 @@ def test_a_bound_on_a_transmission_angle_in_the_deck_is_the_python_problem(tmp_p
     vary = {n: (a, b) for n, a, b in zip(ps.NAMES, ps.LOWER, ps.UPPER, strict=True)}
     bound = mechfem.Bound(mechfem.Transmission("coupler", "rocker"), lo, 3.0)
     py = mechfem.optimize(ps.four_bar(), vary, targets=ps.targets(), bounds=[bound], rtol=1e-12, atol=1e-16, steps=12)
-    assert out.solution.method.startswith("SLSQP") and py.method.startswith("SLSQP")
+    assert out.method.startswith("SLSQP") and py.method.startswith("SLSQP")
     assert py.objective > 1e-5
-    assert out.solution.objective == pytest.approx(py.objective, rel=1e-6)
-    for x, name in zip(out.solution.x, ps.NAMES, strict=True):
+    assert out.objective == pytest.approx(py.objective, rel=1e-6)
+    for x, name in zip(out.x, ps.NAMES, strict=True):
         assert x == pytest.approx(py.values[name], abs=1e-6)
     # Within its first iterations SLSQP keeps the bound at every position (docs/optimisation.md gives the optimum on
     # the bound, 60 runs on).
@@ -166,9 +166,9 @@ def test_ordered_free_timing_in_the_deck_is_the_python_problem(tmp_path: Path) -
     py = mechfem.optimize(
         sl.four_bar(), sl.VARY, targets=targets, timing=timing, full_rotation=True, rtol=1e-12, atol=1e-20, steps=STEPS
     )
-    assert out.synthesis is not None and py.timing is not None
-    assert out.solution.objective == pytest.approx(py.objective, rel=1e-6, abs=1e-18)
-    inputs = out.synthesis.inputs(out.solution.x)
+    assert out.deck.synthesis is not None and py.timing is not None
+    assert out.objective == pytest.approx(py.objective, rel=1e-6, abs=1e-18)
+    inputs = out.deck.synthesis.inputs(out.x)
     assert inputs == pytest.approx(py.timing, abs=1e-6)
     # Ordered: every point's crank angle at or after the one before.
     assert all(b >= a for a, b in zip(inputs, inputs[1:], strict=False))

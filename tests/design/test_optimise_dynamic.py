@@ -68,7 +68,7 @@ def test_the_balancing_example_finds_the_textbooks_full_balance_of_the_crank() -
     opt = optimise_deck.describe(EXAMPLE)["optimise"]
     assert [(v["item"], v["number"]) for v in opt.get("mass_vary") or []] == [("U", 1), ("V", 1)]
     outcome = optimise_deck.optimise(EXAMPLE, opt)
-    s = outcome.solution
+    s = outcome
     # The rod as equivalent point masses at A and at the piston B.
     m_a = M_ROD * (L - A) / L
     m_rec = M_PISTON + M_ROD * A / L
@@ -81,7 +81,7 @@ def test_the_balancing_example_finds_the_textbooks_full_balance_of_the_crank() -
     primary = m_rec * R * omega**2
     assert primary / 2 < s.objective < primary / 2 + primary * R / L
     assert s.start_objective > 2.5 * s.objective
-    assert outcome.problem.names == ["U 1", "V 1"]
+    assert outcome.deck.problem.names == ["U 1", "V 1"]
 
 
 @pytest.fixture(scope="module")
@@ -118,7 +118,7 @@ def test_the_written_deck_runs_to_the_optimum_found(optimised: tuple[Path, Path]
     fx, fy = d["values"][:, 0], d["values"][:, 1]
     rms = float(np.sqrt(np.mean(fx**2 + fy**2)))
     outcome = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
-    assert rms == pytest.approx(outcome.solution.objective, rel=1e-9)
+    assert rms == pytest.approx(outcome.objective, rel=1e-9)
 
 
 def test_the_report_shows_the_balancing_as_its_optimisation_section(optimised: tuple[Path, Path]) -> None:
@@ -130,7 +130,7 @@ def test_the_report_shows_the_balancing_as_its_optimisation_section(optimised: t
     final = mechfem.run_deck(out / f"{deck.stem}_opt.mec")
     section = deck_section(outcome, final)
     assert [(v["name"], v["unit"]) for v in section["variables"]] == [("U 1", "m"), ("V 1", "m")]
-    assert section["objective"]["final"] == pytest.approx(outcome.solution.objective)
+    assert section["objective"]["final"] == pytest.approx(outcome.objective)
     assert section["drawing"]["start"] is not None
 
 
@@ -146,14 +146,14 @@ def test_a_deck_in_grams_varies_and_writes_its_masses_in_grams(tmp_path: Path) -
     deck.write_text("".join(s for s in text.splitlines(keepends=True) if not re.match(r"\s*(BEGINPIC|ENDPIC|PLOT)", s)))
     opt = optimise_deck.describe(deck)["optimise"]
     outcome = optimise_deck.optimise(deck, opt)
-    u, m1 = outcome.solution.x  # the core's units: m and kg
+    u, m1 = outcome.x  # the core's units: m and kg
     first_moment = -R * (M_ROD * (L - A) / L + (M_PISTON + M_ROD * A / L) / 2)
     assert m1 * u == pytest.approx(first_moment, rel=1e-6)
     written = optimise_deck.write_design_deck(outcome, tmp_path / "out")
     mass = next(line for line in written.read_text().splitlines() if line.startswith("MASS  1")).split()
     assert float(mass[2]) == pytest.approx(1000 * m1, rel=1e-12)
     assert float(mass[3]) == pytest.approx(u, rel=1e-12)
-    line = optimise_deck.values_line(outcome.problem, outcome.solution.x, None, opt)
+    line = optimise_deck.values_line(outcome.deck.problem, outcome.x, None, opt)
     assert f"MASS 1 = {1000 * m1:.10g}" in line, line
 
 
@@ -166,8 +166,8 @@ def test_python_optimize_of_the_mechanism_agrees_with_its_deck(tmp_path: Path) -
     vary = {"crank.mass_u": (-0.2, 0.2), "crank.mass_v": (-0.2, 0.2)}
     found = mechfem.optimize(mech, vary, minimize=("rms", ShakingForce()), rtol=1e-13, atol=0.0)
     deck = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
-    assert found.objective == pytest.approx(deck.solution.objective, rel=1e-12)
-    assert found.values["crank.mass_u"] == pytest.approx(deck.solution.x[0], abs=1e-10)
+    assert found.objective == pytest.approx(deck.objective, rel=1e-12)
+    assert found.values["crank.mass_u"] == pytest.approx(deck.x[0], abs=1e-10)
     assert found.start["crank.mass_u"] == 0.03
     body = found.mechanism.loads.of(Body)[0] if found.mechanism.loads else None
     assert body is not None and body.u == found.values["crank.mass_u"]
@@ -177,10 +177,10 @@ def test_python_optimize_of_the_mechanism_agrees_with_its_deck(tmp_path: Path) -
     path = tmp_path / "drive.mec"
     path.write_text(text)
     by_deck = optimise_deck.optimise(path, optimise_deck.describe(path)["optimise"])
-    assert by_deck.problem.names == ["PMASS 7"]
+    assert by_deck.deck.problem.names == ["PMASS 7"]
     by_python = mechfem.optimize(mech, {"B.mass": (0.5, 3.0)}, minimize=("rms", Drive("phi")), rtol=1e-13, atol=0.0)
-    assert by_python.values["B.mass"] == pytest.approx(by_deck.solution.x[0], abs=1e-9)
-    assert by_python.objective == pytest.approx(by_deck.solution.objective, rel=1e-10)
+    assert by_python.values["B.mass"] == pytest.approx(by_deck.x[0], abs=1e-9)
+    assert by_python.objective == pytest.approx(by_deck.objective, rel=1e-10)
 
 
 def test_an_interrupted_balancing_writes_the_design_it_had_reached(tmp_path: Path) -> None:

@@ -102,6 +102,6 @@ def test_a_full_turn_vary_in_a_deck_wraps(tmp_path: Path) -> None:
     opt = optimise_deck.describe(deck)["optimise"]
     assert opt is not None and [v["number"] for v in opt["vary"]] == [6]
     outcome = optimise_deck.optimise(deck, opt)
-    assert outcome.problem.periodic == [True]
-    assert outcome.solution.objective < 1e-18
-    assert outcome.solution.x[0] == pytest.approx(2.0 * math.pi + SHIFT, abs=1e-9)
+    assert outcome.deck.problem.periodic == [True]
+    assert outcome.objective < 1e-18
+    assert outcome.x[0] == pytest.approx(2.0 * math.pi + SHIFT, abs=1e-9)

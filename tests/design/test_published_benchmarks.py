@@ -37,10 +37,19 @@ def test_the_five_points_deck_is_the_python_problem(tmp_path: Path) -> None:
     assert opt is not None
     out = optimise_deck.optimise(deck, opt)
     py = one_start("five_points", 15)
-    assert out.solution.start_objective == pytest.approx(py.start_objective, rel=1e-9)
-    assert out.solution.objective == pytest.approx(py.objective, rel=1e-6)
-    for x, name in zip(out.solution.x, bm.BENCHMARKS["five_points"].vary, strict=True):
+    assert out.start_objective == pytest.approx(py.start_objective, rel=1e-9)
+    assert out.objective == pytest.approx(py.objective, rel=1e-6)
+    for x, name in zip(out.x, bm.BENCHMARKS["five_points"].vary, strict=True):
         assert x == pytest.approx(py.values[name], rel=1e-5)
+    # One result type: the deck's optimum is an Optimum as Python's is, with the deck's problem and no mechanism,
+    # and the targets' misses of both agree (the deck's in m, the benchmark's model in m too).
+    assert type(out) is type(py) is mechfem.Optimum
+    assert out.mechanism is None and out.deck is not None and out.deck.path == deck
+    assert py.mechanism is not None and py.deck is None
+    assert list(out.values) == [f"{'PARA' if v['kind'] == 1 else 'XFIX'} {v['number']}" for v in opt["vary"]]
+    assert len(out.misses) == len(py.misses) == len(opt["targets"])
+    for (d_deck, _), (d_py, _) in zip(out.misses, py.misses, strict=True):
+        assert d_deck == pytest.approx(d_py, rel=1e-3, abs=1e-9)
 
 
 @pytest.mark.parametrize("key", ["five_points", "closed_curve", "ellipse"])

@@ -218,7 +218,7 @@ def test_deck_outcome_summary_names_the_decks_variables(tmp_path: Path) -> None:
     table = outcome._repr_html_()
     for name in ["crank_length", "coupler_length", "rocker_length", "theta"]:
         assert f">{name}</td>" in table
-    s = outcome.solution
+    s = outcome
     assert f"{s.x[0]:.10g}" in table and f"{s.start_objective:.10g}" in table
     fig = outcome.plot_history()
     assert fig.axes[0].get_lines()[0].get_ydata()[-1] == s.objective

@@ -239,7 +239,7 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
     console.note(f"{deck}: optimising {optimise_deck.names_and_lines(opt)}")
     console.bar.phase("optimising", unit="iterations")
     try:
-        outcome = optimise_deck.optimise(deck, opt, report)
+        s = optimise_deck.optimise(deck, opt, report)
     except optimise_deck.OptimisationError as e:
         console.error(str(e))
         return EXIT_FAILED
@@ -249,29 +249,29 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
         done = count(max(len(history) - 1, 0), "iteration")
         console.error(f"mechfem: {deck}: interrupted during the optimisation after {done}.")
         return EXIT_INTERRUPTED
-    s = outcome.solution
-    written_deck = optimise_deck.write_design_deck(outcome, outdir)
+    written_deck = optimise_deck.write_design_deck(s, outdir)
     result, interrupted = run_with_progress(written_deck, args.memory_limit, console.bar)
     result = result.replace(deck=deck)
-    values = optimise_deck.values_line(outcome.problem, s.x, result.model, opt)
+    assert s.deck is not None
+    values = optimise_deck.values_line(s.deck.problem, s.x, result.model, opt)
     console.say(
         f"{deck}: {'optimised' if s.success else 'optimiser stopped'} in {count(s.runs, 'mechanism run')}: "
         f"objective {s.start_objective:.4g} -> {s.objective:.4g}; {values}"
     )
-    lines = optimise_deck.print_lines(outcome, written_deck, result.model)
+    lines = optimise_deck.print_lines(s, written_deck, result.model)
     section = None
     if args.report and not args.no_media and not interrupted:
         from mechfem.report.optimum_report import deck_section
 
-        section = deck_section(outcome, result, args.memory_limit)
+        section = deck_section(s, result, args.memory_limit)
     status = finish_run(args, deck, outdir, result, interrupted, lines, [written_deck], section)
     if not s.success:
         console.note(f"warning: {deck}: the optimiser did not converge: {s.message}")
-    missed = outcome.unreached()
+    missed = optimise_deck.unreached(s)
     if missed is not None:
         console.note(
             f"note: {deck}: the targets are not all reached: the largest difference left is "
-            f"{optimise_deck.missed_value(outcome, missed, result.model)} (the target on line {missed[1]}); the "
+            f"{optimise_deck.missed_value(s, missed, result.model)} (the target on line {missed[1]}); the "
             "design found is the nearest the optimiser could get, and the print "
             "file lists every target's difference"
         )

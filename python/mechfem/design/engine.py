@@ -29,6 +29,7 @@ import numpy.typing as npt
 
 import mechfem._core as _core
 from mechfem.design.dynamic_design import magnitude, reduced
+from mechfem.design.optimum import Optimum
 from mechfem.design.rules import _EPS, _FEASIBLE, TURN, FTol, _Converged, _optimiser_bounds, _reported, _stop_message
 from mechfem.errors import MechfemError
 
@@ -390,36 +391,6 @@ def violation(problem: Problem, e: Evaluation) -> float:
 
 
 @dataclass
-class Solution:
-    """What the optimiser found, in the problem's order of variables."""
-
-    start: FloatArray
-    x: FloatArray
-    objective: float
-    start_objective: float
-    history: list[Iteration]
-    runs: int
-    infeasible: int
-    """How many of the runs met an infeasible design (stepped back from)."""
-    reasons: dict[str, tuple[int, str]]
-    """The infeasible designs by kind of reason: ``"other_branch"`` (position 1 assembles only on another branch than
-    the start design's), ``"left_branch"`` (the motion changes branch), ``"stopped"`` (the motion stops at a limit
-    position), ``"position_one"`` (position 1 cannot be computed), ``"extrema"`` (a TARGETEXT's reference has another
-    number of extrema); for each, how many and the first one's reason."""
-    success: bool
-    message: str
-    seconds: float
-    method: str
-    final: Evaluation
-    """The final design evaluated: every buffer, the extrema and its position 1."""
-
-    @property
-    def position_one(self) -> list[float]:
-        """The co-ordinates at position 1 of the final design, in deck order."""
-        return self.final.position_one
-
-
-@dataclass
 class _Best:
     """The last design the optimiser moved to: where an infeasible one falls back to, without another run."""
 
@@ -428,8 +399,12 @@ class _Best:
     e: Evaluation
 
 
-def solve(problem: Problem, report: Callable[[Iteration], object] | None = None) -> Solution:
-    """Optimises from the deck's design; ``report`` is called with every iteration."""
+def solve(problem: Problem, report: Callable[[Iteration], object] | None = None) -> Optimum:
+    """Optimises from the problem's start design; ``report`` is called with every iteration. The optimum holds the
+    variables by the problem's names in its order, the final evaluation and the targets' misses there; whoever
+    stated the problem adds what it knows (the mechanism, the deck)."""
+    if len(set(problem.names)) != len(problem.names):
+        raise ValueError(f"the design variables' names are not unique: {problem.names}")
     from scipy import optimize
 
     t0 = time.perf_counter()
@@ -579,9 +554,12 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
     f, _ = objective(problem, e)
     if not np.array_equal(x, best.x):
         note(x, e)
-    return Solution(
-        start=x0,
-        x=_reported(problem, np.asarray(x, dtype=np.float64)),
+    final_x = _reported(problem, np.asarray(x, dtype=np.float64))
+    specs = [t for t in problem.terms if isinstance(t, ExtremumTerm)]
+    return Optimum(
+        mechanism=None,
+        start=dict(zip(problem.names, map(float, x0), strict=True)),
+        values=dict(zip(problem.names, map(float, final_x), strict=True)),
         objective=float(f),
         start_objective=float(f0),
         history=history,
@@ -592,5 +570,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         message=message,
         seconds=time.perf_counter() - t0,
         method=method,
+        misses=misses(problem, e),
+        extrema=[(specs[ex["spec"]], float(ex["input"]), float(ex["value"])) for ex in e.extrema],
         final=e,
     )

@@ -8,6 +8,7 @@ evaluated by the same engine as a ``KIN OPT`` deck (:mod:`mechfem.design.engine`
 from __future__ import annotations
 
 import copy
+import dataclasses
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -430,55 +431,32 @@ def optimize(
         )
         sol = design.solve(problem, _progress(progress))
     optimised = copy.deepcopy(mechanism)
+    x0, x = sol.x_start, sol.x
     thetas = None
     turned_by = None
     if frame is not None:
         n = len(vary)
-        turned_by = (float(sol.start[n]), float(sol.x[n]))
-        sol.x, sol.start = np.delete(sol.x, n), np.delete(sol.start, n)
+        turned_by = (float(x0[n]), float(x[n]))
+        x, x0 = np.delete(x, n), np.delete(x0, n)
     if timed is not None and timing is not None:
         n = len(vary)
-        thetas = [float(t) for t in timed_inputs(timed, sol.x[n:])]
+        thetas = [float(t) for t in timed_inputs(timed, x[n:])]
         optimised.set(timing.input, thetas[0])
-        sol.x, sol.start = sol.x[:n], sol.start[:n]
+        x, x0 = x[:n], x0[:n]
         motion = None
-    for name, x in zip(vary, sol.x, strict=True):
-        if not dynamic_optimise.apply(optimised, name, float(x)):
-            optimised.set(name, float(x))
+    for name, value in zip(vary, x, strict=True):
+        if not dynamic_optimise.apply(optimised, name, float(value)):
+            optimised.set(name, float(value))
     if turn is not None and turned_by is not None and frame is not None:
         frame_angle.apply(optimised, turn, turned_by[1])
     _carry_position_one(optimised, built.numbering, sol.position_one)
-    start_values = dict(zip(vary, map(float, sol.start), strict=True))
-    final_values = dict(zip(vary, map(float, sol.x), strict=True))
+    start_values = dict(zip(vary, map(float, x0), strict=True))
+    final_values = dict(zip(vary, map(float, x), strict=True))
     if turned_by is not None and frame is not None:
         start_values[frame.name], final_values[frame.name] = turned_by
-    return Optimum(
-        mechanism=optimised,
-        start=start_values,
-        values=final_values,
-        objective=sol.objective,
-        start_objective=sol.start_objective,
-        history=sol.history,
-        runs=sol.runs,
-        infeasible=sol.infeasible,
-        reasons=sol.reasons,
-        success=sol.success,
-        message=sol.message,
-        seconds=sol.seconds,
-        method=sol.method,
-        motion=motion,
-        timing=thetas,
-        starts=[
-            Start(
-                start_values,
-                final_values,
-                sol.objective,
-                sol.runs,
-                sol.success,
-                sol.message,
-                sol.seconds,
-            )
-        ],
+    begun = Start(start_values, final_values, sol.objective, sol.runs, sol.success, sol.message, sol.seconds)
+    return dataclasses.replace(
+        sol, mechanism=optimised, start=start_values, values=final_values, motion=motion, timing=thetas, starts=[begun]
     )
 
 

@@ -7,6 +7,7 @@ and says what the optimiser did.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from collections.abc import Callable, Iterable, Mapping
@@ -29,10 +30,8 @@ from mechfem.results.labels import buffer_name, coordinate_units, core_input, co
 from mechfem.results.words import count
 
 if TYPE_CHECKING:
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
-
     from mechfem._core import DescribedDeckDict, OptimiseDict
+    from mechfem.design.optimum import Optimum
 
 
 class OptimisationError(MechfemError):
@@ -179,53 +178,39 @@ def iteration_line(it: design.Iteration) -> str:
 
 
 @dataclass
-class Outcome:
-    """An optimisation of a deck: its problem, the solution and what the targets at extrema gave there."""
+class DeckProblem:
+    """A deck's OPTIMISE block as the engine solves it: the deck, the block as read, the engine's problem (deck
+    numbering, the core's units) and how FREETIME, FULLROT and VARYFRAME write the final design."""
 
-    deck: Path
-    opt: OptimiseDict
+    path: Path
+    block: OptimiseDict
     problem: design.Problem
-    solution: design.Solution
-    extrema: list[tuple[design.ExtremumTerm, float, float]]
-    """``(term, input, buffer value)`` of every extremum at the final design."""
-    misses: list[tuple[float, int | None]]
-    """How far each target (in deck order) is from its value at the final design (:func:`design.misses`)."""
     synthesis: deck_synthesis.Synthesis | None = None
-    """FREETIME, FULLROT and VARYFRAME: how the final design is written."""
-
-    def unreached(self) -> tuple[float, int] | None:
-        """The largest difference of a target from its value and that target's line, when some target is missed
-        by more than 1e-6 of its size; None when every target is met."""
-        worst: tuple[float, int] | None = None
-        for t, term, (d, _) in zip(self.opt["targets"], self.problem.terms, self.misses, strict=True):
-            size = np.nanmax(np.abs(term.values)) if isinstance(term, design.ValuesTerm) else abs(term.value)
-            if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
-                worst = (d, int(t["line"]))
-        return worst
-
-    # The views live in mechfem.design.optimum_view, imported when asked for (it needs matplotlib for the chart).
-    def _repr_html_(self) -> str:
-        """Jupyter's summary table: the variables by the deck's names, start and final, the objective, the verdict."""
-        from mechfem.design import optimum_view
-
-        return optimum_view.summary_html(optimum_view.outcome_summary(self))
-
-    def plot_history(self, ax: Axes | None = None) -> Figure:
-        """The objective per iteration on a logarithmic axis (on ``ax``, default a new figure); the figure."""
-        from mechfem.design import optimum_view
-
-        return optimum_view.plot_history(self.solution.history, ax)
 
 
-def missed_value(outcome: Outcome, missed: tuple[float, int], model: Model | None) -> str:
-    """The largest difference :meth:`Outcome.unreached` gives, in the units of its target's buffer."""
-    buffer = next((int(t["buffer"]) for t in outcome.opt["targets"] if int(t["line"]) == missed[1]), 0)
+def unreached(optimum: Optimum) -> tuple[float, int] | None:
+    """The largest difference of a deck's target from its value and that target's line, when some target is missed
+    by more than 1e-6 of its size; None when every target is met."""
+    assert optimum.deck is not None
+    worst: tuple[float, int] | None = None
+    for t, term, (d, _) in zip(optimum.deck.block["targets"], optimum.deck.problem.terms, optimum.misses, strict=True):
+        size = np.nanmax(np.abs(term.values)) if isinstance(term, design.ValuesTerm) else abs(term.value)
+        if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
+            worst = (d, int(t["line"]))
+    return worst
+
+
+def missed_value(optimum: Optimum, missed: tuple[float, int], model: Model | None) -> str:
+    """The largest difference :func:`unreached` gives, in the units of its target's buffer."""
+    assert optimum.deck is not None
+    buffer = next((int(t["buffer"]) for t in optimum.deck.block["targets"] if int(t["line"]) == missed[1]), 0)
     return core_value(model, buffer, missed[0], ".4g")
 
 
-def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Outcome:
+def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Optimum:
     """Solves the deck's OPTIMISE block from its own design; raises :class:`OptimisationError` when it cannot
-    start."""
+    start. The optimum's ``deck`` holds the problem solved; it has no mechanism (:func:`write_design_deck` writes
+    the final design)."""
     text = _core.read_deck_text(deck)
     try:
         syn = deck_synthesis.synthesis(deck, opt, problem(deck, text, opt))
@@ -233,7 +218,7 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
         raise OptimisationError(str(e)) from None
     p = syn.problem
     try:
-        solution = design.solve(p, report=report)
+        optimum = design.solve(p, report=report)
     except design.Infeasible as e:
         raise OptimisationError(
             f"error: {deck}: the optimisation (OPTIMISE, line {opt['line']}) cannot start: {e}. The start design "
@@ -254,8 +239,7 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
         raise OptimisationError(
             f"error: {deck}: the OPTIMISE block (line {opt['line']}) cannot be evaluated: {e}."
         ) from None
-    extrema, missed = at_final_design(p, solution)
-    return Outcome(deck, opt, p, solution, extrema, missed, syn)
+    return dataclasses.replace(optimum, deck=DeckProblem(deck, opt, p, syn))
 
 
 def names_and_lines(opt: OptimiseDict) -> str:
@@ -265,27 +249,20 @@ def names_and_lines(opt: OptimiseDict) -> str:
     return ", ".join(named)
 
 
-def at_final_design(
-    p: design.Problem, s: design.Solution
-) -> tuple[list[tuple[design.ExtremumTerm, float, float]], list[tuple[float, int | None]]]:
-    """Every TARGETEXT's extrema at the final design, and how far each target is from its value there."""
-    specs = [t for t in p.terms if isinstance(t, design.ExtremumTerm)]
-    extrema = [(specs[x["spec"]], float(x["input"]), float(x["value"])) for x in s.final.extrema]
-    return extrema, design.misses(p, s.final)
-
-
-def write_design_deck(outcome: Outcome, outdir: Path) -> Path:
-    """Writes the final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
+def write_design_deck(optimum: Optimum, outdir: Path) -> Path:
+    """Writes a deck's final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
     variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
-    s = outcome.solution
-    variables, x = outcome.problem.variables, s.x
-    if outcome.synthesis is not None:
-        variables, x = outcome.synthesis.written(s.x)
+    stated = optimum.deck
+    assert stated is not None
+    final = optimum.x
+    variables, x = stated.problem.variables, final
+    if stated.synthesis is not None:
+        variables, x = stated.synthesis.written(final)
         # The mass model's variables (DYN ANA) are written as they are.
-        masses = [(k, v) for k, v in enumerate(outcome.problem.variables) if v[0] in dynamic_design.MASS_UNITS]
+        masses = [(k, v) for k, v in enumerate(stated.problem.variables) if v[0] in dynamic_design.MASS_UNITS]
         variables = [*variables, *(v for _, v in masses)]
-        x = np.append(x, [s.x[k] for k, _ in masses])
-    return write_design(outcome.deck, variables, x, s.position_one, outdir)
+        x = np.append(x, [final[k] for k, _ in masses])
+    return write_design(stated.path, variables, x, optimum.position_one, outdir)
 
 
 def write_design(
@@ -312,11 +289,12 @@ def write_design(
     return path
 
 
-def print_lines(outcome: Outcome, written: Path | None, model: Model | None = None) -> list[str]:
-    """The print file's OPTIMISATION section; the variables named as ``model`` (the final design's echo) names
-    them."""
-    p, s = outcome.problem, outcome.solution
-    out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {outcome.opt['line']}"]
+def print_lines(s: Optimum, written: Path | None, model: Model | None = None) -> list[str]:
+    """The print file's OPTIMISATION section of a deck's optimum; the variables named as ``model`` (the final
+    design's echo) names them."""
+    assert s.deck is not None
+    p, block = s.deck.problem, s.deck.block
+    out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {block['line']}"]
     out += history_lines(s.history)
     out += [
         "",
@@ -324,8 +302,8 @@ def print_lines(outcome: Outcome, written: Path | None, model: Model | None = No
         f"  {'variable':>10} {'unit':>6} {'start':>18} {'final':>18} {'lower':>14} {'upper':>14}",
     ]
     labels = variable_labels(p, model)
-    scales = deck_scales(outcome.opt, len(labels))
-    for (name, unit), x0, x, lo, hi, f in zip(labels, s.start, s.x, p.lo, p.hi, scales, strict=True):
+    scales = deck_scales(block, len(labels))
+    for (name, unit), x0, x, lo, hi, f in zip(labels, s.x_start, s.x, p.lo, p.hi, scales, strict=True):
         out.append(f"  {name:>10} {unit:>6} {x0 * f:>18.12g} {x * f:>18.12g} {lo * f:>14.8g} {hi * f:>14.8g}")
     out += [
         "",
@@ -335,25 +313,25 @@ def print_lines(outcome: Outcome, written: Path | None, model: Model | None = No
     ]
     out += infeasible_lines(s)
     out.append(f"  {'converged' if s.success else 'did not converge'}: {s.message}")
-    if outcome.extrema:
+    if s.extrema:
         out += ["", "  targets at extrema, at the final design:"]
-        for t, at, value in outcome.extrema:
+        for t, at, value in s.extrema:
             out.append(
                 f"    {buffer_name(model, t.buffer)} at an extremum of {buffer_name(model, t.reference)}, "
                 f"{core_input(model, 1, at)}: {core_value(model, t.buffer, value, '.6e')} "
                 f"(target {core_value(model, t.buffer, t.value)})"
             )
     # A TARGETEXT whose reference has no extremum along the motion adds nothing to the objective: said here.
-    found = {id(t) for t, _, _ in outcome.extrema}
+    found = {id(t) for t, _, _ in s.extrema}
     for term in p.terms:
         if isinstance(term, design.ExtremumTerm) and id(term) not in found:
             out.append(
                 f"  TARGETEXT {term.buffer} {term.reference}: buffer {term.reference} has no extremum along the motion "
                 "at the final design, so this target contributes nothing to the objective"
             )
-    if outcome.opt["targets"]:
+    if block["targets"]:
         out += ["", "  targets at the final design (the largest difference from the value asked for):"]
-        for target, (d, k) in zip(outcome.opt["targets"], outcome.misses, strict=True):
+        for target, (d, k) in zip(block["targets"], s.misses, strict=True):
             where = f" at position {k + 1}" if k is not None else ""
             kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[target["kind"]]
             b = int(target["buffer"])
@@ -373,7 +351,7 @@ INFEASIBLE_KINDS = {
 }
 
 
-def infeasible_lines(s: design.Solution) -> list[str]:
+def infeasible_lines(s: Optimum) -> list[str]:
     """The infeasible designs met, by kind of reason, each with the first one's reason. Every design, the final one
     included, is evaluated on the start design's assembly branch; one that cannot be is among these."""
     out = []

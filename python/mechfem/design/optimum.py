@@ -1,11 +1,18 @@
-"""What :func:`mechfem.optimize` returns: the best design found (:class:`Optimum`) and every start's outcome
-(:class:`Start`), with the summary table and history chart of :mod:`mechfem.design.optimum_view` a method away."""
+"""The one result of an optimisation, whoever asked for it: :func:`mechfem.optimize` of a :class:`Mechanism`, the
+OPTIMISE block of a ``KIN OPT`` or ``DYN ANA`` deck (:mod:`mechfem.design.optimise_deck`) and the engine itself
+(:func:`mechfem.design.engine.solve`) all give an :class:`Optimum`. Each fills in what it knows: the engine the
+numbers of the problem it solved, ``optimize`` the optimised mechanism and its starts, a deck's optimisation the deck
+and its block. Every start's outcome is a :class:`Start`; the summary table and history chart of
+:mod:`mechfem.design.optimum_view` are a method away."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
 
 if TYPE_CHECKING:
     import os
@@ -14,19 +21,28 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from mechfem.design.engine import Iteration
+    from mechfem.design.engine import Evaluation, ExtremumTerm, Iteration
+    from mechfem.design.optimise_deck import DeckProblem
     from mechfem.model.mechanism import Mechanism
     from mechfem.model.motion import Motion
     from mechfem.results.result import RunResult
 
+FloatArray = npt.NDArray[np.float64]
+
 
 @dataclass
 class Optimum:
-    """What :func:`optimize` found: the optimised mechanism, the variables' start and final values, the history."""
+    """What an optimisation found: the variables' start and final values by name, the objective there, the history
+    and the optimiser's verdict; from :func:`optimize` also the optimised mechanism, from a deck the deck's
+    problem (``deck``)."""
 
-    mechanism: Mechanism
+    mechanism: Mechanism | None
+    """The optimised mechanism (:func:`optimize`); None for a deck's optimisation, whose final design is written
+    as a deck (``<stem>_opt.mec``) instead."""
     start: dict[str, float]
+    """Every design variable's start value, by name (a deck's: ``PARA 5``, ``XFIX 3``, in the engine's order)."""
     values: dict[str, float]
+    """Its final value."""
     objective: float
     start_objective: float
     history: list[Iteration]
@@ -51,8 +67,21 @@ class Optimum:
     rejected: list[Start] = field(default_factory=list, repr=False)
     """The draws passed over, each with its reason (``message``)."""
     reasons: dict[str, tuple[int, str]] = field(default_factory=dict)
-    """Those infeasible designs by kind of reason (see :attr:`mechfem.design.engine.Solution.reasons`): how many, and
-    the first one's reason; ``"left_branch"`` counts the designs whose motion changes assembly branch."""
+    """Those infeasible designs by kind of reason: ``"other_branch"`` (position 1 assembles only on another branch
+    than the start design's), ``"left_branch"`` (the motion changes branch), ``"stopped"`` (the motion stops at a
+    limit position), ``"position_one"`` (position 1 cannot be computed), ``"extrema"`` (a TARGETEXT's reference has
+    another number of extrema); for each, how many and the first one's reason."""
+    misses: list[tuple[float, int | None]] = field(default_factory=list)
+    """How far each target (in the order given) is from its value at the final design: the largest difference,
+    unweighted, and the position (0-based) where it is, None for an extremum target. In the units the targets are
+    given in: the mechanism's for :func:`optimize`, the core's (SI) for a deck."""
+    extrema: list[tuple[ExtremumTerm, float, float]] = field(default_factory=list, repr=False)
+    """``(term, input, buffer value)`` of every extremum an extremum target compares, at the final design."""
+    final: Evaluation | None = field(default=None, repr=False)
+    """The final design evaluated by the engine: every buffer the problem reads at every position, and position 1
+    (in the engine's units and order of variables)."""
+    deck: DeckProblem | None = field(default=None, repr=False)
+    """A deck's optimisation: the deck, its OPTIMISE block and the problem the engine solved."""
 
     @property
     def usable_draws(self) -> float:
@@ -60,8 +89,25 @@ class Optimum:
         do the problem's motion), ``(len(starts) - 1) / drawn``; NaN when nothing was drawn."""
         return (len(self.starts) - 1) / self.drawn if self.drawn else math.nan
 
+    @property
+    def x(self) -> FloatArray:
+        """The final values in the engine's order of variables (:attr:`values` as an array)."""
+        return np.fromiter(self.values.values(), dtype=np.float64, count=len(self.values))
+
+    @property
+    def x_start(self) -> FloatArray:
+        """The start values in the engine's order of variables."""
+        return np.fromiter(self.start.values(), dtype=np.float64, count=len(self.start))
+
+    @property
+    def position_one(self) -> list[float]:
+        """The co-ordinates at position 1 of the final design, in deck order (empty without ``final``)."""
+        return [] if self.final is None else self.final.position_one
+
     def run(self) -> RunResult:
         """The optimised mechanism run through the motion the optimisation used."""
+        if self.mechanism is None:
+            raise ValueError("a deck's optimisation has no mechanism: run the deck it wrote (<stem>_opt.mec)")
         return self.mechanism.run(self.motion)
 
     # The views live in mechfem.design.optimum_view, imported when asked for (it needs matplotlib for the chart).

@@ -1,5 +1,5 @@
-"""An optimisation seen in Jupyter and on a page: the summary table of :class:`mechfem.Optimum` and of a ``KIN OPT``
-deck's optimisation (:class:`mechfem.design.optimise_deck.Outcome`), and the chart of the objective per iteration.
+"""An optimisation seen in Jupyter and on a page: the summary table of a :class:`mechfem.Optimum` (of a mechanism,
+or of a ``KIN OPT`` deck's OPTIMISE block), and the chart of the objective per iteration.
 
 The table holds every design variable by name with its unit, start and final value, then the objective at the
 start and at the end, the iterations, the mechanism runs, the optimiser's verdict and, for a multi-start, the
@@ -26,9 +26,9 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-    from mechfem.design.optimise import Optimum
-    from mechfem.design.optimise_deck import Outcome
+    from mechfem.design.optimum import Optimum
     from mechfem.model.mechanism import Mechanism
+    from mechfem.report.optimum_report import VariableRow
 
 
 @dataclass(frozen=True)
@@ -71,10 +71,20 @@ def variable_unit(mechanism: Mechanism, name: str) -> str:
 
 
 def optimum_summary(optimum: Optimum) -> Summary:
-    mech = optimum.mechanism
-    rows = [(name, variable_unit(mech, name), optimum.start[name], optimum.values[name]) for name in optimum.values]
+    """The summary of an optimum: the variables of a mechanism by their names and in its units, a deck's by the
+    deck's NAMES and in its units."""
+    if optimum.deck is not None:
+        title = f"Optimisation of {optimum.deck.path.name}"
+        rows = [(v.name, v.unit, v.start, v.final) for v in _deck_rows(optimum)]
+    else:
+        mech = optimum.mechanism
+        title = "Optimum"
+        rows = [
+            (name, "" if mech is None else variable_unit(mech, name), optimum.start[name], optimum.values[name])
+            for name in optimum.values
+        ]
     return Summary(
-        title="Optimum",
+        title=title,
         variables=rows,
         start_objective=optimum.start_objective,
         objective=optimum.objective,
@@ -87,27 +97,17 @@ def optimum_summary(optimum: Optimum) -> Summary:
     )
 
 
-def outcome_summary(outcome: Outcome) -> Summary:
-    """The summary of a deck's optimisation, its variables named by the deck's NAMES and in its units."""
+def _deck_rows(optimum: Optimum) -> list[VariableRow]:
+    """A deck's variables as its report names and scales them, from the deck's own model."""
     import mechfem
     from mechfem.report.optimum_report import variable_rows
 
+    assert optimum.deck is not None
     try:
-        model = mechfem.check_deck(outcome.deck).model
+        model = mechfem.check_deck(optimum.deck.path).model
     except mechfem.MechfemError:
         model = None
-    s = outcome.solution
-    return Summary(
-        title=f"Optimisation of {outcome.deck.name}",
-        variables=[(v.name, v.unit, v.start, v.final) for v in variable_rows(outcome, model)],
-        start_objective=s.start_objective,
-        objective=s.objective,
-        iterations=max(len(s.history) - 1, 0),
-        runs=s.runs,
-        success=s.success,
-        message=s.message,
-        method=s.method,
-    )
+    return variable_rows(optimum, model)
 
 
 def _num(v: float) -> str:

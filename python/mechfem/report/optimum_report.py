@@ -17,7 +17,8 @@ from typing import Any
 import numpy as np
 
 from mechfem.design import engine as design
-from mechfem.design.optimise_deck import Outcome, deck_scales, missed_value, variable_labels
+from mechfem.design.optimise_deck import DeckProblem, deck_scales, missed_value, unreached, variable_labels
+from mechfem.design.optimum import Optimum
 from mechfem.model.echo import Model
 from mechfem.report.charts import num, nums
 from mechfem.results.labels import buffer_name, core_input, point_name
@@ -78,17 +79,25 @@ def active_bound(x: float, lo: float, hi: float) -> str:
     return ""
 
 
-def variable_rows(outcome: Outcome, model: Model | None) -> list[VariableRow]:
-    """Every design variable, in the order of the OPTIMISE block, named and scaled as the print file says them."""
-    p, s = outcome.problem, outcome.solution
+def _stated(optimum: Optimum) -> DeckProblem:
+    if optimum.deck is None:
+        raise ValueError("the optimisation report is of a deck's optimisation (an Optimum with its deck)")
+    return optimum.deck
+
+
+def variable_rows(optimum: Optimum, model: Model | None) -> list[VariableRow]:
+    """Every design variable of a deck's optimum, in the order of the OPTIMISE block, named and scaled as the print
+    file says them."""
+    p, block = _stated(optimum).problem, _stated(optimum).block
     labels = variable_labels(p, model)
-    scales = deck_scales(outcome.opt, len(labels))
+    scales = deck_scales(block, len(labels))
+    x0, x1 = optimum.x_start, optimum.x
     periodic = p.periodic or [False] * len(labels)
     out = []
     for k, ((name, unit), f) in enumerate(zip(labels, scales, strict=True)):
-        lo, hi, x = float(p.lo[k]), float(p.hi[k]), float(s.x[k])
+        lo, hi, x = float(p.lo[k]), float(p.hi[k]), float(x1[k])
         active = "" if periodic[k] else active_bound(x, lo, hi)
-        out.append(VariableRow(name, unit, float(s.start[k]) * f, x * f, lo * f, hi * f, active, periodic[k]))
+        out.append(VariableRow(name, unit, float(x0[k]) * f, x * f, lo * f, hi * f, active, periodic[k]))
     return out
 
 
@@ -104,15 +113,16 @@ def _buffer_scale(model: Model | None, number: int) -> tuple[str, float]:
     return ("" if stated == "-" else stated), float(labels.scale(dims))
 
 
-def target_rows(outcome: Outcome, model: Model | None) -> list[TargetRow]:
-    """Every value the targets ask for (each compared position of a TARGET, each extremum of a TARGETEXT), with the
-    value achieved at the final design."""
-    final = outcome.solution.final
+def target_rows(optimum: Optimum, model: Model | None) -> list[TargetRow]:
+    """Every value a deck's targets ask for (each compared position of a TARGET, each extremum of a TARGETEXT), with
+    the value achieved at the final design."""
+    stated, final = _stated(optimum), optimum.final
+    assert final is not None
     extrema: dict[int, list[tuple[float, float]]] = {}
-    for t, at, value in outcome.extrema:
+    for t, at, value in optimum.extrema:
         extrema.setdefault(id(t), []).append((at, value))
     out = []
-    for target, term in zip(outcome.opt["targets"], outcome.problem.terms, strict=True):
+    for target, term in zip(stated.block["targets"], stated.problem.terms, strict=True):
         b, line = int(target["buffer"]), int(target["line"])
         unit, f = _buffer_scale(model, b)
         name = buffer_name(model, b)
@@ -152,7 +162,7 @@ def _pairs(points: list[tuple[float | None, float | None]]) -> list[list[float |
 
 
 def target_points(
-    outcome: Outcome, start: RunResult | None, final: RunResult, drawing: MechanismDrawing
+    optimum: Optimum, start: RunResult | None, final: RunResult, drawing: MechanismDrawing
 ) -> list[dict[str, Any]]:
     """The points both of whose co-ordinates are TARGETs (path generation): the points asked for, and the point's
     path over the motion in the start (when run) and final designs (core units, as the drawing)."""
@@ -162,7 +172,7 @@ def target_points(
 
     coordinate_of = {b.number: b.args[0] for b in final.storage.buffers if b.keyword == "BUFX0" and b.args}
     wanted: dict[int, np.ndarray] = {}
-    for term in outcome.problem.terms:
+    for term in _stated(optimum).problem.terms:
         if isinstance(term, design.ValuesTerm) and term.buffer in coordinate_of:
             wanted[coordinate_of[term.buffer]] = term.values
     out = []
@@ -181,23 +191,23 @@ def target_points(
     return out
 
 
-def optimisation_section(outcome: Outcome, start: RunResult | None, final: RunResult) -> dict[str, Any]:
-    """The report's ``optimisation`` data: ``start`` is the run of the deck's own (start) design (None: not drawn),
-    ``final`` the run of the final design."""
-    s, model = outcome.solution, final.model
+def optimisation_section(s: Optimum, start: RunResult | None, final: RunResult) -> dict[str, Any]:
+    """The report's ``optimisation`` data of a deck's optimum: ``start`` is the run of the deck's own (start) design
+    (None: not drawn), ``final`` the run of the final design."""
+    model = final.model
     final_drawing = MechanismDrawing(final.model, final.coords)
     start_drawing = None if start is None else MechanismDrawing(start.model, start.coords)
     b = final_drawing.bounds([0])
     a = b if start_drawing is None else start_drawing.bounds([0])
-    missed = outcome.unreached()
-    unreached = None
+    missed = unreached(s)
+    left = None
     if missed is not None:
-        unreached = (
-            f"The targets are not all reached: the largest difference left is {missed_value(outcome, missed, model)} "
+        left = (
+            f"The targets are not all reached: the largest difference left is {missed_value(s, missed, model)} "
             f"(the target on line {missed[1]})."
         )
     return {
-        "line": int(outcome.opt["line"]),
+        "line": int(_stated(s).block["line"]),
         "method": s.method,
         "success": s.success,
         "message": s.message,
@@ -205,7 +215,7 @@ def optimisation_section(outcome: Outcome, start: RunResult | None, final: RunRe
         "infeasible": s.infeasible,
         "seconds": num(s.seconds),
         "objective": {"start": exact(s.start_objective), "final": exact(s.objective)},
-        "unreached": unreached,
+        "unreached": left,
         "history": {
             "iteration": [it.number for it in s.history],
             "objective": [exact(it.objective) for it in s.history],
@@ -223,7 +233,7 @@ def optimisation_section(outcome: Outcome, start: RunResult | None, final: RunRe
                 "active": v.active,
                 "periodic": v.periodic,
             }
-            for v in variable_rows(outcome, model)
+            for v in variable_rows(s, model)
         ],
         "targets": [
             {
@@ -236,18 +246,18 @@ def optimisation_section(outcome: Outcome, start: RunResult | None, final: RunRe
                 "achieved": exact(t.achieved),
                 "residual": exact(t.residual),
             }
-            for t in target_rows(outcome, model)
+            for t in target_rows(s, model)
         ],
         "drawing": {
             "start": None if start is None or start_drawing is None else _design(start_drawing, start.coords[0]),
             "final": _design(final_drawing, final.coords[0]),
             "bounds": nums([min(a[0], b[0]), max(a[1], b[1]), min(a[2], b[2]), max(a[3], b[3])]),
-            "points": target_points(outcome, start, final, final_drawing),
+            "points": target_points(s, start, final, final_drawing),
         },
     }
 
 
-def deck_section(outcome: Outcome, final: RunResult, memory_limit: int | None = None) -> dict[str, Any]:
+def deck_section(optimum: Optimum, final: RunResult, memory_limit: int | None = None) -> dict[str, Any]:
     """:func:`optimisation_section` of a deck's optimisation: its start design is the deck's own, run here (it was
     feasible, or the optimisation could not have started; should its run fail all the same, the final design is
     drawn alone)."""
@@ -260,8 +270,8 @@ def deck_section(outcome: Outcome, final: RunResult, memory_limit: int | None = 
         with warnings.catch_warnings():
             # A start design whose motion stops early is drawn at its position 1 all the same.
             warnings.simplefilter("ignore", mechfem.IncompleteRunWarning)
-            start = mechfem.run_deck(outcome.deck, memory_limit=memory_limit)
+            start = mechfem.run_deck(_stated(optimum).path, memory_limit=memory_limit)
     except mechfem.MechfemError:
         # The report is still worth writing: the section then draws the final design alone.
         start = None
-    return optimisation_section(outcome, start, final)
+    return optimisation_section(optimum, start, final)
