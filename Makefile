@@ -74,24 +74,28 @@ browser:
 		echo "chromium is missing and cannot be installed here (needs root and apt-get): the browser test will be skipped"; \
 	fi
 
-# Chromium is installed (network and disk) while the package builds (processor). The Rust steps build without
-# incremental caches unless CARGO_INCREMENTAL says otherwise: `make test` mostly runs on a fresh clone, where a
-# cache is written and never read. pytest's summary gives the time of the slow families (browser, cluster,
-# large_run: pyproject.toml) apart from the rest. mypy (one process) checks the Python package while clippy checks
-# the crates, so that the second core is not idle; its report is shown when clippy is done.
+# Chromium is installed (network and disk) while clippy checks the crates and pip installs the package's dependencies
+# (mostly network and disk) before maturin builds it: clippy's target/debug and the build's target/quick are separate
+# build directories, so cargo runs the two side by side. Clippy's report is shown when the package is installed. The
+# Rust steps build without incremental caches unless CARGO_INCREMENTAL says otherwise: `make test` mostly runs on a
+# fresh clone, where a cache is written and never read. mypy (one process) checks the Python package while rustdoc
+# and the Rust tests build, so that the second core is not idle. pytest's summary gives the time of the slow families
+# (browser, cluster, large_run: pyproject.toml) apart from the rest.
 test: BUILD_PROFILE = quick
 test: export CARGO_INCREMENTAL ?= 0
 test:
+	mkdir -p target
+	cargo clippy --workspace --all-targets -- -D warnings > target/clippy.log 2>&1 & clippy=$$!; \
 	$(MAKE) --no-print-directory browser & browser=$$!; \
 	$(MAKE) --no-print-directory install BUILD_PROFILE=quick; \
-	wait $$browser
+	wait $$browser; \
+	wait $$clippy || { cat target/clippy.log; exit 1; }; cat target/clippy.log
 	cargo fmt --all --check
 	$(BIN)/ruff check python tests
 	$(BIN)/mypy --strict python/mechfem > .venv/mypy.log 2>&1 & mypy=$$!; \
-	cargo clippy --workspace --all-targets -- -D warnings; \
+	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps && cargo test --workspace --exclude mechfem-py \
+		|| { wait $$mypy; exit 1; }; \
 	wait $$mypy || { cat .venv/mypy.log; exit 1; }; cat .venv/mypy.log
-	RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps
-	cargo test --workspace --exclude mechfem-py
 	$(PY) -m pytest -q -n auto tests
 
 # The documentation site: docs/*.md with mkdocs (a dev dependency) into site/; --strict fails on any warning,
