@@ -806,6 +806,10 @@ class SynthesisDict(TypedDict):
     hi: NotRequired[float]
     ordered: bool
     line: int
+    unit: NotRequired[str]
+    """VARYFRAME in a deck with UNITS: the unit of its angle in the deck."""
+    scale: NotRequired[float]
+    """VARYFRAME in a deck with UNITS: its numbers here are radians; times ``scale`` they are in ``unit``."""
 
 @type_check_only
 class DescribedDeckDict(TypedDict):

@@ -59,7 +59,8 @@ def test_a_deck_in_mm_and_degrees_finds_the_metre_decks_design(tmp_path: Path) -
         opt = optimise_deck.describe(deck)["optimise"]
         assert opt is not None
         outcome = optimise_deck.optimise(deck, opt)
-        scales = optimise_deck.deck_scales(opt, len(outcome.x))
+        assert outcome.deck is not None
+        scales = optimise_deck.deck_scales(opt, outcome.deck.problem)
         found.append((outcome.objective, np.asarray(outcome.x), scales))
     (f_si, x_si, s_si), (f_mm, x_mm, s_mm) = found
     assert s_si == [1.0] * 4 and s_mm == pytest.approx([1000.0, 1000.0, 1000.0, DEG(1.0)])

@@ -141,6 +141,11 @@ pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> P
     set("mass_vary", o.mass_vary.iter().map(|m| m.item.dim(coord(m.number))).collect())?;
     set("targets", o.targets.iter().map(|t| buffer(t.buffer)).collect())?;
     set("bounds", o.bounds.iter().map(|b| buffer(b.buffer)).collect())?;
+    // VARYFRAME's angle, which the engine varies in radians.
+    if let Some(frame) = dict.get_item("frame")?.filter(|f| !f.is_none()) {
+        frame.set_item("unit", Dim::ANGLE.symbol(&c.units))?;
+        frame.set_item("scale", Dim::ANGLE.out_scale(&c.units))?;
+    }
     Ok(())
 }
 

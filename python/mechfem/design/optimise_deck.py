@@ -19,7 +19,7 @@ import numpy as np
 
 import mechfem._core as _core
 from mechfem._util.atomic import atomic_text
-from mechfem.design import deck_synthesis, dynamic_design
+from mechfem.design import deck_synthesis, dynamic_design, frame_angle
 from mechfem.design import engine as design
 from mechfem.design import rules as design_rules
 from mechfem.errors import MechfemError
@@ -140,8 +140,8 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
         if kind in dynamic_design.MASS_UNITS:
             out.append((fallback, shown(dynamic_design.MASS_UNITS[kind], units)))
         elif kind not in (0, 1):
-            # A frame angle or the input at a free-timed point: named by the problem.
-            out.append((fallback, "rad"))
+            # A frame angle or the input at a free-timed point: named by the problem, in the deck's angle unit.
+            out.append((fallback, shown("rad", units)))
         elif kind == 1 and 0 < number <= len(model.prescribed):
             row = model.prescribed[number - 1]
             out.append((row.name or fallback, shown(row_unit(model, row, coords), units)))
@@ -152,11 +152,22 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
     return out
 
 
-def deck_scales(opt: OptimiseDict | None, n: int) -> list[float]:
-    """What each design variable's number in the optimiser (the core's units) is multiplied by to give it in the
-    deck's units (1 for a deck without UNITS)."""
-    vary: list[Mapping[str, Any]] = [] if opt is None else [*opt["vary"], *(opt.get("mass_vary") or [])]
-    return [float(v.get("scale", 1.0)) for v in vary] if len(vary) == n else [1.0] * n
+def deck_scales(opt: OptimiseDict | None, p: design.Problem) -> list[float]:
+    """What each design variable's number in the optimiser is multiplied by to give it in the deck's units (1 for a
+    deck without UNITS): a VARY, VARYX or VARYM variable and the frame angle (VARYFRAME) are in the core's units;
+    the input at a FREETIME point is in the deck's angle unit already."""
+    given: list[Mapping[str, Any]] = [] if opt is None else [*opt["vary"], *(opt.get("mass_vary") or [])]
+    frame: Mapping[str, Any] = (opt.get("frame") if opt is not None else None) or {}
+    out, k = [], 0
+    for kind, _ in p.variables:
+        if (kind, _) == frame_angle.SENTINEL:
+            out.append(float(frame.get("scale", 1.0)))
+        elif kind in (0, 1) or kind in dynamic_design.MASS_UNITS:
+            out.append(float(given[k].get("scale", 1.0)) if k < len(given) else 1.0)
+            k += 1
+        else:
+            out.append(1.0)
+    return out
 
 
 def values_line(p: design.Problem, x: Iterable[float], model: Model | None, opt: OptimiseDict | None = None) -> str:
@@ -165,7 +176,7 @@ def values_line(p: design.Problem, x: Iterable[float], model: Model | None, opt:
     labels = variable_labels(p, model)
     return ", ".join(
         f"{name} = {v * f:.10g}" + (f" {unit}" if unit and unit != "-" else "")
-        for (name, unit), v, f in zip(labels, x, deck_scales(opt, len(labels)), strict=True)
+        for (name, unit), v, f in zip(labels, x, deck_scales(opt, p), strict=True)
     )
 
 
@@ -246,6 +257,8 @@ def names_and_lines(opt: OptimiseDict) -> str:
     keyword = {0: "VARYX", 1: "VARY"}
     named = [f"{variable_name(v['kind'], v['number'])} ({keyword[v['kind']]} on line {v['line']})" for v in opt["vary"]]
     named += [f"{m['item']} {m['number']} (VARYM on line {m['line']})" for m in opt.get("mass_vary") or []]
+    if frame := opt.get("frame"):
+        named.append(f"the frame angle (VARYFRAME on line {frame['line']})")
     return ", ".join(named)
 
 
@@ -302,7 +315,7 @@ def print_lines(s: Optimum, written: Path | None, model: Model | None = None) ->
         f"  {'variable':>10} {'unit':>6} {'start':>18} {'final':>18} {'lower':>14} {'upper':>14}",
     ]
     labels = variable_labels(p, model)
-    scales = deck_scales(block, len(labels))
+    scales = deck_scales(block, p)
     for (name, unit), x0, x, lo, hi, f in zip(labels, s.x_start, s.x, p.lo, p.hi, scales, strict=True):
         out.append(f"  {name:>10} {unit:>6} {x0 * f:>18.12g} {x * f:>18.12g} {lo * f:>14.8g} {hi * f:>14.8g}")
     out += [

@@ -90,7 +90,7 @@ def variable_rows(optimum: Optimum, model: Model | None) -> list[VariableRow]:
     file says them."""
     p, block = _stated(optimum).problem, _stated(optimum).block
     labels = variable_labels(p, model)
-    scales = deck_scales(block, len(labels))
+    scales = deck_scales(block, p)
     x0, x1 = optimum.x_start, optimum.x
     periodic = p.periodic or [False] * len(labels)
     out = []
