@@ -91,12 +91,12 @@ class Optimum:
 
     @property
     def x(self) -> FloatArray:
-        """The final values in the engine's order of variables (:attr:`values` as an array)."""
+        """:attr:`values` as an array, in their order (a deck's optimum: the engine's order of variables)."""
         return np.fromiter(self.values.values(), dtype=np.float64, count=len(self.values))
 
     @property
     def x_start(self) -> FloatArray:
-        """The start values in the engine's order of variables."""
+        """:attr:`start` as an array, in its order."""
         return np.fromiter(self.start.values(), dtype=np.float64, count=len(self.start))
 
     @property
