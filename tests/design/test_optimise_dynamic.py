@@ -205,18 +205,3 @@ def test_a_multi_start_of_mass_variables_is_refused_with_a_reason() -> None:
     mech = mechfem.Mechanism.from_deck(ROOT / "examples" / "balancing" / "slider_crank_dyn.mec")
     with pytest.raises(ValueError, match="balance a mechanism's masses from one start"):
         mechfem.optimize(mech, {"crank.mass_u": (-0.2, 0.2)}, minimize=("rms", ShakingForce()), starts=3)
-
-
-def test_python_balancing_of_a_model_in_grams_is_refused_rather_than_mixed(tmp_path: Path) -> None:
-    # The dynamic design models take masses, inertias and lengths and give forces in SI only: a model in grams is
-    # refused with what to do, not optimised with its masses read as kilograms.
-    import mechfem
-    from mechfem.design.dynamic_optimise import ShakingForce
-
-    text = EXAMPLE.read_text().replace("MASS kg", "MASS g")
-    text = text.replace("MASS  1 2.0 0.03 0.0 0.004", "MASS  1 2000 0.03 0.0 4")
-    deck = tmp_path / "grams.mec"
-    deck.write_text(text)
-    mech = mechfem.Mechanism.from_deck(deck)
-    with pytest.raises(ValueError, match=r"works in SI units.*masses in g.*kilograms"):
-        mechfem.optimize(mech, {"crank.mass_u": (-0.2, 0.2)}, minimize=("rms", ShakingForce()))

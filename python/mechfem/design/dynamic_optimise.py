@@ -90,6 +90,12 @@ def variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[i
     return kind, number, float(getattr(item, field))
 
 
+def inertia_coordinate(mech: Mechanism, name: str) -> Any:
+    """The co-ordinate an inertia variable ``name`` (``"wheel.inertia"``) sits on; None for any other name."""
+    found = _item(mech, name)
+    return found[0].coordinate if found is not None and isinstance(found[0], Inertia) else None
+
+
 def is_mass(kind: int) -> bool:
     return kind >= 10
 

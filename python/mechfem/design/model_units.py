@@ -7,8 +7,10 @@ gradient and the co-ordinates at position 1 in them too. :func:`mechfem.optimize
 angle): the models here hand the core a variable times its unit's factor (pi/180 for degrees, 1/1000 for mm) and
 scale its gradient column by the same factor (d/d degree = pi/180 d/d radian), and give a length's or an angle's
 value, its gradient and the co-ordinates at position 1 divided by it; a transfer function is divided by its
-quantity's factor over its inputs' (mm/deg). Velocities and masses keep the core's units. A model in metres and
-radians is not wrapped, so its results stay bit for bit the core's."""
+quantity's factor over its inputs' (mm/deg). A dynamic optimisation's mass variables (a mass in g, a centre of mass
+in mm, a moment of inertia in kg·mm²) and its drive torques and shaking forces and moments (N·mm) are scaled the
+same way. A model in metres, radians, kilograms and newtons is not wrapped, so its results stay bit for bit the
+core's."""
 
 from __future__ import annotations
 
@@ -32,17 +34,30 @@ DEGREE = math.pi / 180.0
 
 class Factors:
     """What a value in the model's units is multiplied by to give it in the core's, by dimension: ``length`` (1 for
-    metres) and ``angle`` (1 for radians, :data:`DEGREE` for degrees)."""
+    metres), ``angle`` (1 for radians, :data:`DEGREE` for degrees), ``mass`` (1 for kilograms) and ``force`` (1 for
+    newtons)."""
 
     def __init__(self, mech: Mechanism) -> None:
         self.mech = mech
         self.length = scale(mech.units.length or "m", "m")
         self.angle = DEGREE if mech.units.angle == "deg" else 1.0
+        self.mass = scale(mech.units.mass or "kg", "kg")
+        self.force = scale(mech.units.force or "N", "N")
 
     @property
     def wrapped(self) -> bool:
-        """Whether the core's models need wrapping: the model is not in metres and radians."""
-        return self.length != 1.0 or self.angle != 1.0
+        """Whether the core's models need wrapping: the model is not in metres, radians, kilograms and newtons."""
+        return any(f != 1.0 for f in (self.length, self.angle, self.mass, self.force))
+
+    def mass_variable(self, kind: int, on: Coordinate | None) -> float:
+        """The factor of a mass model's variable of ``kind`` (:data:`mechfem.design.dynamic_optimise.BODY_FIELDS`:
+        10 a body's mass, 11 and 12 its centre's u and v, 13 its moment of inertia, 14 a point mass, 15 an inertia
+        on the co-ordinate ``on``: a mass on a length, a moment of inertia on an angle)."""
+        if kind in (11, 12):
+            return self.length
+        if kind == 13 or (kind == 15 and on is not None and on.kind == "angle"):
+            return self.mass * self.length**2
+        return self.mass
 
     def of(self, dimension: str | None) -> float:
         return self.length if dimension == "length" else self.angle if dimension == "angle" else 1.0
@@ -151,41 +166,20 @@ class ScaledBuilder:
         self.builder, self.factors, self.buffers, self.coordinates = builder, factors, buffers, coordinates
 
     def design(self, base: str, variables: list[tuple[int, int]], buffers: list[int], extrema: Any) -> Any:
-        model = self.builder.design(base, variables, buffers, extrema)
+        return self._wrapped(self.builder.design(base, variables, buffers, extrema), variables, buffers, extrema)
+
+    def dynamic_design(self, base: str, variables: list[tuple[int, int]], buffers: list[int], extrema: Any) -> Any:
+        """The dynamic design model (inverse dynamics' buffers, mass variables) in the model's units."""
+        model = self.builder.dynamic_design(base, variables, buffers, extrema)
+        return self._wrapped(model, variables, buffers, extrema)
+
+    def _wrapped(self, model: Any, variables: list[tuple[int, int]], buffers: list[int], extrema: Any) -> ScaledModel:
         return ScaledModel(
             model,
             [self.factors.get(v, 1.0) for v in variables],
             [self.buffers.get(b, 1.0) for b in buffers],
             self.coordinates,
             [self.buffers.get(int(spec[0]), 1.0) for spec in extrema],
-        )
-
-
-def dynamic_in_core_units(mech: Mechanism, factors: Mapping[tuple[int, int], float], dynamic: bool) -> None:
-    """Refuses a dynamic optimisation whose numbers would not be the core's: the dynamic design models take masses,
-    inertias and lengths and give drive torques and forces in SI units only, so a model in other units of length,
-    mass, force or time, or with a varied angle in degrees, is refused rather than optimised in mixed units (a
-    kinematic optimisation, ``dynamic`` False, is not)."""
-    if not dynamic:
-        return
-    units = mech.units
-    other = [
-        f"{kind} in {unit}"
-        for kind, unit, core in (
-            ("lengths", units.length, "m"),
-            ("masses", units.mass, "kg"),
-            ("forces", units.force, "N"),
-            ("time", units.time, "s"),
-        )
-        if unit not in (None, core)
-    ]
-    if any(f == DEGREE for f in factors.values()):
-        other.append("a varied angle in degrees")
-    if other:
-        raise ValueError(
-            f"a dynamic optimisation (masses varied, or a drive or shaking judged) works in SI units, and the "
-            f"mechanism {mech.name!r} has {', '.join(other)}: state it in metres, kilograms, newtons, seconds and "
-            "radians for the optimisation (Mechanism(..., length='m', mass='kg', force='N', time='s', angle='rad'))"
         )
 
 
@@ -202,8 +196,8 @@ def variable_factors(
     turn: Turn | None = None,
 ) -> dict[tuple[int, int], float]:
     """The factor of each variable (core numbering) of ``optimize`` that has a unit other than the core's, the
-    free timing's input and what a frame angle's ``turn`` moves among them. Masses keep the core's units."""
-    from mechfem.design.dynamic_optimise import is_mass
+    free timing's input and what a frame angle's ``turn`` moves among them."""
+    from mechfem.design.dynamic_optimise import inertia_coordinate, is_mass
     from mechfem.design.optimise import _lookup
     from mechfem.model.mechanism import Coordinate
 
@@ -211,6 +205,9 @@ def variable_factors(
     out: dict[tuple[int, int], float] = {}
     for name, (kind, number, _) in zip(vary, variables, strict=True):
         if is_mass(kind):
+            f = units.mass_variable(kind, inertia_coordinate(mech, name))
+            if f != 1.0:
+                out[(kind, number)] = f
             continue
         obj = _lookup(mech, name)
         f = units.coordinate(obj) if isinstance(obj, Coordinate) else units.form(obj)
@@ -228,8 +225,9 @@ def variable_factors(
 
 def buffer_factors(mech: Mechanism, keys: Mapping[tuple[str, tuple[object, ...]], int]) -> dict[int, float]:
     """Of the buffers ``keys`` (``optimize``'s (keyword, arguments) -> number), those whose unit in the model is not
-    the core's, with their factor: a length's or an angle's value (a co-ordinate or a row; a transmission angle)
-    and a transfer function of one (its unit over its inputs' units)."""
+    the core's, with their factor: a length's or an angle's value (a co-ordinate or a row; a transmission angle),
+    a transfer function of one (its unit over its inputs' units), a drive torque or force, and the shaking force
+    and moment."""
     from mechfem.model.mechanism import Coordinate, FormParameter, Row
 
     units = Factors(mech)
@@ -237,7 +235,14 @@ def buffer_factors(mech: Mechanism, keys: Mapping[tuple[str, tuple[object, ...]]
     for (keyword, args), number in keys.items():
         obj = args[0] if args else None
         f = 1.0
-        if keyword == "BUFTRA":
+        if keyword == "BUFDRV" and isinstance(obj, str):
+            # A torque drives an angle, a force a length.
+            f = units.force * (units.length if mech[obj].is_angle else 1.0)
+        elif keyword in ("BUFSHAKE", "BUFSHAKE+1"):
+            f = units.force
+        elif keyword == "BUFSHAKE+2":
+            f = units.force * units.length
+        elif keyword == "BUFTRA":
             f = units.angle
         elif keyword == "BUFX0" and isinstance(obj, Coordinate):
             f = units.coordinate(obj)
@@ -285,7 +290,6 @@ __all__ = [
     "buffer_factors",
     "builder",
     "coordinate_factors",
-    "dynamic_in_core_units",
     "variable_factors",
     "whole_turn",
 ]

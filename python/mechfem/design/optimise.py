@@ -384,7 +384,6 @@ def optimize(
             "a dynamic optimisation (masses varied, or a drive or shaking judged) is judged at the instants of the "
             "motion: free timing, full_rotation, frame and TargetExtremum belong to kinematic synthesis"
         )
-    model_units.dynamic_in_core_units(mechanism, factors, dynamic)
     periodic = [
         False if dynamic_optimise.is_mass(v[0]) else _periodic(mechanism, name, span)
         for (name, span), v in zip(vary.items(), variables, strict=True)
@@ -404,7 +403,7 @@ def optimize(
         framed = (frame.name, float(span[0]), float(span[1]), frame.span is None)
     with deckio.tables_dir(built.tables) as base:
         model = (
-            dynamic_optimise.model(built.builder, base)
+            dynamic_optimise.model(builder, base)
             if dynamic
             else _model(builder, base, timed, full_rotation, mechanism, deck.storage, factors)
         )
