@@ -38,8 +38,8 @@ def test_every_column_has_its_unit_in_the_models_units(result: mechfem.RunResult
     assert list(units) == list(frame.columns) and units == result.table_units()
     assert units["time"] == "s" and units["phi"] == "deg" and units["phi_dot"] == "deg/s"
     assert (units["psi"], units["psi'"], units["psi''"]) == ("deg", "-", "1/deg")
-    assert (units["psi_dot"], units["psi_ddot"]) == ("deg/s", "deg/s^2")
-    assert (units["A.x"], units["A.x'"], units["A.x''"]) == ("mm", "mm/deg", "mm/deg^2")
+    assert (units["psi_dot"], units["psi_ddot"]) == ("deg/s", "deg/s²")
+    assert (units["A.x"], units["A.x'"], units["A.x''"]) == ("mm", "mm/deg", "mm/deg²")
     assert units["B.y_dot"] == "mm/s"
 
 
@@ -47,7 +47,7 @@ def test_unit_changes_the_columns_and_their_units_together(result: mechfem.RunRe
     deg, rad, metres = result.to_pandas(), result.to_pandas(unit="rad"), result.to_pandas(unit="m")
     per_degree = 180.0 / math.pi
     assert rad.attrs["units"]["psi"] == "rad" and rad.attrs["units"]["A.x'"] == "mm/rad"
-    assert rad.attrs["units"]["A.x''"] == "mm/rad^2" and rad.attrs["units"]["A.x"] == "mm"
+    assert rad.attrs["units"]["A.x''"] == "mm/rad²" and rad.attrs["units"]["A.x"] == "mm"
     np.testing.assert_allclose(rad["A.x'"], deg["A.x'"] * per_degree, rtol=1e-12)
     np.testing.assert_allclose(rad["psi"], np.radians(deg["psi"]), rtol=1e-12)
     assert metres.attrs["units"]["A.x"] == "m" and metres.attrs["units"]["A.x'"] == "m/deg"
@@ -79,3 +79,21 @@ def test_a_named_models_dynamics_columns_are_in_its_units() -> None:
     units = m.run(Motion.by(4, 360)).to_pandas().attrs["units"]
     # A torque in N·mm, work of the same exponents in mJ, power in mW (N·mm/s).
     assert units["drive(phi)"] == "N·mm" and units["Ekin"] == units["Epot"] == "mJ" and units["power"] == "mW"
+
+
+def test_a_column_says_its_unit_as_the_data_set_header_does(tmp_path: Path) -> None:
+    """The same quantity, a second-order transfer function in mm/deg², recorded by a deck's buffer and written to
+    the data set by the command: the table's unit and the data set header's are one string."""
+    import subprocess
+
+    from conftest import mechfem_command
+
+    storage = mechfem.Storage().buffer(1, "BUFX0", "A.x").buffer(2, "BUFKX2", "A.x", "phi")
+    deck = tmp_path / "fourbar.mec"
+    storage.savedata = [1, 2]
+    fourbar_mm_deg().save_deck(deck, Motion.by(12, 360), storage=storage)
+    p = subprocess.run([*mechfem_command(), "run", str(deck), "-o", str(tmp_path / "out"), "--no-media"], text=True)
+    assert p.returncode == 0
+    header = (tmp_path / "out" / "fourbar.csv").read_text().splitlines()[0]
+    assert "[mm/deg²]" in header, header
+    assert mechfem.run_deck(deck).table_units()["A.x''"] == "mm/deg²"

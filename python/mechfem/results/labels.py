@@ -191,8 +191,8 @@ _RATIO = re.compile(r"^\(?([^()/]+)\)?/\(?([^()/]+)\)?$")
 
 
 def shown(unit: str, units: Units) -> str:
-    """``unit`` (in the words of the unit algebra) in ``units``: ``length/rad`` is ``mm/deg``; a quantity over
-    one of its own unit is ``-``; "" when a word of it has no unit in ``units``."""
+    """``unit`` (in the words of the unit algebra) in ``units``: ``length/rad`` is ``mm/deg``, ``rad/s^2`` is
+    ``deg/s²``; a quantity over one of its own unit is ``-``; "" when a word of it has no unit in ``units``."""
     words = _words(units)
     missing = False
 
@@ -215,7 +215,8 @@ def shown(unit: str, units: Units) -> str:
         return "-"
     if ratio is not None and ratio.group(2) == f"{ratio.group(1)}^2":
         return f"1/{ratio.group(1)}"
-    return out
+    # Written as the core writes its units in the data set and the print file: mm/s², kg·mm².
+    return out.replace("^2", "²").replace("^3", "³")
 
 
 # -- names --------------------------------------------------------------------------------------------------------
