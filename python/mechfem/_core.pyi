@@ -585,6 +585,9 @@ class Run:
         ``ekin``, ``epot``, ``power`` (one value each), ``mass`` (D, D), ..., ``loadpow`` (one value); then ``time``
         and ``det``. Every run of one
         deck shares this dict and the lists ``buffer_numbers`` and ``hodograph_coords``."""
+    def column(self, c: int) -> _F64:
+        """Column ``c`` of ``table`` at every position, without making the whole table when it is not made yet
+        (IndexError past its last column)."""
     @property
     def coords(self) -> _F64:
         """positions x co-ordinates."""

@@ -16,8 +16,8 @@ use mechfem_core::run::{Layout, MemoryRefusal, SimReport, TransferRecord};
 use mechfem_core::{Lost, RunReport, SolveError, State};
 use mechfem_deck::{Compiled, Diagnostics};
 use numpy::ndarray::{Array2, ShapeBuilder};
-use numpy::PyArray2;
-use pyo3::exceptions::PyValueError;
+use numpy::{PyArray1, PyArray2};
+use pyo3::exceptions::{PyIndexError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PySlice, PyTuple};
@@ -89,6 +89,20 @@ impl RecordedTable {
         self.scales = scales;
     }
 
+    /// Column `c` alone at every position, as [`Self::values`] holds it:
+    /// a study or a plot that reads a few quantities of a long run does not
+    /// make the whole table.
+    fn column(&self, c: usize) -> Vec<f64> {
+        let positions = self.record.positions();
+        let mut out = Vec::with_capacity(positions);
+        self.layout.column_values(&self.record, c, &mut out);
+        out.resize(positions, f64::NAN);
+        if let Some(&k) = self.scales.get(c).filter(|&&k| k != 1.0) {
+            out.iter_mut().for_each(|v| *v *= k);
+        }
+        out
+    }
+
     /// The values, column after column.
     fn values(&self) -> Vec<f64> {
         let mut table = self.layout.table(&self.record);
@@ -115,21 +129,38 @@ enum Values {
 struct Lazy {
     values: Mutex<Option<Values>>,
     array: PyOnceLock<Py<PyAny>>,
+    /// Its columns.
+    cols: usize,
 }
 
 impl Lazy {
     /// `data` column by column (`columns`) or row by row.
     fn new(data: Vec<f64>, rows: usize, cols: usize, columns: bool) -> PyResult<Lazy> {
-        Ok(Lazy::of(Values::Made(array(data, rows, cols, columns)?)))
+        Ok(Lazy::of(Values::Made(array(data, rows, cols, columns)?), cols))
     }
 
     /// The `rows` x `cols` table of `table`, made when first asked for.
     fn recorded(table: RecordedTable, rows: usize, cols: usize) -> Lazy {
-        Lazy::of(Values::Recorded(Box::new(table), rows, cols))
+        Lazy::of(Values::Recorded(Box::new(table), rows, cols), cols)
     }
 
-    fn of(values: Values) -> Lazy {
-        Lazy { values: Mutex::new(Some(values)), array: PyOnceLock::new() }
+    fn of(values: Values, cols: usize) -> Lazy {
+        Lazy { values: Mutex::new(Some(values)), array: PyOnceLock::new(), cols }
+    }
+
+    /// Column `c` at every position: a view of the table once it is made,
+    /// else made alone from the run's record.
+    fn column<'py>(&self, py: Python<'py>, c: usize) -> PyResult<Bound<'py, PyAny>> {
+        if c >= self.cols {
+            return Err(PyIndexError::new_err(c));
+        }
+        if self.array.get(py).is_none() {
+            let values = self.values.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some(Values::Recorded(table, _, _)) = values.as_ref() {
+                return Ok(PyArray1::from_vec(py, table.column(c)).into_any());
+            }
+        }
+        self.get(py)?.get_item((PySlice::full(py), c))
     }
 
     fn get<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
@@ -239,6 +270,12 @@ impl Run {
     #[getter]
     fn table<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.table.get(py)
+    }
+
+    /// Column `c` of `table` at every position, without making the whole
+    /// table when it is not made yet.
+    fn column<'py>(&self, py: Python<'py>, c: usize) -> PyResult<Bound<'py, PyAny>> {
+        self.table.column(py, c)
     }
 
     /// Positions x co-ordinates.

@@ -288,6 +288,10 @@ class PickledRun:
     def of(cls, run: _core.Run) -> PickledRun:
         return cls(**{f.name: getattr(run, f.name) for f in fields(cls)})
 
+    def column(self, c: int) -> FloatArray:
+        """Column ``c`` of the table, as ``_core.Run.column`` gives it."""
+        return self.table[:, c]
+
 
 """The result of :meth:`Mechanism.run <mechfem.Mechanism.run>`: the same :class:`RunResult` every run returns."""
 

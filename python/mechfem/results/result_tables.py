@@ -152,6 +152,18 @@ class ResultTables:
         """The run's table: positions x the columns of ``_layout``."""
         return self._raw.table
 
+    def _column(self, c: int) -> FloatArray:
+        """Column ``c`` of the table at every position: a view of the table once it is made (``table()``,
+        ``to_pandas()``), else that column alone, made from the run's record and kept. A value or a plot of a few
+        quantities of a long run does not make the table's every column."""
+        if "_table" in self.__dict__:
+            return self._table[:, c]
+        made: dict[int, FloatArray] = self.__dict__.setdefault("_columns_made", {})
+        column = made.get(c)
+        if column is None:
+            column = made[c] = self._raw.column(c)
+        return column
+
     # -- what the result class gives
 
     @property
@@ -199,10 +211,15 @@ class ResultTables:
     # -- the table
 
     def _block(self, name: str) -> FloatArray:
-        """The layout's block ``name`` at every position: positions x its shape (a view of the table)."""
+        """The layout's block ``name`` at every position: positions x its shape (a view of the table once it is
+        made, else of its columns made alone)."""
         start, shape = self._layout[name]
         width = math.prod(shape)
-        return self._table[:, start : start + width].reshape(self._table.shape[0], *shape)
+        if "_table" in self.__dict__:
+            return self._table[:, start : start + width].reshape(self._table.shape[0], *shape)
+        columns = [self._column(start + k) for k in range(width)]
+        positions = len(columns[0]) if columns else self._raw.positions
+        return np.column_stack(columns).reshape(positions, *shape) if columns else np.empty((positions, *shape))
 
     @functools.cached_property
     def _recorded(self) -> dict[tuple[object, ...], int]:
@@ -248,11 +265,11 @@ class ResultTables:
                 if not 0 <= i < n:
                     raise IndexError(f"index {i} out of range 0..{n - 1} in the block {block!r} of the run's table")
                 column = column * n + i
-            return self._table[:, start + column]
+            return self._column(start + column)
         recorded = self._recorded.get((block, *index))
         if recorded is None:
             raise NotRecordedError(self._unrecorded(block, index))
-        return self._table[:, recorded]
+        return self._column(recorded)
 
     def _unrecorded(self, block: str, index: Sequence[int]) -> str:
         """Why a deck's run has no ``block`` ``index``, and the buffer that would record it."""
@@ -277,7 +294,7 @@ class ResultTables:
         """d x_i / d input 1 at every position by co-ordinate i, for the hodographs (a deck's run: the co-ordinates
         its PLOTHODO lines name; NaN where D^c is singular)."""
         if "hodograph" in self._layout:
-            return {i: self._table[:, c] for i, c in self._columns("hodograph", "hodograph_coords").items()}
+            return {i: self._column(c) for i, c in self._columns("hodograph", "hodograph_coords").items()}
         nd = self._layout["kx1"][1][1]
         return {i: self._series("kx1", i - 1, 0) for i in range(1, self.coords.shape[1] + 1)} if nd else {}
 
