@@ -252,8 +252,7 @@ def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: Op
     written_deck = optimise_deck.write_design_deck(s, outdir)
     result, interrupted = run_with_progress(written_deck, args.memory_limit, console.bar)
     result = result.replace(deck=deck)
-    assert s.deck is not None
-    values = optimise_deck.values_line(s.deck.problem, s.x, result.model, opt)
+    values = optimise_deck.values_line(optimise_deck.stated(s).problem, s.x, result.model, opt)
     console.say(
         f"{deck}: {'optimised' if s.success else 'optimiser stopped'} in {count(s.runs, 'mechanism run')}: "
         f"objective {s.start_objective:.4g} -> {s.objective:.4g}; {values}"

@@ -159,8 +159,9 @@ def deck_scales(opt: OptimiseDict | None, p: design.Problem) -> list[float]:
     given: list[Mapping[str, Any]] = [] if opt is None else [*opt["vary"], *(opt.get("mass_vary") or [])]
     frame: Mapping[str, Any] = (opt.get("frame") if opt is not None else None) or {}
     out, k = [], 0
-    for kind, _ in p.variables:
-        if (kind, _) == frame_angle.SENTINEL:
+    for var in p.variables:
+        kind = var[0]
+        if var == frame_angle.SENTINEL:
             out.append(float(frame.get("scale", 1.0)))
         elif kind in (0, 1) or kind in dynamic_design.MASS_UNITS:
             out.append(float(given[k].get("scale", 1.0)) if k < len(given) else 1.0)
@@ -199,12 +200,20 @@ class DeckProblem:
     synthesis: deck_synthesis.Synthesis | None = None
 
 
+def stated(optimum: Optimum) -> DeckProblem:
+    """The deck's problem of a deck's optimum; a ValueError for an optimum of :func:`mechfem.optimize`, which has
+    no deck (its mechanism is the design found)."""
+    if optimum.deck is None:
+        raise ValueError("this is an optimum of mechfem.optimize, not of a deck's OPTIMISE block: it has no deck")
+    return optimum.deck
+
+
 def unreached(optimum: Optimum) -> tuple[float, int] | None:
     """The largest difference of a deck's target from its value and that target's line, when some target is missed
     by more than 1e-6 of its size; None when every target is met."""
-    assert optimum.deck is not None
+    deck = stated(optimum)
     worst: tuple[float, int] | None = None
-    for t, term, (d, _) in zip(optimum.deck.block["targets"], optimum.deck.problem.terms, optimum.misses, strict=True):
+    for t, term, (d, _) in zip(deck.block["targets"], deck.problem.terms, optimum.misses, strict=True):
         size = np.nanmax(np.abs(term.values)) if isinstance(term, design.ValuesTerm) else abs(term.value)
         if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
             worst = (d, int(t["line"]))
@@ -213,8 +222,7 @@ def unreached(optimum: Optimum) -> tuple[float, int] | None:
 
 def missed_value(optimum: Optimum, missed: tuple[float, int], model: Model | None) -> str:
     """The largest difference :func:`unreached` gives, in the units of its target's buffer."""
-    assert optimum.deck is not None
-    buffer = next((int(t["buffer"]) for t in optimum.deck.block["targets"] if int(t["line"]) == missed[1]), 0)
+    buffer = next((int(t["buffer"]) for t in stated(optimum).block["targets"] if int(t["line"]) == missed[1]), 0)
     return core_value(model, buffer, missed[0], ".4g")
 
 
@@ -265,17 +273,15 @@ def names_and_lines(opt: OptimiseDict) -> str:
 def write_design_deck(optimum: Optimum, outdir: Path) -> Path:
     """Writes a deck's final design as ``<outdir>/<stem>_opt.mec`` (mode KIN ANA): the PARA and XFIX values of the
     variables and the XMOV estimates (the final design's position 1) replaced, MOV_FUNC files named from there."""
-    stated = optimum.deck
-    assert stated is not None
-    final = optimum.x
-    variables, x = stated.problem.variables, final
-    if stated.synthesis is not None:
-        variables, x = stated.synthesis.written(final)
+    deck, final = stated(optimum), optimum.x
+    variables, x = deck.problem.variables, final
+    if deck.synthesis is not None:
+        variables, x = deck.synthesis.written(final)
         # The mass model's variables (DYN ANA) are written as they are.
-        masses = [(k, v) for k, v in enumerate(stated.problem.variables) if v[0] in dynamic_design.MASS_UNITS]
+        masses = [(k, v) for k, v in enumerate(deck.problem.variables) if v[0] in dynamic_design.MASS_UNITS]
         variables = [*variables, *(v for _, v in masses)]
         x = np.append(x, [final[k] for k, _ in masses])
-    return write_design(stated.path, variables, x, optimum.position_one, outdir)
+    return write_design(deck.path, variables, x, optimum.position_one, outdir)
 
 
 def write_design(
@@ -305,8 +311,8 @@ def write_design(
 def print_lines(s: Optimum, written: Path | None, model: Model | None = None) -> list[str]:
     """The print file's OPTIMISATION section of a deck's optimum; the variables named as ``model`` (the final
     design's echo) names them."""
-    assert s.deck is not None
-    p, block = s.deck.problem, s.deck.block
+    deck = stated(s)
+    p, block = deck.problem, deck.block
     out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {block['line']}"]
     out += history_lines(s.history)
     out += [

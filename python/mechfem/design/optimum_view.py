@@ -100,11 +100,11 @@ def optimum_summary(optimum: Optimum) -> Summary:
 def _deck_rows(optimum: Optimum) -> list[VariableRow]:
     """A deck's variables as its report names and scales them, from the deck's own model."""
     import mechfem
+    from mechfem.design.optimise_deck import stated
     from mechfem.report.optimum_report import variable_rows
 
-    assert optimum.deck is not None
     try:
-        model = mechfem.check_deck(optimum.deck.path).model
+        model = mechfem.check_deck(stated(optimum).path).model
     except mechfem.MechfemError:
         model = None
     return variable_rows(optimum, model)

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from mechfem.design import engine as design
-from mechfem.design.optimise_deck import DeckProblem, deck_scales, missed_value, unreached, variable_labels
+from mechfem.design.optimise_deck import deck_scales, missed_value, stated, unreached, variable_labels
 from mechfem.design.optimum import Optimum
 from mechfem.model.echo import Model
 from mechfem.report.charts import num, nums
@@ -79,16 +79,11 @@ def active_bound(x: float, lo: float, hi: float) -> str:
     return ""
 
 
-def _stated(optimum: Optimum) -> DeckProblem:
-    if optimum.deck is None:
-        raise ValueError("the optimisation report is of a deck's optimisation (an Optimum with its deck)")
-    return optimum.deck
-
-
 def variable_rows(optimum: Optimum, model: Model | None) -> list[VariableRow]:
     """Every design variable of a deck's optimum, in the order of the OPTIMISE block, named and scaled as the print
     file says them."""
-    p, block = _stated(optimum).problem, _stated(optimum).block
+    deck = stated(optimum)
+    p, block = deck.problem, deck.block
     labels = variable_labels(p, model)
     scales = deck_scales(block, p)
     x0, x1 = optimum.x_start, optimum.x
@@ -107,22 +102,23 @@ def _buffer_scale(model: Model | None, number: int) -> tuple[str, float]:
     if labels is None:
         return "", 1.0
     try:
-        _, _, stated, dims = labels.buffer(number)
+        _, _, said, dims = labels.buffer(number)
     except IndexError:
         return "", 1.0
-    return ("" if stated == "-" else stated), float(labels.scale(dims))
+    return ("" if said == "-" else said), float(labels.scale(dims))
 
 
 def target_rows(optimum: Optimum, model: Model | None) -> list[TargetRow]:
     """Every value a deck's targets ask for (each compared position of a TARGET, each extremum of a TARGETEXT), with
     the value achieved at the final design."""
-    stated, final = _stated(optimum), optimum.final
-    assert final is not None
+    deck, final = stated(optimum), optimum.final
+    if final is None:
+        raise ValueError("the optimum holds no final evaluation to compare the targets with")
     extrema: dict[int, list[tuple[float, float]]] = {}
     for t, at, value in optimum.extrema:
         extrema.setdefault(id(t), []).append((at, value))
     out = []
-    for target, term in zip(stated.block["targets"], stated.problem.terms, strict=True):
+    for target, term in zip(deck.block["targets"], deck.problem.terms, strict=True):
         b, line = int(target["buffer"]), int(target["line"])
         unit, f = _buffer_scale(model, b)
         name = buffer_name(model, b)
@@ -172,7 +168,7 @@ def target_points(
 
     coordinate_of = {b.number: b.args[0] for b in final.storage.buffers if b.keyword == "BUFX0" and b.args}
     wanted: dict[int, np.ndarray] = {}
-    for term in _stated(optimum).problem.terms:
+    for term in stated(optimum).problem.terms:
         if isinstance(term, design.ValuesTerm) and term.buffer in coordinate_of:
             wanted[coordinate_of[term.buffer]] = term.values
     out = []
@@ -207,7 +203,7 @@ def optimisation_section(s: Optimum, start: RunResult | None, final: RunResult) 
             f"(the target on line {missed[1]})."
         )
     return {
-        "line": int(_stated(s).block["line"]),
+        "line": int(stated(s).block["line"]),
         "method": s.method,
         "success": s.success,
         "message": s.message,
@@ -270,7 +266,7 @@ def deck_section(optimum: Optimum, final: RunResult, memory_limit: int | None = 
         with warnings.catch_warnings():
             # A start design whose motion stops early is drawn at its position 1 all the same.
             warnings.simplefilter("ignore", mechfem.IncompleteRunWarning)
-            start = mechfem.run_deck(_stated(optimum).path, memory_limit=memory_limit)
+            start = mechfem.run_deck(stated(optimum).path, memory_limit=memory_limit)
     except mechfem.MechfemError:
         # The report is still worth writing: the section then draws the final design alone.
         start = None
