@@ -41,6 +41,12 @@ __all__ = [
     "Model",
     "ModelBuilder",
     "Labels",
+    "EchoModel",
+    "EchoElement",
+    "EchoRow",
+    "Term",
+    "EchoCoordinate",
+    "EchoPoint",
     "optimised_deck_text",
     "deck_tolerance",
     "built_tolerance",
@@ -241,45 +247,6 @@ class Report:
     def stop(self) -> Stop | None: ...
 
 @type_check_only
-class ElementDict(TypedDict):
-    number: int
-    type: str
-    coords: list[int]
-    coord_names: list[str]
-    line: int
-    name: str | None
-    """The name its ELEM line's comment declares (docs/deck.md, "Names in comments"); None without one."""
-
-@type_check_only
-class TermDict(TypedDict):
-    seq: int
-    element: int
-    form: str
-    factor: float
-    line: int
-
-@type_check_only
-class RowDict(TypedDict):
-    dest: int
-    terms: list[TermDict]
-    para: float | None
-    input: int | None
-    """The DOF whose input this row is, if it is one."""
-    value: float
-    """Value at position 1."""
-    name: str | None
-    """The name the comment of its first FORM line (or its PARA line) declares; None without one."""
-
-@type_check_only
-class CoordDict(TypedDict):
-    number: int
-    moving: bool
-    given: float
-    adjusted: float
-    name: str | None
-    """The name its XFIX or XMOV line's comment declares; None without one."""
-
-@type_check_only
 class BodyDict(TypedDict):
     element: float
     """The element's number (a whole number, given as a float)."""
@@ -338,30 +305,175 @@ class DynamicsDict(TypedDict):
     forces: list[ForceDict]
     loads: list[LoadDict]
 
-@type_check_only
-class ModelDict(TypedDict):
-    elements: list[ElementDict]
-    prescribed: list[RowDict]
-    dependent: list[RowDict]
-    dofs: list[int]
-    """For each DOF, its prescribed row."""
-    coordinates: list[CoordDict]
-    mode: str
-    """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
-    dynamics: DynamicsDict | None
-    """The masses and loads (None for a KIN ANA deck)."""
-    units: NotRequired[dict[str, str | None]]
-    """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
-    points: NotRequired[list[PointDict]]
-    """The points the NAMES block names."""
-    labels: NotRequired[Labels]
-    """The names and units of the model's things, as the core decides them."""
+@final
+class Term:
+    """One FORM line: ``factor * form`` of element ``element``."""
 
-@type_check_only
-class PointDict(TypedDict):
-    x: int
-    y: int
-    name: str
+    def __new__(cls, element: int, form: str, factor: float, seq: int, line: int) -> Term: ...
+    def __getnewargs__(self) -> tuple[int, str, float, int, int]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def element(self) -> int: ...
+    @property
+    def form(self) -> str: ...
+    @property
+    def factor(self) -> float: ...
+    @property
+    def seq(self) -> int:
+        """The FORM line's sequence number."""
+    @property
+    def line(self) -> int: ...
+
+@final
+class EchoElement:
+    """One ELEM line."""
+
+    def __new__(
+        cls, number: int, kind: str, coords: list[int], coord_names: list[str], line: int, name: str | None = None
+    ) -> EchoElement: ...
+    def __getnewargs__(self) -> tuple[int, str, list[int], list[str], int, str | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def number(self) -> int: ...
+    @property
+    def type(self) -> str: ...
+    @property
+    def coords(self) -> list[int]: ...
+    @property
+    def coord_names(self) -> list[str]: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def name(self) -> str | None:
+        """Its name in the deck's NAMES block (``ELEM 1 crank``), or None."""
+
+@final
+class EchoRow:
+    """A prescribed row of D^c (``dest > 0``) or a dependent form parameter (``dest < 0``)."""
+
+    def __new__(
+        cls, dest: int, terms: list[Term], para: float | None, input: int | None, value: float, name: str | None = None
+    ) -> EchoRow: ...
+    def __getnewargs__(self) -> tuple[int, list[Term], float | None, int | None, float, str | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    def formula(self) -> str:
+        """The combination, e.g. ``ANGB(2) - ANGB(4)``."""
+    @property
+    def dest(self) -> int: ...
+    @property
+    def terms(self) -> list[Term]: ...
+    @property
+    def para(self) -> float | None:
+        """The value PARA prescribes, if any."""
+    @property
+    def input(self) -> int | None:
+        """The DOF whose input this row is, if it is one."""
+    @property
+    def value(self) -> float:
+        """Value at position 1."""
+    @property
+    def name(self) -> str | None:
+        """Its name in the deck's NAMES block (``ROW 6 phi``, ``DEP 1 psi``), or None."""
+
+@final
+class EchoCoordinate:
+    """One co-ordinate: fixed or moving, its given value and its value at position 1."""
+
+    def __new__(
+        cls, number: int, moving: bool, given: float, adjusted: float, name: str | None = None
+    ) -> EchoCoordinate: ...
+    def __getnewargs__(self) -> tuple[int, bool, float, float, str | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def number(self) -> int: ...
+    @property
+    def moving(self) -> bool: ...
+    @property
+    def given(self) -> float: ...
+    @property
+    def adjusted(self) -> float: ...
+    @property
+    def name(self) -> str | None:
+        """Its name from the deck's NAMES block (``C.x`` for ``POINT 9 10 C``, ``s`` for ``COORD 11 s``), or None."""
+
+@final
+class EchoPoint:
+    """A point the NAMES block names: co-ordinates ``x`` and ``y`` (1-based) are ``name.x`` and ``name.y``."""
+
+    def __new__(cls, x: int, y: int, name: str) -> EchoPoint: ...
+    def __getnewargs__(self) -> tuple[int, int, str]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def x(self) -> int: ...
+    @property
+    def y(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+
+@final
+class EchoModel:
+    """The model as compiled from the deck, for the echo in the print file (``Run.model``, ``Check.model``); its lists
+    are shared by every run of one compiled deck where they do not change (read them, do not change them)."""
+
+    def __new__(
+        cls,
+        elements: list[EchoElement],
+        prescribed: list[EchoRow],
+        dependent: list[EchoRow],
+        dofs: list[int],
+        coordinates: list[EchoCoordinate],
+        mode: str,
+        dynamics: DynamicsDict | None,
+        units: dict[str, str | None],
+        points: list[EchoPoint],
+        labels: Labels | None,
+    ) -> EchoModel: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[
+        list[EchoElement],
+        list[EchoRow],
+        list[EchoRow],
+        list[int],
+        list[EchoCoordinate],
+        str,
+        DynamicsDict | None,
+        dict[str, str | None],
+        list[EchoPoint],
+        Labels | None,
+    ]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def elements(self) -> list[EchoElement]: ...
+    @property
+    def prescribed(self) -> list[EchoRow]: ...
+    @property
+    def dependent(self) -> list[EchoRow]: ...
+    @property
+    def dofs(self) -> list[int]:
+        """For DOF j (1-based, list index j - 1): the prescribed row that is its input."""
+    @property
+    def coordinates(self) -> list[EchoCoordinate]: ...
+    @property
+    def mode(self) -> str:
+        """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
+    @property
+    def dynamics(self) -> DynamicsDict | None:
+        """The masses and loads (None for a KIN ANA deck), in the deck's units."""
+    @property
+    def units(self) -> dict[str, str | None]:
+        """The deck's UNITS: length, angle, mass, force, time to a symbol (``mm``, ``deg``) or None where the deck
+        declares none (all None without a UNITS line; with one, angle and time default to rad and s)."""
+    @property
+    def points(self) -> list[EchoPoint]:
+        """The points the NAMES block names (``POINT 9 10 C``)."""
+    @property
+    def labels(self) -> Labels | None:
+        """The names and units of its co-ordinates, rows, inputs and buffers, as the core decides them."""
+    @property
+    def n_coords(self) -> int: ...
+    @property
+    def n_moving(self) -> int: ...
 
 @final
 class Buffer:
@@ -480,7 +592,7 @@ class Check:
     @property
     def adjust(self) -> Adjust: ...
     @property
-    def model(self) -> ModelDict: ...
+    def model(self) -> EchoModel: ...
 
 @final
 class Simulation:
@@ -602,7 +714,7 @@ class Run:
     @property
     def report(self) -> Report: ...
     @property
-    def model(self) -> ModelDict: ...
+    def model(self) -> EchoModel: ...
     @property
     def storage(self) -> EchoStorage: ...
     @property

@@ -75,11 +75,11 @@ def test_every_run_of_one_deck_in_a_study_shares_what_does_not_change() -> None:
     for d in out[1:]:
         assert not isinstance(d, mechfem.MechfemError)
         assert d.layout is first.layout and d.storage is first.storage
-        assert d.model["elements"] is first.model["elements"]
-        assert d.model["prescribed"] is not first.model["prescribed"]
+        assert d.model.elements is first.model.elements
+        assert d.model.prescribed is not first.model.prescribed
     # ... and what does: each variant's own PARA and row values at position 1.
-    assert [d.model["prescribed"][0]["para"] for d in out] == [0.99, 1.0, 1.01]  # type: ignore[index]
-    assert len({d.model["prescribed"][0]["value"] for d in out}) == 3  # type: ignore[index]
+    assert [d.model.prescribed[0].para for d in out] == [0.99, 1.0, 1.01]
+    assert len({d.model.prescribed[0].value for d in out}) == 3
 
 
 def storage_of_every_quantity(a: Analysis) -> tuple[str, dict[int, npt.NDArray[np.float64]]]:

@@ -59,8 +59,8 @@ def test_a_row_without_value_takes_it_from_the_moved_coordinates() -> None:
     moved = moved_run(fourbar(), "B", (3.4, 2.6))
     assert_same(moved, text_run(fourbar((3.4, 2.6))))
     # Row 2 is the coupler's length, which the deck does not give: the one at the moved co-ordinates.
-    assert moved.model["prescribed"][1]["para"] is None
-    assert abs(moved.model["prescribed"][1]["value"] - math.hypot(2.4, 2.3)) < 1e-12
+    assert moved.model.prescribed[1].para is None
+    assert abs(moved.model.prescribed[1].value - math.hypot(2.4, 2.3)) < 1e-12
 
 
 def test_an_element_moved_across_its_branch_tracks_its_angle_from_there() -> None:

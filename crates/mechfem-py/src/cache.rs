@@ -18,11 +18,11 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use mechfem_deck::ast::{Deck, LoadDefKind, MotionKind};
 use mechfem_deck::{Compiled, Diagnostics};
 
+use crate::echo::EchoModel;
 use crate::report::Report;
 
 /// How many compiled decks are kept (the least recently used goes first).
@@ -39,7 +39,7 @@ struct Key {
 /// of position 1 they were made from (bit patterns: equal means identical).
 pub struct Echo {
     position_1: Vec<u64>,
-    model: Py<PyDict>,
+    model: Py<EchoModel>,
     storage: Py<PyAny>,
 }
 
@@ -58,8 +58,8 @@ impl EchoSlot {
         &self,
         py: Python<'py>,
         position_1: &[&[f64]],
-        make: impl FnOnce() -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)>,
-    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
+        make: impl FnOnce() -> PyResult<(Bound<'py, EchoModel>, Bound<'py, PyAny>)>,
+    ) -> PyResult<(Bound<'py, EchoModel>, Bound<'py, PyAny>)> {
         let bits: Vec<u64> = position_1.iter().flat_map(|s| s.iter().map(|v| v.to_bits())).collect();
         let lock = || self.0.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(e) = lock().as_ref().filter(|e| e.position_1 == bits) {

@@ -4,7 +4,8 @@
 
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+
+use crate::echo::EchoModel;
 
 /// Position 1 of a deck, computed without its motion: the model's sizes,
 /// det(D^c) and the co-ordinates there (in the deck's units), the
@@ -28,7 +29,7 @@ pub struct Check {
     /// The adjustment to position 1.
     pub adjust: crate::report::Adjust,
     /// The model echo (see `convert::model`).
-    pub model: Py<PyDict>,
+    pub model: Py<EchoModel>,
 }
 
 /// What a deck reads and writes, from its text alone.

@@ -12,6 +12,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
+use crate::echo::{EchoCoordinate, EchoElement, EchoModel, EchoPoint, EchoRow, Term};
+
 /// A row-major `rows x cols` array.
 pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
     owned(py, Array2::from_shape_vec((rows, cols), data))
@@ -92,25 +94,23 @@ pub fn model<'py>(
     at_1: &[f64],
     prescribed: &[f64],
     dependent: &[f64],
-) -> PyResult<Bound<'py, PyDict>> {
+) -> PyResult<Bound<'py, EchoModel>> {
     Echo::new(py, c)?.model(py, given, at_1, prescribed, dependent, None)
 }
 
 /// The echo of a compiled deck's model ([`model`]) with what every run of
-/// the deck shares converted once: a study of many variants of one deck
-/// fills in only each run's numbers, and the echoes of its runs hold the
-/// same element list, FORM terms and DOFs (not to be changed).
+/// the deck shares made once: a study of many variants of one deck fills
+/// in only each run's numbers, and the echoes of its runs hold the same
+/// element list, DOFs, units, points and labels (not to be changed).
 pub struct Echo {
     elements: Py<PyList>,
     dofs: Py<PyList>,
     dynamics: Py<PyAny>,
     mode: &'static str,
-    /// The rows and co-ordinates with the numbers of a run still to be set in a copy.
-    prescribed: Vec<Py<PyDict>>,
-    dependent: Vec<Py<PyDict>>,
-    coordinates: Vec<Py<PyDict>>,
-    /// PARA of each prescribed row, as the deck gives it.
-    para: Vec<Option<f64>>,
+    /// The rows and co-ordinates, whose numbers a run sets in a copy.
+    prescribed: Vec<EchoRow>,
+    dependent: Vec<EchoRow>,
+    coordinates: Vec<EchoCoordinate>,
     /// The deck's units and named points ([`crate::names`]).
     units: Py<PyDict>,
     points: Py<PyList>,
@@ -122,35 +122,40 @@ impl Echo {
     pub fn new(py: Python<'_>, c: &Compiled) -> PyResult<Echo> {
         let mech = &c.mechanism;
         let coordinates = (0..mech.n_coords())
-            .map(|i| {
-                let cd = PyDict::new(py);
-                cd.set_item("number", i + 1)?;
-                cd.set_item("moving", mech.is_moving(i))?;
-                cd.set_item("given", f64::NAN)?;
-                cd.set_item("adjusted", f64::NAN)?;
-                cd.set_item("name", declared(&c.names.coordinates, i))?;
-                Ok(cd.unbind())
+            .map(|i| EchoCoordinate {
+                number: i + 1,
+                moving: mech.is_moving(i),
+                given: f64::NAN,
+                adjusted: f64::NAN,
+                name: declared(&c.names.coordinates, i).map(str::to_owned),
             })
-            .collect::<PyResult<Vec<_>>>()?;
-        let unbind = |rows: Vec<Bound<'_, PyDict>>| rows.into_iter().map(Bound::unbind).collect();
+            .collect();
         // The echo speaks the deck's units (crate::names).
         let [written, written_dependent] = c.rows_as_written();
         let dynamics = match &c.dynamics_as_written() {
             Some(m) => dynamics(py, m, &[])?.into_any(),
             None => py.None().into_bound(py),
         };
+        let elements = c.elements.iter().enumerate().map(|(k, e)| EchoElement {
+            number: e.number,
+            kind: e.ty.name().to_owned(),
+            coords: e.coords.iter().map(|&i| i as i64).collect(),
+            coord_names: e.ty.coord_names().iter().map(|n| (*n).to_owned()).collect(),
+            line: e.line,
+            name: declared(&c.names.elements, k).map(str::to_owned),
+        });
+        let points = c.names.points.iter().map(|(x, y, name)| EchoPoint { x: x + 1, y: y + 1, name: name.clone() });
         Ok(Echo {
-            elements: PyList::new(py, named(elements(py, c)?, &c.names.elements)?)?.unbind(),
+            elements: PyList::new(py, elements)?.unbind(),
             dofs: PyList::new(py, (0..mech.n_dof()).map(|j| mech.input_row(j) + 1))?.unbind(),
             dynamics: dynamics.unbind(),
             mode: c.mode.name(),
-            prescribed: unbind(named(rows(py, &written, &[])?, &c.names.prescribed)?),
-            dependent: unbind(named(rows(py, &written_dependent, &[])?, &c.names.dependent)?),
+            prescribed: echo_rows(&written, &c.names.prescribed),
+            dependent: echo_rows(&written_dependent, &c.names.dependent),
             coordinates,
-            para: written.iter().map(|r| r.para).collect(),
             units: crate::names::units(py, c)?.unbind(),
             labels: Py::new(py, crate::labels::Labels::of(c))?,
-            points: crate::names::points(py, c)?.unbind(),
+            points: PyList::new(py, points)?.unbind(),
         })
     }
 
@@ -166,63 +171,67 @@ impl Echo {
         prescribed: &[f64],
         dependent: &[f64],
         para: Option<&[Option<f64>]>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    ) -> PyResult<Bound<'py, EchoModel>> {
         let value = |values: &[f64], k: usize| values.get(k).copied().unwrap_or(f64::NAN);
-        let d = PyDict::new(py);
-        d.set_item("elements", self.elements.bind(py))?;
-        let rows = copies(py, &self.prescribed, |k, r| {
-            r.set_item("value", value(prescribed, k))?;
-            match para.and_then(|p| p.get(k)) {
-                Some(p) if *p != self.para[k] => r.set_item("para", *p),
-                _ => Ok(()),
-            }
-        })?;
-        d.set_item("prescribed", rows)?;
-        d.set_item("dependent", copies(py, &self.dependent, |k, r| r.set_item("value", value(dependent, k)))?)?;
-        d.set_item("dofs", self.dofs.bind(py))?;
-        let coordinates = copies(py, &self.coordinates, |i, cd| {
-            cd.set_item("given", given[i])?;
-            cd.set_item("adjusted", at_1[i])
-        })?;
-        d.set_item("coordinates", coordinates)?;
-        d.set_item("mode", self.mode)?;
-        d.set_item("dynamics", self.dynamics.bind(py))?;
-        d.set_item("units", self.units.bind(py))?;
-        d.set_item("points", self.points.bind(py))?;
-        d.set_item("labels", self.labels.bind(py))?;
-        Ok(d)
+        let rows = |rows: &[EchoRow], values: &[f64], para: Option<&[Option<f64>]>| {
+            let rows = rows.iter().enumerate().map(|(k, r)| EchoRow {
+                value: value(values, k),
+                para: para.and_then(|p| p.get(k).copied()).unwrap_or(r.para),
+                ..r.clone()
+            });
+            PyList::new(py, rows)
+        };
+        let coordinates = self.coordinates.iter().enumerate().map(|(i, c)| EchoCoordinate {
+            given: value(given, i),
+            adjusted: value(at_1, i),
+            ..c.clone()
+        });
+        let model = EchoModel {
+            elements: self.elements.clone_ref(py),
+            prescribed: rows(&self.prescribed, prescribed, para)?.unbind(),
+            dependent: rows(&self.dependent, dependent, None)?.unbind(),
+            dofs: self.dofs.clone_ref(py),
+            coordinates: PyList::new(py, coordinates)?.unbind(),
+            mode: self.mode.to_owned(),
+            dynamics: self.dynamics.clone_ref(py),
+            units: self.units.clone_ref(py),
+            points: self.points.clone_ref(py),
+            labels: self.labels.clone_ref(py).into_any(),
+        };
+        Bound::new(py, model)
     }
 }
 
-/// `dicts` with the names the deck declares for them. The names belong to a
-/// run's echo only, so they are set here rather than in [`elements`] and
-/// [`rows`], which describe_deck_text shares.
-fn named<'py>(dicts: Vec<Bound<'py, PyDict>>, names: &[Option<String>]) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    dicts.iter().enumerate().try_for_each(|(k, d)| d.set_item("name", declared(names, k)))?;
-    Ok(dicts)
+/// The rows of a deck as the echo holds them, with the names its NAMES
+/// block declares and no value yet (NaN).
+fn echo_rows(infos: &[RowInfo], names: &[Option<String>]) -> Vec<EchoRow> {
+    infos
+        .iter()
+        .enumerate()
+        .map(|(k, r)| EchoRow {
+            dest: r.dest,
+            terms: r
+                .terms
+                .iter()
+                .map(|t| Term {
+                    element: t.element,
+                    form: t.name.to_owned(),
+                    factor: t.factor,
+                    seq: t.seq,
+                    line: t.line,
+                })
+                .collect(),
+            para: r.para,
+            input: r.input,
+            value: f64::NAN,
+            name: declared(names, k).map(str::to_owned),
+        })
+        .collect()
 }
 
 /// The name the deck declares for thing `k` (0-based) of a kind, if any.
 fn declared(names: &[Option<String>], k: usize) -> Option<&str> {
     names.get(k).and_then(Option::as_deref)
-}
-
-/// Copies of the dicts `templates` with `set` made in each (k, copy).
-fn copies<'py>(
-    py: Python<'py>,
-    templates: &[Py<PyDict>],
-    mut set: impl FnMut(usize, &Bound<'py, PyDict>) -> PyResult<()>,
-) -> PyResult<Bound<'py, PyList>> {
-    let items = templates
-        .iter()
-        .enumerate()
-        .map(|(k, t)| {
-            let d = t.bind(py).copy()?;
-            set(k, &d)?;
-            Ok(d)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    PyList::new(py, items)
 }
 
 /// The mass and load model as a dict, in the deck's numbering; `files`

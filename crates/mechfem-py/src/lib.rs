@@ -47,6 +47,7 @@ mod convert;
 mod described_names;
 mod design;
 mod dynamic_design;
+mod echo;
 mod errors;
 mod labels;
 mod model;
@@ -67,7 +68,7 @@ use mechfem_core::{Quantity, RunReport, TransferOrder};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::PyList;
 
 use crate::cache::EchoSlot;
 use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError};
@@ -88,7 +89,7 @@ fn echo<'py>(
     given: &[f64],
     at_1: &[f64],
     rec: &Recording<'_, Selection>,
-) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
+) -> PyResult<(Bound<'py, echo::EchoModel>, Bound<'py, PyAny>)> {
     let (prescribed, dependent) = (&rec.prescribed_at_1, &rec.dependent_at_1);
     if !c.units.is_identity() {
         // The echo speaks the deck's units.
@@ -343,6 +344,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(batch::run_deck_variants, m)?)?;
     m.add_class::<model::Model>()?;
     m.add_class::<labels::Labels>()?;
+    m.add_class::<echo::EchoModel>()?;
+    m.add_class::<echo::EchoElement>()?;
+    m.add_class::<echo::EchoRow>()?;
+    m.add_class::<echo::Term>()?;
+    m.add_class::<echo::EchoCoordinate>()?;
+    m.add_class::<echo::EchoPoint>()?;
     m.add_class::<run::Run>()?;
     m.add_class::<checked::Check>()?;
     m.add_class::<checked::DeckFiles>()?;

@@ -10,7 +10,7 @@ use std::ffi::CString;
 
 use pyo3::exceptions::PyUserWarning;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::PyDict;
 
 /// The deck's units: `length`, `angle`, `mass`, `force`, `time` to the
 /// unit's symbol, or None where the deck declares none.
@@ -20,23 +20,6 @@ pub fn units<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyDict>>
         d.set_item(kind, symbol)?;
     }
     Ok(d)
-}
-
-/// The named points: `x`, `y` (1-based co-ordinates) and `name`.
-pub fn points<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Bound<'py, PyList>> {
-    let items = c
-        .names
-        .points
-        .iter()
-        .map(|(x, y, name)| {
-            let d = PyDict::new(py);
-            d.set_item("x", x + 1)?;
-            d.set_item("y", y + 1)?;
-            d.set_item("name", name)?;
-            Ok(d)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    PyList::new(py, items)
 }
 
 /// Multiplies every `width`-long row of `values` by `scales` (nothing

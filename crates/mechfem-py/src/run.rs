@@ -22,6 +22,7 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyList, PySlice, PyTuple};
 
+use crate::echo::EchoModel;
 use crate::report::Report;
 use crate::simulated::Simulation;
 use crate::{convert, errors};
@@ -211,7 +212,7 @@ pub struct Run {
     buffer_numbers: Py<PyAny>,
     hodograph_coords: Py<PyAny>,
     report: Py<Report>,
-    model: Py<PyDict>,
+    model: Py<EchoModel>,
     storage: Py<PyAny>,
     simulation: Option<Py<Simulation>>,
 }
@@ -323,7 +324,7 @@ impl Run {
 
     /// The model as compiled, with its values at position 1.
     #[getter]
-    fn model<'py>(&self, py: Python<'py>) -> Bound<'py, PyDict> {
+    fn model<'py>(&self, py: Python<'py>) -> Bound<'py, EchoModel> {
         self.model.bind(py).clone()
     }
 
@@ -360,7 +361,7 @@ pub struct DeckRun<'py> {
     /// The run's report.
     pub report: Bound<'py, Report>,
     /// The model echo.
-    pub model: Bound<'py, PyDict>,
+    pub model: Bound<'py, EchoModel>,
     /// The storage requests (`_core.Storage`).
     pub storage: Bound<'py, PyAny>,
     /// The simulation report.
@@ -413,7 +414,7 @@ pub struct Shared {
     /// The model echo and the report of the last run, with the numbers
     /// they were made from (bit patterns): a run with the same numbers
     /// hands Python the same dicts, which it converted once.
-    last_echo: Mutex<Option<(Vec<u64>, Py<PyDict>)>>,
+    last_echo: Mutex<Option<(Vec<u64>, Py<EchoModel>)>>,
     last_report: Mutex<Option<(Vec<u64>, Py<Report>)>>,
 }
 

@@ -280,7 +280,7 @@ class PickledRun:
     buffer_numbers: list[int]
     hodograph_coords: list[int]
     report: _core.Report
-    model: _core.ModelDict
+    model: _core.EchoModel
     storage: _core.EchoStorage
     simulation: _core.Simulation | None
 
@@ -330,12 +330,11 @@ def mean_step(coords: FloatArray, model: Model) -> float | None:
 _CONVERTED = Converted()
 
 
-def _model_and_names(d: _core.ModelDict) -> tuple[Model, list[str]]:
-    def make(d: _core.ModelDict) -> tuple[Model, list[str]]:
-        model = Model.from_core(d)
+def _model_and_names(model: Model) -> tuple[Model, list[str]]:
+    def make(model: Model) -> tuple[Model, list[str]]:
         return model, input_names(model)
 
-    return _CONVERTED.get(d, make)
+    return _CONVERTED.get(model, make)
 
 
 def run_result(deck: Path, d: _core.Run) -> RunResult:
