@@ -47,6 +47,12 @@ __all__ = [
     "Term",
     "EchoCoordinate",
     "EchoPoint",
+    "EchoDynamics",
+    "EchoBody",
+    "EchoPointMass",
+    "EchoInertia",
+    "EchoForce",
+    "EchoLoad",
     "optimised_deck_text",
     "deck_tolerance",
     "built_tolerance",
@@ -246,64 +252,160 @@ class Report:
     @property
     def stop(self) -> Stop | None: ...
 
-@type_check_only
-class BodyDict(TypedDict):
-    element: float
-    """The element's number (a whole number, given as a float)."""
-    mass: float
-    u: float
-    v: float
-    inertia: float
+@final
+class EchoBody:
+    """A MASS line: the body on element ``element``: its mass, centre of mass (u, v) in the element's frame and
+    moment of inertia."""
 
-@type_check_only
-class PointMassDict(TypedDict):
-    x: float
-    """Co-ordinate numbers (whole numbers, given as floats)."""
-    y: float
-    mass: float
+    def __new__(cls, element: int, mass: float, u: float, v: float, inertia: float) -> EchoBody: ...
+    def __getnewargs__(self) -> tuple[int, float, float, float, float]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def element(self) -> int: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def u(self) -> float: ...
+    @property
+    def v(self) -> float: ...
+    @property
+    def inertia(self) -> float: ...
 
-@type_check_only
-class InertiaDict(TypedDict):
-    coord: float
-    """The co-ordinate's number (a whole number, given as a float)."""
-    inertia: float
+@final
+class EchoPointMass:
+    """A PMASS line: a point mass at the point of co-ordinates ``x`` and ``y``."""
 
-@type_check_only
-class ForceDict(TypedDict):
-    x: float
-    """Co-ordinate numbers (whole numbers, given as floats)."""
-    y: float
-    fx: float
-    fy: float
+    def __new__(cls, x: int, y: int, mass: float) -> EchoPointMass: ...
+    def __getnewargs__(self) -> tuple[int, int, float]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def x(self) -> int: ...
+    @property
+    def y(self) -> int: ...
+    @property
+    def mass(self) -> float: ...
 
-@type_check_only
-class LoadDict(TypedDict):
-    dest: int
-    """The row: r > 0 prescribed, -k dependent."""
-    kind: str
-    """``LOAD``, ``LOADFUNC``, ``SPRING`` or ``MOTOR``; the keys below belong to one kind each."""
-    value: NotRequired[float]
-    rows: NotRequired[list[list[float]]]
-    """LOADFUNC: its table's rows ``[t, value]``."""
-    file: NotRequired[str | None]
-    """LOADFUNC: the file name as the deck gives it (from ``describe_deck_text``; None in a run's model echo)."""
-    k: NotRequired[float]
-    e0: NotRequired[float]
-    c: NotRequired[float]
-    t0: NotRequired[float]
-    w0: NotRequired[float]
+@final
+class EchoInertia:
+    """An INERTIA line: an inertia on co-ordinate ``coord``."""
 
-@type_check_only
-class DynamicsDict(TypedDict):
-    """The masses and loads of a DYN ANA deck, in the deck's numbering."""
+    def __new__(cls, coord: int, inertia: float) -> EchoInertia: ...
+    def __getnewargs__(self) -> tuple[int, float]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def coord(self) -> int: ...
+    @property
+    def inertia(self) -> float: ...
 
-    gravity: list[float]
-    """``[gx, gy]`` (zero without GRAVITY)."""
-    bodies: list[BodyDict]
-    point_masses: list[PointMassDict]
-    inertias: list[InertiaDict]
-    forces: list[ForceDict]
-    loads: list[LoadDict]
+@final
+class EchoForce:
+    """A FORCE line: a constant force (fx, fy) at the point of co-ordinates ``x`` and ``y``."""
+
+    def __new__(cls, x: int, y: int, fx: float, fy: float) -> EchoForce: ...
+    def __getnewargs__(self) -> tuple[int, int, float, float]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def x(self) -> int: ...
+    @property
+    def y(self) -> int: ...
+    @property
+    def fx(self) -> float: ...
+    @property
+    def fy(self) -> float: ...
+
+@final
+class EchoLoad:
+    """A load on a row (``dest``: r > 0 prescribed, -k dependent): ``LOAD`` (``value``), ``LOADFUNC`` (``rows`` of
+    time and value, the ``file`` the deck names where known), ``SPRING`` (``k``, ``e0``, ``c``) or ``MOTOR``
+    (``t0``, ``w0``); the numbers of the other kinds are None."""
+
+    def __new__(
+        cls,
+        dest: int,
+        kind: str,
+        value: float | None = None,
+        rows: list[tuple[float, float]] = ...,
+        file: str | None = None,
+        k: float | None = None,
+        e0: float | None = None,
+        c: float | None = None,
+        t0: float | None = None,
+        w0: float | None = None,
+    ) -> EchoLoad: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[
+        int,
+        str,
+        float | None,
+        list[tuple[float, float]],
+        str | None,
+        float | None,
+        float | None,
+        float | None,
+        float | None,
+        float | None,
+    ]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def dest(self) -> int: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def value(self) -> float | None: ...
+    @property
+    def rows(self) -> list[tuple[float, float]]: ...
+    @property
+    def file(self) -> str | None: ...
+    @property
+    def k(self) -> float | None: ...
+    @property
+    def e0(self) -> float | None: ...
+    @property
+    def c(self) -> float | None: ...
+    @property
+    def t0(self) -> float | None: ...
+    @property
+    def w0(self) -> float | None: ...
+
+@final
+class EchoDynamics:
+    """The DYNAMICS block as compiled, in the deck's numbering and units: gravity, bodies, point masses, inertias,
+    forces and loads."""
+
+    def __new__(
+        cls,
+        gravity: tuple[float, float],
+        bodies: list[EchoBody],
+        point_masses: list[EchoPointMass],
+        inertias: list[EchoInertia],
+        forces: list[EchoForce],
+        loads: list[EchoLoad],
+    ) -> EchoDynamics: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[
+        tuple[float, float],
+        list[EchoBody],
+        list[EchoPointMass],
+        list[EchoInertia],
+        list[EchoForce],
+        list[EchoLoad],
+    ]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def gravity(self) -> tuple[float, float]:
+        """``(gx, gy)``, zero without GRAVITY."""
+    @property
+    def bodies(self) -> list[EchoBody]: ...
+    @property
+    def point_masses(self) -> list[EchoPointMass]: ...
+    @property
+    def inertias(self) -> list[EchoInertia]: ...
+    @property
+    def forces(self) -> list[EchoForce]: ...
+    @property
+    def loads(self) -> list[EchoLoad]: ...
 
 @final
 class Term:
@@ -423,7 +525,7 @@ class EchoModel:
         dofs: list[int],
         coordinates: list[EchoCoordinate],
         mode: str,
-        dynamics: DynamicsDict | None,
+        dynamics: EchoDynamics | None,
         units: dict[str, str | None],
         points: list[EchoPoint],
         labels: Labels | None,
@@ -437,7 +539,7 @@ class EchoModel:
         list[int],
         list[EchoCoordinate],
         str,
-        DynamicsDict | None,
+        EchoDynamics | None,
         dict[str, str | None],
         list[EchoPoint],
         Labels | None,
@@ -458,7 +560,7 @@ class EchoModel:
     def mode(self) -> str:
         """``KIN ANA``, ``DYN ANA`` or ``DYN SIM``."""
     @property
-    def dynamics(self) -> DynamicsDict | None:
+    def dynamics(self) -> EchoDynamics | None:
         """The masses and loads (None for a KIN ANA deck), in the deck's units."""
     @property
     def units(self) -> dict[str, str | None]:
@@ -939,7 +1041,7 @@ class DescribedDeckDict(TypedDict):
     storage: EchoStorage
     mode: str
     """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
-    dynamics: DynamicsDict | None
+    dynamics: EchoDynamics | None
     """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
     units: NotRequired[dict[str, str | None]]
     """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""

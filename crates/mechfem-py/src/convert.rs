@@ -2,7 +2,6 @@
 //! names a co-ordinate, row, element, DOF or position is converted to the
 //! deck's 1-based numbering here.
 
-use mechfem_core::dynamics::{Dynamics, LoadKind};
 use mechfem_core::run::Block;
 use mechfem_core::{DesignVar, FormRef};
 use mechfem_deck::{Compiled, Optimise, RowInfo, Sense, TargetKind};
@@ -13,6 +12,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 
 use crate::echo::{EchoCoordinate, EchoElement, EchoModel, EchoPoint, EchoRow, Term};
+use crate::masses::EchoDynamics;
 
 /// A row-major `rows x cols` array.
 pub fn array2<'py>(py: Python<'py>, data: Vec<f64>, rows: usize, cols: usize) -> PyResult<Bound<'py, PyAny>> {
@@ -133,8 +133,8 @@ impl Echo {
         // The echo speaks the deck's units (crate::names).
         let [written, written_dependent] = c.rows_as_written();
         let dynamics = match &c.dynamics_as_written() {
-            Some(m) => dynamics(py, m, &[])?.into_any(),
-            None => py.None().into_bound(py),
+            Some(m) => Py::new(py, EchoDynamics::of(m, &[]))?.into_any(),
+            None => py.None(),
         };
         let elements = c.elements.iter().enumerate().map(|(k, e)| EchoElement {
             number: e.number,
@@ -148,7 +148,7 @@ impl Echo {
         Ok(Echo {
             elements: PyList::new(py, elements)?.unbind(),
             dofs: PyList::new(py, (0..mech.n_dof()).map(|j| mech.input_row(j) + 1))?.unbind(),
-            dynamics: dynamics.unbind(),
+            dynamics,
             mode: c.mode.name(),
             prescribed: echo_rows(&written, &c.names.prescribed),
             dependent: echo_rows(&written_dependent, &c.names.dependent),
@@ -232,71 +232,6 @@ fn echo_rows(infos: &[RowInfo], names: &[Option<String>]) -> Vec<EchoRow> {
 /// The name the deck declares for thing `k` (0-based) of a kind, if any.
 fn declared(names: &[Option<String>], k: usize) -> Option<&str> {
     names.get(k).and_then(Option::as_deref)
-}
-
-/// The mass and load model as a dict, in the deck's numbering; `files`
-/// names the LOADFUNC file of each load, where known.
-pub fn dynamics<'py>(py: Python<'py>, m: &Dynamics, files: &[Option<String>]) -> PyResult<Bound<'py, PyDict>> {
-    let n = |i: usize| i + 1;
-    let d = PyDict::new(py);
-    d.set_item("gravity", m.gravity.to_vec())?;
-    let list = |items: Vec<Vec<(&str, f64)>>| -> PyResult<Vec<Bound<'py, PyDict>>> {
-        items
-            .into_iter()
-            .map(|fields| {
-                let e = PyDict::new(py);
-                for (k, v) in fields {
-                    e.set_item(k, v)?;
-                }
-                Ok(e)
-            })
-            .collect()
-    };
-    let bodies = m.bodies.iter().map(|b| {
-        vec![("element", n(b.element) as f64), ("mass", b.mass), ("u", b.u), ("v", b.v), ("inertia", b.inertia)]
-    });
-    d.set_item("bodies", list(bodies.collect())?)?;
-    let points = m.point_masses.iter().map(|p| vec![("x", n(p.x) as f64), ("y", n(p.y) as f64), ("mass", p.mass)]);
-    d.set_item("point_masses", list(points.collect())?)?;
-    let inertias = m.inertias.iter().map(|i| vec![("coord", n(i.coord) as f64), ("inertia", i.inertia)]);
-    d.set_item("inertias", list(inertias.collect())?)?;
-    let forces =
-        m.forces.iter().map(|f| vec![("x", n(f.x) as f64), ("y", n(f.y) as f64), ("fx", f.f[0]), ("fy", f.f[1])]);
-    d.set_item("forces", list(forces.collect())?)?;
-    let loads = m
-        .loads
-        .iter()
-        .enumerate()
-        .map(|(k, l)| {
-            let e = PyDict::new(py);
-            e.set_item("dest", dest(l.form))?;
-            match &l.kind {
-                LoadKind::Constant(q) => {
-                    e.set_item("kind", "LOAD")?;
-                    e.set_item("value", q)?;
-                }
-                LoadKind::Table(rows) => {
-                    e.set_item("kind", "LOADFUNC")?;
-                    e.set_item("rows", rows.iter().map(|r| r.to_vec()).collect::<Vec<_>>())?;
-                    e.set_item("file", files.get(k).cloned().flatten())?;
-                }
-                LoadKind::Spring { k, e0, c } => {
-                    e.set_item("kind", "SPRING")?;
-                    e.set_item("k", k)?;
-                    e.set_item("e0", e0)?;
-                    e.set_item("c", c)?;
-                }
-                LoadKind::Motor { t0, w0 } => {
-                    e.set_item("kind", "MOTOR")?;
-                    e.set_item("t0", t0)?;
-                    e.set_item("w0", w0)?;
-                }
-            }
-            Ok(e)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("loads", loads)?;
-    Ok(d)
 }
 
 pub fn dest(f: FormRef) -> i64 {

@@ -25,6 +25,7 @@ use mechfem_deck::{Change, Compiled, Diagnostics, Numbers};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::masses::EchoDynamics;
 use crate::observe::{Full, Progress, Recording};
 use crate::run::{outcome_run, FullRun, Outcome, RecordedTable, Run, Shared};
 use crate::{convert, errors};
@@ -293,7 +294,7 @@ pub fn describe_deck_text<'py>(
     let stop_when = movement.and_then(|m| m.stop_when.as_ref()).map(|s| (s.buffer.value, s.value.value));
     d.set_item("stop_when", stop_when)?;
     d.set_item("mode", c.mode.name())?;
-    d.set_item("dynamics", dynamics.as_ref().map(|m| convert::dynamics(py, m, &files)).transpose()?)?;
+    d.set_item("dynamics", dynamics.as_ref().map(|m| Py::new(py, EchoDynamics::of(m, &files))).transpose()?)?;
     let optimise = c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?;
     if let (Some(o), Some(dict)) = (&c.optimise, &optimise) {
         crate::names::optimise_units(&c, o, dict)?;

@@ -546,7 +546,7 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
     return m
 
 
-def read_loads(mech: Mechanism, nb: Numbering, d: _core.DynamicsDict | None) -> None:
+def read_loads(mech: Mechanism, nb: Numbering, d: _core.EchoDynamics | None) -> None:
     """Gives ``mech`` (read from a deck with the numbering ``nb``) the masses and loads of the deck's DYNAMICS
     block as the deck reader compiled them (``d``, None for a deck without one)."""
     if d is None:
@@ -556,31 +556,38 @@ def read_loads(mech: Mechanism, nb: Numbering, d: _core.DynamicsDict | None) -> 
     def row(dest: int) -> Row:
         return nb.prescribed[dest - 1] if dest > 0 else nb.dependent[-dest - 1]
 
-    def point(x: float, y: float) -> tuple[Coordinate, Coordinate]:
-        return nb.coords[int(x) - 1], nb.coords[int(y) - 1]
+    def point(x: int, y: int) -> tuple[Coordinate, Coordinate]:
+        return nb.coords[x - 1], nb.coords[y - 1]
 
-    for b in d["bodies"]:
-        mech.mass(nb.elements[int(b["element"]) - 1], b["mass"], b["u"], b["v"], b["inertia"])
-    for p in d["point_masses"]:
-        mech.point_mass(point(p["x"], p["y"]), p["mass"])
-    for i in d["inertias"]:
-        mech.inertia(nb.coords[int(i["coord"]) - 1], i["inertia"])
-    if tuple(d["gravity"]) != (0.0, 0.0):
-        mech.gravity(*d["gravity"])
-    for f in d["forces"]:
-        mech.force(point(f["x"], f["y"]), f["fx"], f["fy"])
-    for ld in d["loads"]:
-        r = row(ld["dest"])
-        match ld["kind"]:
+    for b in d.bodies:
+        mech.mass(nb.elements[b.element - 1], b.mass, b.u, b.v, b.inertia)
+    for p in d.point_masses:
+        mech.point_mass(point(p.x, p.y), p.mass)
+    for i in d.inertias:
+        mech.inertia(nb.coords[i.coord - 1], i.inertia)
+    if d.gravity != (0.0, 0.0):
+        mech.gravity(*d.gravity)
+    for f in d.forces:
+        mech.force(point(f.x, f.y), f.fx, f.fy)
+    for ld in d.loads:
+        r = row(ld.dest)
+        match ld.kind:
             case "LOAD":
-                mech.load(r, ld["value"])
+                mech.load(r, _number(ld.value))
             case "LOADFUNC":
-                t, values = zip(*ld["rows"], strict=True)
-                mech.load_table(r, list(t), list(values), file=ld["file"])
+                t, values = zip(*ld.rows, strict=True)
+                mech.load_table(r, list(t), list(values), file=ld.file)
             case "SPRING":
-                mech.spring(r, ld["k"], ld["e0"], ld["c"])
+                mech.spring(r, _number(ld.k), _number(ld.e0), _number(ld.c))
             case _:
-                mech.motor(r, ld["t0"], ld["w0"])
+                mech.motor(r, _number(ld.t0), _number(ld.w0))
+
+
+def _number(v: float | None) -> float:
+    """A number a load of its kind always has (the compiled module gives None only to the other kinds')."""
+    if v is None:
+        raise ValueError("a load without the number its kind needs")
+    return v
 
 
 def write_text(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> str:

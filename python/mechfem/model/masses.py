@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
+from mechfem._core import EchoDynamics, EchoLoad
 from mechfem.model.units import symbol
 
 Exponents = Mapping[str, int]
@@ -65,30 +65,15 @@ TIME: Exponents = {"time": 1}
 ENERGY: Exponents = {"force": 1, "length": 1}
 
 
+def dynamics_lines(d: EchoDynamics, said: Said | None = None) -> list[str]:
+    """The echo of the masses and loads (the DYNAMICS block as compiled: ``EchoModel.dynamics``) in the print file,
+    in the deck's units and with its names (``said``)."""
+    return _Lines(d).lines(said)
+
+
 @dataclass(frozen=True)
-class DynamicsModel:
-    """The DYNAMICS block as compiled: every item as a dict in deck numbering (``bodies``: element, mass, u, v,
-    inertia; ``point_masses``: x, y, mass; ``inertias``: coord, inertia; ``forces``: x, y, fx, fy; ``loads``: dest,
-    kind (LOAD, LOADFUNC, SPRING or MOTOR) and its numbers)."""
-
-    gravity: tuple[float, float]
-    bodies: list[dict[str, float]]
-    point_masses: list[dict[str, float]]
-    inertias: list[dict[str, float]]
-    forces: list[dict[str, float]]
-    loads: list[dict[str, Any]]
-
-    @classmethod
-    def from_core(cls, d: dict[str, Any]) -> DynamicsModel:
-        g = d["gravity"]
-        return cls(
-            gravity=(float(g[0]), float(g[1])),
-            bodies=list(d["bodies"]),
-            point_masses=list(d["point_masses"]),
-            inertias=list(d["inertias"]),
-            forces=list(d["forces"]),
-            loads=list(d["loads"]),
-        )
+class _Lines:
+    d: EchoDynamics
 
     def lines(self, said: Said | None = None) -> list[str]:
         """The echo of the masses and loads in the print file, in the deck's units and with its names (``said``)."""
@@ -96,43 +81,40 @@ class DynamicsModel:
         u = said.unit
         inertia = {"mass": 1, "length": 2}
         out = ["", "  masses and loads (DYNAMICS)"]
-        if self.gravity != (0.0, 0.0):
+        gravity = self.d.gravity
+        if gravity != (0.0, 0.0):
             g = u({"length": 1, "time": -2})
-            out.append(f"    GRAVITY   ({self.gravity[0]:.10g}, {self.gravity[1]:.10g}){g}")
-        for b in self.bodies:
+            out.append(f"    GRAVITY   ({gravity[0]:.10g}, {gravity[1]:.10g}){g}")
+        for b in self.d.bodies:
             out.append(
-                f"    MASS      element {int(b['element'])}: m {b['mass']:.10g}{u(MASS)}, centre (u, v) = "
-                f"({b['u']:.10g}, {b['v']:.10g}){u(LENGTH)}, J {b['inertia']:.10g}{u(inertia)}"
+                f"    MASS      element {b.element}: m {b.mass:.10g}{u(MASS)}, centre (u, v) = "
+                f"({b.u:.10g}, {b.v:.10g}){u(LENGTH)}, J {b.inertia:.10g}{u(inertia)}"
             )
-        for p in self.point_masses:
-            out.append(f"    PMASS     point {said.point(int(p['x']), int(p['y']))}: m {p['mass']:.10g}{u(MASS)}")
-        for i in self.inertias:
-            lengths = 2 * (1 - said.coords.get(int(i["coord"]), LENGTH).get("length", 0))
+        for p in self.d.point_masses:
+            out.append(f"    PMASS     point {said.point(p.x, p.y)}: m {p.mass:.10g}{u(MASS)}")
+        for i in self.d.inertias:
+            lengths = 2 * (1 - said.coords.get(i.coord, LENGTH).get("length", 0))
             j = u({"mass": 1, "length": lengths})
-            out.append(f"    INERTIA   co-ordinate {int(i['coord'])}: J {i['inertia']:.10g}{j}")
-        for f in self.forces:
-            out.append(
-                f"    FORCE     point {said.point(int(f['x']), int(f['y']))}: "
-                f"({f['fx']:.10g}, {f['fy']:.10g}){u({'force': 1})}"
-            )
-        for ld in self.loads:
-            dest = int(ld["dest"])
-            out.append(f"    {ld['kind']:<9} {said.row(dest)}: {_load_text(ld, said, said.rows.get(dest, {}))}")
+            out.append(f"    INERTIA   co-ordinate {i.coord}: J {i.inertia:.10g}{j}")
+        for f in self.d.forces:
+            out.append(f"    FORCE     point {said.point(f.x, f.y)}: ({f.fx:.10g}, {f.fy:.10g}){u({'force': 1})}")
+        for ld in self.d.loads:
+            out.append(f"    {ld.kind:<9} {said.row(ld.dest)}: {_load_text(ld, said, said.rows.get(ld.dest, {}))}")
         return out
 
 
-def _load_text(ld: dict[str, Any], said: Said, e: Exponents) -> str:
+def _load_text(ld: EchoLoad, said: Said, e: Exponents) -> str:
     """A load's numbers with their units: ``e`` is the kind of the row it acts on."""
     q = generalised_force(e)
     u = said.unit
-    match ld["kind"]:
+    match ld.kind:
         case "LOAD":
-            return f"constant {ld['value']:.10g}{u(q)}"
+            return f"constant {ld.value:.10g}{u(q)}"
         case "LOADFUNC":
-            return f"table of {len(ld['rows'])} rows, linear in time"
+            return f"table of {len(ld.rows)} rows, linear in time"
         case "SPRING":
             k = over(q, e)
             c = over(k, over({}, TIME))
-            return f"stiffness {ld['k']:.10g}{u(k)}, free value {ld['e0']:.10g}{u(e)}, damping {ld['c']:.10g}{u(c)}"
+            return f"stiffness {ld.k:.10g}{u(k)}, free value {ld.e0:.10g}{u(e)}, damping {ld.c:.10g}{u(c)}"
         case _:
-            return f"stall torque {ld['t0']:.10g}{u(q)}, no-load speed {ld['w0']:.10g}{u(over(e, TIME))}"
+            return f"stall torque {ld.t0:.10g}{u(q)}, no-load speed {ld.w0:.10g}{u(over(e, TIME))}"

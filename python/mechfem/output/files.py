@@ -21,7 +21,7 @@ import numpy as np
 
 from mechfem._util.atomic import atomic_text
 from mechfem.model.echo import EchoStorage, Model
-from mechfem.model.masses import DynamicsModel, Exponents, Said
+from mechfem.model.masses import Exponents, Said, dynamics_lines
 from mechfem.output.datasets import write_binary
 from mechfem.results.designer import print_lines as designer_lines
 from mechfem.results.inverse_dynamics import summary_lines
@@ -262,7 +262,7 @@ def model_lines(model: Model, said: Said | None = None) -> list[str]:
         u = unit(said.coords.get(c.number, {"length": 1}))
         out.append(f"    {c.number:4d}  {kind}  {c.given:17.10g}  {c.adjusted:17.10g}{u}{_named(c.name)}".rstrip())
     if model.dynamics is not None:
-        out += DynamicsModel.from_core(dict(model.dynamics)).lines(said)
+        out += dynamics_lines(model.dynamics, said)
     out.append("")
     return out
 

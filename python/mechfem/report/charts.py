@@ -396,7 +396,7 @@ def dynamics_cards(
         ]
     # A simulation is a motion in time: its charts run against time, whatever its inputs do.
     against = "time" if nd > 1 or simulated else _input_words(result, 1)
-    motor = any(ld.get("kind") == "MOTOR" for ld in (model.dynamics["loads"] if model.dynamics else []))
+    motor = any(ld.kind == "MOTOR" for ld in (model.dynamics.loads if model.dynamics else []))
     torque = "drive or motor force or torque" if motor else "drive force or torque"
     cards = [
         (f"energies against {against}", energies),
