@@ -8,6 +8,7 @@ import subprocess
 import sys
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -71,6 +72,20 @@ def supply_with_savedata(tmp_path: Path) -> Path:
 # the controlling process, each with its test's markers among its keywords.
 SLOW_FAMILIES = ("browser", "cluster", "large_run")
 _family_time: dict[str, list[float]] = {}
+
+
+def fourbar_mm_deg(units: dict[str, str | None] | None = None) -> Any:
+    """A crank-rocker four-bar in mm and degrees (crank 10, coupler 35, rocker 30, frame 40), its crank the input
+    ``phi`` and its rocker angle the output ``psi``: the model in other units than SI that several tests share."""
+    from mechfem import Driven, Mechanism, Output
+
+    m = Mechanism("fourbar", units=units or {"length": "mm"}, angle="deg")
+    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 40.0, 0.0)
+    A, B = m.point("A", 10.0, 0.0), m.point("B", 35.0, 25.0)
+    m.bar("crank", A0, A, length=10.0, angle=Driven(start=0.0, name="phi"))
+    m.bar("coupler", A, B, length=35.0)
+    m.bar("rocker", B0, B, length=30.0, angle=Output("psi"))
+    return m
 
 
 def pytest_runtest_logreport(report: pytest.TestReport) -> None:

@@ -8,17 +8,8 @@ import pickle
 
 import numpy as np
 
-from mechfem import Driven, Mechanism, Motion, Output
-
-
-def fourbar_mm_deg() -> Mechanism:
-    m = Mechanism("fourbar", units={"length": "mm"}, angle="deg")
-    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 40.0, 0.0)
-    A, B = m.point("A", 10.0, 0.0), m.point("B", 35.0, 25.0)
-    m.bar("crank", A0, A, length=10.0, angle=Driven(start=0.0, name="phi"))
-    m.bar("coupler", A, B, length=35.0)
-    m.bar("rocker", B0, B, length=30.0, angle=Output("psi"))
-    return m
+from conftest import fourbar_mm_deg
+from mechfem import Motion
 
 
 def test_a_value_makes_its_columns_alone_and_the_same_as_the_tables() -> None:

@@ -10,21 +10,12 @@ import numpy as np
 import pytest
 
 import mechfem
-from mechfem import Driven, Mechanism, Motion, Output
+from conftest import fourbar_mm_deg, mechfem_command
+from mechfem import Motion
 
 pytest.importorskip("pandas")
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-
-
-def fourbar_mm_deg(units: dict[str, str | None] | None = None) -> Mechanism:
-    m = Mechanism("fourbar", units=units or {"length": "mm"}, angle="deg")
-    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 40.0, 0.0)
-    A, B = m.point("A", 10.0, 0.0), m.point("B", 35.0, 25.0)
-    m.bar("crank", A0, A, length=10.0, angle=Driven(start=0.0, name="phi"))
-    m.bar("coupler", A, B, length=35.0)
-    m.bar("rocker", B0, B, length=30.0, angle=Output("psi"))
-    return m
 
 
 @pytest.fixture(scope="module")
@@ -85,8 +76,6 @@ def test_a_column_says_its_unit_as_the_data_set_header_does(tmp_path: Path) -> N
     """The same quantity, a second-order transfer function in mm/deg², recorded by a deck's buffer and written to
     the data set by the command: the table's unit and the data set header's are one string."""
     import subprocess
-
-    from conftest import mechfem_command
 
     storage = mechfem.Storage().buffer(1, "BUFX0", "A.x").buffer(2, "BUFKX2", "A.x", "phi")
     deck = tmp_path / "fourbar.mec"

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import mechfem
-from conftest import ROOT
+from conftest import ROOT, fourbar_mm_deg
 from mechfem import Driven, Mechanism, Motion, Output
 from mechfem.output.files import print_file_lines
 from mechfem.studies.bands import deck_bands, tolerance_bands
@@ -206,12 +206,7 @@ def test_bands_of_a_motion_that_stops_are_those_up_to_there() -> None:
 
 def test_python_bands_are_in_the_models_units() -> None:
     # The four-bar in mm and degrees: tolerances in mm, psi and its band in degrees, sensitivities in deg/mm.
-    m = Mechanism("fourbar", units={"length": "mm"}, angle="deg")
-    A0, B0 = m.fixed("A0", 0.0, 0.0), m.fixed("B0", 40.0, 0.0)
-    A, B = m.point("A", 10.0, 0.0), m.point("B", 35.0, 25.0)
-    m.bar("crank", A0, A, length=10.0, angle=Driven(start=0.0, name="phi"))
-    m.bar("coupler", A, B, length=35.0)
-    m.bar("rocker", B0, B, length=30.0, angle=Output("psi"))
+    m = fourbar_mm_deg()
     motion = Motion.by(12, 360)
     bands = tolerance_bands(m, {"crank.length": 0.05}, ["psi"], motion=motion)
     assert bands.units == {"crank.length": "mm"} and bands["psi"].unit == "deg" and bands.input_units == ["deg"]
