@@ -17,6 +17,8 @@ __all__ = [
     "ResourceError",
     "UnitWarning",
     "DEFAULTS",
+    "Defaults",
+    "ElementKind",
     "catalogue",
     "check_deck",
     "run_deck",
@@ -825,27 +827,48 @@ class Run:
 
 # --- the element catalogue and the solver's defaults (crates/mechfem-py/src/catalogue.rs) ---
 
-@type_check_only
-class CatalogueDict(TypedDict):
-    type: str
-    coordinates: list[tuple[str, str]]
-    """Name and dimension (``length``, ``angle``, ``ratio``, ``any``) of each co-ordinate, deck order."""
-    slots: str
-    forms: list[tuple[str, str]]
-    frame: bool
+@final
+class ElementKind:
+    """One element type of the catalogue; dimensions are ``length``, ``angle``, ``ratio`` or ``any`` (that of the
+    co-ordinate a ``CRD`` element is put on)."""
 
-@type_check_only
-class DefaultsDict(TypedDict):
-    accuracy: float
-    max_iter: int
-    max_halvings: int
-    min_integration_tolerance: float
-    max_iter_limit: int
-    max_steps: int
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def type(self) -> str:
+        """The deck's three-letter name (``BIN``)."""
+    @property
+    def coordinates(self) -> list[tuple[str, str]]:
+        """Name and dimension of each co-ordinate, deck order."""
+    @property
+    def slots(self) -> str:
+        """``P`` a point (x, y), ``a`` an angle, ``s`` a scalar, in deck order."""
+    @property
+    def forms(self) -> list[tuple[str, str]]:
+        """Deck name and dimension of each form parameter."""
+    @property
+    def frame(self) -> bool:
+        """Whether the element has a frame that can carry a mass."""
 
-DEFAULTS: DefaultsDict
+@final
+class Defaults:
+    """The solver's defaults and the deck reader's limits."""
 
-def catalogue() -> list[CatalogueDict]: ...
+    @property
+    def accuracy(self) -> float: ...
+    @property
+    def max_iter(self) -> int: ...
+    @property
+    def max_halvings(self) -> int: ...
+    @property
+    def min_integration_tolerance(self) -> float: ...
+    @property
+    def max_iter_limit(self) -> int: ...
+    @property
+    def max_steps(self) -> int: ...
+
+DEFAULTS: Defaults
+
+def catalogue() -> list[ElementKind]: ...
 def check_deck(path: str | os.PathLike[str]) -> Check: ...
 
 @final

@@ -55,21 +55,21 @@ def documented() -> dict[str, tuple[list[str], list[str]]]:
 def test_the_catalogue_is_the_documented_one() -> None:
     table = documented()
     got = _core.catalogue()
-    assert [e["type"] for e in got] == list(table)
+    assert [e.type for e in got] == list(table)
     for e in got:
-        names, forms = table[e["type"]]
-        assert [n for n, _ in e["coordinates"]] == names
-        assert [f for f, _ in e["forms"]] == forms
-        coords, form_dims = DIMENSIONS[e["type"]]
-        assert "".join(LETTER[k] for _, k in e["coordinates"]) == coords, e["type"]
-        assert "".join(LETTER[k] for _, k in e["forms"]) == form_dims, e["type"]
-        assert e["slots"] == SLOTS[e["type"]]
-    assert [e["type"] for e in got if e["frame"]] == ["BIN", "HLF", "TR1", "TR2"]
+        names, forms = table[e.type]
+        assert [n for n, _ in e.coordinates] == names
+        assert [f for f, _ in e.forms] == forms
+        coords, form_dims = DIMENSIONS[e.type]
+        assert "".join(LETTER[k] for _, k in e.coordinates) == coords, e.type
+        assert "".join(LETTER[k] for _, k in e.forms) == form_dims, e.type
+        assert e.slots == SLOTS[e.type]
+    assert [e.type for e in got if e.frame] == ["BIN", "HLF", "TR1", "TR2"]
 
 
 def test_the_python_tables_are_the_cores() -> None:
-    core = {e["type"]: e for e in _core.catalogue()}
-    assert catalogue.FORMS == {t: tuple(f for f, _ in e["forms"]) for t, e in core.items()}
+    core = {e.type: e for e in _core.catalogue()}
+    assert catalogue.FORMS == {t: tuple(f for f, _ in e.forms) for t, e in core.items()}
     assert catalogue.SLOTS == SLOTS
     assert loads.FRAMES == ("BIN", "HLF", "TR1", "TR2")
     # Every form parameter has a Python name, and no Python name is left for one the core does not have.
@@ -79,16 +79,16 @@ def test_the_python_tables_are_the_cores() -> None:
 
 def test_the_defaults_are_the_documented_ones() -> None:
     # docs/deck.md and the spec: ACCURACY 1e-10, MAXITER 25; the reader refuses MAXITER > 1000, TSTEPE > 1e7.
-    assert _core.DEFAULTS["accuracy"] == 1e-10
-    assert _core.DEFAULTS["max_iter"] == 25
-    assert (_core.DEFAULTS["max_iter_limit"], _core.DEFAULTS["max_steps"]) == (1000, 10_000_000)
+    assert _core.DEFAULTS.accuracy == 1e-10
+    assert _core.DEFAULTS.max_iter == 25
+    assert (_core.DEFAULTS.max_iter_limit, _core.DEFAULTS.max_steps) == (1000, 10_000_000)
     assert (catalogue.DEFAULT_ACCURACY, catalogue.DEFAULT_MAX_ITER) == (1e-10, 25)
     assert (motion.MAX_ITER, motion.MAX_STEPS) == (1000, 10_000_000)
 
 
 def test_the_limits_are_the_deck_readers() -> None:
     # A motion at the limit is accepted by the Python checks, one above is refused, naming the core's limit.
-    limit = _core.DEFAULTS["max_iter_limit"]
+    limit = _core.DEFAULTS.max_iter_limit
     mechfem.Motion.by(1, 1.0, max_iter=limit)
     with pytest.raises(ValueError, match=f"max_iter must be from 1 to {limit}"):
         mechfem.Motion.by(1, 1.0, max_iter=limit + 1)

@@ -334,7 +334,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LimitPositionError", py.get_type::<LimitPositionError>())?;
     m.add("ResourceError", py.get_type::<ResourceError>())?;
     m.add("UnitWarning", py.get_type::<names::UnitWarning>())?;
-    m.add("DEFAULTS", catalogue::defaults(py)?)?;
+    m.add_class::<catalogue::ElementKind>()?;
+    m.add_class::<catalogue::Defaults>()?;
+    m.add("DEFAULTS", Py::new(py, catalogue::defaults())?)?;
     m.add_function(wrap_pyfunction!(catalogue::catalogue, m)?)?;
     m.add_function(wrap_pyfunction!(check_deck, m)?)?;
     m.add_function(wrap_pyfunction!(run_deck, m)?)?;

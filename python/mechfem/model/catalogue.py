@@ -7,7 +7,6 @@ element type, a form parameter or a default changes in Rust alone.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal, cast
 
 import mechfem._core as _core
@@ -16,36 +15,12 @@ Dimension = Literal["length", "angle", "ratio", "any"]
 """What a co-ordinate or form parameter measures; ``any``: that of the co-ordinate a ``CRD`` element is put on."""
 
 
-@dataclass(frozen=True)
-class ElementType:
-    """One element type of the catalogue."""
+ElementType = _core.ElementKind
+"""One element type of the catalogue: ``type`` (the deck's three-letter name), ``coordinates`` (each one's name and
+dimension, deck order), ``slots`` (``P`` a point, ``a`` an angle, ``s`` a scalar), ``forms`` (each form parameter's
+deck name and dimension) and ``frame`` (whether it has a frame that can carry a mass)."""
 
-    type: str
-    """The deck's three-letter name (``BIN``)."""
-    coordinates: tuple[tuple[str, Dimension], ...]
-    """Each co-ordinate's name and dimension, in deck order (``("xP", "length")``)."""
-    slots: str
-    """The co-ordinates as a named model gives them: ``P`` a point (x, y), ``a`` an angle, ``s`` a scalar."""
-    forms: tuple[tuple[str, Dimension], ...]
-    """Each form parameter's deck name and dimension (``("LENL", "length")``)."""
-    frame: bool
-    """Whether the element has a frame that can carry a mass."""
-
-
-def _read() -> dict[str, ElementType]:
-    out: dict[str, ElementType] = {}
-    for d in _core.catalogue():
-        out[d["type"]] = ElementType(
-            type=d["type"],
-            coordinates=tuple((n, cast(Dimension, k)) for n, k in d["coordinates"]),
-            slots=d["slots"],
-            forms=tuple((n, cast(Dimension, k)) for n, k in d["forms"]),
-            frame=bool(d["frame"]),
-        )
-    return out
-
-
-CATALOGUE: dict[str, ElementType] = _read()
+CATALOGUE: dict[str, ElementType] = {e.type: e for e in _core.catalogue()}
 """Every element type by its deck name, in the catalogue's order."""
 
 FORMS: dict[str, tuple[str, ...]] = {t: tuple(f for f, _ in e.forms) for t, e in CATALOGUE.items()}
@@ -61,29 +36,29 @@ FRAMES: tuple[str, ...] = tuple(t for t, e in CATALOGUE.items() if e.frame)
 def form_dimension(type: str, form: str) -> Dimension:
     """What form parameter ``form`` of an element of type ``type`` measures (``any`` for a ``CRD``'s ``COOR``:
     that of its co-ordinate)."""
-    return dict(CATALOGUE[type].forms)[form]
+    return cast(Dimension, dict(CATALOGUE[type].forms)[form])
 
 
 def coordinate_dimensions(type: str) -> tuple[Dimension, ...]:
     """What each co-ordinate of an element of type ``type`` measures, in deck order."""
-    return tuple(k for _, k in CATALOGUE[type].coordinates)
+    return tuple(cast(Dimension, k) for _, k in CATALOGUE[type].coordinates)
 
 
 _DEFAULTS = _core.DEFAULTS
 
-DEFAULT_ACCURACY: float = float(_DEFAULTS["accuracy"])
+DEFAULT_ACCURACY: float = _DEFAULTS.accuracy
 """How closely Newton meets the prescribed values unless a motion says otherwise (ACCURACY)."""
 
-DEFAULT_MAX_ITER: int = int(_DEFAULTS["max_iter"])
+DEFAULT_MAX_ITER: int = _DEFAULTS.max_iter
 """Newton iterations per position unless a motion says otherwise (MAXITER)."""
 
-MIN_INTEGRATION_TOLERANCE: float = float(_DEFAULTS["min_integration_tolerance"])
+MIN_INTEGRATION_TOLERANCE: float = _DEFAULTS.min_integration_tolerance
 """The smallest tolerance a simulation's integrator takes (INTTOL, or ACCURACY when INTTOL is not given)."""
 
-MAX_ITER: int = int(_DEFAULTS["max_iter_limit"])
+MAX_ITER: int = _DEFAULTS.max_iter_limit
 """The most Newton iterations per position a motion may allow (the largest MAXITER the deck reader accepts)."""
 
-MAX_STEPS: int = int(_DEFAULTS["max_steps"])
+MAX_STEPS: int = _DEFAULTS.max_steps
 """The most steps a motion may have (the largest TSTEPE the deck reader accepts)."""
 
 __all__ = [
