@@ -50,7 +50,7 @@ def run_de(seed: int, maxiter: int) -> tuple[int, float, np.ndarray, float]:
 
 def run_mechfem() -> tuple[int, float, np.ndarray, float, int]:
     t0 = time.perf_counter()
-    outcome = optimise_deck.optimise(DECK, optimise_deck.describe(DECK)["optimise"])
+    outcome = optimise_deck.optimise(DECK, optimise_deck.describe(DECK).optimise)
     s = outcome
     return s.runs, time.perf_counter() - t0, np.asarray(s.x), s.objective, len(s.history) - 1
 

@@ -55,6 +55,9 @@ __all__ = [
     "EchoInertia",
     "EchoForce",
     "EchoLoad",
+    "DeckDescription",
+    "DeckMotion",
+    "DeckInput",
     "optimised_deck_text",
     "deck_tolerance",
     "built_tolerance",
@@ -904,49 +907,35 @@ def run_deck(
 
 # --- deck text, for the model API (mechfem.Mechanism) and batch runs ---
 
-@type_check_only
-class DescribedCoordDict(TypedDict):
-    number: int
-    moving: bool
-    value: float
+@final
+class DeckInput:
+    """The motion of one input of a deck."""
 
-@type_check_only
-class DescribedElementDict(TypedDict):
-    number: int
-    type: str
-    coords: list[int]
-    line: int
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def kind(self) -> str:
+        """``by`` (MOV_RELE), ``to`` (MOV_ABSE), ``table`` (MOV_FUNC), ``free`` (MOV_FREE) or ``dynamic`` (MOV_DYN)."""
+    @property
+    def value(self) -> float | None:
+        """delta, end, ds or the initial speed v0; None for a table."""
+    @property
+    def rows(self) -> list[list[float]] | None:
+        """A table's rows ``t value velocity acceleration``."""
+    @property
+    def file(self) -> str | None:
+        """A table's file name as the deck gives it."""
 
-@type_check_only
-class DescribedTermDict(TypedDict):
-    element: int
-    form: str
-    factor: float
-    line: int
+@final
+class DeckMotion:
+    """A deck's MOVEMENT block."""
 
-@type_check_only
-class DescribedRowDict(TypedDict):
-    dest: int
-    terms: list[DescribedTermDict]
-    para: float | None
-    input: int | None
-
-@type_check_only
-class DescribedInputDict(TypedDict):
-    kind: str
-    """``by`` (MOV_RELE), ``to`` (MOV_ABSE), ``table`` (MOV_FUNC), ``free`` (MOV_FREE) or ``dynamic`` (MOV_DYN)."""
-    value: float | None
-    """delta, end, ds or the initial speed v0; None for a table."""
-    rows: list[list[float]] | None
-    """A table's rows ``t value velocity acceleration``."""
-    file: str | None
-    """A table's file name as the deck gives it."""
-
-@type_check_only
-class DescribedMotionDict(TypedDict):
-    steps: int
-    dt: float
-    inputs: list[DescribedInputDict]
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def dt(self) -> float: ...
+    @property
+    def inputs(self) -> list[DeckInput]: ...
 
 @type_check_only
 class VaryDict(TypedDict):
@@ -1051,31 +1040,55 @@ class SynthesisDict(TypedDict):
     scale: NotRequired[float]
     """VARYFRAME in a deck with UNITS: its numbers here are radians; times ``scale`` they are in ``unit``."""
 
-@type_check_only
-class DescribedDeckDict(TypedDict):
-    coordinates: list[DescribedCoordDict]
-    elements: list[DescribedElementDict]
-    prescribed: list[DescribedRowDict]
-    dependent: list[DescribedRowDict]
-    dofs: list[int]
-    tol: float
-    max_iter: int
-    motion: DescribedMotionDict | None
-    storage: EchoStorage
-    mode: str
-    """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
-    dynamics: EchoDynamics | None
-    """The masses and loads, LOADFUNC tables with their files (None for a KIN ANA deck)."""
-    units: NotRequired[dict[str, str | None]]
-    """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
-    inttol: NotRequired[list[float] | None]
-    """``[rtol, atol]`` of INTTOL; None (or absent) for a deck without INTTOL."""
-    integrator: NotRequired[str | None]
-    """The method of INTEGRATOR (``auto``, ``dop853``, ``dopri5`` or ``radau5``); None for a deck without it."""
-    stop_when: NotRequired[tuple[int, float] | None]
-    """``(buffer, value)`` of STOPWHEN; None for a deck without it."""
-    optimise: NotRequired[OptimiseDict | None]
-    """The OPTIMISE block of a KIN OPT deck; None for any other mode."""
+@final
+class DeckDescription:
+    """What a deck declares, read and compiled without solving anything; numbers the deck's own, in its UNITS."""
+
+    @property
+    def coordinates(self) -> list[EchoCoordinate]:
+        """Every co-ordinate, its value as the deck gives it in ``given`` (``adjusted`` NaN)."""
+    @property
+    def elements(self) -> list[EchoElement]: ...
+    @property
+    def prescribed(self) -> list[EchoRow]: ...
+    @property
+    def dependent(self) -> list[EchoRow]: ...
+    @property
+    def names(self) -> dict[str, Any]:
+        """The NAMES block: ``points`` (x, y, name), ``coordinates``, ``elements``, ``prescribed``, ``dependent``
+        (a name or None each)."""
+    @property
+    def dofs(self) -> list[int]: ...
+    @property
+    def tol(self) -> float:
+        """ACCURACY, in the deck's length unit."""
+    @property
+    def max_iter(self) -> int: ...
+    @property
+    def motion(self) -> DeckMotion | None: ...
+    @property
+    def storage(self) -> EchoStorage: ...
+    @property
+    def inttol(self) -> tuple[float, float] | None:
+        """INTTOL's ``(rtol, atol)``; None for a deck without INTTOL."""
+    @property
+    def integrator(self) -> str | None:
+        """The method of INTEGRATOR (``auto``, ``dop853``, ``dopri5`` or ``radau5``); None without it."""
+    @property
+    def stop_when(self) -> tuple[int, float] | None:
+        """``(buffer, value)`` of STOPWHEN; None for a deck without it."""
+    @property
+    def mode(self) -> str:
+        """``KIN ANA``, ``KIN OPT``, ``DYN ANA`` or ``DYN SIM``."""
+    @property
+    def dynamics(self) -> EchoDynamics | None:
+        """The masses and loads, LOADFUNC tables with their files (None for a KIN deck)."""
+    @property
+    def optimise(self) -> OptimiseDict | None:
+        """The OPTIMISE block of a KIN OPT or DYN ANA deck."""
+    @property
+    def units(self) -> dict[str, str | None]:
+        """The deck's UNITS (length, angle, mass, force, time to a symbol or None)."""
 
 # The compiled signatures show a default other than None or a bool as "...": order is 2 (first- and second-order
 # transfer functions), memory_limit unlimited.
@@ -1090,7 +1103,7 @@ def run_deck_text(
 ) -> Run: ...
 def describe_deck_text(
     text: str, path: str | os.PathLike[str], base_dir: str | os.PathLike[str]
-) -> DescribedDeckDict: ...
+) -> DeckDescription: ...
 
 @final
 class Model:

@@ -263,7 +263,7 @@ def test_kin_opt_with_vary_and_targets_in_degrees(tmp_path: Path) -> None:
     kappa = {}
     for name, deck_text in [("si", source), ("mm", text)]:
         deck = _write(tmp_path, f"supply_opt_{name}.mec", deck_text)
-        outcome = optimise_deck.optimise(deck, optimise_deck.describe(deck)["optimise"])  # type: ignore[arg-type]
+        outcome = optimise_deck.optimise(deck, optimise_deck.describe(deck).optimise)  # type: ignore[arg-type]
         written = optimise_deck.write_design_deck(outcome, tmp_path / name).read_text()
         kappa[name] = float(re.search(r"^\s*(?:PARA)?\s+5 (\S+)", written, re.M).group(1))  # type: ignore[union-attr]
         if name == "mm":

@@ -76,7 +76,7 @@ def _decks(tmp_path: Path) -> tuple[Path, Path]:
 def test_a_frame_angle_in_degrees_finds_the_metre_decks_turn(tmp_path: Path) -> None:
     found = []
     for deck in _decks(tmp_path):
-        opt = optimise_deck.describe(deck)["optimise"]
+        opt = optimise_deck.describe(deck).optimise
         assert opt is not None
         found.append(optimise_deck.optimise(deck, opt))
     si, mm = found

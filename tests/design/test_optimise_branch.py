@@ -165,7 +165,7 @@ def test_the_start_design_chosen_sets_the_branch(deck: Path) -> None:
 def test_the_report_counts_the_designs_whose_motion_changes_branch(deck: Path) -> None:
     text = FOURBAR.replace("TARGETAT 1 1 2.0", "TARGETAT 1 1 -2.0\nTARGETAT 1 10 -1.0")
     deck.write_text(text)
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None
     p = optimise_deck.problem(deck, text, opt)
     s = design.solve(p)
@@ -205,7 +205,7 @@ def test_a_synthesis_returns_the_objective_of_its_final_design_evaluated_afresh(
     wanted = np.loadtxt(deck.parent / "function.dat")
     assert abs(float(np.sum((phi - wanted) ** 2)) - final) <= 1e-9 * final
 
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None
     problem = optimise_deck.problem(deck, deck.read_text(), opt)
     s = design.solve(problem)

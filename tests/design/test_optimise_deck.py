@@ -71,10 +71,10 @@ def test_the_optimised_deck_runs_as_kin_ana_and_keeps_the_design(optimised: tupl
     _, out, _, _ = optimised
     deck = out / "supply_opt_opt.mec"
     d = _core.describe_deck_text(deck.read_text(), os.fspath(deck), os.fspath(out))
-    assert d["mode"] == "KIN ANA" and d.get("optimise") is None
+    assert d.mode == "KIN ANA" and d.optimise is None
     first = _core.describe_deck_text(EXAMPLE.read_text(), os.fspath(EXAMPLE), os.fspath(EXAMPLE.parent))
-    assert d["storage"].savedata == first["storage"].savedata
-    kappa = d["prescribed"][4]["para"]
+    assert d.storage.savedata == first.storage.savedata
+    kappa = d.prescribed[4].para
     assert abs(kappa - KAPPA) < 2e-4
     # The data set is the run of that deck.
     import mechfem
@@ -121,8 +121,8 @@ def test_an_infeasible_start_is_refused_with_its_line(cli: Cli, tmp_path: Path) 
 
 def test_describe_gives_the_optimise_block_in_deck_numbering() -> None:
     d = _core.describe_deck_text(EXAMPLE.read_text(), os.fspath(EXAMPLE), os.fspath(EXAMPLE.parent))
-    assert d["mode"] == "KIN OPT"
-    opt = d.get("optimise")
+    assert d.mode == "KIN OPT"
+    opt = d.optimise
     assert opt is not None
     assert opt["vary"] == [{"kind": 1, "number": 5, "lo": -5.5, "hi": -5.0, "line": 98}]
     assert opt["targets"] == [
@@ -140,7 +140,7 @@ def test_describe_gives_the_optimise_block_in_deck_numbering() -> None:
     ]
     assert (opt["bounds"], opt["objective"], opt["steps"], opt["tol"], opt["line"]) == ([], None, 200, None, 97)
     plain = _core.describe_deck_text(ROOT.joinpath("examples/supply/supply.mec").read_text(), "supply.mec", ".")
-    assert plain.get("optimise") is None
+    assert plain.optimise is None
 
 
 def test_the_optimised_deck_text_replaces_para_and_drops_optimise() -> None:
@@ -156,7 +156,7 @@ def test_ctrl_c_writes_the_design_reached(tmp_path: Path) -> None:
     from mechfem.design import optimise_deck
 
     deck = without_media(tmp_path)
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None
     history = [
         design.Iteration(0, 0.2, 0.0, 0.0, 1, np.array([-5.25])),
@@ -170,8 +170,8 @@ def test_ctrl_c_writes_the_design_reached(tmp_path: Path) -> None:
     assert "interrupted by Ctrl-C" in prt and "-5.19" in prt
     # The design reached runs as a KIN ANA deck with its kappa.
     run = _core.describe_deck_text((out / "supply_opt_opt.mec").read_text(), "x.mec", os.fspath(deck.parent))
-    assert run["mode"] == "KIN ANA"
-    assert [r["para"] for r in run["prescribed"] if r["dest"] == 5] == [-5.19]
+    assert run.mode == "KIN ANA"
+    assert [r.para for r in run.prescribed if r.dest == 5] == [-5.19]
     # Before the first iteration there is nothing but the note.
     assert [p.name for p in optimise_deck.write_interrupted(deck, opt, [], tmp_path / "empty")] == ["supply_opt.prt"]
 

@@ -36,7 +36,7 @@ def limited(tmp_path: Path) -> Path:
 
 
 def solved(deck: Path) -> mechfem.Optimum:
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None
     return optimise_deck.optimise(deck, opt)
 

@@ -56,7 +56,7 @@ def _decks(tmp_path: Path) -> tuple[Path, Path]:
 def test_a_deck_in_mm_and_degrees_finds_the_metre_decks_design(tmp_path: Path) -> None:
     found = []
     for deck in _decks(tmp_path):
-        opt = optimise_deck.describe(deck)["optimise"]
+        opt = optimise_deck.describe(deck).optimise
         assert opt is not None
         outcome = optimise_deck.optimise(deck, opt)
         assert outcome.deck is not None

@@ -65,7 +65,7 @@ def test_dynamic_gradients_match_central_differences_of_whole_runs() -> None:
 
 
 def test_the_balancing_example_finds_the_textbooks_full_balance_of_the_crank() -> None:
-    opt = optimise_deck.describe(EXAMPLE)["optimise"]
+    opt = optimise_deck.describe(EXAMPLE).optimise
     assert [(v["item"], v["number"]) for v in opt.get("mass_vary") or []] == [("U", 1), ("V", 1)]
     outcome = optimise_deck.optimise(EXAMPLE, opt)
     s = outcome
@@ -117,7 +117,7 @@ def test_the_written_deck_runs_to_the_optimum_found(optimised: tuple[Path, Path]
     d = m.evaluate(m.start())
     fx, fy = d["values"][:, 0], d["values"][:, 1]
     rms = float(np.sqrt(np.mean(fx**2 + fy**2)))
-    outcome = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
+    outcome = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE).optimise)
     assert rms == pytest.approx(outcome.objective, rel=1e-9)
 
 
@@ -126,7 +126,7 @@ def test_the_report_shows_the_balancing_as_its_optimisation_section(optimised: t
     from mechfem.report.optimum_report import deck_section
 
     deck, out = optimised
-    outcome = optimise_deck.optimise(deck, optimise_deck.describe(deck)["optimise"])
+    outcome = optimise_deck.optimise(deck, optimise_deck.describe(deck).optimise)
     final = mechfem.run_deck(out / f"{deck.stem}_opt.mec")
     section = deck_section(outcome, final)
     assert [(v["name"], v["unit"]) for v in section["variables"]] == [("U 1", "m"), ("V 1", "m")]
@@ -144,7 +144,7 @@ def test_a_deck_in_grams_varies_and_writes_its_masses_in_grams(tmp_path: Path) -
     text = text.replace("VARYM V 1 -0.2 0.2", "VARYM MASS 1 1000 3000")
     deck = tmp_path / "grams.mec"
     deck.write_text("".join(s for s in text.splitlines(keepends=True) if not re.match(r"\s*(BEGINPIC|ENDPIC|PLOT)", s)))
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     outcome = optimise_deck.optimise(deck, opt)
     u, m1 = outcome.x  # the core's units: m and kg
     first_moment = -R * (M_ROD * (L - A) / L + (M_PISTON + M_ROD * A / L) / 2)
@@ -165,7 +165,7 @@ def test_python_optimize_of_the_mechanism_agrees_with_its_deck(tmp_path: Path) -
     mech = mechfem.Mechanism.from_deck(ROOT / "examples" / "balancing" / "slider_crank_dyn.mec")
     vary = {"crank.mass_u": (-0.2, 0.2), "crank.mass_v": (-0.2, 0.2)}
     found = mechfem.optimize(mech, vary, minimize=("rms", ShakingForce()), rtol=1e-13, atol=0.0)
-    deck = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
+    deck = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE).optimise)
     assert found.objective == pytest.approx(deck.objective, rel=1e-12)
     assert found.values["crank.mass_u"] == pytest.approx(deck.x[0], abs=1e-10)
     assert found.start["crank.mass_u"] == 0.03
@@ -176,7 +176,7 @@ def test_python_optimize_of_the_mechanism_agrees_with_its_deck(tmp_path: Path) -
     text = text.replace("MINIMISE RMS 3 4 ", "MINIMISE RMS 2 ")
     path = tmp_path / "drive.mec"
     path.write_text(text)
-    by_deck = optimise_deck.optimise(path, optimise_deck.describe(path)["optimise"])
+    by_deck = optimise_deck.optimise(path, optimise_deck.describe(path).optimise)
     assert by_deck.deck.problem.names == ["PMASS 7"]
     by_python = mechfem.optimize(mech, {"B.mass": (0.5, 3.0)}, minimize=("rms", Drive("phi")), rtol=1e-13, atol=0.0)
     assert by_python.values["B.mass"] == pytest.approx(by_deck.x[0], abs=1e-9)
@@ -187,7 +187,7 @@ def test_an_interrupted_balancing_writes_the_design_it_had_reached(tmp_path: Pat
     from mechfem.design.engine import Iteration
 
     deck = without_media(tmp_path)
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     history = [
         Iteration(0, 6363.4, 0.0, 0.0, 1, np.array([0.03, 0.0])),
         Iteration(1, 2460.0, 0.0, 0.1, 3, np.array([-0.05, 0.01])),

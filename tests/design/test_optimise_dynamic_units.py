@@ -55,7 +55,7 @@ def _mechanisms(tmp_path: Path) -> tuple[mechfem.Mechanism, mechfem.Mechanism]:
 def test_balancing_in_mm_and_grams_finds_the_decks_optimum_converted(tmp_path: Path) -> None:
     si, mm = _mechanisms(tmp_path)
     assert mm.units.mass == "g" and mm.units.length == "mm"
-    deck = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE)["optimise"])
+    deck = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE).optimise)
     found = mechfem.optimize(
         mm,
         {"crank.mass_u": (-200.0, 200.0), "crank.mass_v": (-200.0, 200.0)},

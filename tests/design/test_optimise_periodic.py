@@ -99,7 +99,7 @@ def test_a_full_turn_vary_in_a_deck_wraps(tmp_path: Path) -> None:
     text = re.sub(r"VARYX 3[^\n]*\n(?:VARYX?[^\n]*\n)*", f"VARY 6 0.0 {2.0 * math.pi!r}\n", text)
     deck = tmp_path / "path.mec"
     deck.write_text(text)
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None and [v["number"] for v in opt["vary"]] == [6]
     outcome = optimise_deck.optimise(deck, opt)
     assert outcome.deck.problem.periodic == [True]

@@ -76,12 +76,12 @@ def test_optftol_in_a_deck_reaches_the_optimum_with_a_bound(tmp_path: Path) -> N
     text = (SYNTHESIS / "path.mec").read_text()
     deck = tmp_path / "path.mec"
     deck.write_text(text.replace("TARGET 2 path_y.dat\n", "TARGET 2 path_y.dat\nBOUND 2 -10 10\nOPTFTOL 1E-12 0\n"))
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None and opt["ftol"] == (1e-12, 0.0)
     outcome = optimise_deck.optimise(deck, opt)
     assert outcome.method == "SLSQP"
     assert outcome.objective < 1e-18
     # Without OPTFTOL the same deck stops at the start-scaled tolerance.
     deck.write_text(text.replace("TARGET 2 path_y.dat\n", "TARGET 2 path_y.dat\nBOUND 2 -10 10\n"))
-    classic = optimise_deck.optimise(deck, optimise_deck.describe(deck)["optimise"])
+    classic = optimise_deck.optimise(deck, optimise_deck.describe(deck).optimise)
     assert classic.objective > 1e-14

@@ -33,7 +33,7 @@ def test_the_five_points_deck_is_the_python_problem(tmp_path: Path) -> None:
         shutil.copy(SYNTHESIS / name, tmp_path)
     deck = tmp_path / "five_points.mec"
     deck.write_text((SYNTHESIS / "five_points.mec").read_text().replace("OPTSTEPS 200", "OPTSTEPS 15"))
-    opt = optimise_deck.describe(deck)["optimise"]
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None
     out = optimise_deck.optimise(deck, opt)
     py = one_start("five_points", 15)

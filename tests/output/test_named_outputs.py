@@ -127,7 +127,7 @@ def test_the_optimisation_summary_names_its_variables_in_the_decks_units(tmp_pat
     from mechfem.design import optimise_deck
 
     opt_deck = ROOT / "examples" / "supply" / "supply_opt.mec"
-    problem = optimise_deck.problem(opt_deck, opt_deck.read_text(), optimise_deck.describe(opt_deck)["optimise"])
+    problem = optimise_deck.problem(opt_deck, opt_deck.read_text(), optimise_deck.describe(opt_deck).optimise)
     model = mechfem.run_deck(ROOT / "examples" / "supply" / "supply.mec").model
     assert optimise_deck.variable_labels(problem, model) == [("kappa", "rad")]
     # The same deck with its angles in degrees: kappa is said in degrees.

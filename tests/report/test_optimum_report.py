@@ -212,7 +212,7 @@ def test_optimum_page(function_optimum: mechfem.Optimum, tmp_path: Path) -> None
 
 def test_deck_outcome_summary_names_the_decks_variables(tmp_path: Path) -> None:
     deck = SYNTHESIS / "function.mec"
-    opt = optimise_deck.describe(deck).get("optimise")
+    opt = optimise_deck.describe(deck).optimise
     assert opt is not None
     outcome = optimise_deck.optimise(deck, opt)
     table = outcome._repr_html_()

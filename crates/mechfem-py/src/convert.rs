@@ -36,53 +36,6 @@ pub fn layout<'py>(py: Python<'py>, blocks: &[Block]) -> PyResult<Bound<'py, PyD
     Ok(d)
 }
 
-/// The elements of a deck as dicts, with the deck's numbering.
-pub fn elements<'py>(py: Python<'py>, c: &Compiled) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    c.elements
-        .iter()
-        .map(|e| {
-            let ed = PyDict::new(py);
-            ed.set_item("number", e.number)?;
-            ed.set_item("type", e.ty.name())?;
-            ed.set_item("coords", e.coords.clone())?;
-            ed.set_item("coord_names", e.ty.coord_names().to_vec())?;
-            ed.set_item("line", e.line)?;
-            Ok(ed)
-        })
-        .collect()
-}
-
-/// The rows of a deck as dicts; `values` holds their values at position 1
-/// (NaN where it is shorter, e.g. empty for a deck that was not run).
-pub fn rows<'py>(py: Python<'py>, infos: &[RowInfo], values: &[f64]) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    infos
-        .iter()
-        .enumerate()
-        .map(|(k, r)| {
-            let d = PyDict::new(py);
-            d.set_item("dest", r.dest)?;
-            let terms = r
-                .terms
-                .iter()
-                .map(|t| {
-                    let td = PyDict::new(py);
-                    td.set_item("seq", t.seq)?;
-                    td.set_item("element", t.element)?;
-                    td.set_item("form", t.name)?;
-                    td.set_item("factor", t.factor)?;
-                    td.set_item("line", t.line)?;
-                    Ok(td)
-                })
-                .collect::<PyResult<Vec<_>>>()?;
-            d.set_item("terms", terms)?;
-            d.set_item("para", r.para)?;
-            d.set_item("input", r.input)?;
-            d.set_item("value", values.get(k).copied().unwrap_or(f64::NAN))?;
-            Ok(d)
-        })
-        .collect()
-}
-
 /// The echo of the model: elements, rows with their FORM terms and values
 /// at position 1, DOFs, and co-ordinates as given and at position 1; each
 /// co-ordinate, element and row with the `name` its deck declares
@@ -136,17 +89,9 @@ impl Echo {
             Some(m) => Py::new(py, EchoDynamics::of(m, &[]))?.into_any(),
             None => py.None(),
         };
-        let elements = c.elements.iter().enumerate().map(|(k, e)| EchoElement {
-            number: e.number,
-            kind: e.ty.name().to_owned(),
-            coords: e.coords.iter().map(|&i| i as i64).collect(),
-            coord_names: e.ty.coord_names().iter().map(|n| (*n).to_owned()).collect(),
-            line: e.line,
-            name: declared(&c.names.elements, k).map(str::to_owned),
-        });
         let points = c.names.points.iter().map(|(x, y, name)| EchoPoint { x: x + 1, y: y + 1, name: name.clone() });
         Ok(Echo {
-            elements: PyList::new(py, elements)?.unbind(),
+            elements: PyList::new(py, echo_elements(c, &c.names.elements))?.unbind(),
             dofs: PyList::new(py, (0..mech.n_dof()).map(|j| mech.input_row(j) + 1))?.unbind(),
             dynamics,
             mode: c.mode.name(),
@@ -202,9 +147,26 @@ impl Echo {
     }
 }
 
-/// The rows of a deck as the echo holds them, with the names its NAMES
-/// block declares and no value yet (NaN).
-fn echo_rows(infos: &[RowInfo], names: &[Option<String>]) -> Vec<EchoRow> {
+/// The elements of a deck as the echo holds them, with the names `names`
+/// declares (none for a deck's description).
+pub fn echo_elements(c: &Compiled, names: &[Option<String>]) -> Vec<EchoElement> {
+    c.elements
+        .iter()
+        .enumerate()
+        .map(|(k, e)| EchoElement {
+            number: e.number,
+            kind: e.ty.name().to_owned(),
+            coords: e.coords.iter().map(|&i| i as i64).collect(),
+            coord_names: e.ty.coord_names().iter().map(|n| (*n).to_owned()).collect(),
+            line: e.line,
+            name: declared(names, k).map(str::to_owned),
+        })
+        .collect()
+}
+
+/// The rows of a deck as the echo holds them, with the names `names`
+/// declares and no value yet (NaN).
+pub fn echo_rows(infos: &[RowInfo], names: &[Option<String>]) -> Vec<EchoRow> {
     infos
         .iter()
         .enumerate()

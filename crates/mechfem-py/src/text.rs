@@ -3,8 +3,6 @@
 //! model's mistake), and the run of a compiled model that a kept `Model`
 //! shares with them.
 //!
-//! * [`describe_deck_text`] reads and compiles a deck and returns what it
-//!   declares (co-ordinates, elements, rows, motion, storage) without solving.
 //! * [`run_deck_text`] runs a deck and returns its own buffers plus every
 //!   quantity of the deck's buffer table for every co-ordinate, row and input,
 //!   in the core's full layout ([`mechfem_core::run::Layout`]), column by
@@ -17,18 +15,14 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
 
-use mechfem_core::dynamics::Integrator;
 use mechfem_core::run::{Extent, MemoryRefusal};
-use mechfem_core::{InputMotion, Quantity, TransferOrder};
-use mechfem_deck::ast::{LoadDefKind, MotionKind};
+use mechfem_core::{Quantity, TransferOrder};
 use mechfem_deck::{Change, Compiled, Diagnostics, Numbers};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::masses::EchoDynamics;
+use crate::errors;
 use crate::observe::{Full, Progress, Recording};
 use crate::run::{outcome_run, FullRun, Outcome, RecordedTable, Run, Shared};
-use crate::{convert, errors};
 
 /// Parses and compiles deck text; `path` names it in diagnostics, MOV_FUNC
 /// files are read from `base_dir`.
@@ -178,128 +172,4 @@ pub fn run_compiled(
         py.detach(|| execute(c, numbers, motion, order, &cancel, Some(Progress::new(progress, total)), memory_limit));
     let interrupted = errors::interrupted(py, raised, matches!(outcome, Outcome::Ran(_)))?;
     outcome_run(py, outcome, Some(text), path, interrupted)
-}
-
-/// Reads and compiles the deck `text` without solving anything and returns
-/// what it declares: `coordinates`, `elements`, `prescribed` and `dependent`
-/// rows with their FORM terms, `dofs`, `motion` (None without a MOVEMENT
-/// block), `tol`, `max_iter`, `storage`, `inttol` (INTTOL's rtol and atol,
-/// None without it), the `mode` and the `dynamics`
-/// (masses and loads, LOADFUNC tables with their file names; None for a
-/// KIN ANA deck) and the `optimise` block of a KIN OPT deck
-/// ([`convert::optimise`]; None otherwise). Numbers are the deck's own.
-#[pyfunction]
-pub fn describe_deck_text<'py>(
-    py: Python<'py>,
-    text: &str,
-    path: PathBuf,
-    base_dir: PathBuf,
-) -> PyResult<Bound<'py, PyDict>> {
-    let parsed = py.detach(|| {
-        let deck = mechfem_deck::parse_str(text, &path)?;
-        let c = mechfem_deck::compile(&deck, &base_dir)?;
-        Ok::<_, Diagnostics>((deck, c))
-    });
-    let (deck, c) = parsed.map_err(|d| errors::deck_error(py, &path, &d))?;
-    let mech = &c.mechanism;
-    let d = PyDict::new(py);
-    // The deck's numbers as written, in its UNITS (crate::names).
-    let (x, [prescribed, dependent]) = (c.coords_as_written(), c.rows_as_written());
-    let (motion, dynamics) = (c.motion_as_written(), c.dynamics_as_written());
-    let coords = (0..mech.n_coords())
-        .map(|i| {
-            let cd = PyDict::new(py);
-            cd.set_item("number", i + 1)?;
-            cd.set_item("moving", mech.is_moving(i))?;
-            cd.set_item("value", x[i])?;
-            Ok(cd)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    d.set_item("coordinates", coords)?;
-    d.set_item("elements", convert::elements(py, &c)?)?;
-    d.set_item("prescribed", convert::rows(py, &prescribed, &[])?)?;
-    d.set_item("dependent", convert::rows(py, &dependent, &[])?)?;
-    d.set_item("names", crate::described_names::names(py, &c)?)?;
-    d.set_item("dofs", (0..mech.n_dof()).map(|j| mech.input_row(j) + 1).collect::<Vec<_>>())?;
-    d.set_item("tol", c.units.as_written(mechfem_core::Dim::LENGTH, c.params.tol))?;
-    d.set_item("max_iter", c.params.max_iter)?;
-    let motion = match &motion {
-        None => None,
-        Some(m) => {
-            let files: Vec<Option<String>> = (1..=m.inputs.len())
-                .map(|j| {
-                    deck.movement.as_ref().and_then(|mv| {
-                        mv.motions.iter().find_map(|md| match &md.kind {
-                            MotionKind::Function(f) if md.dof.value == j as i64 => Some(f.value.clone()),
-                            _ => None,
-                        })
-                    })
-                })
-                .collect();
-            let inputs = m
-                .inputs
-                .iter()
-                .zip(files)
-                .map(|(im, file)| {
-                    let id = PyDict::new(py);
-                    let (kind, value) = match im {
-                        InputMotion::Relative { delta } => ("by", Some(*delta)),
-                        InputMotion::Absolute { end } => ("to", Some(*end)),
-                        InputMotion::Free { ds } => ("free", Some(*ds)),
-                        InputMotion::Dynamic { v0 } => ("dynamic", Some(*v0)),
-                        InputMotion::Table { .. } => ("table", None),
-                    };
-                    id.set_item("kind", kind)?;
-                    id.set_item("value", value)?;
-                    let table = match im {
-                        InputMotion::Table { rows } => Some(rows.iter().map(|r| r.to_vec()).collect::<Vec<_>>()),
-                        _ => None,
-                    };
-                    id.set_item("rows", table)?;
-                    id.set_item("file", file)?;
-                    Ok(id)
-                })
-                .collect::<PyResult<Vec<_>>>()?;
-            let md = PyDict::new(py);
-            md.set_item("steps", m.steps)?;
-            md.set_item("dt", m.dt)?;
-            md.set_item("inputs", inputs)?;
-            Some(md)
-        }
-    };
-    d.set_item("motion", motion)?;
-    d.set_item("storage", convert::storage(py, &c)?)?;
-    // The LOADFUNC file of every load, in the order the loads were compiled (deck order).
-    let files: Vec<Option<String>> = deck.dynamics.as_ref().map_or_else(Vec::new, |dy| {
-        dy.loads
-            .iter()
-            .map(|l| match &l.kind {
-                LoadDefKind::Function(f) => Some(f.value.clone()),
-                _ => None,
-            })
-            .collect()
-    });
-    // INTTOL as the deck gives it (None without: the tolerances are then ACCURACY's).
-    let inttol = deck.movement.as_ref().and_then(|m| m.inttol.as_ref()).map(|t| vec![t.rtol.value, t.atol.value]);
-    d.set_item("inttol", inttol)?;
-    // INTEGRATOR as the deck's word of its method, STOPWHEN as [buffer, value] (each None without).
-    let movement = deck.movement.as_ref();
-    let integrator = movement.and_then(|m| m.integrator.as_ref()).map(|m| match m.value {
-        Integrator::Auto => "auto",
-        Integrator::Dop853 => "dop853",
-        Integrator::Dopri5 => "dopri5",
-        Integrator::Radau5 => "radau5",
-    });
-    d.set_item("integrator", integrator)?;
-    let stop_when = movement.and_then(|m| m.stop_when.as_ref()).map(|s| (s.buffer.value, s.value.value));
-    d.set_item("stop_when", stop_when)?;
-    d.set_item("mode", c.mode.name())?;
-    d.set_item("dynamics", dynamics.as_ref().map(|m| Py::new(py, EchoDynamics::of(m, &files))).transpose()?)?;
-    let optimise = c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?;
-    if let (Some(o), Some(dict)) = (&c.optimise, &optimise) {
-        crate::names::optimise_units(&c, o, dict)?;
-    }
-    d.set_item("optimise", optimise)?;
-    d.set_item("units", crate::names::units(py, &c)?)?;
-    Ok(d)
 }

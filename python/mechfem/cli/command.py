@@ -217,7 +217,7 @@ def optimisation(deck: Path) -> OptimiseDict | None:
         return None
     if optimise_deck.deck_mode(text) not in ("KIN OPT", "DYN ANA"):
         return None
-    return optimise_deck.describe(deck).get("optimise")
+    return optimise_deck.describe(deck).optimise
 
 
 def mode_of(deck: Path) -> str:

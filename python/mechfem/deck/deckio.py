@@ -24,7 +24,7 @@ import tempfile
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Literal, NamedTuple
+from typing import Literal, NamedTuple
 
 import numpy as np
 
@@ -476,57 +476,53 @@ def topology(
 def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> Mechanism:
     """Reads deck text into a mechanism; MOV_FUNC files are read from ``base_dir``."""
     d = _core.describe_deck_text(text, path or f"{name}.mec", os.fspath(base_dir))
-    coords = [Declared(c["number"], c["value"], c["moving"]) for c in d["coordinates"]]
-    elements = [(e["number"], e["type"], list(e["coords"])) for e in d["elements"]]
+    coords = [Declared(c.number, c.given, c.moving) for c in d.coordinates]
+    elements = [(e.number, e.type, list(e.coords)) for e in d.elements]
 
-    def declared_rows(specs: list[_core.DescribedRowDict]) -> list[DeclaredRow]:
-        return [
-            DeclaredRow(r["dest"], [(t["element"], t["form"], t["factor"]) for t in r["terms"]], r["para"], r["input"])
-            for r in specs
-        ]
+    def declared_rows(specs: list[_core.EchoRow]) -> list[DeclaredRow]:
+        return [DeclaredRow(r.dest, [(t.element, t.form, t.factor) for t in r.terms], r.para, r.input) for r in specs]
 
-    described: Mapping[str, Any] = d
     m = topology(
         name,
         coords,
         elements,
-        declared_rows(d["prescribed"]),
-        declared_rows(d["dependent"]),
-        DeckNames.of(described.get("names")),
-        Units.of(described.get("units")),
+        declared_rows(d.prescribed),
+        declared_rows(d.dependent),
+        DeckNames.of(d.names),
+        Units.of(d.units),
     )
     nb = number_model(m)
-    if d["motion"] is not None:
-        mv = d["motion"]
+    if d.motion is not None:
+        mv = d.motion
         inputs: dict[InputKey, InputMotion] = {}
-        for j, im in enumerate(mv["inputs"], 1):
+        for j, im in enumerate(mv.inputs, 1):
             key = nb.inputs[j - 1].name
-            value = im["value"]
-            if im["kind"] == "table":
-                rows = np.asarray(im["rows"], dtype=np.float64).reshape(-1, 4)
-                inputs[key] = Table(rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 0], im["file"])
+            value = im.value
+            if im.kind == "table":
+                rows = np.asarray(im.rows, dtype=np.float64).reshape(-1, 4)
+                inputs[key] = Table(rows[:, 1], rows[:, 2], rows[:, 3], rows[:, 0], im.file)
             elif value is None:
-                raise ValueError(f"input {j}: a {im['kind']} motion without a value")
-            elif im["kind"] == "by":
+                raise ValueError(f"input {j}: a {im.kind} motion without a value")
+            elif im.kind == "by":
                 inputs[key] = By(value)
-            elif im["kind"] == "to":
+            elif im.kind == "to":
                 inputs[key] = To(value)
-            elif im["kind"] == "dynamic":
+            elif im.kind == "dynamic":
                 inputs[key] = Dynamic(value)
             else:
                 inputs[key] = Free(value)
-        tol, max_iter = d["tol"], d["max_iter"]
-        rtol, atol = d.get("inttol") or (None, None)
+        tol, max_iter = d.tol, d.max_iter
+        rtol, atol = d.inttol or (None, None)
         m.motion = Motion(
-            mv["steps"],
+            mv.steps,
             inputs,
-            mv["dt"],
+            mv.dt,
             # The core's default (in metres) comes back in the model's length unit: equal to it within rounding.
             None if math.isclose(tol, DEFAULT_ACCURACY * scale("m", m.units.length), rel_tol=1e-12) else tol,
             None if max_iter == DEFAULT_MAX_ITER else max_iter,
             rtol,
             atol,
-            described.get("integrator") or "auto",
+            d.integrator or "auto",
         )
 
     def ref_name(kind: str, v: int) -> Ref:
@@ -538,11 +534,11 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
             return nb.elements[v - 1].name or v
         return nb.inputs[v - 1].name
 
-    m.storage = from_described(d["storage"], ref_name)
-    stop = described.get("stop_when")
+    m.storage = from_described(d.storage, ref_name)
+    stop = d.stop_when
     if stop is not None and m.motion is not None:
         m.motion = dataclasses.replace(m.motion, stop_when=(stop_name(m.storage, int(stop[0])), float(stop[1])))
-    read_loads(m, nb, d.get("dynamics"))
+    read_loads(m, nb, d.dynamics)
     return m
 
 

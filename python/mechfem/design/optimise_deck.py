@@ -30,7 +30,7 @@ from mechfem.results.labels import buffer_name, coordinate_units, core_input, co
 from mechfem.results.words import count
 
 if TYPE_CHECKING:
-    from mechfem._core import DescribedDeckDict, OptimiseDict
+    from mechfem._core import DeckDescription, OptimiseDict
     from mechfem.design.optimum import Optimum
 
 
@@ -49,8 +49,8 @@ def deck_mode(text: str) -> str:
     return ""
 
 
-def describe(deck: Path) -> DescribedDeckDict:
-    """The deck's description (its OPTIMISE block under ``optimise``)."""
+def describe(deck: Path) -> DeckDescription:
+    """The deck's description (its OPTIMISE block as ``optimise``)."""
     return _core.describe_deck_text(_core.read_deck_text(deck), os.fspath(deck), os.fspath(deck_dir(deck)))
 
 
@@ -101,21 +101,21 @@ def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
     )
 
 
-def angle_variables(described: DescribedDeckDict, opt: OptimiseDict) -> list[bool]:
+def angle_variables(described: DeckDescription, opt: OptimiseDict) -> list[bool]:
     """Whether each design variable is an angle, as the catalogue says of the form parameters of its row (VARY)
     or of the elements' slots its co-ordinate fills (VARYX)."""
-    types = {e["number"]: e["type"] for e in described["elements"]}
-    rows = {r["dest"]: r for r in described["prescribed"]}
+    types = {e.number: e.type for e in described.elements}
+    rows = {r.dest: r for r in described.prescribed}
     out = []
     for v in opt["vary"]:
         if v["kind"] == 1:
-            terms = rows[v["number"]]["terms"] if v["number"] in rows else []
-            out.append(bool(terms) and all(form_dimension(types[t["element"]], t["form"]) == "angle" for t in terms))
+            terms = rows[v["number"]].terms if v["number"] in rows else []
+            out.append(bool(terms) and all(form_dimension(types[t.element], t.form) == "angle" for t in terms))
         else:
             slots = [
                 k
-                for e in described["elements"]
-                for i, k in zip(e["coords"], coordinate_dimensions(e["type"]), strict=False)
+                for e in described.elements
+                for i, k in zip(e.coords, coordinate_dimensions(e.type), strict=False)
                 if i == v["number"]
             ]
             out.append(bool(slots) and all(k == "angle" for k in slots))
@@ -290,7 +290,7 @@ def write_design(
     """Writes the design ``x`` of ``variables`` as ``<outdir>/<stem>_opt.mec``; ``position_one`` (deck order, may
     be empty) replaces the XMOV estimates."""
     described = describe(deck)
-    moving = {c["number"] for c in described["coordinates"] if c["moving"]}
+    moving = {c.number for c in described.coordinates if c.moving}
     masses = [(k, n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k >= 10]
     rows = [(n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k == 1]
     coords = [(n, float(v)) for (k, n), v in zip(variables, x, strict=True) if k == 0]

@@ -87,9 +87,9 @@ def same_numbering(written: str, original: str, folder: Path) -> bool:
     def numbering(text: str) -> tuple[object, ...]:
         d = _core.describe_deck_text(text, "deck.mec", os.fspath(folder))
         return (
-            [(e["number"], e["type"], list(e["coords"])) for e in d["elements"]],
-            [(c["number"], c["moving"]) for c in d["coordinates"]],
-            [(r["dest"], [(t["element"], t["form"]) for t in r["terms"]]) for r in d["prescribed"]],
+            [(e.number, e.type, list(e.coords)) for e in d.elements],
+            [(c.number, c.moving) for c in d.coordinates],
+            [(r.dest, [(t.element, t.form) for t in r.terms]) for r in d.prescribed],
         )
 
     return numbering(written) == numbering(original)
