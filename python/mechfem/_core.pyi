@@ -2,12 +2,13 @@
 
 import os
 from collections.abc import Callable, Sequence
-from typing import Any, Literal, NotRequired, TypedDict, final, type_check_only
+from typing import Any, Literal, TypedDict, final, type_check_only
 
 import numpy as np
 import numpy.typing as npt
 
-# The names of the compiled module; the TypedDicts below exist only for the type checker (@type_check_only).
+# The names of the compiled module; the one TypedDict below (a deck error's diagnostics) exists only for the type
+# checker (@type_check_only).
 __all__ = [
     "MechfemError",
     "DeckError",
@@ -58,6 +59,13 @@ __all__ = [
     "DeckDescription",
     "DeckMotion",
     "DeckInput",
+    "OptimiseBlock",
+    "DeckVary",
+    "DeckTarget",
+    "DeckBound",
+    "DeckObjective",
+    "DeckMassVary",
+    "DeckSynthesis",
     "optimised_deck_text",
     "deck_tolerance",
     "built_tolerance",
@@ -937,108 +945,170 @@ class DeckMotion:
     @property
     def inputs(self) -> list[DeckInput]: ...
 
-@type_check_only
-class VaryDict(TypedDict):
-    """A design variable: VARY (kind 1, a prescribed row) or VARYX (kind 0, a fixed co-ordinate)."""
+@final
+class DeckVary:
+    """A design variable: VARY (``kind`` 1, prescribed row ``number``) or VARYX (``kind`` 0, fixed co-ordinate
+    ``number``); its numbers are the core's (SI with UNITS): times ``scale`` they are in ``unit`` ("" and 1 without
+    UNITS)."""
 
-    kind: int
-    number: int
-    lo: float
-    hi: float
-    line: int
-    unit: NotRequired[str]
-    """The unit of its numbers in the deck ("" without UNITS)."""
-    scale: NotRequired[float]
-    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def kind(self) -> int: ...
+    @property
+    def number(self) -> int: ...
+    @property
+    def lo(self) -> float: ...
+    @property
+    def hi(self) -> float: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def scale(self) -> float: ...
 
-@type_check_only
-class TargetDict(TypedDict):
-    """TARGET (``values`` from ``file``, None where not compared), TARGETAT (``position``, 1-based, and
-    ``value``) or TARGETEXT (``reference`` and ``value``); the other keys are None."""
+@final
+class DeckTarget:
+    """TARGET (``kind`` ``values`` from ``file``, None where not compared), TARGETAT (``at``: ``position``, 1-based,
+    and ``value``) or TARGETEXT (``extremum``: ``reference`` and ``value``); the other fields are None. Numbers in
+    the core's units: times ``scale`` they are in ``unit``."""
 
-    buffer: int
-    kind: Literal["values", "at", "extremum"]
-    values: list[float | None] | None
-    file: str | None
-    position: int | None
-    reference: int | None
-    value: float | None
-    weight: float
-    line: int
-    unit: NotRequired[str]
-    """The unit of its numbers in the deck ("" without UNITS)."""
-    scale: NotRequired[float]
-    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def buffer(self) -> int: ...
+    @property
+    def kind(self) -> Literal["values", "at", "extremum"]: ...
+    @property
+    def values(self) -> list[float | None] | None: ...
+    @property
+    def file(self) -> str | None: ...
+    @property
+    def position(self) -> int | None: ...
+    @property
+    def reference(self) -> int | None: ...
+    @property
+    def value(self) -> float | None: ...
+    @property
+    def weight(self) -> float: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def scale(self) -> float: ...
 
-@type_check_only
-class BoundDict(TypedDict):
-    buffer: int
-    lo: float
-    hi: float
-    line: int
-    unit: NotRequired[str]
-    """The unit of its numbers in the deck ("" without UNITS)."""
-    scale: NotRequired[float]
-    """Its numbers here are the core's (SI with UNITS): times ``scale`` they are in ``unit``."""
+@final
+class DeckBound:
+    """A BOUND: ``buffer`` within ``lo``..``hi`` (core units; times ``scale`` in ``unit``)."""
 
-@type_check_only
-class ObjectiveDict(TypedDict):
-    sense: Literal["minimise", "maximise"]
-    reduce: Literal["max", "maxabs", "rms", "end"]
-    buffer: int
-    with_buffer: NotRequired[int | None]
-    """MINIMISE kind b b2: b2, the magnitude sqrt(b^2 + b2^2) judged."""
-    line: int
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def buffer(self) -> int: ...
+    @property
+    def lo(self) -> float: ...
+    @property
+    def hi(self) -> float: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def scale(self) -> float: ...
 
-@type_check_only
-class OptimiseDict(TypedDict):
-    """The OPTIMISE block of a KIN OPT deck."""
+@final
+class DeckObjective:
+    """The MINIMISE or MAXIMISE term."""
 
-    vary: list[VaryDict]
-    targets: list[TargetDict]
-    bounds: list[BoundDict]
-    objective: ObjectiveDict | None
-    steps: int
-    tol: float | None
-    ftol: tuple[float, float] | None
-    """OPTFTOL's (rtol, atol)."""
-    line: int
-    """Line of the OPTIMISE header."""
-    free_time: NotRequired[SynthesisDict | None]
-    """FREETIME: ``row``, ``ordered``, ``line``."""
-    full_rotation: NotRequired[SynthesisDict | None]
-    """FULLROT: ``row``, ``line``."""
-    frame: NotRequired[SynthesisDict | None]
-    """VARYFRAME: ``coordinate`` (the pivot's x), ``lo``, ``hi``, ``line``."""
-    mass_vary: NotRequired[list[MassVaryDict]]
-    """VARYM lines (DYN ANA)."""
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def sense(self) -> Literal["minimise", "maximise"]: ...
+    @property
+    def reduce(self) -> Literal["max", "maxabs", "rms", "end"]: ...
+    @property
+    def buffer(self) -> int: ...
+    @property
+    def with_buffer(self) -> int | None:
+        """MINIMISE kind b b2: b2, the magnitude sqrt(b^2 + b2^2) judged."""
+    @property
+    def line(self) -> int: ...
 
-@type_check_only
-class MassVaryDict(TypedDict):
+@final
+class DeckMassVary:
     """A VARYM line: ``item`` (MASS, U, V, J, PMASS, INERTIA), the element or co-ordinate ``number``, the variable
-    ``kind`` of ``DynamicDesignModel`` (10..15), ``lo``, ``hi``, ``line``."""
+    ``kind`` of ``DynamicDesignModel`` (10..15), ``lo``, ``hi`` (core units; times ``scale`` in ``unit``)."""
 
-    item: str
-    number: int
-    kind: int
-    lo: float
-    hi: float
-    line: int
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def item(self) -> str: ...
+    @property
+    def number(self) -> int: ...
+    @property
+    def kind(self) -> int: ...
+    @property
+    def lo(self) -> float: ...
+    @property
+    def hi(self) -> float: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def scale(self) -> float: ...
 
-@type_check_only
-class SynthesisDict(TypedDict):
-    """A synthesis statement of the OPTIMISE block (FREETIME, FULLROT, VARYFRAME)."""
+@final
+class DeckSynthesis:
+    """A synthesis statement: FREETIME (``row``, ``ordered``), FULLROT (``row``) or VARYFRAME (the pivot's x
+    ``coordinate``, ``lo`` and ``hi`` in radians, its deck ``unit`` and ``scale``); the other fields are None."""
 
-    row: NotRequired[int]
-    coordinate: NotRequired[int]
-    lo: NotRequired[float]
-    hi: NotRequired[float]
-    ordered: bool
-    line: int
-    unit: NotRequired[str]
-    """VARYFRAME in a deck with UNITS: the unit of its angle in the deck."""
-    scale: NotRequired[float]
-    """VARYFRAME in a deck with UNITS: its numbers here are radians; times ``scale`` they are in ``unit``."""
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def row(self) -> int | None: ...
+    @property
+    def coordinate(self) -> int | None: ...
+    @property
+    def lo(self) -> float | None: ...
+    @property
+    def hi(self) -> float | None: ...
+    @property
+    def ordered(self) -> bool: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def scale(self) -> float: ...
+
+@final
+class OptimiseBlock:
+    """The OPTIMISE block of a KIN OPT or DYN ANA deck."""
+
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def vary(self) -> list[DeckVary]: ...
+    @property
+    def targets(self) -> list[DeckTarget]: ...
+    @property
+    def bounds(self) -> list[DeckBound]: ...
+    @property
+    def objective(self) -> DeckObjective | None: ...
+    @property
+    def steps(self) -> int: ...
+    @property
+    def tol(self) -> float | None: ...
+    @property
+    def ftol(self) -> tuple[float, float] | None:
+        """OPTFTOL's (rtol, atol)."""
+    @property
+    def line(self) -> int:
+        """Line of the OPTIMISE header."""
+    @property
+    def free_time(self) -> DeckSynthesis | None: ...
+    @property
+    def full_rotation(self) -> DeckSynthesis | None: ...
+    @property
+    def frame(self) -> DeckSynthesis | None: ...
+    @property
+    def mass_vary(self) -> list[DeckMassVary]: ...
 
 @final
 class DeckDescription:
@@ -1084,7 +1154,7 @@ class DeckDescription:
     def dynamics(self) -> EchoDynamics | None:
         """The masses and loads, LOADFUNC tables with their files (None for a KIN deck)."""
     @property
-    def optimise(self) -> OptimiseDict | None:
+    def optimise(self) -> OptimiseBlock | None:
         """The OPTIMISE block of a KIN OPT or DYN ANA deck."""
     @property
     def units(self) -> dict[str, str | None]:

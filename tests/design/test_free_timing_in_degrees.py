@@ -129,7 +129,7 @@ def test_free_ordered_timing_in_a_deck_in_degrees_is_the_one_in_radians(tmp_path
         if rocker:
             rocker_target(path, unit)
         opt = optimise_deck.describe(path).optimise
-        assert opt is not None and len(opt["targets"]) == (3 if rocker else 2)
+        assert opt is not None and len(opt.targets) == (3 if rocker else 2)
         out = optimise_deck.optimise(path, opt)
         assert out.deck.synthesis is not None
         found[unit] = (out, out.deck.synthesis.inputs(out.x))

@@ -124,21 +124,20 @@ def test_describe_gives_the_optimise_block_in_deck_numbering() -> None:
     assert d.mode == "KIN OPT"
     opt = d.optimise
     assert opt is not None
-    assert opt["vary"] == [{"kind": 1, "number": 5, "lo": -5.5, "hi": -5.0, "line": 98}]
-    assert opt["targets"] == [
-        {
-            "buffer": 102,
-            "kind": "extremum",
-            "values": None,
-            "file": None,
-            "position": None,
-            "reference": 100,
-            "value": 0.0,
-            "weight": 1.0,
-            "line": 101,
-        }
-    ]
-    assert (opt["bounds"], opt["objective"], opt["steps"], opt["tol"], opt["line"]) == ([], None, 200, None, 97)
+    ((vary,),) = [opt.vary]
+    assert (vary.kind, vary.number, vary.lo, vary.hi, vary.line) == (1, 5, -5.5, -5.0, 98)
+    assert (vary.unit, vary.scale) == ("", 1.0)  # no UNITS: the deck's own numbers
+    ((target,),) = [opt.targets]
+    assert (target.buffer, target.kind, target.reference, target.value, target.weight, target.line) == (
+        102,
+        "extremum",
+        100,
+        0.0,
+        1.0,
+        101,
+    )
+    assert (target.values, target.file, target.position) == (None, None, None)
+    assert (opt.bounds, opt.objective, opt.steps, opt.tol, opt.line) == ([], None, 200, None, 97)
     plain = _core.describe_deck_text(ROOT.joinpath("examples/supply/supply.mec").read_text(), "supply.mec", ".")
     assert plain.optimise is None
 

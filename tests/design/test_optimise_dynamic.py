@@ -66,7 +66,7 @@ def test_dynamic_gradients_match_central_differences_of_whole_runs() -> None:
 
 def test_the_balancing_example_finds_the_textbooks_full_balance_of_the_crank() -> None:
     opt = optimise_deck.describe(EXAMPLE).optimise
-    assert [(v["item"], v["number"]) for v in opt.get("mass_vary") or []] == [("U", 1), ("V", 1)]
+    assert [(v.item, v.number) for v in opt.mass_vary] == [("U", 1), ("V", 1)]
     outcome = optimise_deck.optimise(EXAMPLE, opt)
     s = outcome
     # The rod as equivalent point masses at A and at the piston B.

@@ -100,7 +100,7 @@ def test_a_full_turn_vary_in_a_deck_wraps(tmp_path: Path) -> None:
     deck = tmp_path / "path.mec"
     deck.write_text(text)
     opt = optimise_deck.describe(deck).optimise
-    assert opt is not None and [v["number"] for v in opt["vary"]] == [6]
+    assert opt is not None and [v.number for v in opt.vary] == [6]
     outcome = optimise_deck.optimise(deck, opt)
     assert outcome.deck.problem.periodic == [True]
     assert outcome.objective < 1e-18

@@ -77,7 +77,7 @@ def test_optftol_in_a_deck_reaches_the_optimum_with_a_bound(tmp_path: Path) -> N
     deck = tmp_path / "path.mec"
     deck.write_text(text.replace("TARGET 2 path_y.dat\n", "TARGET 2 path_y.dat\nBOUND 2 -10 10\nOPTFTOL 1E-12 0\n"))
     opt = optimise_deck.describe(deck).optimise
-    assert opt is not None and opt["ftol"] == (1e-12, 0.0)
+    assert opt is not None and opt.ftol == (1e-12, 0.0)
     outcome = optimise_deck.optimise(deck, opt)
     assert outcome.method == "SLSQP"
     assert outcome.objective < 1e-18

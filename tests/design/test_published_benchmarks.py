@@ -48,8 +48,8 @@ def test_the_five_points_deck_is_the_python_problem(tmp_path: Path) -> None:
     assert py.mechanism is not None and py.deck is None
     with pytest.raises(ValueError, match="it has no deck"):
         optimise_deck.write_design_deck(py, tmp_path / "none")
-    assert list(out.values) == [f"{'PARA' if v['kind'] == 1 else 'XFIX'} {v['number']}" for v in opt["vary"]]
-    assert len(out.misses) == len(py.misses) == len(opt["targets"])
+    assert list(out.values) == [f"{'PARA' if v.kind == 1 else 'XFIX'} {v.number}" for v in opt.vary]
+    assert len(out.misses) == len(py.misses) == len(opt.targets)
     for (d_deck, _), (d_py, _) in zip(out.misses, py.misses, strict=True):
         assert d_deck == pytest.approx(d_py, rel=1e-3, abs=1e-9)
 

@@ -16,6 +16,7 @@ use pyo3::types::{PyDict, PyList};
 
 use crate::echo::EchoCoordinate;
 use crate::masses::EchoDynamics;
+use crate::optimise_block::OptimiseBlock;
 use crate::{convert, errors};
 
 /// The motion of one input: `kind` `by` (MOV_RELE), `to` (MOV_ABSE),
@@ -47,7 +48,7 @@ pub struct DeckMotion {
 /// ACCURACY (`tol`) and MAXITER, motion (None without a MOVEMENT block),
 /// storage requests, INTTOL (`inttol`), INTEGRATOR, STOPWHEN (`stop_when`:
 /// buffer and value), mode, masses and loads (None for a KIN deck), units and
-/// its OPTIMISE block (a dictionary; None without one).
+/// its OPTIMISE block ([`OptimiseBlock`]; None without one).
 #[pyclass(module = "mechfem._core", frozen, get_all)]
 pub struct DeckDescription {
     coordinates: Py<PyList>,
@@ -65,7 +66,7 @@ pub struct DeckDescription {
     stop_when: Option<(i64, f64)>,
     mode: &'static str,
     dynamics: Option<Py<EchoDynamics>>,
-    optimise: Py<PyAny>,
+    optimise: Option<OptimiseBlock>,
     units: Py<PyDict>,
 }
 
@@ -131,10 +132,6 @@ pub fn describe_deck_text(py: Python<'_>, text: &str, path: PathBuf, base_dir: P
             .collect()
     });
     let movement = deck.movement.as_ref();
-    let optimise = c.optimise.as_ref().map(|o| convert::optimise(py, o)).transpose()?;
-    if let (Some(o), Some(dict)) = (&c.optimise, &optimise) {
-        crate::names::optimise_units(&c, o, dict)?;
-    }
     Ok(DeckDescription {
         coordinates: PyList::new(py, coordinates)?.unbind(),
         elements: PyList::new(py, convert::echo_elements(&c, &[]))?.unbind(),
@@ -157,7 +154,7 @@ pub fn describe_deck_text(py: Python<'_>, text: &str, path: PathBuf, base_dir: P
         stop_when: movement.and_then(|m| m.stop_when.as_ref()).map(|s| (s.buffer.value, s.value.value)),
         mode: c.mode.name(),
         dynamics: dynamics.as_ref().map(|m| Py::new(py, EchoDynamics::of(m, &files))).transpose()?,
-        optimise: optimise.map_or_else(|| py.None(), |d| d.into_any().unbind()),
+        optimise: c.optimise.as_ref().map(|o| OptimiseBlock::of(&c, o)),
         units: crate::names::units(py, &c)?.unbind(),
     })
 }

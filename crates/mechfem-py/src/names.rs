@@ -3,9 +3,8 @@
 //! deck's at the edge ([`mechfem_deck::Compiled::units`]). A deck without
 //! UNITS passes every number unchanged.
 
-use mechfem_core::{DesignVar, Dim, FormRef, Quantity};
+use mechfem_core::{FormRef, Quantity};
 use mechfem_deck::Compiled;
-use mechfem_deck::Optimise;
 use std::ffi::CString;
 
 use pyo3::exceptions::PyUserWarning;
@@ -86,48 +85,6 @@ pub fn warn(py: Python<'_>, c: &Compiled) -> PyResult<()> {
     for w in &c.warnings {
         let text = CString::new(w.warning_text().replace('\0', " "))?;
         PyErr::warn(py, &py.get_type::<UnitWarning>(), &text, 1)?;
-    }
-    Ok(())
-}
-
-/// Adds to the optimise dict of a deck ([`crate::convert::optimise`],
-/// whose numbers are the core's) the `unit` of every design variable,
-/// target and bound and the `scale` that gives a core number in it (the
-/// engine computes in the core's units; a report multiplies by `scale`),
-/// for a deck with UNITS.
-pub fn optimise_units(c: &Compiled, o: &Optimise, dict: &Bound<'_, PyDict>) -> PyResult<()> {
-    if !c.units.declared {
-        return Ok(());
-    }
-    let set = |key: &str, dims: Vec<Dim>| -> PyResult<()> {
-        let Some(list) = dict.get_item(key)? else { return Ok(()) };
-        for (item, dim) in list.try_iter()?.zip(dims) {
-            let item = item?;
-            item.set_item("unit", dim.symbol(&c.units))?;
-            item.set_item("scale", dim.out_scale(&c.units))?;
-        }
-        Ok(())
-    };
-    let buffer = |b: u32| {
-        c.buffers.iter().find(|x| x.number == b).map_or(Dim::NONE, |x| c.dims.quantity(&c.mechanism, x.quantity))
-    };
-    let vary = o
-        .vary
-        .iter()
-        .map(|v| match v.var {
-            DesignVar::Fixed(i) => c.dims.coord(i),
-            DesignVar::Row(r) => c.dims.form(FormRef::Prescribed(r)),
-        })
-        .collect();
-    set("vary", vary)?;
-    let coord = |n: usize| c.dims.coord(n.saturating_sub(1));
-    set("mass_vary", o.mass_vary.iter().map(|m| m.item.dim(coord(m.number))).collect())?;
-    set("targets", o.targets.iter().map(|t| buffer(t.buffer)).collect())?;
-    set("bounds", o.bounds.iter().map(|b| buffer(b.buffer)).collect())?;
-    // VARYFRAME's angle, which the engine varies in radians.
-    if let Some(frame) = dict.get_item("frame")?.filter(|f| !f.is_none()) {
-        frame.set_item("unit", Dim::ANGLE.symbol(&c.units))?;
-        frame.set_item("scale", Dim::ANGLE.out_scale(&c.units))?;
     }
     Ok(())
 }

@@ -63,7 +63,7 @@ from mechfem.results.words import count
 from mechfem.viz.animation import MAX_FRAMES
 
 if TYPE_CHECKING:
-    from mechfem._core import OptimiseDict
+    from mechfem._core import OptimiseBlock
 
 EXIT_OK = 0
 EXIT_FAILED = 1
@@ -208,7 +208,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         return finish_run(args, deck, outdir, result, interrupted)
 
 
-def optimisation(deck: Path) -> OptimiseDict | None:
+def optimisation(deck: Path) -> OptimiseBlock | None:
     """The OPTIMISE block of a KIN OPT deck or a DYN ANA deck that has one; None for any other deck, or a deck that
     cannot be read (the run then says why)."""
     try:
@@ -225,7 +225,7 @@ def mode_of(deck: Path) -> str:
     return optimise_deck.deck_mode(_core.read_deck_text(deck))
 
 
-def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: OptimiseDict) -> int:
+def run_optimisation(args: argparse.Namespace, deck: Path, outdir: Path, opt: OptimiseBlock) -> int:
     """Optimises the design of a KIN OPT deck, writes it as ``<stem>_opt.mec`` and runs that deck as a KIN ANA
     run whose outputs are named after ``deck`` and whose print file has the OPTIMISATION section."""
     history: list[design.Iteration] = []

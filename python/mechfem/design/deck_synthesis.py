@@ -28,7 +28,7 @@ from mechfem.design.optimise import _timed_model, synthesis_problem
 from mechfem.design.timing import FreeTiming, Plan
 
 if TYPE_CHECKING:
-    from mechfem._core import OptimiseDict
+    from mechfem._core import OptimiseBlock
     from mechfem.design.engine import FloatArray
     from mechfem.model.mechanism import Mechanism
     from mechfem.model.storage import Storage
@@ -80,9 +80,9 @@ def turned_core(variables: list[tuple[int, int]], turn: frame_angle.Turn) -> lis
     return [*variables[:at], *dict.fromkeys(moved), *variables[at + 1 :]]
 
 
-def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
+def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
     """``p`` with the deck's FREETIME, FULLROT and VARYFRAME (unchanged without them)."""
-    free, full, frame = opt.get("free_time"), opt.get("full_rotation"), opt.get("frame")
+    free, full, frame = opt.free_time, opt.full_rotation, opt.frame
     if not (free or full or frame):
         return Synthesis(p)
     from mechfem.model.mechanism import Mechanism
@@ -98,16 +98,16 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
     rows = {numbering.row_dest[r]: r for r in mech.rows if r in numbering.row_dest}
     of: design.DesignModelOf = design.built_model(built.builder, base)
     timed, input_row, free_name = None, None, None
-    if free:
-        input_row = int(free["row"])
+    if free is not None and free.row is not None:
+        input_row = free.row
         row = rows[input_row]
         free_name = row.name
         if not row.is_angle:
             raise SynthesisError(
-                f"error: {deck}: line {free['line']}: FREETIME names row {input_row}, which is not an angle: free "
+                f"error: {deck}: line {free.line}: FREETIME names row {input_row}, which is not an angle: free "
                 "timing wraps an angle input's values at the points as a turn; drive the mechanism by an angle"
             )
-        timed = _plan(deck, mech, storage, free_name, bool(free["ordered"]), numbering, int(free["line"]))
+        timed = _plan(deck, mech, storage, free_name, bool(free.ordered), numbering, int(free.line))
         if mech.units.angle == "deg":
             # The points' input in the deck's degrees; the core takes radians (mechfem.design.model_units).
             timed.builders = [
@@ -115,17 +115,17 @@ def synthesis(deck: Path, opt: OptimiseDict, p: design.Problem) -> Synthesis:
             ]
         of = _timed(timed, base)
     if full:
-        line = full["line"]
+        line = full.line
         try:
             of = full_rotation.checked(of, mech, storage, base)
         except ValueError as e:
             raise SynthesisError(f"error: {deck}: line {line}: FULLROT: {e}") from None
     turn, framed = None, None
-    if frame:
-        pivot = next((q for q in mech.points if q.fixed and q.x.number == int(frame["coordinate"])), None)
+    if frame is not None and frame.lo is not None and frame.hi is not None:
+        pivot = next((q for q in mech.points if q.fixed and q.x.number == frame.coordinate), None)
         if pivot is None:
             raise AssertionError("the deck reader checks that VARYFRAME names a fixed point")
-        span = (float(frame["lo"]), float(frame["hi"]))
+        span = (frame.lo, frame.hi)
         # The deck's problem is in the core's units: its frame angle in radians (the reader converts VARYFRAME's
         # range), and what the turn moves in metres and radians, not in the deck's mm and degrees as the mechanism
         # read from it holds them.

@@ -10,10 +10,10 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,7 +30,7 @@ from mechfem.results.labels import buffer_name, coordinate_units, core_input, co
 from mechfem.results.words import count
 
 if TYPE_CHECKING:
-    from mechfem._core import DeckDescription, OptimiseDict
+    from mechfem._core import DeckDescription, OptimiseBlock
     from mechfem.design.optimum import Optimum
 
 
@@ -58,65 +58,63 @@ def deck_dir(deck: Path) -> Path:
     return deck.parent if deck.parent != Path("") else Path(".")
 
 
-def problem(deck: Path, text: str, opt: OptimiseDict) -> design.Problem:
+def problem(deck: Path, text: str, opt: OptimiseBlock) -> design.Problem:
     """The OPTIMISE block in the engine's terms (deck numbering; positions 0-based, NaN where not compared)."""
     terms: list[design.ValuesTerm | design.AtTerm | design.ExtremumTerm] = []
-    for t in opt["targets"]:
-        if t["kind"] == "values":
-            values = np.array([math.nan if v is None else v for v in t["values"] or []], dtype=np.float64)
-            terms.append(design.ValuesTerm(t["buffer"], values, t["weight"]))
-        elif t["kind"] == "at":
-            terms.append(design.AtTerm(t["buffer"], int(t["position"] or 1) - 1, float(t["value"] or 0.0), t["weight"]))
+    for t in opt.targets:
+        if t.kind == "values":
+            values = np.array([math.nan if v is None else v for v in t.values or []], dtype=np.float64)
+            terms.append(design.ValuesTerm(t.buffer, values, t.weight))
+        elif t.kind == "at":
+            terms.append(design.AtTerm(t.buffer, int(t.position or 1) - 1, float(t.value or 0.0), t.weight))
         else:
-            terms.append(
-                design.ExtremumTerm(t["buffer"], int(t["reference"] or 0), float(t["value"] or 0.0), t["weight"])
-            )
-    objective = opt["objective"]
-    periodic = [design_rules.full_turn(v["lo"], v["hi"]) for v in opt["vary"]]
+            terms.append(design.ExtremumTerm(t.buffer, int(t.reference or 0), float(t.value or 0.0), t.weight))
+    objective = opt.objective
+    periodic = [design_rules.full_turn(v.lo, v.hi) for v in opt.vary]
     if any(periodic):
         angles = angle_variables(_core.describe_deck_text(text, os.fspath(deck), os.fspath(deck_dir(deck))), opt)
         periodic = [p and a for p, a in zip(periodic, angles, strict=True)]
-    masses = opt.get("mass_vary") or []
+    masses = opt.mass_vary
     dynamic = deck_mode(text) == "DYN ANA"
     model = (dynamic_design.dynamic_deck_model if dynamic else design.deck_model)(
         text, os.fspath(deck), os.fspath(deck_dir(deck))
     )
     return design.Problem(
         model=model,
-        variables=[(v["kind"], v["number"]) for v in opt["vary"]] + [(m["kind"], m["number"]) for m in masses],
-        names=[variable_name(v["kind"], v["number"]) for v in opt["vary"]]
-        + [dynamic_design.mass_name(m["kind"], m["number"]) for m in masses],
-        lo=np.array([v["lo"] for v in opt["vary"]] + [m["lo"] for m in masses], dtype=np.float64),
-        hi=np.array([v["hi"] for v in opt["vary"]] + [m["hi"] for m in masses], dtype=np.float64),
+        variables=[(v.kind, v.number) for v in opt.vary] + [(m.kind, m.number) for m in masses],
+        names=[variable_name(v.kind, v.number) for v in opt.vary]
+        + [dynamic_design.mass_name(m.kind, m.number) for m in masses],
+        lo=np.array([v.lo for v in opt.vary] + [m.lo for m in masses], dtype=np.float64),
+        hi=np.array([v.hi for v in opt.vary] + [m.hi for m in masses], dtype=np.float64),
         terms=terms,
-        bounds=[(b["buffer"], b["lo"], b["hi"]) for b in opt["bounds"]],
+        bounds=[(b.buffer, b.lo, b.hi) for b in opt.bounds],
         objective=None
         if objective is None
-        else (1 if objective["sense"] == "minimise" else -1, objective["reduce"], objective["buffer"]),
-        objective_with=None if objective is None else objective.get("with_buffer"),
-        steps=opt["steps"],
-        tol=opt["tol"],
-        stop=None if (ftol := opt.get("ftol")) is None else design_rules.FTol(*ftol),
+        else (1 if objective.sense == "minimise" else -1, objective.reduce, objective.buffer),
+        objective_with=None if objective is None else objective.with_buffer,
+        steps=opt.steps,
+        tol=opt.tol,
+        stop=None if (ftol := opt.ftol) is None else design_rules.FTol(*ftol),
         periodic=periodic + [False] * len(masses) if any(periodic) else [],
     )
 
 
-def angle_variables(described: DeckDescription, opt: OptimiseDict) -> list[bool]:
+def angle_variables(described: DeckDescription, opt: OptimiseBlock) -> list[bool]:
     """Whether each design variable is an angle, as the catalogue says of the form parameters of its row (VARY)
     or of the elements' slots its co-ordinate fills (VARYX)."""
     types = {e.number: e.type for e in described.elements}
     rows = {r.dest: r for r in described.prescribed}
     out = []
-    for v in opt["vary"]:
-        if v["kind"] == 1:
-            terms = rows[v["number"]].terms if v["number"] in rows else []
+    for v in opt.vary:
+        if v.kind == 1:
+            terms = rows[v.number].terms if v.number in rows else []
             out.append(bool(terms) and all(form_dimension(types[t.element], t.form) == "angle" for t in terms))
         else:
             slots = [
                 k
                 for e in described.elements
                 for i, k in zip(e.coords, coordinate_dimensions(e.type), strict=False)
-                if i == v["number"]
+                if i == v.number
             ]
             out.append(bool(slots) and all(k == "angle" for k in slots))
     return out
@@ -152,26 +150,26 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
     return out
 
 
-def deck_scales(opt: OptimiseDict | None, p: design.Problem) -> list[float]:
+def deck_scales(opt: OptimiseBlock | None, p: design.Problem) -> list[float]:
     """What each design variable's number in the optimiser is multiplied by to give it in the deck's units (1 for a
     deck without UNITS): a VARY, VARYX or VARYM variable and the frame angle (VARYFRAME) are in the core's units;
     the input at a FREETIME point is in the deck's angle unit already."""
-    given: list[Mapping[str, Any]] = [] if opt is None else [*opt["vary"], *(opt.get("mass_vary") or [])]
-    frame: Mapping[str, Any] = (opt.get("frame") if opt is not None else None) or {}
+    given = [] if opt is None else [v.scale for v in opt.vary] + [m.scale for m in opt.mass_vary]
+    frame = 1.0 if opt is None or opt.frame is None else opt.frame.scale
     out, k = [], 0
     for var in p.variables:
         kind = var[0]
         if var == frame_angle.SENTINEL:
-            out.append(float(frame.get("scale", 1.0)))
+            out.append(frame)
         elif kind in (0, 1) or kind in dynamic_design.MASS_UNITS:
-            out.append(float(given[k].get("scale", 1.0)) if k < len(given) else 1.0)
+            out.append(given[k] if k < len(given) else 1.0)
             k += 1
         else:
             out.append(1.0)
     return out
 
 
-def values_line(p: design.Problem, x: Iterable[float], model: Model | None, opt: OptimiseDict | None = None) -> str:
+def values_line(p: design.Problem, x: Iterable[float], model: Model | None, opt: OptimiseBlock | None = None) -> str:
     """``kappa = -296.5 deg, B0.x = 0.3``: the variables' values (``x``, the optimiser's numbers) by name, in the
     deck's units."""
     labels = variable_labels(p, model)
@@ -195,7 +193,7 @@ class DeckProblem:
     numbering, the core's units) and how FREETIME, FULLROT and VARYFRAME write the final design."""
 
     path: Path
-    block: OptimiseDict
+    block: OptimiseBlock
     problem: design.Problem
     synthesis: deck_synthesis.Synthesis | None = None
 
@@ -213,20 +211,20 @@ def unreached(optimum: Optimum) -> tuple[float, int] | None:
     by more than 1e-6 of its size; None when every target is met."""
     deck = stated(optimum)
     worst: tuple[float, int] | None = None
-    for t, term, (d, _) in zip(deck.block["targets"], deck.problem.terms, optimum.misses, strict=True):
+    for t, term, (d, _) in zip(deck.block.targets, deck.problem.terms, optimum.misses, strict=True):
         size = np.nanmax(np.abs(term.values)) if isinstance(term, design.ValuesTerm) else abs(term.value)
         if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
-            worst = (d, int(t["line"]))
+            worst = (d, int(t.line))
     return worst
 
 
 def missed_value(optimum: Optimum, missed: tuple[float, int], model: Model | None) -> str:
     """The largest difference :func:`unreached` gives, in the units of its target's buffer."""
-    buffer = next((int(t["buffer"]) for t in stated(optimum).block["targets"] if int(t["line"]) == missed[1]), 0)
+    buffer = next((int(t.buffer) for t in stated(optimum).block.targets if int(t.line) == missed[1]), 0)
     return core_value(model, buffer, missed[0], ".4g")
 
 
-def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration], object] | None = None) -> Optimum:
+def optimise(deck: Path, opt: OptimiseBlock, report: Callable[[design.Iteration], object] | None = None) -> Optimum:
     """Solves the deck's OPTIMISE block from its own design; raises :class:`OptimisationError` when it cannot
     start. The optimum's ``deck`` holds the problem solved; it has no mechanism (:func:`write_design_deck` writes
     the final design)."""
@@ -240,33 +238,33 @@ def optimise(deck: Path, opt: OptimiseDict, report: Callable[[design.Iteration],
         optimum = design.solve(p, report=report)
     except design.Infeasible as e:
         raise OptimisationError(
-            f"error: {deck}: the optimisation (OPTIMISE, line {opt['line']}) cannot start: {e}. The start design "
+            f"error: {deck}: the optimisation (OPTIMISE, line {opt.line}) cannot start: {e}. The start design "
             f"is the deck's own (the PARA and XFIX values of the variables, {names_and_lines(opt)}): change it, or "
             "its XMOV estimates, so that position 1 can be assembled and the whole motion run."
         ) from None
     except design.NonFiniteObjective as e:
-        objective = opt["objective"]
+        objective = opt.objective
         if e.term is not None:
-            line = opt["targets"][e.term]["line"]
+            line = opt.targets[e.term].line
         else:
-            line = opt["line"] if objective is None else objective["line"]
+            line = opt.line if objective is None else objective.line
         raise OptimisationError(
             f"error: {deck}: line {line}: {e}; bring the values asked for and the weights nearer to what the "
             "mechanism's buffers can take, in consistent units"
         ) from None
     except ValueError as e:
         raise OptimisationError(
-            f"error: {deck}: the OPTIMISE block (line {opt['line']}) cannot be evaluated: {e}."
+            f"error: {deck}: the OPTIMISE block (line {opt.line}) cannot be evaluated: {e}."
         ) from None
     return dataclasses.replace(optimum, deck=DeckProblem(deck, opt, p, syn))
 
 
-def names_and_lines(opt: OptimiseDict) -> str:
+def names_and_lines(opt: OptimiseBlock) -> str:
     keyword = {0: "VARYX", 1: "VARY"}
-    named = [f"{variable_name(v['kind'], v['number'])} ({keyword[v['kind']]} on line {v['line']})" for v in opt["vary"]]
-    named += [f"{m['item']} {m['number']} (VARYM on line {m['line']})" for m in opt.get("mass_vary") or []]
-    if frame := opt.get("frame"):
-        named.append(f"the frame angle (VARYFRAME on line {frame['line']})")
+    named = [f"{variable_name(v.kind, v.number)} ({keyword[v.kind]} on line {v.line})" for v in opt.vary]
+    named += [f"{m.item} {m.number} (VARYM on line {m.line})" for m in opt.mass_vary]
+    if frame := opt.frame:
+        named.append(f"the frame angle (VARYFRAME on line {frame.line})")
     return ", ".join(named)
 
 
@@ -313,7 +311,7 @@ def print_lines(s: Optimum, written: Path | None, model: Model | None = None) ->
     design's echo) names them."""
     deck = stated(s)
     p, block = deck.problem, deck.block
-    out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {block['line']}"]
+    out = ["OPTIMISATION", f"  method: {s.method}; OPTIMISE block at line {block.line}"]
     out += history_lines(s.history)
     out += [
         "",
@@ -348,13 +346,13 @@ def print_lines(s: Optimum, written: Path | None, model: Model | None = None) ->
                 f"  TARGETEXT {term.buffer} {term.reference}: buffer {term.reference} has no extremum along the motion "
                 "at the final design, so this target contributes nothing to the objective"
             )
-    if block["targets"]:
+    if block.targets:
         out += ["", "  targets at the final design (the largest difference from the value asked for):"]
-        for target, (d, k) in zip(block["targets"], s.misses, strict=True):
+        for target, (d, k) in zip(block.targets, s.misses, strict=True):
             where = f" at position {k + 1}" if k is not None else ""
-            kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[target["kind"]]
-            b = int(target["buffer"])
-            out.append(f"  {kw} on line {target['line']} ({buffer_name(model, b)}): {core_value(model, b, d)}{where}")
+            kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[target.kind]
+            b = int(target.buffer)
+            out.append(f"  {kw} on line {target.line} ({buffer_name(model, b)}): {core_value(model, b, d)}{where}")
     if written is not None:
         mode = deck_mode(written.read_text(encoding="utf-8"))
         out.append(f"  final design: {written.name} (mode {mode}); the model and tables above are its run")
@@ -387,30 +385,30 @@ def history_lines(history: list[design.Iteration]) -> list[str]:
 
 
 def interrupted_lines(
-    deck: Path, opt: OptimiseDict, history: list[design.Iteration], written: Path | None
+    deck: Path, opt: OptimiseBlock, history: list[design.Iteration], written: Path | None
 ) -> list[str]:
     """The print file of an optimisation stopped by Ctrl-C: the history so far, and the design it had reached."""
     from mechfem._version import __version__
 
     out = [f"mechfem {__version__} - print file", f"deck: {deck}", "", "OPTIMISATION (interrupted)"]
-    out.append(f"  OPTIMISE block at line {opt['line']}; variables: {names_and_lines(opt)}")
+    out.append(f"  OPTIMISE block at line {opt.line}; variables: {names_and_lines(opt)}")
     out += history_lines(history)
     if written is None or not history:
         return [*out, "", "  interrupted by Ctrl-C before the first iteration: no design was written", ""]
     out += ["", "  design reached at the last iteration:"]
-    names = [variable_name(v["kind"], v["number"]) for v in opt["vary"]]
-    names += [dynamic_design.mass_name(m["kind"], m["number"]) for m in opt.get("mass_vary") or []]
+    names = [variable_name(v.kind, v.number) for v in opt.vary]
+    names += [dynamic_design.mass_name(m.kind, m.number) for m in opt.mass_vary]
     for name, x in zip(names, history[-1].x, strict=False):
         out.append(f"  {name:>10} {x:>18.12g}")
     return [*out, "", f"  interrupted by Ctrl-C: that design is written as {written.name} (mode KIN ANA)", ""]
 
 
-def write_interrupted(deck: Path, opt: OptimiseDict, history: list[design.Iteration], outdir: Path) -> list[Path]:
+def write_interrupted(deck: Path, opt: OptimiseBlock, history: list[design.Iteration], outdir: Path) -> list[Path]:
     """Writes the history so far and, once there is an iteration, the design it reached as ``<stem>_opt.mec``."""
     outdir.mkdir(parents=True, exist_ok=True)
     written: Path | None = None
     if history:
-        variables = [(int(v["kind"]), int(v["number"])) for v in [*opt["vary"], *(opt.get("mass_vary") or [])]]
+        variables = [(v.kind, v.number) for v in opt.vary] + [(m.kind, m.number) for m in opt.mass_vary]
         written = write_design(deck, variables, history[-1].x[: len(variables)], [], outdir)
     path = outdir / f"{deck.stem}.prt"
     with atomic_text(path) as f:
