@@ -126,15 +126,8 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
         if pivot is None:
             raise AssertionError("the deck reader checks that VARYFRAME names a fixed point")
         span = (frame.lo, frame.hi)
-        # The deck's problem is in the core's units: its frame angle in radians (the reader converts VARYFRAME's
-        # range), and what the turn moves in metres and radians, not in the deck's mm and degrees as the mechanism
-        # read from it holds them.
-        turn = frame_angle.plan(mech, FrameAngle(pivot.name, span=span), numbering, free_name, unit=1.0)
-        factors = model_units.Factors(mech)
-        angles = set(turn.angles)
-        turn.values = {
-            v: value * (factors.angle if v in angles else factors.length) for v, value in turn.values.items()
-        }
+        # The deck's problem is in the core's units (the reader converts VARYFRAME's range to radians).
+        turn = frame_angle.plan(mech, FrameAngle(pivot.name, span=span), numbering, free_name, core_units=True)
         framed = ("frame", span[0], span[1], design_rules.full_turn(*span))
     q = synthesis_problem(
         of,

@@ -69,11 +69,12 @@ class Turn:
 
 
 def plan(
-    mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: str | None, unit: float | None = None
+    mechanism: Mechanism, frame: FrameAngle, numbering: Any, free_input: str | None, core_units: bool = False
 ) -> Turn:
     """The turn of ``mechanism``'s frame; ``free_input`` (an input with free timing) is not turned: its values at
-    the points are design variables of their own. ``unit``: radians per unit of the frame angle (default: the
-    mechanism's angle unit, in which :func:`mechfem.optimize` takes it)."""
+    the points are design variables of their own. The frame angle and what the turn moves are in the mechanism's
+    units, as :func:`mechfem.optimize` takes them; with ``core_units`` in metres and radians, as a deck's problem
+    (whose mechanism, read from a deck in mm and degrees, holds its numbers in those) is stated."""
     from mechfem.design.optimise import _variable
 
     fixed = [p for p in mechanism.points if p.fixed]
@@ -94,8 +95,10 @@ def plan(
     inputs = [r for r in mechanism.rows if r.kind == "input" and r.is_angle and r.name != free_input]
     angles += [number(r.name) for r in inputs]
     flat = [v for pair in points for v in pair]
-    if unit is None:
-        unit = Factors(mechanism).angle
+    factors = Factors(mechanism)
+    if core_units:
+        values = {v: x * (factors.angle if v in angles else factors.length) for v, x in values.items()}
+    unit = 1.0 if core_units else factors.angle
     return Turn((number(f"{pivot.name}.x"), number(f"{pivot.name}.y")), flat, angles, values, names, unit)
 
 
