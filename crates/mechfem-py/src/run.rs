@@ -69,8 +69,8 @@ pub enum Outcome {
 }
 
 /// The full layout's table of a run as the motion recorded it
-/// ([`TransferRecord`]), made column by column ([`Layout::table`]) when
-/// Python first asks for it, each column then multiplied by its factor
+/// ([`TransferRecord`]), made column by column ([`Layout::column_values`])
+/// when Python first asks for it, each column then multiplied by its factor
 /// from the core's units to the deck's.
 pub struct RecordedTable {
     layout: Layout,
@@ -94,26 +94,28 @@ impl RecordedTable {
     /// a study or a plot that reads a few quantities of a long run does not
     /// make the whole table.
     fn column(&self, c: usize) -> Vec<f64> {
-        let positions = self.record.positions();
-        let mut out = Vec::with_capacity(positions);
-        self.layout.column_values(&self.record, c, &mut out);
-        out.resize(positions, f64::NAN);
-        if let Some(&k) = self.scales.get(c).filter(|&&k| k != 1.0) {
-            out.iter_mut().for_each(|v| *v *= k);
-        }
+        let mut out = Vec::with_capacity(self.record.positions());
+        self.append_column(c, &mut out);
         out
     }
 
     /// The values, column after column.
     fn values(&self) -> Vec<f64> {
-        let mut table = self.layout.table(&self.record);
-        let positions = self.record.positions();
-        for (&k, column) in self.scales.iter().zip(table.chunks_mut(positions.max(1))) {
-            if k != 1.0 {
-                column.iter_mut().for_each(|v| *v *= k);
-            }
+        let mut out = Vec::with_capacity(self.layout.width() * self.record.positions());
+        for c in 0..self.layout.width() {
+            self.append_column(c, &mut out);
         }
-        table
+        out
+    }
+
+    /// Appends column `c` at every position to `out`, in the deck's units.
+    fn append_column(&self, c: usize, out: &mut Vec<f64>) {
+        let start = out.len();
+        self.layout.column_values(&self.record, c, out);
+        out.resize(start + self.record.positions(), f64::NAN);
+        if let Some(&k) = self.scales.get(c).filter(|&&k| k != 1.0) {
+            out[start..].iter_mut().for_each(|v| *v *= k);
+        }
     }
 }
 
