@@ -68,39 +68,29 @@ ENERGY: Exponents = {"force": 1, "length": 1}
 def dynamics_lines(d: EchoDynamics, said: Said | None = None) -> list[str]:
     """The echo of the masses and loads (the DYNAMICS block as compiled: ``EchoModel.dynamics``) in the print file,
     in the deck's units and with its names (``said``)."""
-    return _Lines(d).lines(said)
-
-
-@dataclass(frozen=True)
-class _Lines:
-    d: EchoDynamics
-
-    def lines(self, said: Said | None = None) -> list[str]:
-        """The echo of the masses and loads in the print file, in the deck's units and with its names (``said``)."""
-        said = said or Said()
-        u = said.unit
-        inertia = {"mass": 1, "length": 2}
-        out = ["", "  masses and loads (DYNAMICS)"]
-        gravity = self.d.gravity
-        if gravity != (0.0, 0.0):
-            g = u({"length": 1, "time": -2})
-            out.append(f"    GRAVITY   ({gravity[0]:.10g}, {gravity[1]:.10g}){g}")
-        for b in self.d.bodies:
-            out.append(
-                f"    MASS      element {b.element}: m {b.mass:.10g}{u(MASS)}, centre (u, v) = "
-                f"({b.u:.10g}, {b.v:.10g}){u(LENGTH)}, J {b.inertia:.10g}{u(inertia)}"
-            )
-        for p in self.d.point_masses:
-            out.append(f"    PMASS     point {said.point(p.x, p.y)}: m {p.mass:.10g}{u(MASS)}")
-        for i in self.d.inertias:
-            lengths = 2 * (1 - said.coords.get(i.coord, LENGTH).get("length", 0))
-            j = u({"mass": 1, "length": lengths})
-            out.append(f"    INERTIA   co-ordinate {i.coord}: J {i.inertia:.10g}{j}")
-        for f in self.d.forces:
-            out.append(f"    FORCE     point {said.point(f.x, f.y)}: ({f.fx:.10g}, {f.fy:.10g}){u({'force': 1})}")
-        for ld in self.d.loads:
-            out.append(f"    {ld.kind:<9} {said.row(ld.dest)}: {_load_text(ld, said, said.rows.get(ld.dest, {}))}")
-        return out
+    said = said or Said()
+    u = said.unit
+    inertia = {"mass": 1, "length": 2}
+    out = ["", "  masses and loads (DYNAMICS)"]
+    if d.gravity != (0.0, 0.0):
+        g = u({"length": 1, "time": -2})
+        out.append(f"    GRAVITY   ({d.gravity[0]:.10g}, {d.gravity[1]:.10g}){g}")
+    for b in d.bodies:
+        out.append(
+            f"    MASS      element {b.element}: m {b.mass:.10g}{u(MASS)}, centre (u, v) = "
+            f"({b.u:.10g}, {b.v:.10g}){u(LENGTH)}, J {b.inertia:.10g}{u(inertia)}"
+        )
+    for p in d.point_masses:
+        out.append(f"    PMASS     point {said.point(p.x, p.y)}: m {p.mass:.10g}{u(MASS)}")
+    for i in d.inertias:
+        lengths = 2 * (1 - said.coords.get(i.coord, LENGTH).get("length", 0))
+        j = u({"mass": 1, "length": lengths})
+        out.append(f"    INERTIA   co-ordinate {i.coord}: J {i.inertia:.10g}{j}")
+    for f in d.forces:
+        out.append(f"    FORCE     point {said.point(f.x, f.y)}: ({f.fx:.10g}, {f.fy:.10g}){u({'force': 1})}")
+    for ld in d.loads:
+        out.append(f"    {ld.kind:<9} {said.row(ld.dest)}: {_load_text(ld, said, said.rows.get(ld.dest, {}))}")
+    return out
 
 
 def _load_text(ld: EchoLoad, said: Said, e: Exponents) -> str:
