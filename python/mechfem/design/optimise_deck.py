@@ -66,9 +66,9 @@ def problem(deck: Path, text: str, opt: OptimiseBlock) -> design.Problem:
             values = np.array([math.nan if v is None else v for v in t.values or []], dtype=np.float64)
             terms.append(design.ValuesTerm(t.buffer, values, t.weight))
         elif t.kind == "at":
-            terms.append(design.AtTerm(t.buffer, int(t.position or 1) - 1, float(t.value or 0.0), t.weight))
+            terms.append(design.AtTerm(t.buffer, (t.position or 1) - 1, t.value or 0.0, t.weight))
         else:
-            terms.append(design.ExtremumTerm(t.buffer, int(t.reference or 0), float(t.value or 0.0), t.weight))
+            terms.append(design.ExtremumTerm(t.buffer, t.reference or 0, t.value or 0.0, t.weight))
     objective = opt.objective
     periodic = [design_rules.full_turn(v.lo, v.hi) for v in opt.vary]
     if any(periodic):
@@ -81,9 +81,8 @@ def problem(deck: Path, text: str, opt: OptimiseBlock) -> design.Problem:
     )
     return design.Problem(
         model=model,
-        variables=[(v.kind, v.number) for v in opt.vary] + [(m.kind, m.number) for m in masses],
-        names=[variable_name(v.kind, v.number) for v in opt.vary]
-        + [dynamic_design.mass_name(m.kind, m.number) for m in masses],
+        variables=block_variables(opt),
+        names=block_names(opt),
         lo=np.array([v.lo for v in opt.vary] + [m.lo for m in masses], dtype=np.float64),
         hi=np.array([v.hi for v in opt.vary] + [m.hi for m in masses], dtype=np.float64),
         terms=terms,
@@ -118,6 +117,18 @@ def angle_variables(described: DeckDescription, opt: OptimiseBlock) -> list[bool
             ]
             out.append(bool(slots) and all(k == "angle" for k in slots))
     return out
+
+
+def block_variables(opt: OptimiseBlock) -> list[tuple[int, int]]:
+    """``(kind, number)`` of every design variable of the block: VARY and VARYX, then VARYM."""
+    return [(v.kind, v.number) for v in opt.vary] + [(m.kind, m.number) for m in opt.mass_vary]
+
+
+def block_names(opt: OptimiseBlock) -> list[str]:
+    """The name of every design variable of the block (``PARA 5``, ``XFIX 3``, ``U 1``), in its order."""
+    return [variable_name(v.kind, v.number) for v in opt.vary] + [
+        dynamic_design.mass_name(m.kind, m.number) for m in opt.mass_vary
+    ]
 
 
 def variable_name(kind: int, number: int) -> str:
@@ -214,13 +225,13 @@ def unreached(optimum: Optimum) -> tuple[float, int] | None:
     for t, term, (d, _) in zip(deck.block.targets, deck.problem.terms, optimum.misses, strict=True):
         size = np.nanmax(np.abs(term.values)) if isinstance(term, design.ValuesTerm) else abs(term.value)
         if d > 1e-6 * max(1.0, float(size)) and (worst is None or d > worst[0]):
-            worst = (d, int(t.line))
+            worst = (d, t.line)
     return worst
 
 
 def missed_value(optimum: Optimum, missed: tuple[float, int], model: Model | None) -> str:
     """The largest difference :func:`unreached` gives, in the units of its target's buffer."""
-    buffer = next((int(t.buffer) for t in stated(optimum).block.targets if int(t.line) == missed[1]), 0)
+    buffer = next((t.buffer for t in stated(optimum).block.targets if t.line == missed[1]), 0)
     return core_value(model, buffer, missed[0], ".4g")
 
 
@@ -351,7 +362,7 @@ def print_lines(s: Optimum, written: Path | None, model: Model | None = None) ->
         for target, (d, k) in zip(block.targets, s.misses, strict=True):
             where = f" at position {k + 1}" if k is not None else ""
             kw = {"values": "TARGET", "at": "TARGETAT", "extremum": "TARGETEXT"}[target.kind]
-            b = int(target.buffer)
+            b = target.buffer
             out.append(f"  {kw} on line {target.line} ({buffer_name(model, b)}): {core_value(model, b, d)}{where}")
     if written is not None:
         mode = deck_mode(written.read_text(encoding="utf-8"))
@@ -396,8 +407,7 @@ def interrupted_lines(
     if written is None or not history:
         return [*out, "", "  interrupted by Ctrl-C before the first iteration: no design was written", ""]
     out += ["", "  design reached at the last iteration:"]
-    names = [variable_name(v.kind, v.number) for v in opt.vary]
-    names += [dynamic_design.mass_name(m.kind, m.number) for m in opt.mass_vary]
+    names = block_names(opt)
     for name, x in zip(names, history[-1].x, strict=False):
         out.append(f"  {name:>10} {x:>18.12g}")
     return [*out, "", f"  interrupted by Ctrl-C: that design is written as {written.name} (mode KIN ANA)", ""]
@@ -408,7 +418,7 @@ def write_interrupted(deck: Path, opt: OptimiseBlock, history: list[design.Itera
     outdir.mkdir(parents=True, exist_ok=True)
     written: Path | None = None
     if history:
-        variables = [(v.kind, v.number) for v in opt.vary] + [(m.kind, m.number) for m in opt.mass_vary]
+        variables = block_variables(opt)
         written = write_design(deck, variables, history[-1].x[: len(variables)], [], outdir)
     path = outdir / f"{deck.stem}.prt"
     with atomic_text(path) as f:

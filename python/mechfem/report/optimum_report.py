@@ -119,7 +119,7 @@ def target_rows(optimum: Optimum, model: Model | None) -> list[TargetRow]:
         extrema.setdefault(id(t), []).append((at, value))
     out = []
     for target, term in zip(deck.block.targets, deck.problem.terms, strict=True):
-        b, line = int(target.buffer), int(target.line)
+        b, line = target.buffer, target.line
         unit, f = _buffer_scale(model, b)
         name = buffer_name(model, b)
         # (keyword, where, asked for, achieved), in the core's numbers
@@ -203,7 +203,7 @@ def optimisation_section(s: Optimum, start: RunResult | None, final: RunResult) 
             f"(the target on line {missed[1]})."
         )
     return {
-        "line": int(stated(s).block.line),
+        "line": stated(s).block.line,
         "method": s.method,
         "success": s.success,
         "message": s.message,
