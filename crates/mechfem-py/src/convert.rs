@@ -1,6 +1,8 @@
-//! Rust results to Python dictionaries and numpy arrays. Everything that
-//! names a co-ordinate, row, element, DOF or position is converted to the
-//! deck's 1-based numbering here.
+//! Rust results to Python objects: numpy arrays, a table's layout, the
+//! model echo ([`crate::echo`]) made once per compiled deck and filled with
+//! each run's numbers, and the storage requests. Everything that names a
+//! co-ordinate, row, element, DOF or position is converted to the deck's
+//! 1-based numbering here.
 
 use mechfem_core::run::Block;
 use mechfem_core::FormRef;

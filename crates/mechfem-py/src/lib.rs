@@ -27,6 +27,10 @@
 //!   read, so that a file run again unchanged is not parsed again.
 //! * `catalogue` hands the element catalogue and the solver's defaults and
 //!   limits to Python, which repeats none of them.
+//! * `echo` (the model echo), `masses` (the masses and loads), `described`
+//!   (a deck described without solving, `describe_deck_text`) and
+//!   `optimise_block` (its OPTIMISE block) are the typed objects Python reads
+//!   a deck's model through, with getters in the deck's numbering.
 //! * `errors` defines `MechfemError` and its subclasses and maps deck
 //!   diagnostics and solver errors onto them. A motion that stops after
 //!   position 1 is not an error: the report says why.

@@ -1,6 +1,6 @@
-//! Names and units for Python: the deck's units and named points as
-//! dicts, and the numbers of a run converted from the core's units to the
-//! deck's at the edge ([`mechfem_deck::Compiled::units`]). A deck without
+//! Names and units for Python: the deck's units as a dict, the warnings of
+//! numbers that look like another unit, and the numbers of a run converted
+//! from the core's units to the deck's at the edge ([`mechfem_deck::Compiled::units`]). A deck without
 //! UNITS passes every number unchanged.
 
 use mechfem_core::{FormRef, Quantity};
