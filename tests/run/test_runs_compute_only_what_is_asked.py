@@ -142,6 +142,21 @@ def test_a_changed_deck_file_is_read_again(tmp_path: Path) -> None:
     assert np.hypot(after.buffers[1], after.buffers[2]) == pytest.approx(1.1)
 
 
+def test_a_settled_deck_edited_behind_its_time_stamp_is_read_again(tmp_path: Path) -> None:
+    # A deck last changed an hour ago is known by its file's stamp, without being read. An edit of the same size
+    # with its modification time put back still changes the file's change time (which no one can set).
+    path = deck(tmp_path, FOURBAR)
+    hour_ago = path.stat().st_mtime_ns - 3600 * 10**9
+    os.utime(path, ns=(hour_ago, hour_ago))
+    before, again = mechfem.run_deck(path), mechfem.run_deck(path)
+    assert again.model is before.model
+    path.write_text(FOURBAR.replace("PARA 1 1.0", "PARA 1 1.1"))
+    os.utime(path, ns=(hour_ago, hour_ago))
+    after = mechfem.run_deck(path)
+    assert np.hypot(before.buffers[1], before.buffers[2]) == pytest.approx(1.0)
+    assert np.hypot(after.buffers[1], after.buffers[2]) == pytest.approx(1.1)
+
+
 def test_a_deck_that_is_gone_is_an_error_not_the_kept_model(tmp_path: Path) -> None:
     path = deck(tmp_path, FOURBAR)
     mechfem.run_deck(path)

@@ -1,11 +1,18 @@
 //! Compiled decks kept between calls of `run_deck` and `check_deck`: a deck
 //! file run again unchanged is not parsed or compiled again.
 //!
-//! A deck is known by its path and its whole text, read on every call (a
-//! few microseconds for a deck): any edit is seen, whatever the file's time
-//! stamp says, and no two texts can be taken for one another. A deck that
-//! reads MOV_FUNC or LOADFUNC tables from other files is not kept: those
-//! files could change without the deck.
+//! A deck is known by its path and its whole text, so that no two texts
+//! can be taken for one another. Reading the text again costs a few
+//! microseconds, most of a short run's call, so a call first asks the file
+//! system for the file's [`Stamp`] (size, inode, modification and change
+//! times): the same stamp as when the kept text was read means the same
+//! text, and the file is not read. A time stamp is only as fine as the
+//! kernel's clock tick, so a file changed less than [`SETTLED`] before it
+//! was read might change again with the same stamp: its stamp is not kept,
+//! and its text is read and compared on every call until it has settled
+//! (git's rule for "racily clean" files). A deck that reads MOV_FUNC or
+//! LOADFUNC tables from other files is not kept: those files could change
+//! without the deck.
 //!
 //! Beside each kept deck sits its [`Echo`]: the model echo and storage
 //! requests as Python was given them after a run. They depend only on the
@@ -16,6 +23,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+use std::time::{Duration, SystemTime};
 
 use pyo3::prelude::*;
 
@@ -33,6 +41,53 @@ const CAPACITY: usize = 16;
 struct Key {
     path: PathBuf,
     text: Vec<u8>,
+}
+
+/// How long before it was read a file must have been changed last for its
+/// [`Stamp`] to stand for its text: longer than any file system's time
+/// stamp granularity (FAT's two seconds included).
+const SETTLED: Duration = Duration::from_secs(3);
+
+/// What the file system says of a deck file: a file with the same stamp
+/// has the same text, once it has settled ([`Stamp::of`]).
+#[derive(PartialEq, Eq, Clone, Copy)]
+struct Stamp {
+    len: u64,
+    device: u64,
+    inode: u64,
+    modified: (i64, i64),
+    changed: (i64, i64),
+}
+
+impl Stamp {
+    /// The stamp of the regular file at `path`, or `None` when it has none
+    /// (no such file, not a regular one, or a system without inodes).
+    #[cfg(unix)]
+    fn of(path: &Path) -> Option<(Stamp, SystemTime)> {
+        use std::os::unix::fs::MetadataExt;
+        let m = std::fs::metadata(path).ok().filter(|m| m.is_file())?;
+        let stamp = Stamp {
+            len: m.len(),
+            device: m.dev(),
+            inode: m.ino(),
+            modified: (m.mtime(), m.mtime_nsec()),
+            changed: (m.ctime(), m.ctime_nsec()),
+        };
+        Some((stamp, m.modified().ok()?))
+    }
+
+    #[cfg(not(unix))]
+    fn of(_path: &Path) -> Option<(Stamp, SystemTime)> {
+        None
+    }
+
+    /// The stamp of a file read now, if it may stand for the text read:
+    /// only once the file has settled.
+    fn settled(seen: Option<(Stamp, SystemTime)>) -> Option<Stamp> {
+        let (stamp, modified) = seen?;
+        let age = SystemTime::now().duration_since(modified).ok()?;
+        (age >= SETTLED).then_some(stamp)
+    }
 }
 
 /// What Python was given for a deck's model and storage, and the numbers
@@ -110,8 +165,9 @@ impl EchoSlot {
     }
 }
 
-/// A kept deck: its key, the compiled deck and the echo of its runs.
-type Entry = (Key, Compiled, Arc<EchoSlot>);
+/// A kept deck: its key, the compiled deck, the echo of its runs, and the
+/// stamp of its file when it had settled.
+type Entry = (Key, Arc<Compiled>, Arc<EchoSlot>, Option<Stamp>);
 
 /// The kept decks, most recently used last.
 static KEPT: Mutex<Vec<Entry>> = Mutex::new(Vec::new());
@@ -125,16 +181,29 @@ fn reads_files(deck: &Deck) -> bool {
     motion || loads
 }
 
-/// Reads and compiles the deck at `path`, or returns a copy of the deck
-/// compiled from the same text before (as [`mechfem_deck::load`] would
+/// Reads and compiles the deck at `path`, or returns the deck compiled
+/// from the same text before (shared, not copied) (as [`mechfem_deck::load`] would
 /// compile it), with the echo slot of that text (a slot of its own for a
 /// deck that is not kept).
-pub fn load(path: &Path) -> Result<(Compiled, Arc<EchoSlot>), Diagnostics> {
+pub fn load(path: &Path) -> Result<(Arc<Compiled>, Arc<EchoSlot>), Diagnostics> {
+    // Asked before the text is read: a change after this is seen next time.
+    let seen = Stamp::of(path);
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    let unchanged = seen.map(|(stamp, _)| stamp);
+    if let Some(k) = kept.iter().position(|(k, .., s)| s.is_some() && *s == unchanged && k.path == path) {
+        let entry = kept.remove(k);
+        let found = (entry.1.clone(), entry.2.clone());
+        kept.push(entry);
+        return Ok(found);
+    }
+    drop(kept);
     let key = Key { path: path.to_path_buf(), text: mechfem_deck::read_deck(path)?.into_bytes() };
+    let stamp = Stamp::settled(seen);
     {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(k) = kept.iter().position(|(k, ..)| *k == key) {
-            let entry = kept.remove(k);
+            let mut entry = kept.remove(k);
+            entry.3 = stamp;
             let found = (entry.1.clone(), entry.2.clone());
             kept.push(entry);
             return Ok(found);
@@ -142,7 +211,7 @@ pub fn load(path: &Path) -> Result<(Compiled, Arc<EchoSlot>), Diagnostics> {
     }
     let deck = mechfem_deck::parse_str(&String::from_utf8_lossy(&key.text), path)?;
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let compiled = mechfem_deck::compile(&deck, dir)?;
+    let compiled = Arc::new(mechfem_deck::compile(&deck, dir)?);
     let slot = Arc::new(EchoSlot::default());
     if !reads_files(&deck) {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
@@ -150,7 +219,7 @@ pub fn load(path: &Path) -> Result<(Compiled, Arc<EchoSlot>), Diagnostics> {
         if kept.len() >= CAPACITY {
             kept.remove(0);
         }
-        kept.push((key, compiled.clone(), slot.clone()));
+        kept.push((key, compiled.clone(), slot.clone(), stamp));
     }
     Ok((compiled, slot))
 }

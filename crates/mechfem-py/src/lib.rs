@@ -71,7 +71,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use mechfem_core::run::{Extent, MemoryRefusal, Selection, SimReport};
-use mechfem_core::{Quantity, RunReport, TransferOrder};
+use mechfem_core::{Quantity, RunReport, State, TransferOrder};
 use mechfem_deck::{Compiled, PlotItem};
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -82,7 +82,7 @@ use crate::errors::{AssemblyError, ConvergenceError, DeckError, LimitPositionErr
 use crate::observe::{Progress, Recording};
 
 /// Reads and compiles a deck (or takes it from [`cache`]), without the GIL.
-fn load(py: Python<'_>, path: &Path) -> PyResult<(Compiled, Arc<EchoSlot>)> {
+fn load(py: Python<'_>, path: &Path) -> PyResult<(Arc<Compiled>, Arc<EchoSlot>)> {
     let loaded = py.detach(|| cache::load(path)).map_err(|d| errors::deck_error(py, path, &d))?;
     names::warn(py, &loaded.0)?;
     Ok(loaded)
@@ -132,7 +132,9 @@ fn hodograph_coords(c: &Compiled) -> Vec<usize> {
 
 /// A finished run: the compiled deck, the recording and the report.
 struct Ran {
-    compiled: Compiled,
+    compiled: Arc<Compiled>,
+    /// The state the run ended in.
+    state: State,
     given: Vec<f64>,
     rec: Recording<'static, Selection>,
     report: RunReport,
@@ -148,7 +150,7 @@ struct Ran {
 /// [`Recording`]).
 fn execute(
     py: Python<'_>,
-    mut c: Compiled,
+    c: Arc<Compiled>,
     with_motion: bool,
     progress: Option<Py<PyAny>>,
     memory_limit: u64,
@@ -174,18 +176,17 @@ fn execute(
     let mut rec =
         Recording::new(selection, width, n, total, order, progress, None).with_dynamics(&c.mechanism, dynamics);
     let result = py.detach(|| c.move_through(&mut state, motion.as_deref(), &mut rec));
-    c.state = state;
     let interrupted = errors::interrupted(py, rec.raised(), result.is_ok())?;
     match result {
         // The report and an error speak the deck's units.
         Ok((report, sim)) => {
             let report = c.report_as_written(&report);
             let sim = sim.map(|s| c.sim_as_written(&s));
-            Ok(Ran { compiled: c, given, rec, report, sim, interrupted })
+            Ok(Ran { compiled: c, state, given, rec, report, sim, interrupted })
         }
         Err(e) => {
             let e = c.error_as_written(&e);
-            Err(errors::position_one_error(py, &c.mechanism, &c.names, &c.dynamics_lines, &mut c.state, &e))
+            Err(errors::position_one_error(py, &c.mechanism, &c.names, &c.dynamics_lines, &mut state, &e))
         }
     }
 }
@@ -281,7 +282,7 @@ fn run_deck(
 ) -> PyResult<run::Run> {
     let (compiled, slot) = load(py, &path)?;
     let bands_start = compiled.tolerance.as_ref().map(|_| compiled.state.clone());
-    let Ran { compiled: c, given, rec, report, sim, interrupted } =
+    let Ran { compiled: c, state, given, rec, report, sim, interrupted } =
         execute(py, compiled, true, progress, memory_limit, det)?;
     let mech = &c.mechanism;
     let (n, width, positions) = (mech.n_coords(), rec.columns.width(), rec.table.positions());
@@ -300,7 +301,7 @@ fn run_deck(
         let block = &mut table[buffers.0 * positions..(buffers.0 + buffers.1) * positions];
         if let Err(e) = py.detach(|| c.fill_bands(start, block, positions)) {
             let e = c.error_as_written(&e);
-            return Err(errors::position_one_error(py, mech, &c.names, &c.dynamics_lines, &mut c.state.clone(), &e));
+            return Err(errors::position_one_error(py, mech, &c.names, &c.dynamics_lines, &mut state.clone(), &e));
         }
     }
     names::table(&c, rec.columns.quantities(), &mut table, positions, &mut coords);

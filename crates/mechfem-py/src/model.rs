@@ -3,6 +3,7 @@
 //! fixed co-ordinates or start values without any text written or parsed.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use mechfem_deck::{Change, Compiled};
 use pyo3::prelude::*;
@@ -35,7 +36,7 @@ impl Model {
     #[staticmethod]
     fn from_path(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
         let (compiled, _) = py.detach(|| cache::load(&path)).map_err(|d| errors::deck_error(py, &path, &d))?;
-        Model::kept(py, compiled, path)
+        Model::kept(py, Arc::unwrap_or_clone(compiled), path)
     }
 
     /// Number of co-ordinates.
