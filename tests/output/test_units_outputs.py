@@ -208,3 +208,17 @@ def test_a_mechanism_warns_once_of_a_start_value_or_a_step_in_the_wrong_unit() -
     # Nothing to say of ordinary numbers.
     assert _unit_warnings(_crank("deg", 30.0), mechfem.Motion.by(4, 90)) == []
     assert _unit_warnings(_crank("rad", 0.5), mechfem.Motion.by(4, 6.2832)) == []
+
+
+def test_a_kept_model_warns_of_a_wrong_unit_at_every_run_and_checks_again_after_a_change() -> None:
+    # The run on a kept model skips the check of units only while it has nothing to say.
+    m, looks_like_radians = _crank("deg", 30.0), mechfem.Motion.by(4, 6.2832)
+    for _ in range(3):
+        said = _unit_warnings(m, looks_like_radians)
+        assert len(said) == 1 and "step 6.2832" in said[0]
+    quiet = mechfem.Motion.by(4, 90)
+    assert _unit_warnings(m, quiet) == [] and _unit_warnings(m, quiet) == []
+    # A start value changed in place to one that looks like radians is a new shape: checked, and said.
+    m.set("phi", 1.5708)
+    said = _unit_warnings(m, quiet)
+    assert len(said) == 1 and "start value 1.5708" in said[0]

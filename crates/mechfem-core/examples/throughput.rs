@@ -12,11 +12,17 @@
 //! "positions_per_second": .., "runs": .., "coupler_last": [x, y]}`, the
 //! time being the best of the runs: at least R (default 5), and more until
 //! they have taken S seconds in all (default 0), as `bench_peers.py` times
-//! every tool. Without STEPS: 360 and 100000. `--mode` (positions, first or
-//! second) times that mode only, for profiling.
+//! every tool. Without STEPS: 360 and 100000. `--mode` (positions, first,
+//! second or recorded) times that mode only, for profiling.
+//!
+//! `recorded` is the second order with every position recorded as the
+//! Python API's `Mechanism.run` records it: the full [`Layout`]'s
+//! [`TransferRecord`] and every co-ordinate, in tables sized up front. It
+//! is the core's own share of such a run, which the bench times beside it.
 
+use mechfem_core::run::{Layout, TransferRecord};
 use mechfem_core::{
-    run, ElementType, InputMotion, MechanismBuilder, Motion, Observer, Params, PositionView, TransferOrder,
+    run, ElementType, InputMotion, Mechanism, MechanismBuilder, Motion, Observer, Params, PositionView, TransferOrder,
 };
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -33,6 +39,31 @@ impl Observer for Last {
     }
     fn transfer_order(&self) -> Option<TransferOrder> {
         self.1
+    }
+}
+
+/// Records every position as `Mechanism.run` does: the full layout's
+/// record and every co-ordinate.
+struct Recorded<'a> {
+    layout: &'a Layout,
+    record: TransferRecord,
+    coords: Vec<f64>,
+}
+
+impl<'a> Recorded<'a> {
+    fn new(layout: &'a Layout, mech: &Mechanism, positions: usize) -> Recorded<'a> {
+        let record = TransferRecord::new(layout, mech, positions);
+        Recorded { layout, record, coords: Vec::with_capacity(positions * mech.n_coords()) }
+    }
+}
+
+impl Observer for Recorded<'_> {
+    fn position(&mut self, view: &PositionView<'_>) {
+        self.record.push(self.layout, view, None);
+        self.coords.extend_from_slice(&view.state.x);
+    }
+    fn transfer_order(&self) -> Option<TransferOrder> {
+        Some(TransferOrder::Second)
     }
 }
 
@@ -75,11 +106,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     start.target.copy_from_slice(&[a, b, c, p * alpha.cos(), p * alpha.sin(), 0.0]);
 
     let params = Params::default();
+    let layout = Layout::full(&mech, false);
     for steps in steps_list {
         let motion = Motion { steps, dt: 1.0, inputs: vec![InputMotion::Relative { delta: 2.0 * PI }] };
-        for (mode, order) in
-            [("positions", None), ("first", Some(TransferOrder::First)), ("second", Some(TransferOrder::Second))]
-        {
+        for (mode, order) in [
+            ("positions", None),
+            ("first", Some(TransferOrder::First)),
+            ("second", Some(TransferOrder::Second)),
+            ("recorded", Some(TransferOrder::Second)),
+        ] {
             if only.as_deref().is_some_and(|m| m != mode) {
                 continue;
             }
@@ -90,7 +125,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let mut state = start.clone();
                 let mut obs = Last([f64::NAN; 2], order);
                 let t = Instant::now();
-                let report = run(&mech, &mut state, Some(&motion), &params, &mut obs)?;
+                let report = if mode == "recorded" {
+                    // The tables are made (and freed) in the timed run, as the API's are.
+                    let mut rec = Recorded::new(&layout, &mech, steps + 1);
+                    let report = run(&mech, &mut state, Some(&motion), &params, &mut rec)?;
+                    obs.0 = [rec.coords[rec.coords.len() - 2], rec.coords[rec.coords.len() - 1]];
+                    report
+                } else {
+                    run(&mech, &mut state, Some(&motion), &params, &mut obs)?
+                };
                 let seconds = t.elapsed().as_secs_f64();
                 best = best.min(seconds);
                 (runs, total) = (runs + 1, total + seconds);

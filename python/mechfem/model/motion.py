@@ -429,16 +429,18 @@ def input_dof(key: InputKey, inputs: Sequence[Row]) -> int:
     raise unknown_name("input", name, [r.name for r in inputs])
 
 
-def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> None:
+def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> bool:
     """Refuses degrees for an input that is not an angle, and warns with :class:`~mechfem.errors.UnitWarning` when
     a motion given without a unit changes an angle input of a model in radians (``angle``: the model's angle unit)
     by more than :data:`~mechfem.model.units.LARGE_ANGLE` radians (``inputs``: the input rows in DOF order), when a step
     or an end of a model in degrees looks like radians, and when an angle input's start value looks like the other
-    unit (:func:`~mechfem.model.units.wrong_angle_unit`, the deck reader's test)."""
+    unit (:func:`~mechfem.model.units.wrong_angle_unit`, the deck reader's test). True when it had nothing to say."""
+    quiet = True
     for row in inputs:
         why = None if row.value is None or not row.is_angle else wrong_angle_unit(row.value, angle)
         if why is not None:
             words = "degrees" if angle == "deg" else "radians"
+            quiet = False
             warnings.warn(
                 f"the start value {row.value:g} of the angle input {row.name!r} is in {words}, the model's angle "
                 f"unit, but {why}: give it in {words}, or give the model the other angle unit "
@@ -459,6 +461,7 @@ def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> No
             why = wrong_angle_unit(value, angle)
             if why is not None:
                 what = "step" if isinstance(im, By) else "end"
+                quiet = False
                 warnings.warn(
                     f"the motion's {what} {value:g} of the angle input {row.name!r} is in degrees, the model's angle "
                     f"unit, but {why}: give it in degrees, or say unit='rad'",
@@ -467,6 +470,7 @@ def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> No
                 )
         change = 0.0 if unit is not None or not row.is_angle or angle != "rad" else _change(im, row.value)
         if change > LARGE_ANGLE:
+            quiet = False
             warnings.warn(
                 f"the motion changes the angle input {row.name!r} by {change:.6g} rad ({change / (2 * np.pi):.3g} "
                 "turns): if degrees were meant, say so with unit='deg' (as in Motion.by(steps, 360, unit='deg')); "
@@ -474,6 +478,7 @@ def check_units(motion: Motion, inputs: Sequence[Row], angle: str = "rad") -> No
                 UnitWarning,
                 stacklevel=user_stacklevel(),
             )
+    return quiet
 
 
 def _change(im: InputMotion, start: float | None) -> float:

@@ -61,6 +61,9 @@ class _Last:
     shape: tuple[object, ...]
     model: _core.Model
     numbering: Numbering
+    quiet_units: str | None = None
+    """The angle unit in which the motion's units were last checked and had nothing to say: the shape holds the
+    motion and its inputs (immutable) and the inputs' start values, so the same check would say nothing again."""
 
 
 class Kept:
@@ -114,8 +117,9 @@ def kept_model(
         changes = _changes(last.numbering)
         if changes is None:
             return None
-        if motion is not None:
-            check_units(motion, last.numbering.inputs, mech.units.angle)
+        angle = mech.units.angle
+        if motion is not None and last.quiet_units != angle:
+            last.quiet_units = angle if check_units(motion, last.numbering.inputs, angle) else None
         return last.model, last.numbering, changes
     numbering = deckio.number_model(mech)
     key = topology(mech, motion, storage, numbering)
@@ -130,10 +134,11 @@ def kept_model(
         if model is not None:
             # The most recently used last.
             by_topology[key] = model
+    quiet = None
     if model is not None:
         # The deck writer checks the motion's units at every run: so does a kept model.
-        if motion is not None:
-            check_units(motion, numbering.inputs, mech.units.angle)
+        if motion is not None and check_units(motion, numbering.inputs, mech.units.angle):
+            quiet = mech.units.angle
     else:
         try:
             model, _ = building.build(mech, motion, storage)
@@ -145,7 +150,7 @@ def kept_model(
                 by_topology.pop(next(iter(by_topology)))
             by_topology[key] = model
     with _LOCK:
-        models.last = _Last(shape, model, numbering)
+        models.last = _Last(shape, model, numbering, quiet)
     return model, numbering, changes
 
 
