@@ -40,8 +40,8 @@ def run_de(seed: int, maxiter: int) -> tuple[int, float, np.ndarray, float]:
 
     def f(x: np.ndarray) -> float:
         d = model.evaluate([float(v) for v in x])
-        v = d["values"]
-        return float(np.sqrt(np.mean(v[:, 0] ** 2 + v[:, 1] ** 2))) if d["feasible"] else 1e12
+        v = d.values
+        return float(np.sqrt(np.mean(v[:, 0] ** 2 + v[:, 1] ** 2))) if d.feasible else 1e12
 
     t0 = time.perf_counter()
     res = differential_evolution(f, [(-0.2, 0.2)] * 2, seed=seed, maxiter=maxiter, tol=1e-12, polish=False)

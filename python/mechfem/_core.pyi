@@ -71,6 +71,8 @@ __all__ = [
     "built_tolerance",
     "ToleranceBands",
     "DynamicDesignModel",
+    "Evaluation",
+    "Extremum",
     "deck_with_masses",
 ]
 
@@ -1272,6 +1274,69 @@ def run_deck_variants(
     value) or (1, row, value)."""
 
 @final
+class Evaluation:
+    """One evaluation of a design: ``feasible``; ``reason`` (None when feasible) and ``reason_kind`` (None,
+    ``"start"``, ``"position_one"``, ``"other_branch"``, ``"left_branch"`` or ``"stopped"``); ``positions`` computed;
+    ``position_one`` (the co-ordinates at position 1, None without); ``report`` (None without positions); ``values``
+    (positions x buffers); ``gradient`` (positions x buffers x variables); ``extrema``."""
+
+    def __new__(
+        cls,
+        feasible: bool,
+        reason: str | None,
+        reason_kind: str | None,
+        positions: int,
+        position_one: list[float] | None,
+        report: Report | None,
+        values: npt.ArrayLike,
+        gradient: npt.ArrayLike,
+        extrema: list[Extremum],
+    ) -> Evaluation: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[bool, str | None, str | None, int, list[float] | None, Report | None, _F64, _F64, list[Extremum]]: ...
+    @property
+    def feasible(self) -> bool: ...
+    @property
+    def reason(self) -> str | None: ...
+    @property
+    def reason_kind(self) -> str | None: ...
+    @property
+    def positions(self) -> int: ...
+    @property
+    def position_one(self) -> list[float] | None: ...
+    @property
+    def report(self) -> Report | None: ...
+    @property
+    def values(self) -> _F64: ...
+    @property
+    def gradient(self) -> _F64: ...
+    @property
+    def extrema(self) -> list[Extremum]: ...
+
+@final
+class Extremum:
+    """A buffer's value at an extremum of its reference: ``spec`` (which pair of buffers), ``after`` (the position,
+    0-based, it lies after), ``input``, ``reference`` and ``value`` there, and ``gradient`` (by variable)."""
+
+    def __new__(
+        cls, spec: int, after: int, input: float, reference: float, value: float, gradient: list[float]
+    ) -> Extremum: ...
+    def __getnewargs__(self) -> tuple[int, int, float, float, float, list[float]]: ...
+    @property
+    def spec(self) -> int: ...
+    @property
+    def after(self) -> int: ...
+    @property
+    def input(self) -> float: ...
+    @property
+    def reference(self) -> float: ...
+    @property
+    def value(self) -> float: ...
+    @property
+    def gradient(self) -> list[float]: ...
+
+@final
 class DesignModel:
     """A compiled deck kept for an optimiser: designs evaluated in turn, each on the assembly branch of the start
     design (the deck's own unless ``start_at`` chose another), whatever was evaluated before."""
@@ -1288,13 +1353,13 @@ class DesignModel:
     @property
     def runs(self) -> int: ...
     def start(self) -> list[float]: ...
-    def start_at(self, values: list[float]) -> dict[str, Any]: ...
-    def evaluate(self, values: list[float]) -> dict[str, Any]: ...
+    def start_at(self, values: list[float]) -> Evaluation: ...
+    def evaluate(self, values: list[float]) -> Evaluation: ...
 
 @final
 class DynamicDesignModel:
-    """A compiled DYN ANA deck kept for an optimiser: the dict of ``DesignModel``, the dynamic buffers with their
-    sensitivities to dimensions and to the mass model. Variable kinds 0 (fixed co-ordinate), 1 (prescribed row),
+    """A compiled DYN ANA deck kept for an optimiser: an ``Evaluation`` as ``DesignModel``'s, the dynamic buffers with
+    their sensitivities to dimensions and to the mass model. Variable kinds 0 (fixed co-ordinate), 1 (prescribed row),
     10..15 (MASS, U, V, J of an element's MASS line, the PMASS at a co-ordinate, the INERTIA on one)."""
 
     def __new__(
@@ -1309,8 +1374,8 @@ class DynamicDesignModel:
     @property
     def runs(self) -> int: ...
     def start(self) -> list[float]: ...
-    def start_at(self, values: list[float]) -> dict[str, Any]: ...
-    def evaluate(self, values: list[float]) -> dict[str, Any]: ...
+    def start_at(self, values: list[float]) -> Evaluation: ...
+    def evaluate(self, values: list[float]) -> Evaluation: ...
 
 def deck_with_masses(text: str, path: str | os.PathLike[str], masses: list[tuple[int, int, float]]) -> str:
     """The DYN ANA deck with the numbers of its mass model replaced: ``(kind, number, value)``, kind 10..15 as for

@@ -75,18 +75,18 @@ def model(deck: Path) -> _core.DesignModel:
     return _core.DesignModel(FOURBAR, os.fspath(deck), os.fspath(deck.parent), [(0, 3), (0, 4), (1, 3)], [1], [])
 
 
-def orientation(d: dict[str, object], x: list[float]) -> float:
+def orientation(d: _core.Evaluation, x: list[float]) -> float:
     """The sign of the triangle A, B, B0 at position 1: which of the dyad's two assemblies it is."""
-    c = np.asarray(d["position_one"])
+    c = np.asarray(d.position_one)
     a, b, b0 = c[4:6], c[6:8], np.array(x[:2])
     u, v = b - a, b0 - a
     return float(np.sign(u[0] * v[1] - u[1] * v[0]))
 
 
-def same(d: dict[str, object], e: dict[str, object]) -> bool:
+def same(d: _core.Evaluation, e: _core.Evaluation) -> bool:
     keys = ("feasible", "reason", "positions", "position_one")
-    return all(d[k] == e[k] for k in keys) and all(
-        np.array_equal(np.asarray(d[k]), np.asarray(e[k])) for k in ("values", "gradient")
+    return all(getattr(d, k) == getattr(e, k) for k in keys) and all(
+        np.array_equal(np.asarray(getattr(d, k)), np.asarray(getattr(e, k))) for k in ("values", "gradient")
     )
 
 
@@ -95,7 +95,7 @@ def test_a_design_evaluated_after_a_design_on_the_other_branch_is_evaluated_on_i
     first = m.evaluate(START)
     mirroring = m.evaluate(MIRRORING)
     again = m.evaluate(START)
-    assert first["feasible"] and mirroring["feasible"] and again["feasible"]
+    assert first.feasible and mirroring.feasible and again.feasible
     # Bit for bit, and on the start design's branch, as a fresh model evaluates them.
     assert same(first, again)
     assert same(mirroring, model(deck).evaluate(MIRRORING))
@@ -112,19 +112,19 @@ def test_designs_in_any_order_give_the_same_values(deck: Path) -> None:
     order = rng.permutation(len(designs))
     for k in order:
         assert same(backward.evaluate(designs[k]), seen[k]), designs[k]
-    feasible = [(d, x) for d, x in zip(seen, designs, strict=True) if d["feasible"]]
+    feasible = [(d, x) for d, x in zip(seen, designs, strict=True) if d.feasible]
     assert len(feasible) > 10
     assert {orientation(d, x) for d, x in feasible} == {orientation(seen[-1], START)}
 
 
 def test_a_motion_that_jumps_to_the_other_branch_is_infeasible_and_said_so(deck: Path) -> None:
     d = model(deck).evaluate(JUMPING)
-    assert not d["feasible"]
+    assert not d.feasible
     # A stepper that stops at the limit position itself makes the design infeasible as a motion that stops; one
     # that steps over it onto the other branch is caught by the orientation of the dyad.
-    assert d["reason_kind"] in ("left_branch", "stopped")
-    if d["reason_kind"] == "left_branch":
-        assert d["reason"] == (
+    assert d.reason_kind in ("left_branch", "stopped")
+    if d.reason_kind == "left_branch":
+        assert d.reason == (
             "the motion changes assembly branch between positions 25 and 26: co-ordinates 7, 8 flip to their "
             "mirrored assembly (the determinant of their group in D^c changes sign: a limit position jumped over, or "
             "a change point where two branches meet)"
@@ -135,21 +135,21 @@ def test_an_infeasible_start_design_makes_every_design_infeasible(deck: Path) ->
     m = model(deck)
     # B0 at (6, 4) is 6.4 from A, farther than coupler and rocker (3 + 1.5) reach: no position 1, so no branch.
     start = m.start_at([6.0, 4.0, 1.5])
-    assert not start["feasible"] and start["reason_kind"] != "stopped"
+    assert not start.feasible and start.reason_kind != "stopped"
     d = m.evaluate(START)
-    assert not d["feasible"] and d["reason_kind"] == "start"
-    assert d["reason"] == f"the start design is infeasible: {start['reason']}"
+    assert not d.feasible and d.reason_kind == "start"
+    assert d.reason == f"the start design is infeasible: {start.reason}"
 
 
 def test_a_start_design_whose_motion_stops_still_sets_the_branch_of_its_position_one(deck: Path) -> None:
     m = model(deck)
     start = m.start_at(JUMPING)
     # The stepper stops at the crank's limit position instead of stepping over it.
-    assert not start["feasible"] and start["reason_kind"] == "stopped"
+    assert not start.feasible and start.reason_kind == "stopped"
     # Its position 1 has B on the other side of A-B0 than the deck's own design has: every design now assembles so.
     assert orientation(start, JUMPING) != orientation(model(deck).evaluate(START), START)
     d = m.evaluate(START)
-    assert d["feasible"] and orientation(d, START) == orientation(start, JUMPING)
+    assert d.feasible and orientation(d, START) == orientation(start, JUMPING)
 
 
 def test_the_start_design_chosen_sets_the_branch(deck: Path) -> None:
@@ -158,7 +158,7 @@ def test_the_start_design_chosen_sets_the_branch(deck: Path) -> None:
     # Assembled from the deck's co-ordinates, that start lies on the other branch than the deck's own design, and
     # so does every design evaluated after it, the deck's own included.
     d, own = m.evaluate(START), model(deck).evaluate(START)
-    assert start["feasible"] and d["feasible"] and own["feasible"]
+    assert start.feasible and d.feasible and own.feasible
     assert orientation(d, START) == orientation(start, MIRRORING) == -orientation(own, START)
 
 

@@ -33,8 +33,8 @@ def extrema(deck: Path) -> list[float]:
     """Buffer 102 (the output's second-order transfer function) at the extrema of buffer 100 (the output)."""
     model = _core.DesignModel(deck.read_text(), os.fspath(deck), os.fspath(deck.parent), [(1, 5)], [102], [(102, 100)])
     d = model.evaluate(model.start())
-    assert d["feasible"], d["reason"]
-    return [x["value"] for x in d["extrema"]]
+    assert d.feasible, d.reason
+    return [x.value for x in d.extrema]
 
 
 @pytest.fixture(scope="module")

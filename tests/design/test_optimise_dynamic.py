@@ -44,8 +44,8 @@ def test_dynamic_gradients_match_central_differences_of_whole_runs() -> None:
     m = model(variables, buffers)
     x0 = np.array(m.start()) + np.array([0.01, 0.3, -0.05, 0.004, 0.001, 0.002, 0.2])
     d = m.evaluate([float(v) for v in x0])
-    assert d["feasible"], d["reason"]
-    values, gradient = d["values"], d["gradient"]
+    assert d.feasible, d.reason
+    values, gradient = d.values, d.gradient
     assert gradient.shape == (72, len(buffers), len(variables))
     for k in range(len(variables)):
         h = 1e-6 * max(1.0, abs(x0[k]))
@@ -54,8 +54,8 @@ def test_dynamic_gradients_match_central_differences_of_whole_runs() -> None:
             x = x0.copy()
             x[k] += sign * h
             e = m.evaluate([float(v) for v in x])
-            assert e["feasible"], e["reason"]
-            runs.append(e["values"])
+            assert e.feasible, e.reason
+            runs.append(e.values)
         fd = (runs[0] - runs[1]) / (2 * h)
         scale = np.maximum(np.abs(values).max(axis=0), 1.0)
         err = np.abs(fd - gradient[:, :, k]) / scale
@@ -115,7 +115,7 @@ def test_the_written_deck_runs_to_the_optimum_found(optimised: tuple[Path, Path]
     written = out / f"{deck.stem}_opt.mec"
     m = _core.DynamicDesignModel(written.read_text(), os.fspath(written), os.fspath(out), [(11, 1)], [3, 4], [])
     d = m.evaluate(m.start())
-    fx, fy = d["values"][:, 0], d["values"][:, 1]
+    fx, fy = d.values[:, 0], d.values[:, 1]
     rms = float(np.sqrt(np.mean(fx**2 + fy**2)))
     outcome = optimise_deck.optimise(EXAMPLE, optimise_deck.describe(EXAMPLE).optimise)
     assert rms == pytest.approx(outcome.objective, rel=1e-9)

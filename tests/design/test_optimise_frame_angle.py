@@ -88,14 +88,14 @@ def test_the_frame_angles_gradient_agrees_with_central_differences() -> None:
         assert z0[-1] == 0.0
         z0[-1] = 0.3
         got = model.evaluate(z0)
-        assert got["feasible"]
-        grad = np.asarray(got["gradient"])
+        assert got.feasible
+        grad = np.asarray(got.gradient)
         h = 1e-6
         for j in range(len(z0)):
             up, down = list(z0), list(z0)
             up[j] += h
             down[j] -= h
-            fd = (np.asarray(model.evaluate(up)["values"]) - np.asarray(model.evaluate(down)["values"])) / (2 * h)
+            fd = (np.asarray(model.evaluate(up).values) - np.asarray(model.evaluate(down).values)) / (2 * h)
             scale = max(1.0, float(np.max(np.abs(fd))))
             assert np.max(np.abs(grad[:, :, j] - fd)) < 1e-6 * scale, j
 

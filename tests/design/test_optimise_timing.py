@@ -58,14 +58,14 @@ def test_the_timing_gradient_agrees_with_central_differences() -> None:
         model = TimedModel(points, len(shared), p.thetas, ordered, True)
         y0 = np.array(model.start())
         d0 = model.start_at(list(y0))
-        assert d0["feasible"]
+        assert d0.feasible
         h = 1e-6
         for i in range(len(y0)):
             up, down = y0.copy(), y0.copy()
             up[i] += h
             down[i] -= h
-            fd = (model.evaluate(list(up))["values"] - model.evaluate(list(down))["values"]) / (2 * h)
-            np.testing.assert_allclose(d0["gradient"][:, :, i], fd, atol=1e-7, rtol=1e-6)
+            fd = (model.evaluate(list(up)).values - model.evaluate(list(down)).values) / (2 * h)
+            np.testing.assert_allclose(d0.gradient[:, :, i], fd, atol=1e-7, rtol=1e-6)
 
 
 def test_ordered_timing_keeps_the_points_in_order_and_refuses_an_unordered_start() -> None:
@@ -101,5 +101,5 @@ def test_an_infeasible_point_names_the_point() -> None:
     points = [b.design("", [*shared, p.input_var], buffers, []) for b in p.builders]
     model = TimedModel(points, 1, p.thetas, False, True)
     d = model.start_at([5.0, *p.thetas])
-    assert not d["feasible"]
-    assert re.match(r"at target point \d+: position 1 cannot be computed", str(d["reason"]))
+    assert not d.feasible
+    assert re.match(r"at target point \d+: position 1 cannot be computed", str(d.reason))

@@ -87,14 +87,9 @@ def test_a_failing_variant_is_worded_in_the_models_names_without_a_deck(no_deck_
     assert "fourbar" in study["error"][1] and "B" in study["error"][1]
 
 
-def _field(result: Any, name: str) -> Any:
-    """A field of what the compiled module returns, a dict or an object with getters."""
-    return result[name] if isinstance(result, dict) else getattr(result, name)
-
-
 def _evaluations(model: Any, x: list[float]) -> tuple[Any, ...]:
     d = model.evaluate(x)
-    return _field(d, "values"), _field(d, "gradient"), _field(d, "position_one")
+    return d.values, d.gradient, d.position_one
 
 
 def test_the_built_design_model_is_the_deck_texts_bit_for_bit() -> None:
@@ -127,9 +122,9 @@ def test_a_study_is_the_deck_texts_bit_for_bit() -> None:
         b = _core.run_deck_variants([built.builder], variants, "v.mec", base, 1, None, None, 2)
     for x, y in zip(a, b, strict=True):
         assert not isinstance(x, Exception) and not isinstance(y, Exception)
-        assert _field(x, "report").stop is None and _field(y, "report").stop is None
+        assert x.report.stop is None and y.report.stop is None
         for name in ("table", "coords"):
-            assert np.array_equal(_field(x, name), _field(y, name))
+            assert np.array_equal(getattr(x, name), getattr(y, name))
 
 
 def _failure(m: Mechanism) -> mechfem.MechfemError:

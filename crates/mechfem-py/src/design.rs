@@ -12,13 +12,11 @@ use mechfem_core::design::{Anchor, Design, DesignFailure, DesignRun};
 use mechfem_core::worded;
 use mechfem_core::DesignVar;
 use mechfem_deck::{Compiled, DesignSetup};
-use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::report::Report;
+use crate::errors;
+use crate::evaluation::{self, Evaluation};
 use crate::text::compile_text;
-use crate::{convert, errors};
 
 /// A deck, its design variables, the buffers an objective reads and the
 /// extrema it takes them at.
@@ -90,8 +88,8 @@ impl DesignModel {
 
     /// Evaluates `values` as the start design, from the deck's co-ordinates
     /// (its XMOV estimates): the assembly branch of its position 1 is the
-    /// branch of every later evaluation. A dict as of [`Self::evaluate`].
-    fn start_at<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+    /// branch of every later evaluation. An [`Evaluation`] as of [`Self::evaluate`].
+    fn start_at(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
         let design = self.design();
         let result = py.detach(|| design.start(&values));
@@ -106,18 +104,13 @@ impl DesignModel {
                 Err(e)
             }
         };
-        self.dict(py, result)
+        self.evaluation(py, result)
     }
 
     /// Evaluates the design `values` on the start design's branch (the
-    /// deck's own design unless [`Self::start_at`] chose another): a dict
-    /// with `feasible`, `reason` (None when feasible) and `reason_kind`
-    /// (None, `"position_one"`, `"other_branch"`, `"left_branch"` or
-    /// `"stopped"`), `positions`, `position_one` (its co-ordinates at
-    /// position 1, None when it has none), `values` (positions x buffers),
-    /// `gradient` (positions x buffers x variables) and `extrema` (dicts
-    /// with `spec`, `after`, `input`, `reference`, `value`, `gradient`).
-    fn evaluate<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+    /// deck's own design unless [`Self::start_at`] chose another): its
+    /// [`Evaluation`].
+    fn evaluate(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
         if self.anchor.is_none() {
             let start = self.start();
@@ -137,7 +130,7 @@ impl DesignModel {
         let design = self.design();
         let result = py.detach(|| design.evaluate(anchor, &values));
         self.runs += 1;
-        self.dict(py, result)
+        self.evaluation(py, result)
     }
 }
 
@@ -159,80 +152,22 @@ impl DesignModel {
         }
     }
 
-    /// The dict of [`DesignModel::evaluate`] for an evaluation.
-    fn dict<'py>(&self, py: Python<'py>, result: Result<DesignRun, DesignFailure>) -> PyResult<Bound<'py, PyDict>> {
-        let c = &self.compiled;
-        let motion = c.motion.as_ref().expect("checked in new");
+    /// The [`Evaluation`] of [`DesignModel::evaluate`] for an evaluation.
+    fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
         let (nq, nv) = (self.setup.quantities.len(), self.setup.vars.len());
-        let d = PyDict::new(py);
         match result {
-            Ok(run) => {
-                let stop = run.report.stop.as_ref();
-                let reason = stop
-                    .map(|s| worded::design_stopped(&c.mechanism, &c.names, &c.dynamics_lines, s.last_good, &s.error));
-                let at_1 = run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec);
-                d.set_item("position_one", at_1)?;
-                d.set_item("feasible", reason.is_none())?;
-                d.set_item("reason_kind", reason.as_ref().map(|_| "stopped"))?;
-                d.set_item("reason", reason)?;
-                d.set_item("positions", run.positions)?;
-                d.set_item(
-                    "report",
-                    Report::of(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?,
-                )?;
-                d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
-                let g = PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?;
-                d.set_item("gradient", g)?;
-                let found = run
-                    .extrema
-                    .iter()
-                    .map(|e| {
-                        let x = PyDict::new(py);
-                        x.set_item("spec", e.spec)?;
-                        x.set_item("after", e.after)?;
-                        x.set_item("input", e.input)?;
-                        x.set_item("reference", e.reference)?;
-                        x.set_item("value", e.value)?;
-                        x.set_item("gradient", e.gradient.clone())?;
-                        Ok(x)
-                    })
-                    .collect::<PyResult<Vec<_>>>()?;
-                d.set_item("extrema", found)?;
-            }
+            Ok(run) => evaluation::of_run(py, &self.compiled, run, nq, nv),
             Err(e) => {
-                let (kind, why) = reason(c, &e);
-                return self.failed(py, kind, why);
+                let (kind, why) = reason(&self.compiled, &e);
+                self.failed(py, kind, why)
             }
         }
-        Ok(d)
     }
 
-    /// The dict of an infeasible design without positions.
-    fn failed<'py>(&self, py: Python<'py>, kind: &str, why: String) -> PyResult<Bound<'py, PyDict>> {
-        infeasible(py, kind, why, self.setup.quantities.len(), self.setup.vars.len())
+    /// An infeasible design without positions.
+    fn failed(&self, py: Python<'_>, kind: &str, why: String) -> PyResult<Evaluation> {
+        evaluation::infeasible(py, kind, why, self.setup.quantities.len(), self.setup.vars.len())
     }
-}
-
-/// The dict of an infeasible design without positions, `nq` quantities and
-/// `nv` variables wide (a kinematic or a dynamic design alike).
-pub(crate) fn infeasible<'py>(
-    py: Python<'py>,
-    kind: &str,
-    why: String,
-    nq: usize,
-    nv: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("feasible", false)?;
-    d.set_item("reason", why)?;
-    d.set_item("reason_kind", kind)?;
-    d.set_item("positions", 0)?;
-    d.set_item("position_one", py.None())?;
-    d.set_item("report", py.None())?;
-    d.set_item("values", convert::array2(py, Vec::new(), 0, nq)?)?;
-    d.set_item("gradient", PyArray1::<f64>::zeros(py, 0, false).reshape([0, nq, nv])?)?;
-    d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
-    Ok(d)
 }
 
 /// The kind of a failure (see [`DesignModel::evaluate`]) and its words.

@@ -5,8 +5,8 @@
 //! model. Kinematic variables are assembled on the start design's branch
 //! as [`crate::design::DesignModel`] does; the mass model leaves the
 //! kinematics alone. An infeasible design is returned with the reason,
-//! never raised. Same dict as `DesignModel`, so that the optimiser takes
-//! either.
+//! never raised. The same [`Evaluation`] as `DesignModel`'s, so that the
+//! optimiser takes either.
 
 use std::path::PathBuf;
 
@@ -14,14 +14,12 @@ use mechfem_core::design::{Anchor, Design, DesignFailure, DesignRun};
 use mechfem_core::dynamic_design::evaluate;
 use mechfem_core::{worded, DesignVar, State};
 use mechfem_deck::{Compiled, DynamicSetup};
-use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
-use crate::design::{infeasible, reason};
-use crate::report::Report;
+use crate::design::reason;
+use crate::errors;
+use crate::evaluation::{self, Evaluation};
 use crate::text::compile_text;
-use crate::{convert, errors};
 
 /// A DYN ANA deck, its design variables and the buffers an objective reads.
 #[pyclass(module = "mechfem._core")]
@@ -82,9 +80,9 @@ impl DynamicDesignModel {
     }
 
     /// Evaluates `values` as the start design: the assembly branch of its
-    /// position 1 is the branch of every later evaluation. A dict as of
-    /// [`Self::evaluate`].
-    fn start_at<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+    /// position 1 is the branch of every later evaluation. An [`Evaluation`]
+    /// as of [`Self::evaluate`].
+    fn start_at(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
         let (kin, mass) = self.split(&values);
         let started = if self.setup.vars.is_empty() {
@@ -109,15 +107,13 @@ impl DynamicDesignModel {
             }
         };
         self.runs += 1;
-        self.dict(py, result)
+        self.evaluation(py, result)
     }
 
-    /// Evaluates the design `values` on the start design's branch: a dict
-    /// with `feasible`, `reason`, `reason_kind`, `positions`,
-    /// `position_one`, `report`, `values` (positions x buffers), `gradient`
-    /// (positions x buffers x variables, in the order given) and `extrema`
-    /// (empty), as `DesignModel.evaluate` gives it.
-    fn evaluate<'py>(&mut self, py: Python<'py>, values: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+    /// Evaluates the design `values` on the start design's branch: its
+    /// [`Evaluation`] (the gradient's variables in the order given, no
+    /// extrema), as `DesignModel.evaluate` gives it.
+    fn evaluate(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
         if self.setup.vars.is_empty() {
             return self.start_at(py, values);
@@ -141,7 +137,7 @@ impl DynamicDesignModel {
             self.run(self.position_one(&run, &kin), &kin, &mass)
         });
         self.runs += 1;
-        self.dict(py, result)
+        self.evaluation(py, result)
     }
 }
 
@@ -249,37 +245,21 @@ impl DynamicDesignModel {
         Ok(run)
     }
 
-    /// The dict of [`DynamicDesignModel::evaluate`] for an evaluation.
-    fn dict<'py>(&self, py: Python<'py>, result: Result<DesignRun, DesignFailure>) -> PyResult<Bound<'py, PyDict>> {
-        let c = &self.compiled;
-        let motion = c.motion.as_ref().expect("checked in new");
+    /// The [`Evaluation`] of [`DynamicDesignModel::evaluate`] for an evaluation.
+    fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
         let (nq, nv) = (self.setup.quantities.len(), self.setup.order.len());
-        let run = match result {
-            Ok(run) => run,
+        match result {
+            Ok(run) => evaluation::of_run(py, &self.compiled, run, nq, nv),
             Err(e) => {
-                let (kind, why) = reason(c, &e);
-                return self.failed(py, kind, why);
+                let (kind, why) = reason(&self.compiled, &e);
+                self.failed(py, kind, why)
             }
-        };
-        let d = PyDict::new(py);
-        let stop = run.report.stop.as_ref();
-        let why =
-            stop.map(|s| worded::design_stopped(&c.mechanism, &c.names, &c.dynamics_lines, s.last_good, &s.error));
-        d.set_item("position_one", run.coords.get(..c.mechanism.n_coords()).map(<[f64]>::to_vec))?;
-        d.set_item("feasible", why.is_none())?;
-        d.set_item("reason_kind", why.as_ref().map(|_| "stopped"))?;
-        d.set_item("reason", why)?;
-        d.set_item("positions", run.positions)?;
-        d.set_item("report", Report::of(py, &c.mechanism, &c.names, &c.dynamics_lines, &run.report, motion.steps)?)?;
-        d.set_item("values", convert::array2(py, run.values, run.positions, nq)?)?;
-        d.set_item("gradient", PyArray1::from_vec(py, run.gradient).reshape([run.positions, nq, nv])?)?;
-        d.set_item("extrema", Vec::<Bound<'py, PyDict>>::new())?;
-        Ok(d)
+        }
     }
 
-    /// The dict of an infeasible design without positions.
-    fn failed<'py>(&self, py: Python<'py>, kind: &str, why: String) -> PyResult<Bound<'py, PyDict>> {
-        infeasible(py, kind, why, self.setup.quantities.len(), self.setup.order.len())
+    /// An infeasible design without positions.
+    fn failed(&self, py: Python<'_>, kind: &str, why: String) -> PyResult<Evaluation> {
+        evaluation::infeasible(py, kind, why, self.setup.quantities.len(), self.setup.order.len())
     }
 }
 

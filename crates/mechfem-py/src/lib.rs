@@ -54,6 +54,7 @@ mod design;
 mod dynamic_design;
 mod echo;
 mod errors;
+mod evaluation;
 mod labels;
 mod masses;
 mod model;
@@ -391,6 +392,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<builder::ModelBuilder>()?;
     m.add_class::<design::DesignModel>()?;
     m.add_class::<dynamic_design::DynamicDesignModel>()?;
+    m.add_class::<evaluation::Evaluation>()?;
+    m.add_class::<evaluation::Extremum>()?;
     m.add_function(wrap_pyfunction!(dynamic_design::deck_with_masses, m)?)?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(tolerance::deck_tolerance, m)?)?;

@@ -22,7 +22,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 import numpy.typing as npt
@@ -175,13 +175,13 @@ class Infeasible(MechfemError):
 class Evaluation:
     """One design evaluated: every buffer at every position and its derivatives with respect to the variables."""
 
-    def __init__(self, column: dict[int, int], x: FloatArray, d: dict[str, Any]) -> None:
+    def __init__(self, column: dict[int, int], x: FloatArray, d: _core.Evaluation) -> None:
         self.x = x
         self._column = column
-        self._values: FloatArray = d["values"]
-        self._gradient: FloatArray = d["gradient"]
-        self.extrema: list[dict[str, Any]] = d["extrema"]
-        self.position_one: list[float] = list(d["position_one"] or [])
+        self._values: FloatArray = d.values
+        self._gradient: FloatArray = d.gradient
+        self.extrema: list[_core.Extremum] = d.extrema
+        self.position_one: list[float] = list(d.position_one or [])
         """The design's co-ordinates at position 1, in deck order."""
 
     def value(self, buffer: int) -> FloatArray:
@@ -249,8 +249,8 @@ class Evaluator:
         self._cache = None
         self._centre = np.array(x, dtype=np.float64)
         d = self.model.start_at([float(v) for v in x])
-        if not d["feasible"]:
-            raise Infeasible(str(d["reason"]))
+        if not d.feasible:
+            raise Infeasible(str(d.reason))
         e = Evaluation(self._column, np.array(x), d)
         self.extrema_count = _extremum_counts(self.problem, e)
         return e
@@ -261,9 +261,9 @@ class Evaluator:
         key = x.tobytes()
         if self._cache is None or self._cache[0] != key:
             d = self.model.evaluate([float(v) for v in x])
-            result: Evaluation | str = str(d["reason"])
-            kind = str(d["reason_kind"])
-            if d["feasible"]:
+            result: Evaluation | str = str(d.reason)
+            kind = str(d.reason_kind)
+            if d.feasible:
                 result, kind = Evaluation(self._column, np.array(x), d), "extrema"
                 counts = _extremum_counts(self.problem, result)
                 if self.extrema_count is None:
@@ -285,7 +285,7 @@ class Evaluator:
 
 def _extremum_counts(problem: Problem, e: Evaluation) -> list[int]:
     specs = [t for t in problem.terms if isinstance(t, ExtremumTerm)]
-    return [sum(1 for x in e.extrema if x["spec"] == k) for k in range(len(specs))]
+    return [sum(1 for x in e.extrema if x.spec == k) for k in range(len(specs))]
 
 
 # --- the objective -------------------------------------------------------------------------------------------------
@@ -320,10 +320,10 @@ def _residual_terms(problem: Problem, e: Evaluation, res: list[FloatArray], jac:
             res.append(w * (e.value(t.buffer)[t.position : t.position + 1] - t.value))
             jac.append(w * e.gradient(t.buffer)[t.position : t.position + 1])
         else:
-            found = [x for x in e.extrema if x["spec"] == k_ext]
+            found = [x for x in e.extrema if x.spec == k_ext]
             k_ext += 1
-            res.append(np.array([w * (x["value"] - t.value) for x in found], dtype=np.float64))
-            jac.append(np.array([w * np.asarray(x["gradient"]) for x in found], dtype=np.float64).reshape(-1, n))
+            res.append(np.array([w * (x.value - t.value) for x in found], dtype=np.float64))
+            jac.append(np.array([w * np.asarray(x.gradient) for x in found], dtype=np.float64).reshape(-1, n))
 
 
 def misses(problem: Problem, e: Evaluation) -> list[tuple[float, int | None]]:
@@ -339,7 +339,7 @@ def misses(problem: Problem, e: Evaluation) -> list[tuple[float, int | None]]:
         elif isinstance(t, AtTerm):
             out.append((abs(float(e.value(t.buffer)[t.position]) - t.value), t.position))
         else:
-            found = [abs(x["value"] - t.value) for x in e.extrema if x["spec"] == k_ext]
+            found = [abs(x.value - t.value) for x in e.extrema if x.spec == k_ext]
             k_ext += 1
             out.append((max(found) if found else math.nan, None))
     return out
@@ -571,6 +571,6 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         seconds=time.perf_counter() - t0,
         method=method,
         misses=misses(problem, e),
-        extrema=[(specs[ex["spec"]], float(ex["input"]), float(ex["value"])) for ex in e.extrema],
+        extrema=[(specs[ex.spec], ex.input, ex.value) for ex in e.extrema],
         final=e,
     )

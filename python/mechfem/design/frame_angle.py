@@ -23,6 +23,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+import mechfem._core as _core
+from mechfem.design import evaluated
 from mechfem.design.model_units import Factors
 
 if TYPE_CHECKING:
@@ -158,20 +160,20 @@ class TurnedModel:
         y = list(self.inner.start())
         return [0.0 if var == SENTINEL else float(y[self.core.index(var)]) for var in self.exposed]
 
-    def start_at(self, values: list[float]) -> dict[str, Any]:
+    def start_at(self, values: list[float]) -> _core.Evaluation:
         return self._each(values, start=True)
 
-    def evaluate(self, values: list[float]) -> dict[str, Any]:
+    def evaluate(self, values: list[float]) -> _core.Evaluation:
         return self._each(values, start=False)
 
-    def _each(self, z: list[float], start: bool) -> dict[str, Any]:
+    def _each(self, z: list[float], start: bool) -> _core.Evaluation:
         y, jac = self.mapped(z)
-        got = dict(self.inner.start_at(y) if start else self.inner.evaluate(y))
-        if not got["feasible"]:
+        got: _core.Evaluation = self.inner.start_at(y) if start else self.inner.evaluate(y)
+        if not got.feasible:
             return got
-        got["gradient"] = np.asarray(got["gradient"], dtype=np.float64) @ jac
-        got["extrema"] = [{**x, "gradient": list(np.asarray(x["gradient"]) @ jac)} for x in got.get("extrema", [])]
-        return got
+        gradient = np.asarray(got.gradient, dtype=np.float64) @ jac
+        extrema = [evaluated.replaced_extremum(x, gradient=list(np.asarray(x.gradient) @ jac)) for x in got.extrema]
+        return evaluated.replaced(got, gradient=gradient, extrema=extrema)
 
 
 def turned(of: DesignModelOf, turn: Turn) -> DesignModelOf:

@@ -16,6 +16,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import mechfem._core as _core
+from mechfem.design import evaluated
 
 if TYPE_CHECKING:
     from mechfem.design.engine import DesignModelOf
@@ -39,22 +40,19 @@ class FullRotation:
     def start(self) -> list[float]:
         return list(self.inner.start())
 
-    def start_at(self, values: list[float]) -> dict[str, Any]:
+    def start_at(self, values: list[float]) -> _core.Evaluation:
         return self._checked(values, start=True)
 
-    def evaluate(self, values: list[float]) -> dict[str, Any]:
+    def evaluate(self, values: list[float]) -> _core.Evaluation:
         return self._checked(values, start=False)
 
-    def _checked(self, values: list[float], start: bool) -> dict[str, Any]:
+    def _checked(self, values: list[float], start: bool) -> _core.Evaluation:
         shared = [float(v) for v in values[: self.shared]]
         d = self.turn.start_at(shared) if start else self.turn.evaluate(shared)
-        if not d["feasible"]:
-            return {
-                "feasible": False,
-                "reason": f"the input cannot turn fully: {d['reason']}",
-                "reason_kind": "full_rotation",
-            }
-        return dict(self.inner.start_at(values) if start else self.inner.evaluate(values))
+        if not d.feasible:
+            return evaluated.replaced(d, reason=f"the input cannot turn fully: {d.reason}", reason_kind="full_rotation")
+        got: _core.Evaluation = self.inner.start_at(values) if start else self.inner.evaluate(values)
+        return got
 
 
 TURN = 2.0 * math.pi

@@ -20,6 +20,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+import mechfem._core as _core
+from mechfem.design import evaluated
 from mechfem.model.catalogue import coordinate_dimensions, form_dimension
 from mechfem.model.units import scale
 
@@ -114,41 +116,42 @@ class ScaledModel:
     def start(self) -> list[float]:
         return [float(y) / f for y, f in zip(self.inner.start(), self.factors, strict=True)]
 
-    def start_at(self, values: list[float]) -> dict[str, Any]:
-        return self._scaled(self.inner.start_at(self._core(values)))
+    def start_at(self, values: list[float]) -> _core.Evaluation:
+        got: _core.Evaluation = self.inner.start_at(self._in_core(values))
+        return self._scaled(got)
 
-    def evaluate(self, values: list[float]) -> dict[str, Any]:
-        return self._scaled(self.inner.evaluate(self._core(values)))
+    def evaluate(self, values: list[float]) -> _core.Evaluation:
+        got: _core.Evaluation = self.inner.evaluate(self._in_core(values))
+        return self._scaled(got)
 
-    def _core(self, values: Sequence[float]) -> list[float]:
+    def _in_core(self, values: Sequence[float]) -> list[float]:
         return [float(v) * f for v, f in zip(values, self.factors, strict=True)]
 
-    def _scaled(self, got: Any) -> dict[str, Any]:
-        out = dict(got)
-        if out.get("feasible") and "gradient" in out:
-            gradient = np.asarray(out["gradient"], dtype=np.float64) * self.factors
-            scaled = [k for k, f in enumerate(self.buffers) if f != 1.0]
-            if scaled:
-                values = np.array(out["values"], dtype=np.float64)
-                for k in scaled:
-                    values[:, k] /= self.buffers[k]
-                    gradient[:, k, :] /= self.buffers[k]
-                out["values"] = values
-            out["gradient"] = gradient
-            if out.get("position_one") and self.coordinates:
-                out["position_one"] = [
-                    float(v) / f for v, f in zip(out["position_one"], self.coordinates, strict=False)
-                ] + list(out["position_one"][len(self.coordinates) :])
-            if out.get("extrema") and any(f != 1.0 for f in self.extrema):
-                out["extrema"] = [self._extremum(x) for x in out["extrema"]]
-        return out
+    def _scaled(self, got: _core.Evaluation) -> _core.Evaluation:
+        if not got.feasible:
+            return got
+        gradient = np.asarray(got.gradient, dtype=np.float64) * self.factors
+        values = got.values
+        scaled = [k for k, f in enumerate(self.buffers) if f != 1.0]
+        if scaled:
+            values = np.array(values, dtype=np.float64)
+            for k in scaled:
+                values[:, k] /= self.buffers[k]
+                gradient[:, k, :] /= self.buffers[k]
+        position_one = got.position_one
+        if position_one and self.coordinates:
+            position_one = [float(v) / f for v, f in zip(position_one, self.coordinates, strict=False)] + list(
+                position_one[len(self.coordinates) :]
+            )
+        extrema = got.extrema
+        if extrema and any(f != 1.0 for f in self.extrema):
+            extrema = [self._extremum(x) for x in extrema]
+        return evaluated.replaced(got, values=values, gradient=gradient, position_one=position_one, extrema=extrema)
 
-    def _extremum(self, x: dict[str, Any]) -> dict[str, Any]:
-        f = self.extrema[int(x["spec"])] if int(x["spec"]) < len(self.extrema) else 1.0
-        y = dict(x)
-        y["value"] = float(x["value"]) / f
-        y["gradient"] = np.asarray(x["gradient"], dtype=np.float64) * self.factors / f
-        return y
+    def _extremum(self, x: _core.Extremum) -> _core.Extremum:
+        f = self.extrema[x.spec] if x.spec < len(self.extrema) else 1.0
+        gradient = np.asarray(x.gradient, dtype=np.float64) * self.factors / f
+        return evaluated.replaced_extremum(x, value=x.value / f, gradient=list(gradient))
 
 
 class ScaledBuilder:

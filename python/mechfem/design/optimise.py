@@ -524,9 +524,9 @@ def sensitivity(analysis: RunResult, quantity: Quantity, wrt: Sequence[str]) -> 
     with deckio.tables_dir(built.tables) as base:
         model = core.design(base, [(k, n) for k, n, _ in variables], [b], [])
         d = model.evaluate([v for _, _, v in variables])
-    if not d["feasible"]:
-        raise design.Infeasible(str(d["reason"]))
-    return np.asarray(d["gradient"][:, 0, :], dtype=np.float64)
+    if not d.feasible:
+        raise design.Infeasible(str(d.reason))
+    return np.asarray(d.gradient[:, 0, :], dtype=np.float64)
 
 
 class Evaluated:

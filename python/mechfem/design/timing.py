@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import mechfem._core as _core
+from mechfem.design import evaluated
 from mechfem.design.engine import FloatArray, Infeasible
 
 if TYPE_CHECKING:
@@ -101,13 +102,13 @@ class TimedModel:
         shared = list(self.points[0].start())[: self.shared]
         return shared + [float(v) for v in self.timing_of(self.thetas0)]
 
-    def start_at(self, values: list[float]) -> dict[str, Any]:
+    def start_at(self, values: list[float]) -> _core.Evaluation:
         return self._each(values, start=True)
 
-    def evaluate(self, values: list[float]) -> dict[str, Any]:
+    def evaluate(self, values: list[float]) -> _core.Evaluation:
         return self._each(values, start=False)
 
-    def _each(self, values: list[float], start: bool) -> dict[str, Any]:
+    def _each(self, values: list[float], start: bool) -> _core.Evaluation:
         shared = [float(v) for v in values[: self.shared]]
         thetas = self.thetas(values)
         if self.angle:
@@ -118,16 +119,12 @@ class TimedModel:
         rows, grads, first = [], [], None
         for k, (model, theta) in enumerate(zip(self.points, thetas, strict=True)):
             got = model.start_at([*shared, float(theta)]) if start else model.evaluate([*shared, float(theta)])
-            if not got["feasible"]:
-                return {
-                    "feasible": False,
-                    "reason": f"at target point {k + 1}: {got['reason']}",
-                    "reason_kind": got.get("reason_kind", "position_one"),
-                }
-            rows.append(np.asarray(got["values"], dtype=np.float64)[0])
-            grads.append(np.asarray(got["gradient"], dtype=np.float64)[0])
+            if not got.feasible:
+                return evaluated.replaced(got, reason=f"at target point {k + 1}: {got.reason}")
+            rows.append(np.asarray(got.values, dtype=np.float64)[0])
+            grads.append(np.asarray(got.gradient, dtype=np.float64)[0])
             if first is None:
-                first = got["position_one"]
+                first = got
         values_ = np.vstack(rows)
         g = np.stack(grads)  # points x buffers x (shared + 1)
         n = len(self.points)
@@ -136,15 +133,9 @@ class TimedModel:
         for k in range(n):
             # d/dy_i of point k's buffers: its input's sensitivity times d theta_k / d y_i.
             gradient[k, :, self.shared :] = np.outer(g[k, :, self.shared], self.T[k])
-        return {
-            "feasible": True,
-            "reason": "",
-            "reason_kind": "",
-            "values": values_,
-            "gradient": gradient,
-            "extrema": [],
-            "position_one": first,
-        }
+        # One position a target point; position 1 and the report are the first point's.
+        assert first is not None
+        return evaluated.replaced(first, positions=n, values=values_, gradient=gradient, extrema=[])
 
 
 @dataclass
