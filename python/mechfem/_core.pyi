@@ -2,13 +2,12 @@
 
 import os
 from collections.abc import Callable, Sequence
-from typing import Any, Literal, TypedDict, final, type_check_only
+from typing import Any, Literal, final
 
 import numpy as np
 import numpy.typing as npt
 
-# The names of the compiled module; the one TypedDict below (a deck error's diagnostics) exists only for the type
-# checker (@type_check_only).
+# The names of the compiled module.
 __all__ = [
     "MechfemError",
     "DeckError",
@@ -71,6 +70,8 @@ __all__ = [
     "built_tolerance",
     "ToleranceBands",
     "DynamicDesignModel",
+    "Diagnostic",
+    "ElementFault",
     "Evaluation",
     "Extremum",
     "deck_with_masses",
@@ -98,23 +99,84 @@ class DeckError(MechfemError):
     element: int | None
     coordinate: int | None
     detail: str | None
-    detail_fields: dict[str, Any] | None
-    diagnostics: list[DiagnosticDict]
-    """Every mistake's fields; the attributes above are the first one's."""
+    detail_fields: ElementFault | None
+    diagnostics: list[Diagnostic]
+    """Every mistake; the attributes above are the first one's."""
 
-@type_check_only
-class DiagnosticDict(TypedDict):
-    kind: str
-    path: str
-    line: int
-    column: int
-    text: str
-    message: str
-    hint: str | None
-    element: int | None
-    coordinate: int | None
-    detail: str | None
-    detail_fields: dict[str, Any] | None
+@final
+class Diagnostic:
+    """One mistake of a deck: ``kind`` (a stable code, snake case), ``path``, ``line`` and ``column`` (1-based; 0: the
+    file as a whole), ``text`` (the line), ``message``, ``hint``, and what it is about: ``element``, ``coordinate``
+    (deck numbers), ``detail`` (the core's reason in its words) and ``detail_fields`` (the same as an
+    ``ElementFault``), None when it is about none."""
+
+    def __new__(
+        cls,
+        kind: str,
+        path: str,
+        line: int,
+        column: int,
+        text: str,
+        message: str,
+        hint: str | None,
+        element: int | None,
+        coordinate: int | None,
+        detail: str | None,
+        detail_fields: ElementFault | None,
+    ) -> Diagnostic: ...
+    def __getnewargs__(
+        self,
+    ) -> tuple[str, str, int, int, str, str, str | None, int | None, int | None, str | None, ElementFault | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def path(self) -> str: ...
+    @property
+    def line(self) -> int: ...
+    @property
+    def column(self) -> int: ...
+    @property
+    def text(self) -> str: ...
+    @property
+    def message(self) -> str: ...
+    @property
+    def hint(self) -> str | None: ...
+    @property
+    def element(self) -> int | None: ...
+    @property
+    def coordinate(self) -> int | None: ...
+    @property
+    def detail(self) -> str | None: ...
+    @property
+    def detail_fields(self) -> ElementFault | None: ...
+
+@final
+class ElementFault:
+    """Why an element (deck number) cannot be evaluated: ``kind`` (``coincident_points``, ``no_belt_span``,
+    ``zero_radius``) and the numbers and names of the reason as the core's message writes them: ``distance`` and
+    ``difference`` of a belt, ``radius`` (``R_a`` or ``R_c``) of a gear; None where the kind has none."""
+
+    def __new__(
+        cls,
+        element: int,
+        kind: str,
+        distance: str | None = None,
+        difference: str | None = None,
+        radius: str | None = None,
+    ) -> ElementFault: ...
+    def __getnewargs__(self) -> tuple[int, str, str | None, str | None, str | None]: ...
+    def __eq__(self, other: object, /) -> bool: ...
+    @property
+    def element(self) -> int: ...
+    @property
+    def kind(self) -> str: ...
+    @property
+    def distance(self) -> str | None: ...
+    @property
+    def difference(self) -> str | None: ...
+    @property
+    def radius(self) -> str | None: ...
 
 class AssemblyError(MechfemError):
     """The model cannot be evaluated at position 1."""
@@ -124,7 +186,7 @@ class AssemblyError(MechfemError):
     element: int
     element_type: str | None
     detail: str
-    detail_fields: dict[str, Any]
+    detail_fields: ElementFault
     parts: list[_Part]
 
 class ConvergenceError(MechfemError):

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import mechfem
+import mechfem._core as _core
 from conftest import ROOT
 from mechfem import Driven, Keep, Mechanism, Motion, Output
 from mechfem.model.mechanism import By, Table, To
@@ -279,7 +280,7 @@ def test_assembly_errors_name_the_element_and_its_points() -> None:
     err.element = 2
     # The fields the binding sets: the core's reason in its words and as structure.
     err.detail = "the points P and Q coincide, so the direction P->Q is undefined"
-    err.detail_fields = {"element": 2, "kind": "coincident_points"}
+    err.detail_fields = _core.ElementFault(2, "coincident_points")
     new = deckio.translate(err, deck, "fourbar")
     assert isinstance(new, mechfem.AssemblyError)
     assert new.element == 2 and new.element_name == "coupler"  # type: ignore[attr-defined]

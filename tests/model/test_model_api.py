@@ -12,6 +12,7 @@ import numpy.typing as npt
 import pytest
 
 import mechfem
+import mechfem._core as _core
 from conftest import ROOT, SUPPLY
 from mechfem import Driven, Keep, Mechanism, Motion, Output
 from mechfem.model.mechanism import By, Table, To
@@ -415,7 +416,7 @@ def test_assembly_errors_get_the_element_name() -> None:
     err.element = 6  # type: ignore[attr-defined]
     # The fields the binding sets: the core's reason in its words and as structure.
     err.detail = "the points P and Q coincide"  # type: ignore[attr-defined]
-    err.detail_fields = {"element": 6, "kind": "coincident_points"}  # type: ignore[attr-defined]
+    err.detail_fields = _core.ElementFault(6, "coincident_points")  # type: ignore[attr-defined]
     new = deckio.translate(err, deck, "supply")
     assert isinstance(new, mechfem.AssemblyError) and new.element_name == "lever"  # type: ignore[attr-defined]
     assert "the ternary-2 'lever' (G0, H, G) cannot be evaluated there: its points G0 and H coincide" in str(new)

@@ -80,7 +80,7 @@ def test_a_named_position_one_failure_names_the_element_and_its_points() -> None
     err = position_one(fourbar(), A=(3.5, 2.5))
     assert isinstance(err, mechfem.AssemblyError)
     assert str(err) == "element 2 (coupler, BIN): the points P and Q coincide, so the direction P->Q is undefined"
-    assert err.detail_fields == {"element": 2, "kind": "coincident_points"}
+    assert err.detail_fields == _core.ElementFault(2, "coincident_points")
     deck = deckio.write(fourbar())
     assert PythonWords(deck.numbering).render(err.parts) == (
         "the bar 'coupler' (A, B): its points A and B coincide, so the direction A->B is undefined"

@@ -9,12 +9,14 @@ use std::path::Path;
 
 use mechfem_core::run::MemoryRefusal;
 use mechfem_core::worded::{self, Part, Worded};
-use mechfem_core::{DesignError, ElementError, Lost, Mechanism, Names, SolveError, State};
-use mechfem_deck::{Diagnostic, Diagnostics};
+use mechfem_core::{DesignError, Lost, Mechanism, Names, SolveError, State};
+use mechfem_deck::Diagnostics;
 use pyo3::exceptions::{PyException, PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString, PyTuple};
+use pyo3::types::{PyList, PyString, PyTuple};
 use pyo3::{create_exception, PyErr};
+
+use crate::faults::{DeckDiagnostic, ElementFault};
 
 create_exception!(mechfem.errors, MechfemError, PyException, "Base class of every error mechfem raises.");
 create_exception!(
@@ -66,49 +68,21 @@ pub fn resource_error(py: Python<'_>, refusal: &MemoryRefusal) -> PyErr {
     e
 }
 
-/// The fields of one diagnostic, as a dict: `kind` (a stable code,
-/// [`DiagnosticKind::code`](mechfem_deck::DiagnosticKind::code)), `path`,
-/// `line` and `column` (1-based; 0: the file as a whole), `text` (the
-/// line), `message`, `hint`, and what it is about: `element`, `coordinate`
-/// (deck numbers), `detail` (the core's reason) and `detail_fields` (see
-/// [`detail_fields`]), None when it is about none.
-fn diagnostic_fields<'py>(py: Python<'py>, d: &Diagnostic) -> PyResult<Bound<'py, PyDict>> {
-    let out = PyDict::new(py);
-    out.set_item("kind", d.kind.code())?;
-    out.set_item("path", d.path.to_string_lossy().into_owned())?;
-    out.set_item("line", d.line)?;
-    out.set_item("column", if d.line == 0 { 0 } else { d.columns.start + 1 })?;
-    out.set_item("text", &d.text)?;
-    out.set_item("message", &d.message)?;
-    out.set_item("hint", d.hint.as_deref())?;
-    out.set_item("element", d.element)?;
-    out.set_item("coordinate", d.coordinate)?;
-    out.set_item("detail", d.detail.as_deref())?;
-    let fields = match (d.element, &d.element_error) {
-        (Some(element), Some(error)) => Some(detail_fields(py, element, error)?),
-        _ => None,
-    };
-    out.set_item("detail_fields", fields)?;
-    Ok(out)
-}
-
 /// A `DeckError` carrying every diagnostic: str() renders them all, the
-/// attributes are the first one's fields (see [`diagnostic_fields`]) and
-/// `diagnostics` holds every one's, so that a front end names things from
+/// attributes are the first one's fields (see [`DeckDiagnostic`]) and
+/// `diagnostics` holds every one, so that a front end names things from
 /// the fields instead of reading the message.
 pub fn deck_error(py: Python<'_>, path: &Path, diagnostics: &Diagnostics) -> PyErr {
     let err = DeckError::new_err(diagnostics.to_string());
     let value = err.value(py);
-    // Setting attributes on a fresh exception instance cannot fail; building
-    // the dicts only fails when Python is out of memory, and then the
+    // Setting attributes on a fresh exception instance cannot fail; making
+    // the objects only fails when Python is out of memory, and then the
     // message alone still says what is wrong.
     let _ = value.setattr("path", path.to_string_lossy().into_owned());
     let _ = value.setattr("line", 0);
-    let all: Vec<Bound<'_, PyDict>> = diagnostics.iter().filter_map(|d| diagnostic_fields(py, d).ok()).collect();
+    let all: Vec<DeckDiagnostic> = diagnostics.iter().map(DeckDiagnostic::of).collect();
     if let Some(first) = all.first() {
-        for (key, item) in first.iter() {
-            let _ = value.setattr(key.extract::<String>().unwrap_or_default(), item);
-        }
+        let _ = first.set_on(py, value.as_any());
     }
     let _ = value.setattr("diagnostics", all);
     err
@@ -133,8 +107,8 @@ pub fn interrupted(py: Python<'_>, raised: Option<PyErr>, kept: bool) -> PyResul
 
 /// A part of a message as Python gets it: a plain string for
 /// [`Part::Text`]; otherwise the tuple `(kind, value, deck words)`, the
-/// value being a number, a list of numbers, a term's code or the fields of
-/// [`detail_fields`]. The things of the model a part names cross to Python
+/// value being a number, a list of numbers, a term's code or an
+/// [`ElementFault`]. The things of the model a part names cross to Python
 /// as structure, so that a front end names them in its own words (the
 /// Python API with the model's names) without reading the message.
 fn part_object<'py>(py: Python<'py>, part: &Part) -> PyResult<Bound<'py, PyAny>> {
@@ -147,7 +121,7 @@ fn part_object<'py>(py: Python<'py>, part: &Part) -> PyResult<Bound<'py, PyAny>>
         Part::Coords { numbers: n, .. } | Part::Rows { numbers: n, .. } => PyList::new(py, n)?.into_any(),
         Part::Point { coords, .. } => PyList::new(py, coords)?.into_any(),
         Part::Term(t) => PyString::new(py, t.code()).into_any(),
-        Part::Detail { element, error } => detail_fields(py, *element, error)?.into_any(),
+        Part::Detail { element, error } => Py::new(py, ElementFault::of(*element, error))?.into_bound(py).into_any(),
     };
     let items = [PyString::new(py, part.kind()).into_any(), value, PyString::new(py, &part.deck()).into_any()];
     Ok(PyTuple::new(py, items)?.into_any())
@@ -176,28 +150,6 @@ pub fn lost(e: Lost) -> PyErr {
 /// not have, worded by the core.
 pub fn change_error(e: &DesignError) -> PyErr {
     value_error(e)
-}
-
-/// Why element `element` (deck number) cannot be evaluated, as a dict:
-/// `element`, `kind` (`coincident_points`, `no_belt_span`, `zero_radius`)
-/// and the numbers and names of the reason, as the core's message writes
-/// them: `distance` and `difference` of a belt, `radius` (`R_a` or `R_c`).
-pub fn detail_fields<'py>(py: Python<'py>, element: usize, error: &ElementError) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("element", element)?;
-    match error {
-        ElementError::CoincidentPoints => d.set_item("kind", "coincident_points")?,
-        ElementError::NoBeltSpan { l, d: diff } => {
-            d.set_item("kind", "no_belt_span")?;
-            d.set_item("distance", l.to_string())?;
-            d.set_item("difference", diff.to_string())?;
-        }
-        ElementError::ZeroRadius { name } => {
-            d.set_item("kind", "zero_radius")?;
-            d.set_item("radius", *name)?;
-        }
-    }
-    Ok(d)
 }
 
 /// The DYNAMICS line of each mass and load, as the compiled deck gives
@@ -242,9 +194,7 @@ pub fn position_one_error(
             let _ = value.setattr("element", element + 1);
             let _ = value.setattr("element_type", mech.elements().get(*element).map(|e| e.ty.name()));
             let _ = value.setattr("detail", source.to_string());
-            if let Ok(fields) = detail_fields(py, element + 1, source) {
-                let _ = value.setattr("detail_fields", fields);
-            }
+            let _ = value.setattr("detail_fields", ElementFault::of(element + 1, source));
         }
         SolveError::Singular { column, .. } => {
             let _ = value.setattr("coordinate", mech.moving_coords().get(*column).map(|i| i + 1));

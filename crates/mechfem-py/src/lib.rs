@@ -55,6 +55,7 @@ mod dynamic_design;
 mod echo;
 mod errors;
 mod evaluation;
+mod faults;
 mod labels;
 mod masses;
 mod model;
@@ -394,6 +395,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<dynamic_design::DynamicDesignModel>()?;
     m.add_class::<evaluation::Evaluation>()?;
     m.add_class::<evaluation::Extremum>()?;
+    m.add_class::<faults::DeckDiagnostic>()?;
+    m.add_class::<faults::ElementFault>()?;
     m.add_function(wrap_pyfunction!(dynamic_design::deck_with_masses, m)?)?;
     m.add_function(wrap_pyfunction!(design::optimised_deck_text, m)?)?;
     m.add_function(wrap_pyfunction!(tolerance::deck_tolerance, m)?)?;

@@ -19,10 +19,11 @@ never rewritten. The deck path (``mechfem.run_deck``, the command line) keeps th
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeVar
 
+import mechfem._core as _core
 from mechfem._util.names import listing
 from mechfem.errors import AssemblyError, ConvergenceError, DeckError, LimitPositionError, MechfemError, ResourceError
 from mechfem.model.parts import ELEMENT_WORDS, Coordinate, Element, Point, Row
@@ -136,8 +137,8 @@ class PythonWords(Words):
             return ""
         if kind == "term" and isinstance(value, str):
             return _TERMS.get(value, deck)
-        if kind == "detail" and isinstance(value, Mapping):
-            e = _numbered(nb.elements, value.get("element"))
+        if kind == "detail" and isinstance(value, _core.ElementFault):
+            e = _numbered(nb.elements, value.element)
             return deck if e is None else element_detail(value, e, deck)
         if kind == "element":
             e = _numbered(nb.elements, value)
@@ -243,25 +244,25 @@ def _moving_points(nb: Numbering) -> str:
     return listing(names)
 
 
-def element_detail(fields: object, e: Element, deck: str) -> str:
-    """Why the element ``e`` cannot be evaluated, from the ``fields`` of the core's reason (the value of a
-    ``detail`` part, or the ``detail_fields`` of an error), with the element's own point and co-ordinate names;
-    ``deck`` is the reason in the core's words, for a reason without fields or one these names do not fit."""
-    if not isinstance(fields, Mapping):
+def element_detail(fault: object, e: Element, deck: str) -> str:
+    """Why the element ``e`` cannot be evaluated, from the core's reason (an :class:`ElementFault`, the value of a
+    ``detail`` part or the ``detail_fields`` of an error), with the element's own point and co-ordinate names;
+    ``deck`` is the reason in the core's words, for a reason without a fault or one these names do not fit."""
+    if not isinstance(fault, _core.ElementFault):
         return deck
     slots = [s.name for s in e.slots]
     points = [p.name for p in e.points]
-    kind = fields.get("kind")
+    kind = fault.kind
     if kind == "coincident_points" and len(points) >= 2:
         p, q = points[0], points[1]
         return f"its points {p} and {q} coincide, so the direction {p}->{q} is undefined"
     if kind == "no_belt_span" and len(slots) == 6:
         return (
-            f"the belt has no free span: the distance {fields.get('distance')} between the wheel centres {slots[0]} "
-            f"and {slots[2]} is not larger than |{slots[4]} - {slots[5]}| = {fields.get('difference')}"
+            f"the belt has no free span: the distance {fault.distance} between the wheel centres {slots[0]} "
+            f"and {slots[2]} is not larger than |{slots[4]} - {slots[5]}| = {fault.difference}"
         )
     if kind == "zero_radius" and e.type == "GR2":
-        return f"the gear radius {slots[3] if fields.get('radius') == 'R_a' else slots[4]} is zero"
+        return f"the gear radius {slots[3] if fault.radius == 'R_a' else slots[4]} is zero"
     return deck
 
 
