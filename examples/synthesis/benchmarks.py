@@ -164,11 +164,14 @@ def four_bar(bench: Benchmark) -> mechfem.Mechanism:
 def problem(bench: Benchmark) -> tuple[mechfem.Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]]:
     """``(mechanism, vary, keyword arguments)`` of :func:`mechfem.optimize` for ``bench``."""
     targets = [mechfem.Target("P.x", bench.points[:, 0]), mechfem.Target("P.y", bench.points[:, 1])]
-    kwargs: dict[str, Any] = {"targets": targets, "rtol": 1e-12, "atol": 1e-24, "steps": 200}
+    kwargs: dict[str, Any] = {"targets": targets, "rtol": 1e-12, "atol": 1e-24, "steps": 1000 if bench.free else 200}
     if bench.free:
         kwargs["timing"] = mechfem.FreeTiming("theta", list(bench.thetas), ordered=True)
     if bench.crank_shortest:
         kwargs["full_rotation"] = True
+    if bench.free:
+        # The source's range of the frame length r1, stated as such (B0's box is A0's widened by it).
+        kwargs["bounds"] = [mechfem.Bound(mechfem.FrameLength("A0", "B0"), 0.0, bench.length)]
     return four_bar(bench), dict(bench.vary), kwargs
 
 
