@@ -24,7 +24,7 @@ from mechfem.design.engine import FloatArray, Iteration
 from mechfem.design.frame_angle import FrameAngle
 from mechfem.design.frame_length import FrameLength, design_bound
 from mechfem.design.optimum import Optimum, Start
-from mechfem.design.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
+from mechfem.design.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs, within_bound
 from mechfem.model.mechanism import Coordinate, FormParameter, InputKey, Point, Row
 from mechfem.model.motion import Motion
 from mechfem.model.storage import Storage
@@ -495,6 +495,9 @@ def synthesis_problem(
         lo, hi = np.append(lo, a), np.append(hi, b)
         wraps.append(periodic_frame)
     if timed is not None:
+        sweep = within_bound(timed, len(variables))
+        if sweep is not None:
+            fields["design_bounds"] = [*fields.get("design_bounds", []), sweep]
         variables += [(2, k) for k in range(len(timed.thetas))]
         names += timed.names
         lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
