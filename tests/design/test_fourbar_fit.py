@@ -66,3 +66,20 @@ def test_four_fitted_starts_reach_the_published_straight_line() -> None:
     assert bm.published_error(LINE, d) < 1.31e-11
     assert bm.within_published_ranges(LINE, d) and bm.grashof(d) == (True, True) and bm.ordered(d)
     assert opt.usable == 1.0 and len(opt.starts) == 4
+
+
+def test_each_fitted_start_is_optimised_from_its_own_start_angles() -> None:
+    mech, vary, kwargs = bm.problem(LINE)
+    box = {k: v for k, v in vary.items() if v}
+    base = {k: float(mech[k].value) for k in box}
+    got = multistart._fitted(mech, vary, base, box, 3, 1, kwargs)
+    assert got is not None
+    begins, reached, rejected, looked, timings = got
+    assert len(begins) == len(reached) == len(timings) == 3 and looked == 3 + len(rejected)
+    firsts = set()
+    for at, timing in zip(reached, timings, strict=True):
+        assert isinstance(timing, mechfem.FreeTiming) and timing.ordered and timing.within == bm.ONE_TURN
+        assert not np.allclose(timing.starts, LINE.thetas)
+        assert at["theta"].value == pytest.approx(timing.starts[0])
+        firsts.add(round(timing.starts[0], 9))
+    assert len(firsts) == 3

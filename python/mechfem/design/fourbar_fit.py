@@ -24,7 +24,7 @@ and of the angles at which its curve passes the points, the curve placed on them
 
 It applies when the timing is free, the targets include the coupler point's x and y at every point, and the
 pivots, the three lengths and the coupler point's u and v all vary (the similarity then stays within the design's
-variables); otherwise the starts are drawn as before.
+variables); otherwise the starts are drawn as :mod:`mechfem.design.multistart` draws them.
 """
 
 from __future__ import annotations

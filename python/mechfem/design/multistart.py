@@ -8,6 +8,9 @@ design assembled afresh.
 * **A four-bar** (:mod:`mechfem.design.fourbar_starts`) is drawn where its dyad closes over the crank's whole sweep in
   the problem (a whole turn with ``full_rotation``) and each draw assembled from its closed-form position 1 on the
   mechanism's assembly branch: its draws can do the problem's crank motion by construction.
+* **A four-bar with free timing** whose targets are its coupler point's place has its starts fitted to them
+  (:mod:`mechfem.design.fourbar_fit`): drawn coupler curves placed on the points, each start with the crank angles
+  of its laid points as its own start timing (every other start a plain draw when no whole turn is asked).
 * **Any other mechanism** draws in the box itself, and each start is reached by continuation from the mechanism's
   position 1: its variables move there in stages, each stage's position 1 solved from the last one's (a stage that
   fails is halved, down to 1/64 of the way). So every start lies on the branch of the mechanism's own estimates,
@@ -272,7 +275,8 @@ def _fitted(
         return None
     fb, branch, sweep = four_bar
     fit = fourbar_fit.applicable(fb, vary, kwargs)
-    if fit is None:
+    if fit is None or not {f"{fb.b0}.x", f"{fb.b0}.y"} <= set(box):
+        # The frame is drawn by its length and angle from B0's co-ordinates in the unit cube of the box.
         return None
     half = 0 if sweep is None else (n + 1) // 2
     plain = _screen(mechanism, base, [(d, "") for d in draws(box, SCREEN * half, seed)], half, kwargs, None)
