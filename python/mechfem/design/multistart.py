@@ -351,7 +351,7 @@ def multi_start(
         if unknown:
             raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
         # Draws screened for the problem's motion, each assembled afresh by continuation from the mechanism's own
-        # position 1; a four-bar with free timing's fitted to the targets, each with its own start timing.
+        # position 1; with free timing a four-bar's are fitted to the targets, each with its own start timing.
         fitted = _fitted(mechanism, vary, begins[0], box, starts - 1, seed, kwargs)
         if fitted is None:
             more, at, rejected, drawn = screened(mechanism, begins[0], box, starts - 1, seed, kwargs)
