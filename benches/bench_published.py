@@ -36,7 +36,7 @@ import benchmarks as bm  # noqa: E402
 BUDGET = {"five_points": (50, 100, 1e3), "straight_line": (100, 1000, 1e6), "closed_curve": (50, 100, 1e3)}
 BUDGET["ellipse"] = (100, 1000, 1e6)
 """The source's population, generations and penalty factor alpha of each case (its src/config.py)."""
-STARTS = {"five_points": 20, "straight_line": 40, "closed_curve": 100, "ellipse": 50}
+STARTS = {"five_points": 20, "straight_line": 40, "closed_curve": 100, "ellipse": 100}
 """mechfem's starts per problem (``--starts`` sets one number for all)."""
 
 

@@ -29,10 +29,12 @@ mechfem's optimum with it, so the error reported is the published problem's, com
 How mechfem states them: the frame by its two pivots A0 and B0 (the source's frame length and angle), the crank
 angle from the global x axis (the source's theta0 + theta2; with free timing the frame angle is then contained in
 the free crank angles), the constraints as ``full_rotation`` (the crank turns fully: Grashof with the crank
-shortest) and ``FreeTiming(..., ordered=True)``. The source's ranges of the frame length and angle become a box
-of B0 (A0's range widened by the frame length); :func:`published_design` converts mechfem's optimum and
-:func:`within_published_ranges` checks it against every published range. Grashof alone (a rocker input allowed)
-is not a constraint mechfem states; :func:`grashof` reports it of the optimum.
+shortest) and ``FreeTiming(..., ordered=True, within=ONE_TURN)`` (in order, within one turn). B0 has a box (A0's
+range widened by the frame length), and with free timing the source's range of the frame length is stated as a
+bound, ``Bound(FrameLength("A0", "B0"), 0, r1_max)``; the frame angle needs no range (the pivots give every
+angle). :func:`published_design` converts mechfem's optimum and :func:`within_published_ranges` checks it against
+every published range. Grashof alone (a rocker input allowed) is not a constraint mechfem states;
+:func:`grashof` reports it of the optimum.
 
 The decks of the same problems: ``five_points.mec``, ``closed_curve.mec`` (prescribed timing) and
 ``ellipse.mec`` (free timing) beside this file; the straight line is ``straight_line.mec``/``straight_line.py``.
@@ -49,6 +51,11 @@ import straight_line
 
 import mechfem
 
+ROUNDING = 1e-12
+"""Of a range's size: how far outside it a value computed from others (r1 from the pivots) may come by rounding."""
+ONE_TURN = 2.0 * math.pi * (1.0 - 1e-9)
+"""The source's order of free crank angles is strict within one turn (two points at the same angle count as a
+violation): the last point at most a hair less than a turn after the first."""
 SOURCE = "sy-nguyen-van/Dimensional_Synthesis_Four_Bar_Mechanisms, src/cases/case*.py and src/config.py"
 
 
@@ -164,11 +171,14 @@ def four_bar(bench: Benchmark) -> mechfem.Mechanism:
 def problem(bench: Benchmark) -> tuple[mechfem.Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]]:
     """``(mechanism, vary, keyword arguments)`` of :func:`mechfem.optimize` for ``bench``."""
     targets = [mechfem.Target("P.x", bench.points[:, 0]), mechfem.Target("P.y", bench.points[:, 1])]
-    kwargs: dict[str, Any] = {"targets": targets, "rtol": 1e-12, "atol": 1e-24, "steps": 200}
+    kwargs: dict[str, Any] = {"targets": targets, "rtol": 1e-12, "atol": 1e-24, "steps": 1000 if bench.free else 200}
     if bench.free:
-        kwargs["timing"] = mechfem.FreeTiming("theta", list(bench.thetas), ordered=True)
+        kwargs["timing"] = mechfem.FreeTiming("theta", list(bench.thetas), ordered=True, within=ONE_TURN)
     if bench.crank_shortest:
         kwargs["full_rotation"] = True
+    if bench.free:
+        # The source's range of the frame length r1, stated as such (B0's box is A0's widened by it).
+        kwargs["bounds"] = [mechfem.Bound(mechfem.FrameLength("A0", "B0"), 0.0, bench.length)]
     return four_bar(bench), dict(bench.vary), kwargs
 
 
@@ -241,7 +251,10 @@ def ordered(d: dict[str, Any]) -> bool:
 
 
 def within_published_ranges(bench: Benchmark, d: dict[str, Any]) -> bool:
-    """Whether the design ``d`` lies within every range the source gives (angles are taken modulo a turn)."""
-    lengths = all(0.0 <= d[k] <= bench.length for k in ("r1", "r2", "r3", "r4"))
-    places = all(-bench.place <= d[k] <= bench.place for k in ("rcx", "rcy", "x0", "y0"))
+    """Whether the design ``d`` lies within every range the source gives (angles are taken modulo a turn), to
+    rounding: r1 is computed from the pivots, so an optimum on the frame length's bound comes out a few units in the
+    last place either side of it."""
+    eps = ROUNDING * bench.length
+    lengths = all(-eps <= d[k] <= bench.length + eps for k in ("r1", "r2", "r3", "r4"))
+    places = all(-bench.place - eps <= d[k] <= bench.place + eps for k in ("rcx", "rcy", "x0", "y0"))
     return lengths and places

@@ -47,6 +47,7 @@ from mechfem._version import __version__
 from mechfem.design.dynamic_optimise import Drive, Shaking, ShakingForce
 from mechfem.design.engine import Infeasible
 from mechfem.design.frame_angle import FrameAngle
+from mechfem.design.frame_length import FrameLength
 from mechfem.design.optimise import (
     Bound,
     Evaluated,
@@ -158,6 +159,7 @@ __all__ = [
     "Element",
     "Evaluated",
     "FrameAngle",
+    "FrameLength",
     "FreeTiming",
     "IncompleteRunWarning",
     "Infeasible",

@@ -103,3 +103,17 @@ def test_an_infeasible_point_names_the_point() -> None:
     d = model.start_at([5.0, *p.thetas])
     assert not d.feasible
     assert re.match(r"at target point \d+: position 1 cannot be computed", str(d.reason))
+
+
+def test_ordered_points_within_a_sweep_stop_at_it() -> None:
+    """The known four-bar passes its ten points over 324 degrees of the crank: kept within 5 rad, the optimum's
+    last point lies 5 rad after its first (an active inequality), at an error above 0."""
+    timing = mechfem.FreeTiming("theta", list(ps.THETAS + OFF), ordered=True, within=5.0)
+    opt = mechfem.optimize(ps.four_bar(), VARY, targets=targets(), timing=timing, rtol=1e-12, atol=1e-24)
+    assert opt.method == "SLSQP"
+    assert opt.timing is not None
+    assert opt.timing[-1] - opt.timing[0] == pytest.approx(5.0, abs=1e-8)
+    assert np.all(np.diff(opt.timing) >= 0.0)
+    assert opt.objective > 1e-6
+    with pytest.raises(ValueError, match="ordered"):
+        mechfem.FreeTiming("theta", [0.0, 1.0], within=5.0)

@@ -181,10 +181,10 @@ fn reads_files(deck: &Deck) -> bool {
     motion || loads
 }
 
-/// Reads and compiles the deck at `path`, or returns the deck compiled
-/// from the same text before (shared, not copied) (as [`mechfem_deck::load`] would
-/// compile it), with the echo slot of that text (a slot of its own for a
-/// deck that is not kept).
+/// Reads and compiles the deck at `path` (as [`mechfem_deck::load`] would
+/// compile it), or shares the deck compiled from the same text before, with
+/// the echo slot of that text (a slot of its own for a deck that is not
+/// kept).
 pub fn load(path: &Path) -> Result<(Arc<Compiled>, Arc<EchoSlot>), Diagnostics> {
     // Asked before the text is read: a change after this is seen next time.
     let seen = Stamp::of(path);

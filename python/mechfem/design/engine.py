@@ -5,7 +5,8 @@ the extrema of a reference), and solved with SciPy.
 * Targets alone are least squares: ``scipy.optimize.least_squares`` (trust-region reflective, within the variables'
   ranges), with the Jacobian from the sensitivities.
 * With bounds on buffers, a MINIMISE/MAXIMISE term or a Python objective: ``scipy.optimize.minimize`` with SLSQP,
-  the bounds as inequality constraints at every position.
+  the bounds as inequality constraints at every position. A bound on a function of the design variables alone
+  (:class:`DesignBound`: the frame length) is one more such inequality, with its exact gradient.
 
 Every design is evaluated on the assembly branch of the start design, whatever was evaluated before: its position 1
 is assembled from a prediction that depends on the design alone, and is accepted only with the start design's
@@ -91,6 +92,17 @@ def built_model(builder: _core.ModelBuilder, base_dir: str) -> DesignModelOf:
     return of
 
 
+@dataclass(frozen=True)
+class DesignBound:
+    """Constraint: ``lo <= f(x) <= hi`` for a function of the design variables alone (no run of the mechanism),
+    ``f(x)`` returning its value and exact gradient; ``name`` says what it bounds."""
+
+    name: str
+    f: Callable[[FloatArray], tuple[float, FloatArray]]
+    lo: float
+    hi: float
+
+
 @dataclass
 class Problem:
     """An optimisation in a deck's numbering: buffers are buffer numbers of the model ``model`` compiles."""
@@ -103,6 +115,8 @@ class Problem:
     hi: FloatArray
     terms: list[ValuesTerm | AtTerm | ExtremumTerm] = field(default_factory=list)
     bounds: list[tuple[int, float, float]] = field(default_factory=list)
+    design_bounds: list[DesignBound] = field(default_factory=list)
+    """Bounds on functions of the variables alone (the frame length)."""
     objective: tuple[Literal[1, -1], Reduce, int] | None = None
     """``(sense, reduce, buffer)``: +1 minimise, -1 maximise."""
     objective_with: int | None = None
@@ -379,6 +393,10 @@ def constraints(problem: Problem, e: Evaluation) -> tuple[FloatArray, FloatArray
         v, g = e.value(b), e.gradient(b)
         cs += [v - lo, hi - v]
         js += [g, -g]
+    for d in problem.design_bounds:
+        f, df = d.f(e.x)
+        cs += [np.array([f - d.lo, d.hi - f])]
+        js += [np.vstack([df, -df])]
     return np.concatenate(cs), np.vstack(js)
 
 
@@ -436,7 +454,8 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
         except Infeasible:
             return best.e
 
-    least_squares = not problem.bounds and problem.objective is None and problem.custom is None
+    constrained = bool(problem.bounds or problem.design_bounds)
+    least_squares = not constrained and problem.objective is None and problem.custom is None
     if least_squares:
 
         def fun(x: FloatArray) -> FloatArray:
@@ -540,7 +559,7 @@ def solve(problem: Problem, report: Callable[[Iteration], object] | None = None)
                 bounds=[
                     (None, None) if math.isinf(a) else (a, b) for a, b in zip(*_optimiser_bounds(problem), strict=True)
                 ],
-                constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if problem.bounds else [],
+                constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}] if constrained else [],
                 callback=callback,
                 options={"maxiter": max(problem.steps, 1), "ftol": ftol},
             )

@@ -8,6 +8,9 @@ design assembled afresh.
 * **A four-bar** (:mod:`mechfem.design.fourbar_starts`) is drawn where its dyad closes over the crank's whole sweep in
   the problem (a whole turn with ``full_rotation``) and each draw assembled from its closed-form position 1 on the
   mechanism's assembly branch: its draws can do the problem's crank motion by construction.
+* **A four-bar with free timing** whose targets are its coupler point's place has its starts fitted to them
+  (:mod:`mechfem.design.fourbar_fit`): drawn coupler curves placed on the points, each start with the crank angles
+  of its laid points as its own start timing (every other start a plain draw when no whole turn is asked).
 * **Any other mechanism** draws in the box itself, and each start is reached by continuation from the mechanism's
   position 1: its variables move there in stages, each stage's position 1 solved from the last one's (a stage that
   fails is halved, down to 1/64 of the way). So every start lies on the branch of the mechanism's own estimates,
@@ -30,7 +33,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from mechfem.design import fourbar_starts
+from mechfem.design import fourbar_fit, fourbar_starts
 from mechfem.design.engine import Infeasible
 from mechfem.errors import MechfemError
 
@@ -253,6 +256,61 @@ def _four_bar(
     return fb, fourbar_starts.side(fb, own), fourbar_starts.sweep(fb, mechanism, kwargs)
 
 
+def _fitted(
+    mechanism: Mechanism,
+    vary: Mapping[str, tuple[float, float] | None],
+    base: Mapping[str, float],
+    box: Mapping[str, tuple[float, float]],
+    n: int,
+    seed: int | None,
+    kwargs: Mapping[str, Any],
+) -> tuple[list[dict[str, float]], list[Mechanism], list[tuple[dict[str, float], str]], int, list[object]] | None:
+    """A four-bar's starts fitted to its targets with free timing (:mod:`mechfem.design.fourbar_fit`), as
+    :func:`screened` gives starts, with each one's free timing (None: the problem's); None when the starts are not
+    fitted. The fitted linkages' cranks turn fully; without a whole turn asked (the start values' sweep less than a
+    turn) every other start is a plain draw of the box instead, as :func:`screened` takes them, so that linkages
+    whose crank does not turn fully are started from too."""
+    four_bar = _four_bar(mechanism, kwargs)
+    if four_bar is None or n <= 0:
+        return None
+    fb, branch, sweep = four_bar
+    fit = fourbar_fit.applicable(fb, vary, kwargs)
+    if fit is None or not {f"{fb.b0}.x", f"{fb.b0}.y"} <= set(box):
+        # The frame is drawn by its length and angle from B0's co-ordinates in the unit cube of the box.
+        return None
+    half = 0 if sweep is None else (n + 1) // 2
+    plain = _screen(mechanism, base, [(d, "") for d in draws(box, SCREEN * half, seed)], half, kwargs, None)
+    kept, _ = fourbar_fit.starts(fb, mechanism, box, fit, branch, n - len(plain[0]), seed)
+    begins: list[dict[str, float]] = []
+    reached: list[Mechanism] = []
+    rejected: list[tuple[dict[str, float], str]] = []
+    timings: list[object] = []
+    looked = 0
+    for _, design, angles in kept:
+        if len(begins) == n - len(plain[0]):
+            break
+        looked += 1
+        begin = {**base, **{k: v for k, v in design.items() if k in vary}}
+        timing = fourbar_fit.timings(kwargs["timing"], angles)
+        at = fourbar_starts.assembled(fb, mechanism, branch, {**begin, fb.input: angles[0]})
+        why = f"cannot be assembled: {at}" if isinstance(at, str) else runs_through(at, {**kwargs, "timing": timing})
+        if why or isinstance(at, str):
+            rejected.append((begin, why))
+            continue
+        begins.append(begin)
+        reached.append(at)
+        timings.append(timing)
+    order = _alternate(len(plain[0]), len(begins))
+    pick = [((plain[0], plain[1], [None] * len(plain[0])) if k < 0 else (begins, reached, timings)) for k in order]
+    return (
+        [p[0][abs(k) - 1] for p, k in zip(pick, order, strict=True)],
+        [p[1][abs(k) - 1] for p, k in zip(pick, order, strict=True)],
+        plain[2] + rejected,
+        plain[3] + looked,
+        [p[2][abs(k) - 1] for p, k in zip(pick, order, strict=True)],
+    )
+
+
 def _one_start(
     task: tuple[Mechanism, dict[str, tuple[float, float] | None], dict[str, Any]],
 ) -> Optimum | tuple[str, float]:
@@ -284,6 +342,7 @@ def multi_start(
     begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
     reached: list[Mechanism | str] = [mechanism]
     rejected: list[tuple[dict[str, float], str]] = []
+    timed: list[object | None] = [None]
     drawn = 0
     if isinstance(starts, int):
         if box is None:
@@ -292,8 +351,14 @@ def multi_start(
         if unknown:
             raise ValueError(f"the start box names {sorted(unknown)}, which vary does not")
         # Draws screened for the problem's motion, each assembled afresh by continuation from the mechanism's own
-        # position 1.
-        more, at, rejected, drawn = screened(mechanism, begins[0], box, starts - 1, seed, kwargs)
+        # position 1; with free timing a four-bar's are fitted to the targets, each with its own start timing.
+        fitted = _fitted(mechanism, vary, begins[0], box, starts - 1, seed, kwargs)
+        if fitted is None:
+            more, at, rejected, drawn = screened(mechanism, begins[0], box, starts - 1, seed, kwargs)
+            timed += [None] * len(more)
+        else:
+            more, at, rejected, drawn, own = fitted
+            timed += own
         begins += more
         reached += at
     else:
@@ -307,13 +372,17 @@ def multi_start(
             else fourbar_starts.assembled(four_bar[0], mechanism, four_bar[1], b)
             for b in begins[1:]
         ]
+        timed += [None] * len(starts)
     usable = [k for k, m in enumerate(reached) if not isinstance(m, str)]
-    tasks = [(m, dict(vary), kwargs) for m in reached if not isinstance(m, str)]
+    tasks = [
+        (m, dict(vary), kwargs if t is None else {**kwargs, "timing": t})
+        for m, t in zip(reached, timed, strict=True)
+        if not isinstance(m, str)
+    ]
     if executor is None:
         outs: list[Any] = [_one_start(t) for t in tasks]
     else:
-        remote = {**kwargs, "progress": None}
-        tasks = [(m, v, remote) for m, v, _ in tasks]
+        tasks = [(m, v, {**k, "progress": None}) for m, v, k in tasks]
         outs = cluster.run_tasks(executor, _one_start, tasks, reraise=(ValueError, TypeError, KeyError))
     by_start = dict(zip(usable, outs, strict=True))
     outcomes: list[Start] = []

@@ -22,8 +22,9 @@ from mechfem.design import engine as design
 from mechfem.design import rules as design_rules
 from mechfem.design.engine import FloatArray, Iteration
 from mechfem.design.frame_angle import FrameAngle
+from mechfem.design.frame_length import FrameLength, design_bound
 from mechfem.design.optimum import Optimum, Start
-from mechfem.design.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs
+from mechfem.design.timing import POINT_MOTION_STEP, FreeTiming, Plan, TimedModel, plan, timed_inputs, within_bound
 from mechfem.model.mechanism import Coordinate, FormParameter, InputKey, Point, Row
 from mechfem.model.motion import Motion
 from mechfem.model.storage import Storage
@@ -92,9 +93,10 @@ class TargetExtremum:
 
 @dataclass
 class Bound:
-    """Constraint: ``quantity`` stays within ``[lo, hi]`` at every position."""
+    """Constraint: ``quantity`` stays within ``[lo, hi]`` at every position; a :class:`FrameLength` (a function of
+    the design alone) within ``[lo, hi]``."""
 
-    quantity: Quantity
+    quantity: Quantity | FrameLength
     lo: float
     hi: float
 
@@ -344,7 +346,11 @@ def optimize(
             terms.append(design.AtTerm(b, int(t.position), float(t.value), t.weight))
         else:
             terms.append(design.ExtremumTerm(b, deck.buffer(t.reference), float(t.value), t.weight))
-    bound_terms = [(deck.buffer(bd.quantity), float(bd.lo), float(bd.hi)) for bd in bounds]
+    bound_terms = [
+        (deck.buffer(bd.quantity), float(bd.lo), float(bd.hi))
+        for bd in bounds
+        if not isinstance(bd.quantity, FrameLength)
+    ]
     goal: tuple[Literal[1, -1], design.Reduce, int] | None = None
     goal_q = minimize[1] if minimize is not None else maximize[1] if maximize is not None else None
     if minimize is not None:
@@ -420,6 +426,11 @@ def optimize(
             whole_turn=model_units.whole_turn(mechanism),
             terms=terms,
             bounds=bound_terms,
+            design_bounds=[
+                design_bound(mechanism, bd.quantity, bd.lo, bd.hi, list(vary))
+                for bd in bounds
+                if isinstance(bd.quantity, FrameLength)
+            ],
             objective=goal,
             objective_with=goal[2] + 1 if isinstance(goal_q, dynamic_optimise.ShakingForce) and goal else None,
             custom=None if objective is None else _named(objective, deck),
@@ -484,6 +495,9 @@ def synthesis_problem(
         lo, hi = np.append(lo, a), np.append(hi, b)
         wraps.append(periodic_frame)
     if timed is not None:
+        sweep = within_bound(timed, len(variables))
+        if sweep is not None:
+            fields["design_bounds"] = [*fields.get("design_bounds", []), sweep]
         variables += [(2, k) for k in range(len(timed.thetas))]
         names += timed.names
         lo, hi = np.concatenate([lo, timed.lo]), np.concatenate([hi, timed.hi])
@@ -566,6 +580,7 @@ def _named(
 __all__ = [
     "Bound",
     "Evaluated",
+    "FrameLength",
     "Optimum",
     "Q",
     "Start",

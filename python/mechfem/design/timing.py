@@ -31,7 +31,7 @@ import numpy as np
 
 import mechfem._core as _core
 from mechfem.design import evaluated
-from mechfem.design.engine import FloatArray, Infeasible
+from mechfem.design.engine import DesignBound, FloatArray, Infeasible
 
 if TYPE_CHECKING:
     from mechfem.model.mechanism import Mechanism
@@ -45,12 +45,15 @@ class FreeTiming:
     """The input ``input`` (its name, e.g. ``"theta"``) takes a value of its own at each of the target points,
     starting from ``starts`` (one per point); ``span`` bounds every value (None: an angle input wraps, a length
     input is refused); ``ordered`` keeps each value at or after the one before (by at most one turn for an angle,
-    at most the width of ``span`` otherwise)."""
+    at most the width of ``span`` otherwise); ``within`` (with ``ordered``) keeps the last point at most that far
+    after the first, e.g. a little less than a turn for points passed in one turn of the crank (an inequality with
+    its exact gradient, so SLSQP solves the problem; the start values may lie beyond it)."""
 
     input: str
     starts: Sequence[float]
     span: tuple[float, float] | None = None
     ordered: bool = False
+    within: float | None = None
 
     def __post_init__(self) -> None:
         if len(self.starts) < 1:
@@ -59,6 +62,8 @@ class FreeTiming:
             raise ValueError(f"the start values of the free timing are not all finite: {list(self.starts)}")
         if self.span is not None and not float(self.span[0]) < float(self.span[1]):
             raise ValueError(f"the free timing's span {self.span} is empty")
+        if self.within is not None and not (self.ordered and float(self.within) > 0.0):
+            raise ValueError(f"within ({self.within}) bounds ordered free timing: give ordered=True and within > 0")
         if self.ordered and any(b < a for a, b in zip(self.starts, self.starts[1:], strict=False)):
             raise ValueError(
                 f"ordered free timing: the start values {list(self.starts)} are not in order; give them in the "
@@ -154,6 +159,23 @@ class Plan:
     ordered: bool
     turn: float = TURN
     """One turn in the input's unit: 2 pi, or 360 in a model whose angles are in degrees."""
+    within: float | None = None
+    """With ``ordered``: the largest sum of the advances, the last point's input less the first's."""
+
+
+def within_bound(timed: Plan, first: int) -> DesignBound | None:
+    """The bound of ``timed.within`` on the sum of the advances, the timing variables from index ``first`` on (the
+    first point's input, then the advances): linear, its gradient ones on the advances."""
+    if timed.within is None or not timed.ordered:
+        return None
+    n = len(timed.thetas)
+
+    def f(x: FloatArray) -> tuple[float, FloatArray]:
+        g = np.zeros(len(x))
+        g[first + 1 : first + n] = 1.0
+        return float(np.sum(x[first + 1 : first + n])), g
+
+    return DesignBound("the ordered points' sweep", f, 0.0, float(timed.within))
 
 
 POINT_MOTION_STEP = 1e-9
@@ -205,7 +227,8 @@ def plan(mechanism: Mechanism, timing: FreeTiming, storage: Storage, numbering: 
         spans = [_range(timing.span, t, turn) for t in thetas]
         lo, hi = np.array([a for a, _ in spans]), np.array([b for _, b in spans])
         periodic = [timing.span is None] * n
-    return Plan(builders, (kind, number), thetas, names, lo, hi, periodic, angle, timing.ordered, turn)
+    within = None if timing.within is None else float(timing.within)
+    return Plan(builders, (kind, number), thetas, names, lo, hi, periodic, angle, timing.ordered, turn, within)
 
 
 def timed_inputs(timed: Plan, y: FloatArray) -> FloatArray:
@@ -250,4 +273,4 @@ def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> 
     return [float(result.value(c.name)[-1]) for c in moving]
 
 
-__all__ = ["FreeTiming", "Plan", "TimedModel", "plan", "timed_inputs"]
+__all__ = ["FreeTiming", "Plan", "TimedModel", "plan", "timed_inputs", "within_bound"]
