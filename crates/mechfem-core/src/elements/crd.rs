@@ -26,6 +26,8 @@ impl Element for Crd {
         Ok(())
     }
 
+    // Always inlined into the second-order products (ElementType::second_at).
+    #[inline(always)]
     fn second(_form: usize, _x: &[f64], _first: &FormEval, _a: &[f64], _b: &[f64]) -> f64 {
         0.0
     }

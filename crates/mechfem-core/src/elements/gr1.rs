@@ -37,6 +37,8 @@ impl Element for Gr1 {
         Ok(())
     }
 
+    // Always inlined into the second-order products (ElementType::second_at).
+    #[inline(always)]
     fn second(_form: usize, _x: &[f64], _first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
         (a[0] - a[1]) * b[3] + a[3] * (b[0] - b[1])
     }

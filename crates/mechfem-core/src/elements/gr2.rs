@@ -52,6 +52,8 @@ impl Element for Gr2 {
         Ok(())
     }
 
+    // Always inlined into the second-order products (ElementType::second_at).
+    #[inline(always)]
     fn second(_form: usize, x: &[f64], _first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
         let (ba, bb, ra, rc) = (x[0], x[1], x[3], x[4]);
         if ra == 0.0 || rc == 0.0 {

@@ -394,7 +394,10 @@ impl ElementType {
     /// [`Self::second`] of an element whose co-ordinates are `x[coords[k]]`,
     /// along the vectors `a` and `b` over the columns of D^c (`cols[k]`, a
     /// fixed co-ordinate having no column and not moving).
-    #[inline]
+    // Always: the second-order products call it for every term and pair of
+    // vectors, and the compiler, seeing it called from the sensitivities as
+    // well, would otherwise keep it a call (a fifth of a second-order run).
+    #[inline(always)]
     pub(crate) fn second_at(
         self,
         form: usize,

@@ -68,6 +68,8 @@ impl Element for Tr1 {
         Ok(())
     }
 
+    // Always inlined into the second-order products (ElementType::second_at).
+    #[inline(always)]
     fn second(form: usize, _x: &[f64], first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
         if form == 0 {
             return 0.0;

@@ -89,6 +89,8 @@ impl Element for Tr2 {
         Ok(())
     }
 
+    // Always inlined into the second-order products (ElementType::second_at).
+    #[inline(always)]
     fn second(form: usize, _x: &[f64], first: &FormEval, a: &[f64], b: &[f64]) -> f64 {
         let p = Polar::unstash(&first.aux);
         let (da, db) = (diff(a, 0, 2), diff(b, 0, 2));

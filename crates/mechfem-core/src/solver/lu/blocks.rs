@@ -334,22 +334,10 @@ impl Blocks {
         }
         let left = &self.a[self.left_base..];
         for blk in &self.small {
-            // A row's right-hand side less its entries left of the block
-            // times the unknowns found so far.
-            let reduced = |i: usize| -> [f64; K] {
-                let mut v: [f64; K] = std::array::from_fn(|k| b[k][blk.rows[i]]);
-                let range = blk.ptr[i]..blk.ptr[i + 1];
-                for (&c, &l) in self.left_old[range.clone()].iter().zip(&left[range]) {
-                    for (vk, xk) in v.iter_mut().zip(x.iter()) {
-                        *vk -= l * xk[c];
-                    }
-                }
-                v
-            };
             let inv = self.inv_diag[blk.start];
-            let v0 = reduced(0);
+            let v0 = self.reduced(blk, 0, &b, &x, left);
             if blk.two {
-                let v1 = reduced(1);
+                let v1 = self.reduced(blk, 1, &b, &x, left);
                 let a = &self.a[blk.base..blk.base + 4];
                 for ((xk, b0), b1) in x.iter_mut().zip(v0).zip(v1) {
                     xk[blk.cols[0]] = (b0 * a[3] - a[1] * b1) * inv;
@@ -361,6 +349,28 @@ impl Blocks {
                 }
             }
         }
+    }
+
+    /// Row `i` of the block `blk`: its right-hand sides `b` less its entries
+    /// left of the block (`left`) times the unknowns `x` found so far. Always
+    /// inlined: a closure here was left a call in the Python module's build.
+    #[inline(always)]
+    fn reduced<const K: usize>(
+        &self,
+        blk: &Small,
+        i: usize,
+        b: &[&mut [f64]; K],
+        x: &[&mut [f64]; K],
+        left: &[f64],
+    ) -> [f64; K] {
+        let mut v: [f64; K] = std::array::from_fn(|k| b[k][blk.rows[i]]);
+        let range = blk.ptr[i]..blk.ptr[i + 1];
+        for (&c, &l) in self.left_old[range.clone()].iter().zip(&left[range]) {
+            for (vk, xk) in v.iter_mut().zip(x.iter()) {
+                *vk -= l * xk[c];
+            }
+        }
+        v
     }
 
     /// The determinant of every block of one or two as assembled, its
