@@ -134,7 +134,19 @@ impl DeckDiagnostic {
     /// The arguments of [`DeckDiagnostic::new`] that make it again.
     fn __getnewargs__(&self) -> DiagnosticArgs {
         let d = self.clone();
-        (d.kind, d.path, d.line, d.column, d.text, d.message, d.hint, d.element, d.coordinate, d.detail, d.detail_fields)
+        (
+            d.kind,
+            d.path,
+            d.line,
+            d.column,
+            d.text,
+            d.message,
+            d.hint,
+            d.element,
+            d.coordinate,
+            d.detail,
+            d.detail_fields,
+        )
     }
 
     fn __repr__(&self) -> String {
