@@ -11,48 +11,11 @@ import numpy as np
 import pytest
 
 import mechfem
-from conftest import ROOT
+from conftest import FOURBAR, ROOT
 from mechfem import _core
 from mechfem.design import optimise_deck
 
 SUPPLY = ROOT / "examples" / "supply"
-
-FOURBAR = """KIN ANA
-TOPOLOGY
-ELEM 1 BIN 1 2 5 6
-     2 TR2 5 6 7 8 9 10
-     3 BIN 3 4 7 8
-FORM 1 LENL 1 1
-     2 LENL 2 2
-     3 LENL 3 3
-     4 LENU 2 4
-     5 LENV 2 5
-     6 ANGB 1 6
-NRDOF 1
-GEOMETRY
-XFIX 1 0.0
- 2 0.0
- 3 3.2
- 4 0.0
-XMOV 5 1.0
- 6 0.0
- 7 2.725
- 8 2.4545
- 9 1.02
- 10 1.8
-PARA 1 1.0
- 2 3.0
- 3 2.5
- 4 1.4856
- 5 1.0164
- 6 0.0
-MOVEMENT
-TSTEPE 12 0.1
-MOV_RELE 1 6.283185307179586
-STORAGE
-BUFX0 9 1
-BUFX0 10 2
-"""
 
 
 def test_a_runs_model_echo_is_typed_and_survives_a_pickle() -> None:
@@ -99,10 +62,10 @@ def test_a_deck_errors_diagnostics_and_element_fault_are_typed_and_survive_a_pic
 def test_a_design_evaluation_is_typed_and_survives_a_pickle(tmp_path: Path) -> None:
     deck = tmp_path / "fourbar.mec"
     deck.write_text(FOURBAR)
-    model = _core.DesignModel(FOURBAR, str(deck), str(tmp_path), [(1, 1)], [1, 2], [(2, 1)])
+    model = _core.DesignModel(FOURBAR, str(deck), str(tmp_path), [(1, 1)], [3, 4], [(4, 3)])
     ev = model.evaluate([1.05])
-    assert isinstance(ev, _core.Evaluation) and ev.feasible and ev.reason is None and ev.positions == 13
-    assert ev.values.shape == (13, 2) and ev.gradient.shape == (13, 2, 1)
+    assert isinstance(ev, _core.Evaluation) and ev.feasible and ev.reason is None and ev.positions == 361
+    assert ev.values.shape == (361, 2) and ev.gradient.shape == (361, 2, 1)
     assert ev.extrema and all(isinstance(x, _core.Extremum) and x.spec == 0 for x in ev.extrema)
     again = pickle.loads(pickle.dumps(ev))
     assert np.array_equal(again.gradient, ev.gradient) and again.extrema[0].value == ev.extrema[0].value

@@ -12,50 +12,11 @@ import numpy as np
 import pytest
 
 import mechfem
+from conftest import FOURBAR
 from mechfem.output.files import write_print_file
 
 ROOT = Path(__file__).resolve().parents[2]
 LIMITS = ROOT / "examples" / "limits"
-
-# A crank-rocker four-bar (crank 1, coupler 3, rocker 2.5, frame 3.2) with a coupler point, recording positions.
-FOURBAR = """KIN ANA
-TOPOLOGY
-ELEM 1 BIN 1 2 5 6
-     2 TR2 5 6 7 8 9 10
-     3 BIN 3 4 7 8
-FORM 1 LENL 1 1
-     2 LENL 2 2
-     3 LENL 3 3
-     4 LENU 2 4
-     5 LENV 2 5
-     6 ANGB 1 6
-NRDOF 1
-GEOMETRY
-XFIX 1 0.0
- 2 0.0
- 3 3.2
- 4 0.0
-XMOV 5 1.0
- 6 0.0
- 7 2.725
- 8 2.4545
- 9 1.02
- 10 1.8
-PARA 1 1.0
- 2 3.0
- 3 2.5
- 4 1.4857
- 5 1.0164
- 6 0.0
-MOVEMENT
-TSTEPE 360 0.01
-MOV_RELE 1 6.283185307179586
-STORAGE
-BUFX0 5 1
-BUFX0 6 2
-BUFX0 9 3
-BUFX0 10 4
-"""
 
 
 def deck(tmp_path: Path, text: str, name: str = "deck.mec") -> Path:
