@@ -29,7 +29,7 @@ import dataclasses
 import math
 import time
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
@@ -40,6 +40,8 @@ from mechfem.errors import MechfemError
 if TYPE_CHECKING:
     from mechfem.design.optimise import Optimum
     from mechfem.model.mechanism import Mechanism
+
+T = TypeVar("T")
 
 SMALLEST_STAGE = 1.0 / 64.0
 SCREEN = 20
@@ -190,18 +192,14 @@ def screened(
     plain = [(d, "") for d in draws(box, SCREEN * half, seed)]
     one = _screen(mechanism, base, plain, half, kwargs, None)
     other = _screen(mechanism, base, fitted, n - len(one[0]), kwargs, (fb, branch))
-    order = _alternate(len(one[0]), len(other[0]))
-    begins = [(one[0] if k < 0 else other[0])[abs(k) - 1] for k in order]
-    reached = [(one[1] if k < 0 else other[1])[abs(k) - 1] for k in order]
-    return begins, reached, one[2] + other[2], one[3] + other[3]
+    return _alternate(one[0], other[0]), _alternate(one[1], other[1]), one[2] + other[2], one[3] + other[3]
 
 
-def _alternate(first: int, second: int) -> list[int]:
-    """The order of two lists' items taken in turn, the first's first: -k for the first's k-th (1-based), +k for
-    the second's."""
-    out: list[int] = []
-    for k in range(max(first, second)):
-        out += ([-(k + 1)] if k < first else []) + ([k + 1] if k < second else [])
+def _alternate(first: Sequence[T], second: Sequence[T]) -> list[T]:
+    """The items of two lists taken in turn, the first's first; the longer one's last items at the end."""
+    out: list[T] = []
+    for k in range(max(len(first), len(second))):
+        out += ([first[k]] if k < len(first) else []) + ([second[k]] if k < len(second) else [])
     return out
 
 
@@ -300,14 +298,12 @@ def _fitted(
         begins.append(begin)
         reached.append(at)
         timings.append(timing)
-    order = _alternate(len(plain[0]), len(begins))
-    pick = [((plain[0], plain[1], [None] * len(plain[0])) if k < 0 else (begins, reached, timings)) for k in order]
     return (
-        [p[0][abs(k) - 1] for p, k in zip(pick, order, strict=True)],
-        [p[1][abs(k) - 1] for p, k in zip(pick, order, strict=True)],
+        _alternate(plain[0], begins),
+        _alternate(plain[1], reached),
         plain[2] + rejected,
         plain[3] + looked,
-        [p[2][abs(k) - 1] for p, k in zip(pick, order, strict=True)],
+        _alternate([None] * len(plain[0]), timings),
     )
 
 
