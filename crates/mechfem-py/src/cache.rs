@@ -181,6 +181,15 @@ fn reads_files(deck: &Deck) -> bool {
     motion || loads
 }
 
+/// The kept deck `k`, made the most recently used, its stamp now `stamp`.
+fn used(kept: &mut Vec<Entry>, k: usize, stamp: Option<Stamp>) -> (Arc<Compiled>, Arc<EchoSlot>) {
+    let mut entry = kept.remove(k);
+    entry.3 = stamp;
+    let found = (entry.1.clone(), entry.2.clone());
+    kept.push(entry);
+    found
+}
+
 /// Reads and compiles the deck at `path` (as [`mechfem_deck::load`] would
 /// compile it), or shares the deck compiled from the same text before, with
 /// the echo slot of that text (a slot of its own for a deck that is not
@@ -191,10 +200,7 @@ pub fn load(path: &Path) -> Result<(Arc<Compiled>, Arc<EchoSlot>), Diagnostics> 
     let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
     let unchanged = seen.map(|(stamp, _)| stamp);
     if let Some(k) = kept.iter().position(|(k, .., s)| s.is_some() && *s == unchanged && k.path == path) {
-        let entry = kept.remove(k);
-        let found = (entry.1.clone(), entry.2.clone());
-        kept.push(entry);
-        return Ok(found);
+        return Ok(used(&mut kept, k, unchanged));
     }
     drop(kept);
     let key = Key { path: path.to_path_buf(), text: mechfem_deck::read_deck(path)?.into_bytes() };
@@ -202,11 +208,7 @@ pub fn load(path: &Path) -> Result<(Arc<Compiled>, Arc<EchoSlot>), Diagnostics> 
     {
         let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(k) = kept.iter().position(|(k, ..)| *k == key) {
-            let mut entry = kept.remove(k);
-            entry.3 = stamp;
-            let found = (entry.1.clone(), entry.2.clone());
-            kept.push(entry);
-            return Ok(found);
+            return Ok(used(&mut kept, k, stamp));
         }
     }
     let deck = mechfem_deck::parse_str(&String::from_utf8_lossy(&key.text), path)?;

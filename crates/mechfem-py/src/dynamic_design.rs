@@ -248,13 +248,7 @@ impl DynamicDesignModel {
     /// The [`Evaluation`] of [`DynamicDesignModel::evaluate`] for an evaluation.
     fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
         let (nq, nv) = (self.setup.quantities.len(), self.setup.order.len());
-        match result {
-            Ok(run) => evaluation::of_run(py, &self.compiled, run, nq, nv),
-            Err(e) => {
-                let (kind, why) = reason(&self.compiled, &e);
-                self.failed(py, kind, why)
-            }
-        }
+        evaluation::of_result(py, &self.compiled, result, nq, nv)
     }
 
     /// An infeasible design without positions.

@@ -5,7 +5,7 @@
 //! a frame angle, free timing, a full turn) make a new one from it with
 //! their own numbers, through the same constructor.
 
-use mechfem_core::design::{DesignRun, Extremum as FoundExtremum};
+use mechfem_core::design::{DesignFailure, DesignRun, Extremum as FoundExtremum};
 use mechfem_core::worded;
 use mechfem_deck::Compiled;
 use numpy::{PyArray1, PyArrayMethods};
@@ -128,10 +128,27 @@ impl From<&FoundExtremum> for Extremum {
     }
 }
 
-/// The evaluation of `run` of the compiled model `c`, its values `nq`
-/// buffers wide and its gradient `nv` variables wide; a run that stopped
-/// is infeasible, said in the model's words.
-pub(crate) fn of_run(py: Python<'_>, c: &Compiled, run: DesignRun, nq: usize, nv: usize) -> PyResult<Evaluation> {
+/// The evaluation of the compiled model `c` that gave `result`, its values
+/// `nq` buffers wide and its gradient `nv` variables wide: a design that
+/// failed, or whose run stopped, is infeasible, said in the model's words.
+pub(crate) fn of_result(
+    py: Python<'_>,
+    c: &Compiled,
+    result: Result<DesignRun, DesignFailure>,
+    nq: usize,
+    nv: usize,
+) -> PyResult<Evaluation> {
+    match result {
+        Ok(run) => of_run(py, c, run, nq, nv),
+        Err(e) => {
+            let (kind, why) = crate::design::reason(c, &e);
+            infeasible(py, kind, why, nq, nv)
+        }
+    }
+}
+
+/// The evaluation of `run` (see [`of_result`]).
+fn of_run(py: Python<'_>, c: &Compiled, run: DesignRun, nq: usize, nv: usize) -> PyResult<Evaluation> {
     let steps = c.motion.as_ref().map_or(0, |m| m.steps);
     let reason = run
         .report
