@@ -5,37 +5,34 @@ wrap a design model and speak other variables or units (:mod:`~mechfem.design.mo
 
 from __future__ import annotations
 
-from typing import Any
-
-import numpy as np
+from typing import Any, TypeVar
 
 import mechfem._core as _core
 
-FIELDS = ("feasible", "reason", "reason_kind", "positions", "position_one", "report", "values", "gradient", "extrema")
-"""The fields of an evaluation, in the order of its constructor."""
+T = TypeVar("T", _core.Evaluation, _core.Extremum)
 
-EXTREMUM_FIELDS = ("spec", "after", "input", "reference", "value", "gradient")
-"""The fields of an extremum, in the order of its constructor."""
+_FIELDS: dict[type, tuple[str, ...]] = {
+    _core.Evaluation: (
+        "feasible",
+        "reason",
+        "reason_kind",
+        "positions",
+        "position_one",
+        "report",
+        "values",
+        "gradient",
+        "extrema",
+    ),
+    _core.Extremum: ("spec", "after", "input", "reference", "value", "gradient"),
+}
+"""The fields of an evaluation and of an extremum, in the order of their constructors."""
 
 
-def replaced(ev: _core.Evaluation, **changes: Any) -> _core.Evaluation:
-    """``ev`` with the fields ``changes`` given anew."""
-    fields = {name: getattr(ev, name) for name in FIELDS}
+def replaced(obj: T, **changes: Any) -> T:
+    """The evaluation or extremum ``obj`` with the fields ``changes`` given anew."""
+    fields = {name: getattr(obj, name) for name in _FIELDS[type(obj)]}
     fields.update(changes)
-    return _core.Evaluation(**fields)
+    return type(obj)(**fields)
 
 
-def replaced_extremum(x: _core.Extremum, **changes: Any) -> _core.Extremum:
-    """The extremum ``x`` with the fields ``changes`` given anew."""
-    fields = {name: getattr(x, name) for name in EXTREMUM_FIELDS}
-    fields.update(changes)
-    return _core.Extremum(**fields)
-
-
-def infeasible(reason: str, kind: str, buffers: int, variables: int) -> _core.Evaluation:
-    """An infeasible design without positions, of kind ``kind``, ``buffers`` wide and ``variables`` deep."""
-    empty = np.zeros((0, buffers)), np.zeros((0, buffers, variables))
-    return _core.Evaluation(False, reason, kind, 0, None, None, *empty, [])
-
-
-__all__ = ["EXTREMUM_FIELDS", "FIELDS", "infeasible", "replaced", "replaced_extremum"]
+__all__ = ["replaced"]

@@ -172,7 +172,7 @@ class TurnedModel:
         if not got.feasible:
             return got
         gradient = np.asarray(got.gradient, dtype=np.float64) @ jac
-        extrema = [evaluated.replaced_extremum(x, gradient=list(np.asarray(x.gradient) @ jac)) for x in got.extrema]
+        extrema = [evaluated.replaced(x, gradient=list(np.asarray(x.gradient) @ jac)) for x in got.extrema]
         return evaluated.replaced(got, gradient=gradient, extrema=extrema)
 
 

@@ -151,7 +151,7 @@ class ScaledModel:
     def _extremum(self, x: _core.Extremum) -> _core.Extremum:
         f = self.extrema[x.spec] if x.spec < len(self.extrema) else 1.0
         gradient = np.asarray(x.gradient, dtype=np.float64) * self.factors / f
-        return evaluated.replaced_extremum(x, value=x.value / f, gradient=list(gradient))
+        return evaluated.replaced(x, value=x.value / f, gradient=list(gradient))
 
 
 class ScaledBuilder:
