@@ -1121,8 +1121,9 @@ class DeckMassVary:
 
 @final
 class DeckSynthesis:
-    """A synthesis statement: FREETIME (``row``, ``ordered``), FULLROT (``row``) or VARYFRAME (the pivot's x
-    ``coordinate``, ``lo`` and ``hi`` in radians, its deck ``unit`` and ``scale``); the other fields are None."""
+    """A synthesis statement: FREETIME (``row``, ``ordered``, ``within`` in the core's units with the input's deck
+    ``unit`` and ``scale``), FULLROT (``row``) or VARYFRAME (the pivot's x ``coordinate``, ``lo`` and ``hi`` in
+    radians, its deck ``unit`` and ``scale``); the other fields are None."""
 
     def __eq__(self, other: object, /) -> bool: ...
     @property
@@ -1135,6 +1136,8 @@ class DeckSynthesis:
     def hi(self) -> float | None: ...
     @property
     def ordered(self) -> bool: ...
+    @property
+    def within(self) -> float | None: ...
     @property
     def line(self) -> int: ...
     @property

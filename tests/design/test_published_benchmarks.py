@@ -54,6 +54,27 @@ def test_the_five_points_deck_is_the_python_problem(tmp_path: Path) -> None:
         assert d_deck == pytest.approx(d_py, rel=1e-3, abs=1e-9)
 
 
+def test_the_ellipse_deck_is_the_python_problem(tmp_path: Path) -> None:
+    """The deck's points in order within a hair less than a turn (FREETIME 6 ORDERED WITHIN) and its frame bar's bound
+    state ``FreeTiming(..., ordered=True, within=ONE_TURN)`` and the frame length's bound: the same iterates."""
+    for name in ("ellipse_x.dat", "ellipse_y.dat"):
+        shutil.copy(SYNTHESIS / name, tmp_path)
+    deck = tmp_path / "ellipse.mec"
+    text = (SYNTHESIS / "ellipse.mec").read_text()
+    assert f"FREETIME 6 ORDERED WITHIN {bm.ONE_TURN!r} " in text
+    deck.write_text(text.replace("OPTSTEPS 40 ", "OPTSTEPS 15 "))
+    opt = optimise_deck.describe(deck).optimise
+    assert opt is not None
+    out = optimise_deck.optimise(deck, opt)
+    py = one_start("ellipse", 15)
+    assert out.deck is not None and out.deck.synthesis is not None and py.timing is not None
+    inputs = out.deck.synthesis.inputs(out.x)
+    assert inputs is not None and inputs[-1] - inputs[0] <= bm.ONE_TURN + 1e-12
+    assert out.start_objective == pytest.approx(py.start_objective, rel=1e-9)
+    assert out.objective == pytest.approx(py.objective, rel=1e-6)
+    assert inputs == pytest.approx(py.timing, abs=1e-6)
+
+
 @pytest.mark.parametrize("key", ["five_points", "closed_curve", "ellipse"])
 def test_mechfems_objective_is_the_sources(key: str) -> None:
     """The start design and a few iterations: mechfem's sum of squared distances equals the source's objective of

@@ -137,7 +137,7 @@ keywords! {
     OptSteps "OPTSTEPS" Optimise 1 Some(1), "n";
     OptTol "OPTTOL" Optimise 1 Some(1), "tol";
     OptFTol "OPTFTOL" Optimise 2 Some(2), "rtol atol";
-    FreeTime "FREETIME" Optimise 1 Some(2), "r [ORDERED]";
+    FreeTime "FREETIME" Optimise 1 Some(4), "r [ORDERED [WITHIN w]]";
     FullRot "FULLROT" Optimise 1 Some(1), "r";
     VaryFrame "VARYFRAME" Optimise 3 Some(3), "i lo hi";
     VaryM "VARYM" Optimise 4 Some(4), "what n lo hi";

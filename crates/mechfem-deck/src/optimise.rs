@@ -276,15 +276,18 @@ pub struct MassVary {
     pub line: usize,
 }
 
-/// `FREETIME r [ORDERED]`: the input of prescribed row r takes a value of
-/// its own at every position of the motion, a design variable that starts
-/// at the motion's value there.
+/// `FREETIME r [ORDERED] [WITHIN w]`: the input of prescribed row r takes a
+/// value of its own at every position of the motion, a design variable that
+/// starts at the motion's value there.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FreeTime {
     /// The input's prescribed row, 0-based.
     pub row: usize,
     /// Each value at or after the one before (`ORDERED`).
     pub ordered: bool,
+    /// `WITHIN w` (with `ordered`): the last value at most w after the
+    /// first, in the core's units (radians for an angle input).
+    pub within: Option<f64>,
     /// Line of the keyword.
     pub line: usize,
 }

@@ -84,7 +84,8 @@ pub struct DeckMassVary {
     scale: f64,
 }
 
-/// A synthesis statement: FREETIME (`row`, `ordered`), FULLROT (`row`) or
+/// A synthesis statement: FREETIME (`row`, `ordered`, `within` in the core's
+/// units with the input's deck `unit` and `scale`), FULLROT (`row`) or
 /// VARYFRAME (the pivot's x `coordinate`, the range `lo`..`hi` in radians,
 /// its deck `unit` and `scale`); the other fields are None.
 #[pyclass(module = "mechfem._core", frozen, eq, get_all, from_py_object)]
@@ -95,6 +96,7 @@ pub struct DeckSynthesis {
     lo: Option<f64>,
     hi: Option<f64>,
     ordered: bool,
+    within: Option<f64>,
     line: usize,
     unit: String,
     scale: f64,
@@ -212,16 +214,22 @@ impl OptimiseBlock {
                 }
             })
             .collect();
-        let synthesis = |row: Option<usize>, ordered: bool, line: usize| DeckSynthesis {
+        let synthesis = |row: Option<usize>, line: usize| DeckSynthesis {
             row: row.map(|r| r + 1),
             coordinate: None,
             lo: None,
             hi: None,
-            ordered,
+            ordered: false,
+            within: None,
             line,
             unit: String::new(),
             scale: 1.0,
         };
+        // FREETIME's WITHIN, a difference of the input's values in the input row's unit.
+        let free_time = o.free_time.map(|f| {
+            let (unit, scale) = said(c.dims.form(FormRef::Prescribed(f.row)));
+            DeckSynthesis { ordered: f.ordered, within: f.within, unit, scale, ..synthesis(Some(f.row), f.line) }
+        });
         // VARYFRAME's angle, which the engine varies in radians.
         let frame = o.frame.map(|f| {
             let (unit, scale) = said(Dim::ANGLE);
@@ -231,6 +239,7 @@ impl OptimiseBlock {
                 lo: Some(f.lo),
                 hi: Some(f.hi),
                 ordered: false,
+                within: None,
                 line: f.line,
                 unit,
                 scale,
@@ -245,8 +254,8 @@ impl OptimiseBlock {
             tol: o.tol,
             ftol: o.ftol,
             line: o.line,
-            free_time: o.free_time.map(|f| synthesis(Some(f.row), f.ordered, f.line)),
-            full_rotation: o.full_rotation.map(|f| synthesis(Some(f.row), false, f.line)),
+            free_time,
+            full_rotation: o.full_rotation.map(|f| synthesis(Some(f.row), f.line)),
             frame,
             mass_vary,
         }

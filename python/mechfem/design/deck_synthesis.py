@@ -1,4 +1,4 @@
-"""The synthesis statements of a deck's OPTIMISE block: ``FREETIME r [ORDERED]``, ``FULLROT r`` and
+"""The synthesis statements of a deck's OPTIMISE block: ``FREETIME r [ORDERED [WITHIN w]]``, ``FULLROT r`` and
 ``VARYFRAME i lo hi``, stated as :func:`mechfem.optimize` states them from Python.
 
 The deck's problem (:func:`mechfem.design.optimise_deck.problem`) is in the deck's numbering. With one of these
@@ -28,7 +28,7 @@ from mechfem.design.optimise import _timed_model, synthesis_problem
 from mechfem.design.timing import FreeTiming, Plan
 
 if TYPE_CHECKING:
-    from mechfem._core import OptimiseBlock
+    from mechfem._core import DeckSynthesis, OptimiseBlock
     from mechfem.design.engine import FloatArray
     from mechfem.model.mechanism import Mechanism
     from mechfem.model.storage import Storage
@@ -107,7 +107,7 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
                 f"error: {deck}: line {free.line}: FREETIME names row {input_row}, which is not an angle: free "
                 "timing wraps an angle input's values at the points as a turn; drive the mechanism by an angle"
             )
-        timed = _plan(deck, mech, storage, free_name, bool(free.ordered), numbering, int(free.line))
+        timed = _plan(deck, mech, storage, free_name, free, numbering)
         if mech.units.angle == "deg":
             # The points' input in the deck's degrees; the core takes radians (mechfem.design.model_units).
             timed.builders = [
@@ -151,9 +151,9 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
     return Synthesis(q, turn, timed, input_row)
 
 
-def _plan(deck: Path, mech: Mechanism, storage: Storage, name: str, ordered: bool, numbering: Any, line: int) -> Plan:
-    """The free timing of input ``name``: one point per position of the deck's motion, starting at the input's value
-    there."""
+def _plan(deck: Path, mech: Mechanism, storage: Storage, name: str, free: DeckSynthesis, numbering: Any) -> Plan:
+    """The free timing of input ``name`` as FREETIME ``free`` states it: one point per position of the deck's motion,
+    starting at the input's value there, ordered and within a sweep if it says so."""
     from mechfem.model.motion import By, To
 
     motion = mech.motion
@@ -163,10 +163,12 @@ def _plan(deck: Path, mech: Mechanism, storage: Storage, name: str, ordered: boo
     step = motion.inputs[name]
     total = step.delta if isinstance(step, By) else (step.end - start if isinstance(step, To) else math.nan)
     starts = [start + total * k / motion.steps for k in range(motion.steps + 1)]
+    # WITHIN comes in the core's units, the points' inputs in the deck's (free.scale: from the core's to the deck's).
+    within = None if free.within is None else float(free.within) * float(free.scale)
     try:
-        return timing.plan(mech, FreeTiming(name, starts, None, ordered), storage, numbering)
+        return timing.plan(mech, FreeTiming(name, starts, None, bool(free.ordered), within), storage, numbering)
     except (design.Infeasible, ValueError) as e:
-        raise SynthesisError(f"error: {deck}: line {line}: FREETIME: {e}") from None
+        raise SynthesisError(f"error: {deck}: line {free.line}: FREETIME: {e}") from None
 
 
 def _timed(timed: Plan, base: str) -> design.DesignModelOf:

@@ -28,7 +28,7 @@ pub struct Optimise {
     /// `OPTFTOL rtol atol`, if given (both >= 0, not both 0, rtol < 1),
     /// with the keyword (for the message when OPTTOL is given too).
     pub ftol: Option<(Spanned<Keyword>, f64, f64)>,
-    /// `FREETIME r [ORDERED]`, if given.
+    /// `FREETIME r [ORDERED] [WITHIN w]`, if given.
     pub free_time: Option<FreeTimeDef>,
     /// `FULLROT r`, if given: the keyword and the row.
     pub full_rotation: Option<(Spanned<Keyword>, Spanned<i64>)>,
@@ -56,8 +56,8 @@ pub struct MassVaryDef {
     pub hi: Spanned<f64>,
 }
 
-/// `FREETIME r [ORDERED]`: the input of row r takes a value of its own, a
-/// design variable, at every position.
+/// `FREETIME r [ORDERED] [WITHIN w]`: the input of row r takes a value of
+/// its own, a design variable, at every position.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FreeTimeDef {
     /// Line of the keyword.
@@ -68,6 +68,9 @@ pub struct FreeTimeDef {
     pub row: Spanned<i64>,
     /// Whether `ORDERED` follows: every value at or after the one before.
     pub ordered: bool,
+    /// `WITHIN w` (after ORDERED): the last value at most w after the
+    /// first, in the input's unit.
+    pub within: Option<Spanned<f64>>,
 }
 
 /// `VARYFRAME i lo hi`: the frame turned about the fixed point whose x is

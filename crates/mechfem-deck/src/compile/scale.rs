@@ -146,6 +146,13 @@ pub(crate) fn to_core(deck: &Deck, units: Units, mech: &Mechanism) -> Deck {
             scale(u, dim, &mut v.lo);
             scale(u, dim, &mut v.hi);
         }
+        if let Some(f) = &mut o.free_time {
+            // FREETIME's sweep is a difference of the input's values, in its row's unit.
+            let dim = row(f.row.value);
+            if let Some(w) = &mut f.within {
+                scale(u, dim, w);
+            }
+        }
         if let Some(f) = &mut o.frame {
             // VARYFRAME's range is an angle, in the deck's angle unit.
             scale(u, Dim::ANGLE, &mut f.lo);

@@ -1,5 +1,5 @@
 //! The synthesis statements of the OPTIMISE block: free timing
-//! (`FREETIME r [ORDERED]`), a full turn of an input (`FULLROT r`) and the
+//! (`FREETIME r [ORDERED] [WITHIN w]`), a full turn of an input (`FULLROT r`) and the
 //! frame angle (`VARYFRAME i lo hi`), referred to the model and the motion.
 
 use mechfem_core::{DesignVar, InputMotion, Motion};
@@ -48,7 +48,7 @@ pub(super) fn statements(
                     )
                     .with_hint("compare values at the positions (TARGET, TARGETAT), or drop FREETIME"));
             }
-            Some(FreeTime { row, ordered: d.ordered, line: d.line })
+            Some(FreeTime { row, ordered: d.ordered, within: d.within.map(|w| w.value), line: d.line })
         }
         None => None,
     };

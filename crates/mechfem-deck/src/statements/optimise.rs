@@ -129,24 +129,9 @@ impl Parser<'_> {
             }
             Keyword::FreeTime => {
                 let row = src.whole(arg(0)?, "the input's row number")?;
-                let ordered = match args.get(1) {
-                    None => false,
-                    Some(w) if w.text.eq_ignore_ascii_case("ORDERED") => true,
-                    Some(w) => {
-                        return Err(src
-                            .error(
-                                DiagnosticKind::BadValue,
-                                w.span,
-                                format!("FREETIME takes the word ORDERED after the row, not `{}`", w.text),
-                            )
-                            .with_hint(
-                                "`FREETIME r` makes the input's value at every position a design variable; \
-                                 `FREETIME r ORDERED` keeps each value at or after the one before",
-                            ));
-                    }
-                };
+                let (ordered, within) = free_time_words(src, line, args)?;
                 self.once(kw)?;
-                self.optimise.free_time = Some(FreeTimeDef { line: line_no, keyword: kw, row, ordered });
+                self.optimise.free_time = Some(FreeTimeDef { line: line_no, keyword: kw, row, ordered, within });
             }
             Keyword::FullRot => {
                 let row = src.whole(arg(0)?, "the input's row number")?;
@@ -326,6 +311,74 @@ fn range(src: &Source<'_>, kw: Keyword, lo: &Word, hi: &Word) -> Result<(Spanned
             format!("{kw}'s range is empty: lo {} is not below hi {}", real(lo.value), real(hi.value)),
         )
         .with_hint(hint))
+}
+
+/// What follows the row of `FREETIME r [ORDERED] [WITHIN w]`: whether the
+/// points are ordered, and the sweep w that bounds them (only with ORDERED:
+/// the sweep of unordered points has no first and last).
+fn free_time_words(
+    src: &Source<'_>,
+    line: &Line,
+    args: &[Word],
+) -> Result<(bool, Option<Spanned<f64>>), Box<Diagnostic>> {
+    const FORMS: &str = "`FREETIME r` makes the input's value at every position a design variable; `FREETIME r \
+                         ORDERED` keeps each value at or after the one before; `FREETIME r ORDERED WITHIN w` also \
+                         keeps the last at most w after the first";
+    let is = |w: &Word, word: &str| w.text.eq_ignore_ascii_case(word);
+    let Some(first) = args.get(1) else { return Ok((false, None)) };
+    if is(first, "WITHIN") {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                first.span,
+                "FREETIME's WITHIN bounds ordered points, but ORDERED is not given",
+            )
+            .with_hint(
+                "WITHIN w keeps the last point at most w after the first, which needs the points in order: write \
+                 `FREETIME r ORDERED WITHIN w`",
+            ));
+    }
+    if !is(first, "ORDERED") {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                first.span,
+                format!("FREETIME takes the word ORDERED after the row, not `{}`", first.text),
+            )
+            .with_hint(FORMS));
+    }
+    let Some(second) = args.get(2) else { return Ok((true, None)) };
+    if !is(second, "WITHIN") {
+        return Err(src
+            .error(
+                DiagnosticKind::BadValue,
+                second.span,
+                format!("FREETIME takes the word WITHIN after ORDERED, not `{}`", second.text),
+            )
+            .with_hint(FORMS));
+    }
+    let Some(word) = args.get(3) else {
+        return Err(src
+            .count_error(line, args, None, "FREETIME's WITHIN is not followed by the sweep w".into())
+            .with_hint(
+                "give the largest input from the first point to the last, in the input's unit (the deck's angle \
+                 unit for a crank), e.g. `FREETIME 6 ORDERED WITHIN 6.2831853` for points passed in one turn",
+            ));
+    };
+    let w = bounded(src, word, "the sweep w")?;
+    if w.value > 0.0 {
+        return Ok((true, Some(w)));
+    }
+    Err(src
+        .error(
+            DiagnosticKind::BadValue,
+            w.span,
+            format!("FREETIME's sweep w after WITHIN must be positive, got {}", real(w.value)),
+        )
+        .with_hint(
+            "w is the largest input from the first point to the last (ordered points advance, so the sweep is at \
+             least 0): give a positive number in the input's unit, e.g. 6.2831853 rad or 360 deg for one turn",
+        ))
 }
 
 /// The weight of a target: a positive number.

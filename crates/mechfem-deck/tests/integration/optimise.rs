@@ -174,3 +174,20 @@ fn optftol_gives_a_relative_and_an_absolute_tolerance_and_excludes_opttol() {
         assert_eq!(e.iter().map(|d| d.kind).collect::<Vec<_>>(), [kind], "{lines}: {e}");
     }
 }
+
+/// FREETIME's sweep is in the input's unit: degrees under `UNITS ANGLE deg`,
+/// compiled to radians as every angle of the deck.
+#[test]
+fn freetime_within_is_read_in_the_decks_angle_unit() {
+    let block = "OPTIMISE\nVARY 2 3.0 4.0\nBUFX0 7 11\nTARGETAT 11 3 3.2\nFREETIME 4 ORDERED WITHIN 90\n";
+    let free = |units: &str| {
+        let text = four_bar("KIN OPT").replacen("KIN OPT\n", &format!("KIN OPT\n{units}"), 1);
+        let c = compiled(&format!("{text}{block}")).unwrap_or_else(|e| panic!("{e}"));
+        c.optimise.and_then(|o| o.free_time).expect("FREETIME")
+    };
+    let deg = free("UNITS ANGLE deg\n");
+    assert!(deg.ordered && (deg.within.expect("WITHIN") - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    assert_eq!((free("").row, free("").within), (3, Some(90.0)));
+    let plain = compiled(&format!("{}{}", four_bar("KIN OPT"), block.replace(" WITHIN 90", "")));
+    assert_eq!(plain.expect("FREETIME 4 ORDERED").optimise.and_then(|o| o.free_time).map(|f| f.within), Some(None));
+}
