@@ -83,3 +83,26 @@ def test_each_fitted_start_is_optimised_from_its_own_start_angles() -> None:
         assert at["theta"].value == pytest.approx(timing.starts[0])
         firsts.add(round(timing.starts[0], 9))
     assert len(firsts) == 3
+
+
+def test_every_start_records_the_timing_it_started_from() -> None:
+    """``Optimum.starts`` keeps each start's start timing: the problem's start angles for the given design and a
+    plain draw, a fitted start's own (the crank angles of its laid points); and the timing where each ended, the
+    best start's being the optimum's."""
+    mech, vary, kwargs = bm.problem(LINE)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        opt = mechfem.optimize(mech, vary, starts=3, seed=1, **{**kwargs, "steps": 3})
+    box = {k: v for k, v in vary.items() if v}
+    got = multistart._fitted(mech, vary, {k: float(mech[k].value) for k in box}, box, 2, 1, kwargs)
+    assert got is not None and len(opt.starts) == 3
+    own = [None, *got[4]]
+    assert any(t is not None for t in own)
+    for start, timing in zip(opt.starts, own, strict=True):
+        assert start.start_timing is not None and start.values is not None
+        expected = LINE.thetas if timing is None else timing.starts
+        assert start.start_timing == pytest.approx(expected, abs=1e-12)
+        assert timing is None or not np.allclose(start.start_timing, LINE.thetas)
+        assert start.timing is not None and len(start.timing) == len(LINE.thetas)
+    best = min(opt.starts, key=lambda s: s.objective)
+    assert best.timing == pytest.approx(opt.timing, abs=1e-12)

@@ -39,6 +39,7 @@ from mechfem.errors import MechfemError
 
 if TYPE_CHECKING:
     from mechfem.design.optimise import Optimum
+    from mechfem.design.timing import FreeTiming
     from mechfem.model.mechanism import Mechanism
 
 T = TypeVar("T")
@@ -262,7 +263,10 @@ def _fitted(
     n: int,
     seed: int | None,
     kwargs: Mapping[str, Any],
-) -> tuple[list[dict[str, float]], list[Mechanism], list[tuple[dict[str, float], str]], int, list[object]] | None:
+) -> (
+    tuple[list[dict[str, float]], list[Mechanism], list[tuple[dict[str, float], str]], int, list[FreeTiming | None]]
+    | None
+):
     """A four-bar's starts fitted to its targets with free timing (:mod:`mechfem.design.fourbar_fit`), as
     :func:`screened` gives starts, with each one's free timing (None: the problem's); None when the starts are not
     fitted. The fitted linkages' cranks turn fully; without a whole turn asked (the start values' sweep less than a
@@ -282,7 +286,7 @@ def _fitted(
     begins: list[dict[str, float]] = []
     reached: list[Mechanism] = []
     rejected: list[tuple[dict[str, float], str]] = []
-    timings: list[object] = []
+    timings: list[FreeTiming] = []
     looked = 0
     for _, design, angles in kept:
         if len(begins) == n - len(plain[0]):
@@ -338,7 +342,7 @@ def multi_start(
     begins = [{name: float(v) for name in vary if (v := getattr(mechanism[name], "value", None)) is not None}]
     reached: list[Mechanism | str] = [mechanism]
     rejected: list[tuple[dict[str, float], str]] = []
-    timed: list[object | None] = [None]
+    timed: list[FreeTiming | None] = [None]
     drawn = 0
     if isinstance(starts, int):
         if box is None:
@@ -391,7 +395,10 @@ def multi_start(
             reason, seconds = out, 0.0
         else:
             reason, seconds = (out.reason, math.nan) if isinstance(out, cluster.TaskFailed) else out
-        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds))
+        # A failed start still says which timing it would have started from: its own, else the problem's.
+        stated = timed[k] if timed[k] is not None else kwargs.get("timing")
+        began = None if stated is None else [float(t) for t in stated.starts]
+        outcomes.append(Start(begin, None, math.nan, 0, False, reason, seconds, began))
     found = [out for out in outs if isinstance(out, Optimum)]
     if not found:
         raise Infeasible(

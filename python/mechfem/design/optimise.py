@@ -464,7 +464,10 @@ def optimize(
     final_values = dict(zip(vary, map(float, x), strict=True))
     if turned_by is not None and frame is not None:
         start_values[frame.name], final_values[frame.name] = turned_by
-    begun = Start(start_values, final_values, sol.objective, sol.runs, sol.success, sol.message, sol.seconds)
+    began = None if timing is None else [float(t) for t in timing.starts]
+    begun = Start(
+        start_values, final_values, sol.objective, sol.runs, sol.success, sol.message, sol.seconds, began, thetas
+    )
     return dataclasses.replace(
         sol, mechanism=optimised, start=start_values, values=final_values, motion=motion, timing=thetas, starts=[begun]
     )

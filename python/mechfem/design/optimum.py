@@ -140,7 +140,8 @@ class Optimum:
 class Start:
     """One start of :func:`optimize`: the variables' start values, where the optimiser took them (None when the
     start failed) and the objective there (NaN when it failed), its runs and time, and ``message``: the
-    optimiser's word, or why the start failed (e.g. its design cannot be assembled)."""
+    optimiser's word, or why the start failed (e.g. its design cannot be assembled). With free timing also the
+    input's value at each target point it started from and where the optimiser took them."""
 
     start: dict[str, float]
     values: dict[str, float] | None
@@ -149,3 +150,9 @@ class Start:
     success: bool
     message: str
     seconds: float
+    start_timing: list[float] | None = None
+    """With free timing, the input's value at each target point this start began from, in the model's units: a
+    fitted start's own (the crank angles of its coupler curve laid on the points), else the ``FreeTiming``'s
+    ``starts``; None without free timing."""
+    timing: list[float] | None = None
+    """With free timing, the input's value at each target point where this start ended (None when it failed)."""
