@@ -47,6 +47,9 @@ class Synthesis:
     timed: Plan | None = None
     input_row: int | None = None
     """The free timing's input row (deck number)."""
+    timing_scale: float = 1.0
+    """What the free timing's variables (in the core's units, as the optimiser takes them) are multiplied by to give
+    them in the deck's: 180/pi in a deck whose angles are in degrees."""
 
     def written(self, x: FloatArray) -> tuple[list[tuple[int, int]], FloatArray]:
         """The deck's numbers (rows and fixed co-ordinates) of the design ``x`` and their values: the frame turned
@@ -65,11 +68,12 @@ class Synthesis:
         return [variables[k] for k in keep], values[keep]
 
     def inputs(self, x: FloatArray) -> list[float] | None:
-        """The free-timed input's value at every point of the design ``x`` (None without free timing)."""
+        """The free-timed input's value at every point of the design ``x``, in the deck's unit (None without free
+        timing)."""
         if self.timed is None:
             return None
         n = len(self.timed.thetas)
-        return [float(t) for t in timing.timed_inputs(self.timed, np.asarray(x)[len(x) - n :])]
+        return [float(t) * self.timing_scale for t in timing.timed_inputs(self.timed, np.asarray(x)[len(x) - n :])]
 
 
 def turned_core(variables: list[tuple[int, int]], turn: frame_angle.Turn) -> list[tuple[int, int]]:
@@ -97,7 +101,7 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
     base = os.fspath(deck.parent if deck.parent != Path("") else Path("."))
     rows = {numbering.row_dest[r]: r for r in mech.rows if r in numbering.row_dest}
     of: design.DesignModelOf = design.built_model(built.builder, base)
-    timed, input_row, free_name = None, None, None
+    timed, input_row, free_name, timing_scale = None, None, None, 1.0
     if free is not None and free.row is not None:
         input_row = free.row
         row = rows[input_row]
@@ -109,10 +113,10 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
             )
         timed = _plan(deck, mech, storage, free_name, free, numbering)
         if mech.units.angle == "deg":
-            # The points' input in the deck's degrees; the core takes radians (mechfem.design.model_units).
-            timed.builders = [
-                model_units.ScaledBuilder(b, {timed.input_var: model_units.DEGREE}, {}) for b in timed.builders
-            ]
+            # The optimiser takes the points' inputs in the core's radians, as it takes every other variable of a
+            # deck (VARY, VARYX, VARYFRAME): a deck in degrees then takes the steps of the deck in radians, and its
+            # periodic variables share one turn. The deck's unit is for what is printed and written.
+            timed, timing_scale = timing.in_units(timed, model_units.DEGREE), 1.0 / model_units.DEGREE
         of = _timed(timed, base)
     if full:
         line = full.line
@@ -148,7 +152,7 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
         # A turn of the free timing's input in the deck's unit (its values are reported within one).
         whole_turn=timed.turn if timed is not None else design_rules.TURN,
     )
-    return Synthesis(q, turn, timed, input_row)
+    return Synthesis(q, turn, timed, input_row, timing_scale)
 
 
 def _plan(deck: Path, mech: Mechanism, storage: Storage, name: str, free: DeckSynthesis, numbering: Any) -> Plan:

@@ -163,10 +163,11 @@ def variable_labels(p: design.Problem, model: Model | None) -> list[tuple[str, s
 
 def deck_scales(opt: OptimiseBlock | None, p: design.Problem) -> list[float]:
     """What each design variable's number in the optimiser is multiplied by to give it in the deck's units (1 for a
-    deck without UNITS): a VARY, VARYX or VARYM variable and the frame angle (VARYFRAME) are in the core's units;
-    the input at a FREETIME point is in the deck's angle unit already."""
+    deck without UNITS): every variable is in the core's units, a VARY, VARYX or VARYM variable, the frame angle
+    (VARYFRAME) and the input at a FREETIME point alike."""
     given = [] if opt is None else [v.scale for v in opt.vary] + [m.scale for m in opt.mass_vary]
     frame = 1.0 if opt is None or opt.frame is None else opt.frame.scale
+    timing = 1.0 if opt is None or opt.free_time is None else opt.free_time.scale
     out, k = [], 0
     for var in p.variables:
         kind = var[0]
@@ -176,7 +177,8 @@ def deck_scales(opt: OptimiseBlock | None, p: design.Problem) -> list[float]:
             out.append(given[k] if k < len(given) else 1.0)
             k += 1
         else:
-            out.append(1.0)
+            # (2, k): the input at FREETIME point k.
+            out.append(timing if kind == 2 else 1.0)
     return out
 
 

@@ -21,6 +21,7 @@ hold the order, no constraint is needed), and the input at point k is their sum.
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import warnings
 from collections.abc import Sequence
@@ -231,6 +232,20 @@ def plan(mechanism: Mechanism, timing: FreeTiming, storage: Storage, numbering: 
     return Plan(builders, (kind, number), thetas, names, lo, hi, periodic, angle, timing.ordered, turn, within)
 
 
+def in_units(timed: Plan, factor: float) -> Plan:
+    """``timed`` with its input's values (the points' starts, the ranges, a turn, the sweep) multiplied by ``factor``:
+    its variables in other units, with builders that take them so."""
+    within = None if timed.within is None else timed.within * factor
+    return dataclasses.replace(
+        timed,
+        thetas=timed.thetas * factor,
+        lo=timed.lo * factor,
+        hi=timed.hi * factor,
+        turn=timed.turn * factor,
+        within=within,
+    )
+
+
 def timed_inputs(timed: Plan, y: FloatArray) -> FloatArray:
     """The input at each point from the timing variables ``y``."""
     n = len(timed.thetas)
@@ -273,4 +288,4 @@ def _at(mechanism: Mechanism, name: str, start: float, theta: float, k: int) -> 
     return [float(result.value(c.name)[-1]) for c in moving]
 
 
-__all__ = ["FreeTiming", "Plan", "TimedModel", "plan", "timed_inputs", "within_bound"]
+__all__ = ["FreeTiming", "Plan", "TimedModel", "in_units", "plan", "timed_inputs", "within_bound"]
