@@ -7,11 +7,11 @@ values, speeds and accelerations by the input's (its time left in seconds), ACCU
 in DYNAMICS a centre of mass as a length, a moment of inertia as mass x length² (an INERTIA on a length is a mass),
 gravity as an acceleration, a LOAD, a MOTOR's stall torque and a SPRING as the generalised force on their row (work
 over the row's unit, an angle not counted: a torque in N·mm), the rest by the row's unit; MOV_DYN's speed and
-STOPWHEN's value by the input's and the buffer's unit. In OPTIMISE, a VARY's range by its row's unit, a VARYX's by
-its co-ordinate's, a VARYFRAME's as an angle, a VARYM's as what it varies (a centre as a length, J as mass x
-length²), a TARGET file's values and a TARGETAT's, TARGETEXT's and BOUND's values by their buffer's unit, FREETIME's
-WITHIN by its input's; weights stay (a deck's objective is the sum of its squared misses in the core's units,
-whatever its UNITS). Masses, forces and times stay in kg, N and s."""
+STOPWHEN's value by the input's and the buffer's unit, a TOL's and TOLX's tolerance by its row's and co-ordinate's.
+In OPTIMISE, a VARY's range by its row's unit, a VARYX's by its co-ordinate's, a VARYFRAME's as an angle, a VARYM's
+as what it varies (a centre as a length, J as mass x length²), a TARGET file's values and a TARGETAT's, TARGETEXT's
+and BOUND's values by their buffer's unit, FREETIME's WITHIN by its input's; weights stay (a deck's objective is the
+sum of its squared misses in the core's units, whatever its UNITS). Masses, forces and times stay in kg, N and s."""
 
 from __future__ import annotations
 
@@ -98,6 +98,10 @@ def statement(head: str, w: list[str], labels: _core.Labels, tables: Path, out_d
         return f"{' '.join(w[:-1])} {float(w[-1]) * LENGTH!r}"
     if head == "STOPWHEN":
         return f"STOPWHEN {w[1]} {float(w[2]) * factor(labels.buffer(int(w[1]))[3])!r}"
+    if head in ("TOL", "TOLX"):
+        number = int(w[1])
+        dims = labels.row(number)[3] if head == "TOL" else labels.coordinate(number)[3]
+        return f"{head} {number} {float(w[2]) * factor(dims)!r}"
     if head in ("VARY", "VARYX", "VARYFRAME"):
         number = int(w[1])
         dims = labels.row(number)[3] if head == "VARY" else labels.coordinate(number)[3]

@@ -17,14 +17,15 @@ from mm_degrees import SI_UNITS, factor, in_mm_and_degrees, words
 
 
 def examples() -> list[Path]:
-    """The examples without an OPTIMISE block, without UNITS or with SI's."""
+    """The examples without an OPTIMISE block, without UNITS or with SI's, and a deck with a TOLERANCE block."""
     out = []
     for deck in sorted((ROOT / "examples").rglob("*.mec")):
         lines = [words(line) for line in deck.read_text().splitlines()]
         units = [" ".join(w) for w in lines if w and w[0].upper() == "UNITS"]
         if units in ([], [SI_UNITS]) and not any(w[0].upper() == "OPTIMISE" for w in lines if w):
             out.append(deck)
-    return out
+    # The four-bar with tolerance bands (no example has a TOLERANCE block).
+    return [*out, ROOT / "tests" / "decks" / "fourbar_tolerances.mec"]
 
 
 @pytest.mark.parametrize("deck", examples(), ids=lambda p: p.stem)

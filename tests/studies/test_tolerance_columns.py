@@ -9,6 +9,7 @@ import csv
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import mechfem
 from conftest import ROOT, Cli
@@ -63,7 +64,8 @@ def test_printbuf_and_the_data_set_of_mechfem_run_hold_the_bands(cli: Cli, tmp_p
 
 def test_a_deck_read_into_a_model_leaves_the_bands_out_and_runs() -> None:
     # The model carries no TOLERANCE block: BUFTOL's buffers are not turned into buffers of their source's quantity.
-    mech = mechfem.Mechanism.from_deck(DECK)
+    with pytest.warns(UserWarning, match=r"TOLERANCE block is left out .* \(200, 201, 202, 203, 204, 205\)"):
+        mech = mechfem.Mechanism.from_deck(DECK)
     assert mech.storage is not None
     numbers = sorted(b[0] for b in mech.storage.buffers)
     assert numbers == [1, 100, 101, 102, 103]

@@ -71,32 +71,37 @@ class Storage:
         return self
 
 
-def from_described(s: _core.EchoStorage, name: Callable[[str, int], Ref]) -> Storage | None:
+def from_described(s: _core.EchoStorage, name: Callable[[str, int], Ref]) -> tuple[Storage | None, list[int]]:
     """The storage of a deck the reader described (None without one); ``name(kind, number)`` names a deck number of
-    a kind of :data:`BUFFER_ARGS` (``i`` co-ordinate, ``r`` row, ``j`` input)."""
+    a kind of :data:`BUFFER_ARGS` (``i`` co-ordinate, ``r`` row, ``j`` input). Beside it, the buffers of the deck's
+    TOLERANCE bands (BUFTOL), which a mechanism does not carry (:func:`mechfem.tolerance_bands` computes them): they
+    are left out, and so is every place the storage shows them (PRINTBUF, SAVEDATA, a picture's plot)."""
+    bands = sorted({b.number for b in s.buffers if b.keyword == "BUFTOL"})
     if not (s.buffers or s.printbuf is not None or s.savedata or s.animate or s.pictures):
-        return None
+        return None, bands
     buffers: list[tuple[int, str, tuple[Ref, ...]]] = []
     for b in s.buffers:
-        if b.part:
-            continue  # the y (and moment) of a BUFPIN or BUFSHAKE line: its first buffer stands for the line
-        if b.keyword == "BUFTOL":
-            continue  # a band of the TOLERANCE block, which the model does not carry
+        if b.part or b.keyword == "BUFTOL":
+            # The y (and moment) of a BUFPIN or BUFSHAKE line: its first buffer stands for the line. A band.
+            continue
         kinds = BUFFER_ARGS[b.keyword]
         buffers.append((b.number, b.keyword, tuple(name(k, v) for k, v in zip(kinds, b.args, strict=False))))
+    shown = set(bands)
     pictures = []
     for p in s.pictures:
         plots: list[tuple[str, Ref, Ref]] = []
         for q in p.plots:
             if q.keyword == "PLOTHODO":
                 plots.append((q.keyword, name("i", q.a), name("i", q.b)))
-            else:
+            elif q.a not in shown and q.b not in shown:
                 plots.append((q.keyword, q.a, q.b))
-        pictures.append(Picture(p.title, plots))
-    printbuf = s.printbuf
-    if printbuf == [b.number for b in s.buffers]:
+        if plots:
+            pictures.append(Picture(p.title, plots))
+    printbuf = None if s.printbuf is None else [b for b in s.printbuf if b not in shown]
+    if printbuf == [b.number for b in s.buffers if b.number not in shown]:
         printbuf = []  # every buffer: the PRINTBUF without numbers
-    return Storage(buffers, None if printbuf is None else list(printbuf), list(s.savedata), s.animate, pictures)
+    savedata = [b for b in s.savedata if b not in shown]
+    return Storage(buffers, printbuf, savedata, s.animate, pictures), bands
 
 
 def check_file_names(mechanism: str, storage: Storage | None, tables: Mapping[str, str]) -> None:
