@@ -42,6 +42,10 @@ def generalised_force(row: Sequence[int]) -> float:
     return LENGTH ** (1 - row[0])
 
 
+LISTS = ("XFIX", "XMOV", "PARA", "MASS", "PMASS", "INERTIA", "VARY", "VARYX", "TOL", "TOLX")
+"""The keywords of a list of numbered items: a line that starts with a number goes on with the list."""
+
+
 def in_mm_and_degrees(text: str, labels: _core.Labels, tables: Path, out_dir: Path) -> str:
     """The deck ``text`` with every number converted and the UNITS line after its mode line; its MOV_FUNC tables
     (in the folder ``tables``) written converted into ``out_dir``."""
@@ -56,7 +60,7 @@ def in_mm_and_degrees(text: str, labels: _core.Labels, tables: Path, out_dir: Pa
             out += [line, "UNITS LENGTH mm ANGLE deg"]
             moded = True
             continue
-        if head in ("XFIX", "XMOV", "PARA", "MASS", "PMASS", "INERTIA"):
+        if head in LISTS:
             block = head
             out.append(f"{head} {item(block, w[1:], labels)}")
         elif w[0].lstrip("-").isdigit() and block:
@@ -76,10 +80,11 @@ def item(block: str, w: list[str], labels: _core.Labels) -> str:
     elif block == "INERTIA":
         # On an angle (or a pure number) a moment of inertia, on a length a mass.
         values = [values[0] * (1.0 if labels.coordinate(number)[3][0] == 1 else LENGTH**2)]
-    elif block in ("XFIX", "XMOV"):
-        values = [values[0] * factor(labels.coordinate(number)[3])]
-    elif block == "PARA":
-        values = [values[0] * factor(labels.row(number)[3])]
+    elif block in ("XFIX", "XMOV", "VARYX", "TOLX"):
+        # A value, a range or a tolerance of a co-ordinate.
+        values = [v * factor(labels.coordinate(number)[3]) for v in values]
+    elif block in ("PARA", "VARY", "TOL"):
+        values = [v * factor(labels.row(number)[3]) for v in values]
     return f"{number} {' '.join(map(repr, values))}"
 
 
@@ -98,15 +103,8 @@ def statement(head: str, w: list[str], labels: _core.Labels, tables: Path, out_d
         return f"{' '.join(w[:-1])} {float(w[-1]) * LENGTH!r}"
     if head == "STOPWHEN":
         return f"STOPWHEN {w[1]} {float(w[2]) * factor(labels.buffer(int(w[1]))[3])!r}"
-    if head in ("TOL", "TOLX"):
-        number = int(w[1])
-        dims = labels.row(number)[3] if head == "TOL" else labels.coordinate(number)[3]
-        return f"{head} {number} {float(w[2]) * factor(dims)!r}"
-    if head in ("VARY", "VARYX", "VARYFRAME"):
-        number = int(w[1])
-        dims = labels.row(number)[3] if head == "VARY" else labels.coordinate(number)[3]
-        f = ANGLE if head == "VARYFRAME" else factor(dims)
-        return f"{head} {number} {float(w[2]) * f!r} {float(w[3]) * f!r}"
+    if head == "VARYFRAME":
+        return f"VARYFRAME {w[1]} {float(w[2]) * ANGLE!r} {float(w[3]) * ANGLE!r}"
     if head == "VARYM":
         # A mass stays in kg; a centre of mass is a length, a moment of inertia mass x length² (an INERTIA on a
         # length is a mass).
@@ -127,8 +125,9 @@ def statement(head: str, w: list[str], labels: _core.Labels, tables: Path, out_d
     if head == "TARGET":
         f = factor(labels.buffer(int(w[1]))[3])
         rows = (tables / w[2]).read_text().splitlines()
-        kept = ("#", "*")
-        converted = [r if not r.strip() or r.strip()[0] in kept else repr(float(r) * f) for r in rows]
+        kept = ("#", "*", ";")
+        # A value may be followed by a comment.
+        converted = [r if not r.strip() or r.strip()[0] in kept else repr(float(r.split(";")[0]) * f) for r in rows]
         (out_dir / w[2]).write_text("\n".join(converted) + "\n")
     if head == "MOV_FUNC":
         f = factor(labels.input(int(w[1]))[5])
