@@ -1269,6 +1269,9 @@ class ModelBuilder:
     """A model built item by item in the order of a deck's blocks, compiled by the deck reader's compiler."""
 
     def __new__(cls, path: str | os.PathLike[str], mode: str) -> ModelBuilder: ...
+    design_in_model_units: bool
+    """Whether the design models it makes (:meth:`design`, :meth:`dynamic_design`) take and give their numbers in
+    the model's units (its UNITS) rather than the core's."""
     @property
     def item(self) -> int: ...
     def units(

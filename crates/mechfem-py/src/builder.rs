@@ -24,6 +24,10 @@ use crate::text::compile_text;
 pub struct ModelBuilder {
     builder: DeckBuilder,
     path: PathBuf,
+    /// Whether the design models it makes take and give their numbers in
+    /// the model's units (its UNITS) rather than the core's.
+    #[pyo3(get, set)]
+    design_in_model_units: bool,
 }
 
 /// The `DeckError` of one refused item.
@@ -43,7 +47,7 @@ impl ModelBuilder {
             _ => Mode::KinOpt,
         };
         let builder = DeckBuilder::new(path.clone(), m).map_err(|d| refused(py, &path, d))?;
-        Ok(ModelBuilder { builder, path })
+        Ok(ModelBuilder { builder, path, design_in_model_units: false })
     }
 
     /// The model's units by symbol (`mm`, `deg`, ...), each kind optional;
@@ -265,7 +269,7 @@ impl ModelBuilder {
     ) -> PyResult<DesignModel> {
         let compiled =
             py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
-        DesignModel::of_compiled(compiled, &variables, &buffers, &extrema)
+        DesignModel::of_compiled(compiled, &variables, &buffers, &extrema, self.design_in_model_units)
     }
 
     /// The compiled DYN ANA model kept for an optimiser of its dynamics: a
@@ -287,7 +291,7 @@ impl ModelBuilder {
         }
         let compiled =
             py.detach(|| self.builder.build(&base_dir)).map_err(|d| errors::deck_error(py, &self.path, &d))?;
-        DynamicDesignModel::of_compiled(compiled, &variables, &buffers)
+        DynamicDesignModel::of_compiled(compiled, &variables, &buffers, self.design_in_model_units)
     }
 }
 

@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use mechfem_core::design::{Anchor, Design, DesignFailure, DesignRun};
 use mechfem_core::worded;
 use mechfem_core::DesignVar;
-use mechfem_deck::{Compiled, DesignSetup};
+use mechfem_deck::{Compiled, DesignSetup, DesignUnits};
 use pyo3::prelude::*;
 
 use crate::errors;
@@ -29,20 +29,26 @@ pub struct DesignModel {
     /// it could not be.
     anchor: Option<Result<Anchor, String>>,
     runs: usize,
+    /// The model's units, when its variables and results are in them
+    /// rather than the core's.
+    units: Option<DesignUnits>,
 }
 
 impl DesignModel {
     /// The design model of the compiled model `c`: `variables`, `buffers`
     /// and `extrema` as for [`DesignModel::new`] (a model built item by item
-    /// comes here from `ModelBuilder.design`, deck text through `new`).
+    /// comes here from `ModelBuilder.design`, deck text through `new`); in
+    /// the model's units when `in_model_units`.
     pub(crate) fn of_compiled(
         c: Compiled,
         variables: &[(u8, usize)],
         buffers: &[u32],
         extrema: &[(u32, u32)],
+        in_model_units: bool,
     ) -> PyResult<DesignModel> {
         let setup = c.design_setup(variables, buffers, extrema).map_err(|e| errors::value_error(&e))?;
-        Ok(DesignModel { compiled: c, setup, anchor: None, runs: 0 })
+        let units = if in_model_units { c.design_units(&setup) } else { None };
+        Ok(DesignModel { compiled: c, setup, anchor: None, runs: 0, units })
     }
 }
 
@@ -64,20 +70,25 @@ impl DesignModel {
         extrema: Vec<(u32, u32)>,
     ) -> PyResult<DesignModel> {
         let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
-        DesignModel::of_compiled(c, &variables, &buffers, &extrema)
+        DesignModel::of_compiled(c, &variables, &buffers, &extrema, false)
     }
 
     /// The design's values as the deck gives them.
     fn start(&self) -> Vec<f64> {
         let s = &self.compiled.state;
-        self.setup
+        let values: Vec<f64> = self
+            .setup
             .vars
             .iter()
             .map(|v| match *v {
                 DesignVar::Row(r) => s.target[r],
                 DesignVar::Fixed(i) => s.x[i],
             })
-            .collect()
+            .collect();
+        match &self.units {
+            Some(units) => units.from_core(&values),
+            None => values,
+        }
     }
 
     /// How many designs have been evaluated (mechanism runs).
@@ -91,6 +102,7 @@ impl DesignModel {
     /// branch of every later evaluation. An [`Evaluation`] as of [`Self::evaluate`].
     fn start_at(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
+        let values = self.in_core(values);
         let design = self.design();
         let result = py.detach(|| design.start(&values));
         self.runs += 1;
@@ -127,6 +139,7 @@ impl DesignModel {
             };
             return self.failed(py, "start", worded::infeasible_start(&why));
         };
+        let values = self.in_core(values);
         let design = self.design();
         let result = py.detach(|| design.evaluate(anchor, &values));
         self.runs += 1;
@@ -137,6 +150,14 @@ impl DesignModel {
 impl DesignModel {
     fn check(&self, values: &[f64]) -> PyResult<()> {
         self.setup.check(values).map_err(|e| errors::value_error(&e))
+    }
+
+    /// `values` in the core's units.
+    fn in_core(&self, values: Vec<f64>) -> Vec<f64> {
+        match &self.units {
+            Some(units) => units.to_core(&values),
+            None => values,
+        }
     }
 
     fn design(&self) -> Design<'_> {
@@ -153,7 +174,10 @@ impl DesignModel {
     }
 
     /// The [`Evaluation`] of [`DesignModel::evaluate`] for an evaluation.
-    fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
+    fn evaluation(&self, py: Python<'_>, mut result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
+        if let (Some(units), Ok(run)) = (&self.units, &mut result) {
+            units.in_model(run);
+        }
         let (nq, nv) = (self.setup.quantities.len(), self.setup.vars.len());
         evaluation::of_result(py, &self.compiled, result, nq, nv)
     }

@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use mechfem_core::design::{Anchor, Design, DesignFailure, DesignRun};
 use mechfem_core::dynamic_design::evaluate;
 use mechfem_core::{worded, DesignVar, State};
-use mechfem_deck::{Compiled, DynamicSetup};
+use mechfem_deck::{Compiled, DesignUnits, DynamicSetup};
 use pyo3::prelude::*;
 
 use crate::design::reason;
@@ -29,13 +29,22 @@ pub struct DynamicDesignModel {
     /// The start design's branch, once evaluated (kinematic variables only).
     anchor: Option<Result<Anchor, String>>,
     runs: usize,
+    /// The model's units, when its variables and results are in them
+    /// rather than the core's.
+    units: Option<DesignUnits>,
 }
 
 impl DynamicDesignModel {
     /// The model of the compiled deck `c` (see [`DynamicDesignModel::new`]).
-    pub(crate) fn of_compiled(c: Compiled, variables: &[(u8, usize)], buffers: &[u32]) -> PyResult<Self> {
+    pub(crate) fn of_compiled(
+        c: Compiled,
+        variables: &[(u8, usize)],
+        buffers: &[u32],
+        in_model_units: bool,
+    ) -> PyResult<Self> {
         let setup = c.dynamic_setup(variables, buffers).map_err(|e| errors::value_error(&e))?;
-        Ok(DynamicDesignModel { compiled: c, setup, anchor: None, runs: 0 })
+        let units = if in_model_units { c.dynamic_design_units(&setup) } else { None };
+        Ok(DynamicDesignModel { compiled: c, setup, anchor: None, runs: 0, units })
     }
 }
 
@@ -64,13 +73,18 @@ impl DynamicDesignModel {
             ));
         }
         let c = py.detach(|| compile_text(text, &path, &base_dir)).map_err(|d| errors::deck_error(py, &path, &d))?;
-        DynamicDesignModel::of_compiled(c, &variables, &buffers)
+        DynamicDesignModel::of_compiled(c, &variables, &buffers, false)
     }
 
     /// The design's values as the deck gives them, in the order of the variables.
     fn start(&self) -> Vec<f64> {
         let (kin, mass) = self.deck_values();
-        self.setup.order.iter().map(|&k| if k < kin.len() { kin[k] } else { mass[k - kin.len()] }).collect()
+        let values: Vec<f64> =
+            self.setup.order.iter().map(|&k| if k < kin.len() { kin[k] } else { mass[k - kin.len()] }).collect();
+        match &self.units {
+            Some(units) => units.from_core(&values),
+            None => values,
+        }
     }
 
     /// How many designs have been evaluated (mechanism runs).
@@ -84,7 +98,7 @@ impl DynamicDesignModel {
     /// as of [`Self::evaluate`].
     fn start_at(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
-        let (kin, mass) = self.split(&values);
+        let (kin, mass) = self.split(&self.in_core(values));
         let started = if self.setup.vars.is_empty() {
             None
         } else {
@@ -130,7 +144,7 @@ impl DynamicDesignModel {
             Some(Err(why)) => return self.failed(py, "start", worded::infeasible_start(why)),
             None => unreachable!("set by start_at"),
         };
-        let (kin, mass) = self.split(&values);
+        let (kin, mass) = self.split(&self.in_core(values));
         let design = self.design();
         let result = py.detach(|| {
             let run = design.evaluate(anchor, &kin)?;
@@ -246,7 +260,18 @@ impl DynamicDesignModel {
     }
 
     /// The [`Evaluation`] of [`DynamicDesignModel::evaluate`] for an evaluation.
-    fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
+    /// `values` in the core's units.
+    fn in_core(&self, values: Vec<f64>) -> Vec<f64> {
+        match &self.units {
+            Some(units) => units.to_core(&values),
+            None => values,
+        }
+    }
+
+    fn evaluation(&self, py: Python<'_>, mut result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
+        if let (Some(units), Ok(run)) = (&self.units, &mut result) {
+            units.in_model(run);
+        }
         let (nq, nv) = (self.setup.quantities.len(), self.setup.order.len());
         evaluation::of_result(py, &self.compiled, result, nq, nv)
     }

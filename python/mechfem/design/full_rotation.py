@@ -12,7 +12,6 @@ inequality: no gradient of it is taken.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import mechfem._core as _core
@@ -63,11 +62,10 @@ def checked(
     mechanism: Mechanism,
     storage: Storage,
     base: str,
-    factors: Mapping[tuple[int, int], float] | None = None,
+    in_model_units: bool = False,
 ) -> DesignModelOf:
-    """``of`` with every design also checked for a full turn of the mechanism's only input (an angle); ``factors``:
-    the variables given in units other than the core's (:mod:`mechfem.design.model_units`)."""
-    from mechfem.design import model_units
+    """``of`` with every design also checked for a full turn of the mechanism's only input (an angle); the
+    variables in the model's units with ``in_model_units``, else in the core's."""
     from mechfem.model.motion import Motion
     from mechfem.run import building
 
@@ -76,11 +74,11 @@ def checked(
         raise ValueError("full_rotation needs a mechanism with one input, an angle (a crank)")
     core = building.builder(mechanism, Motion.by(STEPS, TURN, unit="rad"), storage).builder
     # The turn's model records no buffer: only whether the design turns fully.
-    builder: Any = model_units.ScaledBuilder(core, factors, {}) if factors else core
+    core.design_in_model_units = in_model_units
 
     def wrapped(variables: list[tuple[int, int]], buffers: list[int], extrema: list[tuple[int, int]]) -> Any:
         shared = [v for v in variables if v[0] != 2]
-        return FullRotation(of(variables, buffers, extrema), builder.design(base, shared, [], []), len(shared))
+        return FullRotation(of(variables, buffers, extrema), core.design(base, shared, [], []), len(shared))
 
     return wrapped
 

@@ -170,16 +170,16 @@ def _variable(mech: Mechanism, numbering: deckio.Numbering, name: str) -> tuple[
 
 
 def _model(
-    builder: Any, base: str, timed: Plan | None, full: bool, mechanism: Mechanism, storage: Storage, factors: Any = None
+    builder: Any, base: str, timed: Plan | None, full: bool, mechanism: Mechanism, storage: Storage
 ) -> design.DesignModelOf:
-    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if ``full``;
-    ``factors``: the factors of the variables in units other than the core's (:mod:`mechfem.design.model_units`)."""
+    """The problem's model: the mechanism's, or the free timing's points; checked for a full turn if ``full`` (in
+    the model's units when ``builder`` makes its design models in them)."""
     of = design.built_model(builder, base) if timed is None else _timed_model(timed, base)
     if not full:
         return of
     from mechfem.design import full_rotation as _full
 
-    return _full.checked(of, mechanism, storage, base, factors)
+    return _full.checked(of, mechanism, storage, base, bool(builder.design_in_model_units))
 
 
 def _timed_model(timed: Plan, base: str) -> design.DesignModelOf:
@@ -374,11 +374,11 @@ def optimize(
         positions = len(timed.thetas)
     free_input = None if timing is None else timing.input
     turn = None if frame is None else frame_angle.plan(mechanism, frame, built.numbering, free_input)
-    # Variables, buffers and position 1 in the model's units (mm, degrees): the core's models work in its own.
-    factors, in_units = model_units.variable_factors(mechanism, vary, variables, timed, turn), deck.keys
-    if timed is not None:
-        timed.builders = [model_units.builder(mechanism, b, factors, in_units, built.numbering) for b in timed.builders]
-    builder = model_units.builder(mechanism, built.builder, factors, in_units, built.numbering)
+    # Variables, buffers and position 1 in the model's units (mm, degrees): the core's design models convert at
+    # their edges.
+    builder = built.builder
+    for b in [builder, *([] if timed is None else timed.builders)]:
+        b.design_in_model_units = True
     for term in terms:
         if isinstance(term, design.ValuesTerm) and len(term.values) != positions:
             raise ValueError(f"a Target has {len(term.values)} values for the motion's {positions} positions")
@@ -411,7 +411,7 @@ def optimize(
         model = (
             dynamic_optimise.model(builder, base)
             if dynamic
-            else _model(builder, base, timed, full_rotation, mechanism, deck.storage, factors)
+            else _model(builder, base, timed, full_rotation, mechanism, deck.storage)
         )
         problem = synthesis_problem(
             model,
@@ -537,7 +537,8 @@ def sensitivity(analysis: RunResult, quantity: Quantity, wrt: Sequence[str]) -> 
     b = deck.buffer(quantity)
     built = building.builder(mech, motion, deck.storage)
     variables = [_variable(mech, built.numbering, name) for name in wrt]
-    core = model_units.builder(mech, built.builder, model_units.variable_factors(mech, wrt, variables, None), deck.keys)
+    core = built.builder
+    core.design_in_model_units = True
     with deckio.tables_dir(built.tables) as base:
         model = core.design(base, [(k, n) for k, n, _ in variables], [b], [])
         d = model.evaluate([v for _, _, v in variables])
