@@ -21,7 +21,6 @@ import os
 import re
 import sys
 import tempfile
-import warnings
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -33,7 +32,6 @@ import mechfem._core as _core
 from mechfem._util.atomic import atomic_text
 from mechfem.deck.explain import translate
 from mechfem.deck.naming import DeckNames, DeckText, Numbering, model_unit, names_block, number
-from mechfem.errors import user_stacklevel
 from mechfem.model import loads
 from mechfem.model.catalogue import DEFAULT_ACCURACY, DEFAULT_MAX_ITER, MIN_INTEGRATION_TOLERANCE
 from mechfem.model.mechanism import (
@@ -60,7 +58,7 @@ from mechfem.model.mechanism import (
 )
 from mechfem.model.motion import check_units
 from mechfem.model.stopping import stop_buffer, stop_name
-from mechfem.model.storage import check_file_names, from_described
+from mechfem.model.storage import check_file_names, from_described, warn_bands_left_out
 from mechfem.model.units import Units, scale
 
 Progress = bool | Callable[[int, int], object] | None
@@ -537,14 +535,7 @@ def read_text(text: str, name: str, base_dir: Path, path: str | None = None) -> 
         return nb.inputs[v - 1].name
 
     m.storage, bands = from_described(d.storage, ref_name)
-    if bands:
-        warnings.warn(
-            f"{path or name}: the TOLERANCE block is left out of the mechanism read from the deck, and with it the "
-            f"buffers of its bands ({', '.join(map(str, bands))}) wherever the deck shows them: compute the bands "
-            "of a mechanism with mechfem.tolerance_bands, or run the deck itself",
-            UserWarning,
-            stacklevel=user_stacklevel(),
-        )
+    warn_bands_left_out(path or name, bands)
     stop = d.stop_when
     if stop is not None and m.motion is not None:
         m.motion = dataclasses.replace(m.motion, stop_when=(stop_name(m.storage, int(stop[0])), float(stop[1])))

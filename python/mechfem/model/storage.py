@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, TypeAlias, Union
 
 from mechfem._util.checks import name_problem
+from mechfem.errors import user_stacklevel
 from mechfem.model.echo import BUFFER_ARGS
 
 if TYPE_CHECKING:
@@ -102,6 +104,19 @@ def from_described(s: _core.EchoStorage, name: Callable[[str, int], Ref]) -> tup
         printbuf = []  # every buffer: the PRINTBUF without numbers
     savedata = [b for b in s.savedata if b not in shown]
     return Storage(buffers, printbuf, savedata, s.animate, pictures), bands
+
+
+def warn_bands_left_out(deck: str, bands: list[int]) -> None:
+    """Warns that the mechanism read from ``deck`` leaves out its TOLERANCE bands ``bands`` (see
+    :func:`from_described`); nothing without any."""
+    if bands:
+        warnings.warn(
+            f"{deck}: the TOLERANCE block is left out of the mechanism read from the deck, and with it the buffers "
+            f"of its bands ({', '.join(map(str, bands))}) wherever the deck shows them: compute the bands of a "
+            "mechanism with mechfem.tolerance_bands, or run the deck itself",
+            UserWarning,
+            stacklevel=user_stacklevel(),
+        )
 
 
 def check_file_names(mechanism: str, storage: Storage | None, tables: Mapping[str, str]) -> None:
