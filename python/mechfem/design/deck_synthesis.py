@@ -149,7 +149,8 @@ def synthesis(deck: Path, opt: OptimiseBlock, p: design.Problem) -> Synthesis:
         steps=p.steps,
         tol=p.tol,
         stop=p.stop,
-        # A turn of the free timing's input in the deck's unit (its values are reported within one).
+        # A turn of the free timing's input as the optimiser takes it, in the core's units (its values are reported
+        # within one).
         whole_turn=timed.turn if timed is not None else design_rules.TURN,
     )
     return Synthesis(q, turn, timed, input_row, timing_scale)

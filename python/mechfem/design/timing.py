@@ -234,7 +234,7 @@ def plan(mechanism: Mechanism, timing: FreeTiming, storage: Storage, numbering: 
 
 def in_units(timed: Plan, factor: float) -> Plan:
     """``timed`` with its input's values (the points' starts, the ranges, a turn, the sweep) multiplied by ``factor``:
-    its variables in other units, with builders that take them so."""
+    its variables in other units, for builders whose design models take them in those (a deck's, in the core's)."""
     within = None if timed.within is None else timed.within * factor
     return dataclasses.replace(
         timed,
