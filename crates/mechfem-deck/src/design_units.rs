@@ -104,7 +104,8 @@ impl DesignUnits {
 
     /// The evaluation `run` (of the variables and buffers these units were
     /// made for) in the model's units: values, derivatives, co-ordinates
-    /// and extrema.
+    /// and extrema. Its report, and the slopes at position 1 that the
+    /// design's next evaluation starts from, stay in the core's.
     pub fn in_model(&self, run: &mut DesignRun) {
         let (nq, nv) = (self.quantities.len(), self.vars.len());
         for row in run.values.chunks_exact_mut(nq.max(1)) {
