@@ -338,24 +338,21 @@ fn free_time_words(
                  `FREETIME r ORDERED WITHIN w`",
             ));
     }
+    // Another word where FREETIME takes `word` after `place`.
+    let instead = |w: &Word, word: &str, place: &str| {
+        src.error(
+            DiagnosticKind::BadValue,
+            w.span,
+            format!("FREETIME takes the word {word} after {place}, not `{}`", w.text),
+        )
+        .with_hint(FORMS)
+    };
     if !is(first, "ORDERED") {
-        return Err(src
-            .error(
-                DiagnosticKind::BadValue,
-                first.span,
-                format!("FREETIME takes the word ORDERED after the row, not `{}`", first.text),
-            )
-            .with_hint(FORMS));
+        return Err(instead(first, "ORDERED", "the row"));
     }
     let Some(second) = args.get(2) else { return Ok((true, None)) };
     if !is(second, "WITHIN") {
-        return Err(src
-            .error(
-                DiagnosticKind::BadValue,
-                second.span,
-                format!("FREETIME takes the word WITHIN after ORDERED, not `{}`", second.text),
-            )
-            .with_hint(FORMS));
+        return Err(instead(second, "WITHIN", "ORDERED"));
     }
     let Some(word) = args.get(3) else {
         return Err(src
