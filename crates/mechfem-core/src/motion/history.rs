@@ -87,30 +87,102 @@ impl History {
         }
         self.q.copy_within(0..len - 1, 1);
         self.q[0] = q;
-        let n = self.n;
         // x[q, r_0..r_{k-1}] = (x[q, r_0..r_{k-2}] - x[r_0..r_{k-1}]) / (q - r_{k-1}).
-        // Row by row, the new differences of every co-ordinate carried in
-        // `carry` from one row to the next (each co-ordinate's arithmetic is
-        // that of a pass down its own column).
-        let mut row_max = [0.0f64; MAX_POINTS];
-        let carry = &mut self.carry[..n];
-        carry.copy_from_slice(&x[..n]);
-        for ((row, &ik), largest) in self.diff.chunks_exact_mut(n.max(1)).zip(&inv[..len]).zip(&mut row_max) {
-            for (old, new) in row.iter_mut().zip(carry.iter_mut()) {
-                // (`f64::max` minds NaN, at thrice the cost; a NaN is left out either way.)
-                if new.abs() > *largest {
-                    *largest = new.abs();
-                }
-                let next = (*new - *old) * ik;
-                *old = *new;
-                *new = next;
-            }
-        }
+        // Row by row, the new differences of every co-ordinate carried from
+        // one row to the next (each co-ordinate's arithmetic is that of a
+        // pass down its own column). The rows follow one another: for a few
+        // co-ordinates, a count known to the compiler keeps what is carried
+        // in registers, where a carry through memory would wait for its own
+        // store at every row (at coarse steps, where every row is kept, this
+        // loop is a fifth of a positions-only run).
+        let (diff, carry, inv) = (&mut self.diff, &mut self.carry, &inv[..len]);
+        let row_max = match self.n {
+            1 => differences::<1>(diff, x, inv),
+            2 => differences::<2>(diff, x, inv),
+            3 => differences::<3>(diff, x, inv),
+            4 => differences::<4>(diff, x, inv),
+            5 => differences::<5>(diff, x, inv),
+            6 => differences::<6>(diff, x, inv),
+            7 => differences::<7>(diff, x, inv),
+            8 => differences::<8>(diff, x, inv),
+            n => differences_of(diff, &mut carry[..n], x, inv),
+        };
         self.row_max = row_max;
         self.len = len;
         self.skipped = 0;
     }
+}
 
+/// The rows of divided differences `diff` (`N` co-ordinates a row) with the
+/// position `x` added, row k's carry multiplied by `inv[k]`; the largest
+/// magnitude that went into each row.
+#[inline(always)]
+fn differences<const N: usize>(diff: &mut [f64], x: &[f64], inv: &[f64]) -> [f64; MAX_POINTS] {
+    let mut carry = [0.0f64; N];
+    carry.copy_from_slice(&x[..N]);
+    let mut row_max = [0.0f64; MAX_POINTS];
+    for ((row, &ik), largest) in diff.chunks_exact_mut(N).zip(inv).zip(&mut row_max) {
+        for (old, new) in row.iter_mut().zip(carry.iter_mut()) {
+            difference(old, new, ik, largest);
+        }
+    }
+    row_max
+}
+
+/// [`differences`] of any number of co-ordinates, `carry` the room for one
+/// row.
+fn differences_of(diff: &mut [f64], carry: &mut [f64], x: &[f64], inv: &[f64]) -> [f64; MAX_POINTS] {
+    carry.copy_from_slice(&x[..carry.len()]);
+    let mut row_max = [0.0f64; MAX_POINTS];
+    for ((row, &ik), largest) in diff.chunks_exact_mut(carry.len().max(1)).zip(inv).zip(&mut row_max) {
+        for (old, new) in row.iter_mut().zip(carry.iter_mut()) {
+            difference(old, new, ik, largest);
+        }
+    }
+    row_max
+}
+
+/// `out` = row 0 of `diff` (`N` co-ordinates a row) plus row k times
+/// `weights[k]` for every k from 1 on, added in that order, the sum kept in
+/// registers.
+#[inline(always)]
+fn weighted<const N: usize>(diff: &[f64], weights: &[f64], out: &mut [f64]) {
+    let mut sum = [0.0f64; N];
+    sum.copy_from_slice(&diff[..N]);
+    for (row, &w) in diff.chunks_exact(N).zip(weights).skip(1) {
+        for (s, v) in sum.iter_mut().zip(row) {
+            *s += w * v;
+        }
+    }
+    out[..N].copy_from_slice(&sum);
+}
+
+/// [`weighted`] of any number of co-ordinates (`out.len()`).
+fn weighted_of(diff: &[f64], weights: &[f64], out: &mut [f64]) {
+    let n = out.len();
+    out.copy_from_slice(&diff[..n]);
+    for (row, &w) in diff.chunks_exact(n.max(1)).zip(weights).skip(1) {
+        for (o, v) in out.iter_mut().zip(row) {
+            *o += w * v;
+        }
+    }
+}
+
+/// One co-ordinate's step down a row: the difference `new` carried from the
+/// row above goes into the row (`old`) and the next row's is carried on;
+/// `largest` keeps the largest magnitude carried in.
+#[inline(always)]
+fn difference(old: &mut f64, new: &mut f64, ik: f64, largest: &mut f64) {
+    // (`f64::max` minds NaN, at thrice the cost; a NaN is left out either way.)
+    if new.abs() > *largest {
+        *largest = new.abs();
+    }
+    let next = (*new - *old) * ik;
+    *old = *new;
+    *new = next;
+}
+
+impl History {
     /// The extrapolation to input value `t` into `out`. `false` (and `out`
     /// untouched) with fewer than three positions, or for a step more than
     /// twice as long as the last one (counting the positions skipped since
@@ -122,22 +194,33 @@ impl History {
         if self.len < 3 || !short {
             return false;
         }
-        out.copy_from_slice(&self.diff[..n]);
+        // The weight of each row used: which rows are used depends on their
+        // sizes only, and the sum is then made in one pass.
+        let mut weights = [0.0; MAX_POINTS];
         let (mut w, mut last, mut used) = (1.0, f64::INFINITY, 0);
         for k in 1..self.len {
             w *= t - self.q[k - 1];
-            let row = &self.diff[k * n..(k + 1) * n];
             let size = w.abs() * self.row_max[k];
             // Always the quadratic; beyond it, only terms that matter and shrink.
             let useful = size >= self.tiny && size < last;
             if k >= 3 && !useful {
                 break;
             }
-            for (o, v) in out.iter_mut().zip(row) {
-                *o += w * v;
-            }
+            weights[k] = w;
             last = size;
             used = k;
+        }
+        let (diff, weights) = (&self.diff, &weights[..=used]);
+        match n {
+            1 => weighted::<1>(diff, weights, out),
+            2 => weighted::<2>(diff, weights, out),
+            3 => weighted::<3>(diff, weights, out),
+            4 => weighted::<4>(diff, weights, out),
+            5 => weighted::<5>(diff, weights, out),
+            6 => weighted::<6>(diff, weights, out),
+            7 => weighted::<7>(diff, weights, out),
+            8 => weighted::<8>(diff, weights, out),
+            _ => weighted_of(diff, weights, out),
         }
         // Rows beyond those used cost time at every position; the next one
         // is added when a prediction falls short (`deepen`), and kept while

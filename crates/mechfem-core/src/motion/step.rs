@@ -339,7 +339,9 @@ impl Stepper {
         if info.iterations == 0 {
             return Ok(info);
         }
-        let predicted = predicted_sq.sqrt();
+        // (Taken only here: computed with the prediction, the square root
+        // would hold up the positions that need no correction, most of them.)
+        let predicted = std::hint::black_box(predicted_sq).sqrt();
         let corrected: f64 = mech
             .moving_coords()
             .iter()
