@@ -22,11 +22,15 @@ use crate::compiled::Compiled;
 use crate::design_setup::DesignSetup;
 use crate::dynamic_setup::DynamicSetup;
 
-/// How many of the core's units one of the model's is, for each variable
-/// (in the order given), buffer, co-ordinate and extremum spec of a design
-/// model.
+/// A design model's units: how many of the core's units one of the model's
+/// is, for each variable (in the order given), buffer, co-ordinate and
+/// extremum spec; or the core's units themselves, where nothing is
+/// converted ([`DesignUnits::core`]).
 #[derive(Debug, Clone, PartialEq)]
-pub struct DesignUnits {
+pub struct DesignUnits(Option<Sizes>);
+
+#[derive(Debug, Clone, PartialEq)]
+struct Sizes {
     vars: Vec<f64>,
     quantities: Vec<f64>,
     coords: Vec<f64>,
@@ -34,16 +38,16 @@ pub struct DesignUnits {
 }
 
 impl Compiled {
-    /// The units of the design model `setup` of this model; None for a
-    /// model in the core's units, whose numbers need no conversion.
-    pub fn design_units(&self, setup: &DesignSetup) -> Option<DesignUnits> {
+    /// The units of the design model `setup` of this model ([`DesignUnits::core`]
+    /// for a model in the core's units, whose numbers need no conversion).
+    pub fn design_units(&self, setup: &DesignSetup) -> DesignUnits {
         let vars = setup.vars.iter().map(|&v| self.var_size(v)).collect();
         self.units_of(vars, &setup.quantities, &setup.extrema)
     }
 
     /// The units of the dynamic design model `setup` (its mass variables
     /// among its variables, in the order given).
-    pub fn dynamic_design_units(&self, setup: &DynamicSetup) -> Option<DesignUnits> {
+    pub fn dynamic_design_units(&self, setup: &DynamicSetup) -> DesignUnits {
         let n_kin = setup.vars.len();
         let vars = setup
             .order
@@ -56,17 +60,17 @@ impl Compiled {
         self.units_of(vars, &setup.quantities, &[])
     }
 
-    fn units_of(&self, vars: Vec<f64>, quantities: &[Quantity], extrema: &[ExtremumSpec]) -> Option<DesignUnits> {
+    fn units_of(&self, vars: Vec<f64>, quantities: &[Quantity], extrema: &[ExtremumSpec]) -> DesignUnits {
         if self.units.is_identity() {
-            return None;
+            return DesignUnits::core();
         }
         let size = |q: Quantity| self.dims.quantity(&self.mechanism, q).scale(&self.units);
-        Some(DesignUnits {
+        DesignUnits(Some(Sizes {
             vars,
             quantities: quantities.iter().map(|&q| size(q)).collect(),
             coords: (0..self.mechanism.n_coords()).map(|i| self.dims.coord(i).scale(&self.units)).collect(),
             extrema: extrema.iter().map(|e| size(e.quantity)).collect(),
-        })
+        }))
     }
 
     fn var_size(&self, v: DesignVar) -> f64 {
@@ -92,14 +96,26 @@ impl Compiled {
 }
 
 impl DesignUnits {
+    /// The core's own units: a design model that takes and gives the core's
+    /// numbers.
+    pub fn core() -> DesignUnits {
+        DesignUnits(None)
+    }
+
     /// The variables `values`, given in the model's units, in the core's.
-    pub fn to_core(&self, values: &[f64]) -> Vec<f64> {
-        values.iter().zip(&self.vars).map(|(v, s)| v * s).collect()
+    pub fn to_core(&self, values: Vec<f64>) -> Vec<f64> {
+        match &self.0 {
+            Some(u) => values.iter().zip(&u.vars).map(|(v, s)| v * s).collect(),
+            None => values,
+        }
     }
 
     /// The variables `values`, in the core's units, in the model's.
-    pub fn from_core(&self, values: &[f64]) -> Vec<f64> {
-        values.iter().zip(&self.vars).map(|(v, s)| v / s).collect()
+    pub fn from_core(&self, values: Vec<f64>) -> Vec<f64> {
+        match &self.0 {
+            Some(u) => values.iter().zip(&u.vars).map(|(v, s)| v / s).collect(),
+            None => values,
+        }
     }
 
     /// The evaluation `run` (of the variables and buffers these units were
@@ -107,26 +123,27 @@ impl DesignUnits {
     /// and extrema. Its report, and the slopes at position 1 that the
     /// design's next evaluation starts from, stay in the core's.
     pub fn in_model(&self, run: &mut DesignRun) {
-        let (nq, nv) = (self.quantities.len(), self.vars.len());
+        let Some(u) = &self.0 else { return };
+        let (nq, nv) = (u.quantities.len(), u.vars.len());
         for row in run.values.chunks_exact_mut(nq.max(1)) {
-            for (v, s) in row.iter_mut().zip(&self.quantities) {
+            for (v, s) in row.iter_mut().zip(&u.quantities) {
                 *v /= s;
             }
         }
         for block in run.gradient.chunks_exact_mut((nq * nv).max(1)) {
-            for (row, s) in block.chunks_exact_mut(nv.max(1)).zip(&self.quantities) {
-                derivatives(row, &self.vars, *s);
+            for (row, s) in block.chunks_exact_mut(nv.max(1)).zip(&u.quantities) {
+                derivatives(row, &u.vars, *s);
             }
         }
-        for row in run.coords.chunks_exact_mut(self.coords.len().max(1)) {
-            for (x, s) in row.iter_mut().zip(&self.coords) {
+        for row in run.coords.chunks_exact_mut(u.coords.len().max(1)) {
+            for (x, s) in row.iter_mut().zip(&u.coords) {
                 *x /= s;
             }
         }
         for e in &mut run.extrema {
-            let s = self.extrema.get(e.spec).copied().unwrap_or(1.0);
+            let s = u.extrema.get(e.spec).copied().unwrap_or(1.0);
             e.value /= s;
-            derivatives(&mut e.gradient, &self.vars, s);
+            derivatives(&mut e.gradient, &u.vars, s);
         }
     }
 }
@@ -151,8 +168,9 @@ mod tests {
         let mut row = [2.0, 3.0];
         derivatives(&mut row, &[degree, 1e-3], 1e-3);
         assert_eq!(row, [2.0 * degree / 1e-3, 3.0 * 1e-3 / 1e-3]);
-        let units = DesignUnits { vars: vec![degree, 1e-3], quantities: vec![], coords: vec![], extrema: vec![] };
-        assert_eq!(units.to_core(&[90.0, 250.0]), vec![90.0 * degree, 250.0 * 1e-3]);
-        assert_eq!(units.from_core(&[90.0 * degree, 0.25]), vec![90.0 * degree / degree, 0.25 / 1e-3]);
+        let sizes = Sizes { vars: vec![degree, 1e-3], quantities: vec![], coords: vec![], extrema: vec![] };
+        let units = DesignUnits(Some(sizes));
+        assert_eq!(units.to_core(vec![90.0, 250.0]), vec![90.0 * degree, 250.0 * 1e-3]);
+        assert_eq!(units.from_core(vec![90.0 * degree, 0.25]), vec![90.0 * degree / degree, 0.25 / 1e-3]);
     }
 }

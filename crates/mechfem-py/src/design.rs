@@ -29,9 +29,9 @@ pub struct DesignModel {
     /// it could not be.
     anchor: Option<Result<Anchor, String>>,
     runs: usize,
-    /// The model's units, when its variables and results are in them
-    /// rather than the core's.
-    units: Option<DesignUnits>,
+    /// The units its variables and results are in: the model's, or the
+    /// core's.
+    units: DesignUnits,
 }
 
 impl DesignModel {
@@ -47,7 +47,7 @@ impl DesignModel {
         in_model_units: bool,
     ) -> PyResult<DesignModel> {
         let setup = c.design_setup(variables, buffers, extrema).map_err(|e| errors::value_error(&e))?;
-        let units = if in_model_units { c.design_units(&setup) } else { None };
+        let units = if in_model_units { c.design_units(&setup) } else { DesignUnits::core() };
         Ok(DesignModel { compiled: c, setup, anchor: None, runs: 0, units })
     }
 }
@@ -85,10 +85,7 @@ impl DesignModel {
                 DesignVar::Fixed(i) => s.x[i],
             })
             .collect();
-        match &self.units {
-            Some(units) => units.from_core(&values),
-            None => values,
-        }
+        self.units.from_core(values)
     }
 
     /// How many designs have been evaluated (mechanism runs).
@@ -102,7 +99,7 @@ impl DesignModel {
     /// branch of every later evaluation. An [`Evaluation`] as of [`Self::evaluate`].
     fn start_at(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
-        let values = self.in_core(values);
+        let values = self.units.to_core(values);
         let design = self.design();
         let result = py.detach(|| design.start(&values));
         self.runs += 1;
@@ -139,7 +136,7 @@ impl DesignModel {
             };
             return self.failed(py, "start", worded::infeasible_start(&why));
         };
-        let values = self.in_core(values);
+        let values = self.units.to_core(values);
         let design = self.design();
         let result = py.detach(|| design.evaluate(anchor, &values));
         self.runs += 1;
@@ -150,14 +147,6 @@ impl DesignModel {
 impl DesignModel {
     fn check(&self, values: &[f64]) -> PyResult<()> {
         self.setup.check(values).map_err(|e| errors::value_error(&e))
-    }
-
-    /// `values` in the core's units.
-    fn in_core(&self, values: Vec<f64>) -> Vec<f64> {
-        match &self.units {
-            Some(units) => units.to_core(&values),
-            None => values,
-        }
     }
 
     fn design(&self) -> Design<'_> {
@@ -174,12 +163,9 @@ impl DesignModel {
     }
 
     /// The [`Evaluation`] of [`DesignModel::evaluate`] for an evaluation.
-    fn evaluation(&self, py: Python<'_>, mut result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
-        if let (Some(units), Ok(run)) = (&self.units, &mut result) {
-            units.in_model(run);
-        }
+    fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
         let (nq, nv) = (self.setup.quantities.len(), self.setup.vars.len());
-        evaluation::of_result(py, &self.compiled, result, nq, nv)
+        evaluation::of_result(py, &self.compiled, &self.units, result, nq, nv)
     }
 
     /// An infeasible design without positions.

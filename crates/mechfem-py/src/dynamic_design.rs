@@ -29,9 +29,9 @@ pub struct DynamicDesignModel {
     /// The start design's branch, once evaluated (kinematic variables only).
     anchor: Option<Result<Anchor, String>>,
     runs: usize,
-    /// The model's units, when its variables and results are in them
-    /// rather than the core's.
-    units: Option<DesignUnits>,
+    /// The units its variables and results are in: the model's, or the
+    /// core's.
+    units: DesignUnits,
 }
 
 impl DynamicDesignModel {
@@ -43,7 +43,7 @@ impl DynamicDesignModel {
         in_model_units: bool,
     ) -> PyResult<Self> {
         let setup = c.dynamic_setup(variables, buffers).map_err(|e| errors::value_error(&e))?;
-        let units = if in_model_units { c.dynamic_design_units(&setup) } else { None };
+        let units = if in_model_units { c.dynamic_design_units(&setup) } else { DesignUnits::core() };
         Ok(DynamicDesignModel { compiled: c, setup, anchor: None, runs: 0, units })
     }
 }
@@ -81,10 +81,7 @@ impl DynamicDesignModel {
         let (kin, mass) = self.deck_values();
         let values: Vec<f64> =
             self.setup.order.iter().map(|&k| if k < kin.len() { kin[k] } else { mass[k - kin.len()] }).collect();
-        match &self.units {
-            Some(units) => units.from_core(&values),
-            None => values,
-        }
+        self.units.from_core(values)
     }
 
     /// How many designs have been evaluated (mechanism runs).
@@ -98,7 +95,7 @@ impl DynamicDesignModel {
     /// as of [`Self::evaluate`].
     fn start_at(&mut self, py: Python<'_>, values: Vec<f64>) -> PyResult<Evaluation> {
         self.check(&values)?;
-        let (kin, mass) = self.split(&self.in_core(values));
+        let (kin, mass) = self.split(&self.units.to_core(values));
         let started = if self.setup.vars.is_empty() {
             None
         } else {
@@ -144,7 +141,7 @@ impl DynamicDesignModel {
             Some(Err(why)) => return self.failed(py, "start", worded::infeasible_start(why)),
             None => unreachable!("set by start_at"),
         };
-        let (kin, mass) = self.split(&self.in_core(values));
+        let (kin, mass) = self.split(&self.units.to_core(values));
         let design = self.design();
         let result = py.detach(|| {
             let run = design.evaluate(anchor, &kin)?;
@@ -260,20 +257,9 @@ impl DynamicDesignModel {
     }
 
     /// The [`Evaluation`] of [`DynamicDesignModel::evaluate`] for an evaluation.
-    /// `values` in the core's units.
-    fn in_core(&self, values: Vec<f64>) -> Vec<f64> {
-        match &self.units {
-            Some(units) => units.to_core(&values),
-            None => values,
-        }
-    }
-
-    fn evaluation(&self, py: Python<'_>, mut result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
-        if let (Some(units), Ok(run)) = (&self.units, &mut result) {
-            units.in_model(run);
-        }
+    fn evaluation(&self, py: Python<'_>, result: Result<DesignRun, DesignFailure>) -> PyResult<Evaluation> {
         let (nq, nv) = (self.setup.quantities.len(), self.setup.order.len());
-        evaluation::of_result(py, &self.compiled, result, nq, nv)
+        evaluation::of_result(py, &self.compiled, &self.units, result, nq, nv)
     }
 
     /// An infeasible design without positions.

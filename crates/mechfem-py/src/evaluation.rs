@@ -7,7 +7,7 @@
 
 use mechfem_core::design::{DesignFailure, DesignRun, Extremum as FoundExtremum};
 use mechfem_core::worded;
-use mechfem_deck::Compiled;
+use mechfem_deck::{Compiled, DesignUnits};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 
@@ -128,18 +128,23 @@ impl From<&FoundExtremum> for Extremum {
     }
 }
 
-/// The evaluation of the compiled model `c` that gave `result`, its values
-/// `nq` buffers wide and its gradient `nv` variables wide: a design that
-/// failed, or whose run stopped, is infeasible, said in the model's words.
+/// The evaluation of the compiled model `c` that gave `result`, in `units`,
+/// its values `nq` buffers wide and its gradient `nv` variables wide: a
+/// design that failed, or whose run stopped, is infeasible, said in the
+/// model's words.
 pub(crate) fn of_result(
     py: Python<'_>,
     c: &Compiled,
+    units: &DesignUnits,
     result: Result<DesignRun, DesignFailure>,
     nq: usize,
     nv: usize,
 ) -> PyResult<Evaluation> {
     match result {
-        Ok(run) => of_run(py, c, run, nq, nv),
+        Ok(mut run) => {
+            units.in_model(&mut run);
+            of_run(py, c, run, nq, nv)
+        }
         Err(e) => {
             let (kind, why) = crate::design::reason(c, &e);
             infeasible(py, kind, why, nq, nv)

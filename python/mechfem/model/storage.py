@@ -88,21 +88,21 @@ def from_described(s: _core.EchoStorage, name: Callable[[str, int], Ref]) -> tup
             continue
         kinds = BUFFER_ARGS[b.keyword]
         buffers.append((b.number, b.keyword, tuple(name(k, v) for k, v in zip(kinds, b.args, strict=False))))
-    shown = set(bands)
+    left_out = set(bands)
     pictures = []
     for p in s.pictures:
         plots: list[tuple[str, Ref, Ref]] = []
         for q in p.plots:
             if q.keyword == "PLOTHODO":
                 plots.append((q.keyword, name("i", q.a), name("i", q.b)))
-            elif q.a not in shown and q.b not in shown:
+            elif q.a not in left_out and q.b not in left_out:
                 plots.append((q.keyword, q.a, q.b))
         if plots:
             pictures.append(Picture(p.title, plots))
-    printbuf = None if s.printbuf is None else [b for b in s.printbuf if b not in shown]
-    if printbuf == [b.number for b in s.buffers if b.number not in shown]:
+    printbuf = None if s.printbuf is None else [b for b in s.printbuf if b not in left_out]
+    if printbuf == [b.number for b in s.buffers if b.number not in left_out]:
         printbuf = []  # every buffer: the PRINTBUF without numbers
-    savedata = [b for b in s.savedata if b not in shown]
+    savedata = [b for b in s.savedata if b not in left_out]
     return Storage(buffers, printbuf, savedata, s.animate, pictures), bands
 
 

@@ -17,6 +17,24 @@
 /// Most positions kept (the degree of the extrapolation is one less).
 const MAX_POINTS: usize = 8;
 
+/// `$f::<N>(args)` for a count `$n` of 1 to 8 co-ordinates, which the
+/// compiler then knows, else `$other`.
+macro_rules! by_count {
+    ($n:expr, $f:ident($($arg:expr),*), $other:expr) => {
+        match $n {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            6 => $f::<6>($($arg),*),
+            7 => $f::<7>($($arg),*),
+            8 => $f::<8>($($arg),*),
+            _ => $other,
+        }
+    };
+}
+
 /// Divided differences of the last positions, newest first: row k holds
 /// x[q_0, ..., q_k] (q_0 the newest input value), so that the polynomial
 /// through them is x_0 + x[q_0, q_1](t - q_0) + x[q_0, q_1, q_2](t - q_0)(t - q_1) + ...
@@ -96,42 +114,23 @@ impl History {
         // store at every row (at coarse steps, where every row is kept, this
         // loop is a fifth of a positions-only run).
         let (diff, carry, inv) = (&mut self.diff, &mut self.carry, &inv[..len]);
-        let row_max = match self.n {
-            1 => differences::<1>(diff, x, inv),
-            2 => differences::<2>(diff, x, inv),
-            3 => differences::<3>(diff, x, inv),
-            4 => differences::<4>(diff, x, inv),
-            5 => differences::<5>(diff, x, inv),
-            6 => differences::<6>(diff, x, inv),
-            7 => differences::<7>(diff, x, inv),
-            8 => differences::<8>(diff, x, inv),
-            n => differences_of(diff, &mut carry[..n], x, inv),
-        };
+        let row_max = by_count!(self.n, differences(diff, x, inv), differences_in(diff, &mut carry[..self.n], x, inv));
         self.row_max = row_max;
         self.len = len;
         self.skipped = 0;
     }
 }
 
-/// The rows of divided differences `diff` (`N` co-ordinates a row) with the
-/// position `x` added, row k's carry multiplied by `inv[k]`; the largest
-/// magnitude that went into each row.
-#[inline(always)]
+/// [`differences_in`] of `N` co-ordinates, carried in an array of `N`.
 fn differences<const N: usize>(diff: &mut [f64], x: &[f64], inv: &[f64]) -> [f64; MAX_POINTS] {
-    let mut carry = [0.0f64; N];
-    carry.copy_from_slice(&x[..N]);
-    let mut row_max = [0.0f64; MAX_POINTS];
-    for ((row, &ik), largest) in diff.chunks_exact_mut(N).zip(inv).zip(&mut row_max) {
-        for (old, new) in row.iter_mut().zip(carry.iter_mut()) {
-            difference(old, new, ik, largest);
-        }
-    }
-    row_max
+    differences_in(diff, &mut [0.0; N], x, inv)
 }
 
-/// [`differences`] of any number of co-ordinates, `carry` the room for one
-/// row.
-fn differences_of(diff: &mut [f64], carry: &mut [f64], x: &[f64], inv: &[f64]) -> [f64; MAX_POINTS] {
+/// The rows of divided differences `diff` (`carry.len()` co-ordinates a
+/// row) with the position `x` added, what row k carries on multiplied by
+/// `inv[k]`; the largest magnitude that went into each row.
+#[inline(always)]
+fn differences_in(diff: &mut [f64], carry: &mut [f64], x: &[f64], inv: &[f64]) -> [f64; MAX_POINTS] {
     carry.copy_from_slice(&x[..carry.len()]);
     let mut row_max = [0.0f64; MAX_POINTS];
     for ((row, &ik), largest) in diff.chunks_exact_mut(carry.len().max(1)).zip(inv).zip(&mut row_max) {
@@ -142,23 +141,17 @@ fn differences_of(diff: &mut [f64], carry: &mut [f64], x: &[f64], inv: &[f64]) -
     row_max
 }
 
-/// `out` = row 0 of `diff` (`N` co-ordinates a row) plus row k times
-/// `weights[k]` for every k from 1 on, added in that order, the sum kept in
-/// registers.
-#[inline(always)]
+/// [`weighted_in`] of `N` co-ordinates, the sum kept in an array of `N`.
 fn weighted<const N: usize>(diff: &[f64], weights: &[f64], out: &mut [f64]) {
     let mut sum = [0.0f64; N];
-    sum.copy_from_slice(&diff[..N]);
-    for (row, &w) in diff.chunks_exact(N).zip(weights).skip(1) {
-        for (s, v) in sum.iter_mut().zip(row) {
-            *s += w * v;
-        }
-    }
+    weighted_in(diff, weights, &mut sum);
     out[..N].copy_from_slice(&sum);
 }
 
-/// [`weighted`] of any number of co-ordinates (`out.len()`).
-fn weighted_of(diff: &[f64], weights: &[f64], out: &mut [f64]) {
+/// `out` = row 0 of `diff` (`out.len()` co-ordinates a row) plus row k
+/// times `weights[k]` for every k from 1 on, added in that order.
+#[inline(always)]
+fn weighted_in(diff: &[f64], weights: &[f64], out: &mut [f64]) {
     let n = out.len();
     out.copy_from_slice(&diff[..n]);
     for (row, &w) in diff.chunks_exact(n.max(1)).zip(weights).skip(1) {
@@ -211,17 +204,7 @@ impl History {
             used = k;
         }
         let (diff, weights) = (&self.diff, &weights[..=used]);
-        match n {
-            1 => weighted::<1>(diff, weights, out),
-            2 => weighted::<2>(diff, weights, out),
-            3 => weighted::<3>(diff, weights, out),
-            4 => weighted::<4>(diff, weights, out),
-            5 => weighted::<5>(diff, weights, out),
-            6 => weighted::<6>(diff, weights, out),
-            7 => weighted::<7>(diff, weights, out),
-            8 => weighted::<8>(diff, weights, out),
-            _ => weighted_of(diff, weights, out),
-        }
+        by_count!(n, weighted(diff, weights, out), weighted_in(diff, weights, out));
         // Rows beyond those used cost time at every position; the next one
         // is added when a prediction falls short (`deepen`), and kept while
         // it matters.
