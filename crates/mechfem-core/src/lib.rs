@@ -38,6 +38,7 @@ pub mod model;
 pub mod motion;
 pub mod names;
 pub mod run;
+mod sizes;
 pub mod solver;
 pub mod units;
 pub mod worded;

@@ -14,26 +14,10 @@
 //! The stepper may leave positions out ([`History::skip`]); the next
 //! extrapolations then reach further ahead of the last position kept.
 
+use crate::sizes::by_size;
+
 /// Most positions kept (the degree of the extrapolation is one less).
 const MAX_POINTS: usize = 8;
-
-/// `$f::<N>(args)` for a count `$n` of 1 to 8 co-ordinates, which the
-/// compiler then knows, else `$other`.
-macro_rules! by_count {
-    ($n:expr, $f:ident($($arg:expr),*), $other:expr) => {
-        match $n {
-            1 => $f::<1>($($arg),*),
-            2 => $f::<2>($($arg),*),
-            3 => $f::<3>($($arg),*),
-            4 => $f::<4>($($arg),*),
-            5 => $f::<5>($($arg),*),
-            6 => $f::<6>($($arg),*),
-            7 => $f::<7>($($arg),*),
-            8 => $f::<8>($($arg),*),
-            _ => $other,
-        }
-    };
-}
 
 /// Divided differences of the last positions, newest first: row k holds
 /// x[q_0, ..., q_k] (q_0 the newest input value), so that the polynomial
@@ -108,13 +92,13 @@ impl History {
         // x[q, r_0..r_{k-1}] = (x[q, r_0..r_{k-2}] - x[r_0..r_{k-1}]) / (q - r_{k-1}).
         // Row by row, the new differences of every co-ordinate carried from
         // one row to the next (each co-ordinate's arithmetic is that of a
-        // pass down its own column). The rows follow one another: for a few
-        // co-ordinates, a count known to the compiler keeps what is carried
+        // pass down its own column). The rows follow one another: for up to
+        // 16 co-ordinates, a count known to the compiler keeps what is carried
         // in registers, where a carry through memory would wait for its own
         // store at every row (at coarse steps, where every row is kept, this
         // loop is a fifth of a positions-only run).
         let (diff, carry, inv) = (&mut self.diff, &mut self.carry, &inv[..len]);
-        let row_max = by_count!(self.n, differences(diff, x, inv), differences_in(diff, &mut carry[..self.n], x, inv));
+        let row_max = by_size!(self.n, differences, (diff, x, inv), differences_in(diff, &mut carry[..self.n], x, inv));
         self.row_max = row_max;
         self.len = len;
         self.skipped = 0;
@@ -204,7 +188,7 @@ impl History {
             used = k;
         }
         let (diff, weights) = (&self.diff, &weights[..=used]);
-        by_count!(n, weighted(diff, weights, out), weighted_in(diff, weights, out));
+        by_size!(n, weighted, (diff, weights, out), weighted_in(diff, weights, out));
         // Rows beyond those used cost time at every position; the next one
         // is added when a prediction falls short (`deepen`), and kept while
         // it matters.

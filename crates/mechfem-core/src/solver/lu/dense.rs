@@ -4,6 +4,7 @@
 //! matrix's buffer.
 
 use super::{is_zero_pivot, SingularPivot};
+use crate::sizes::by_size;
 
 /// Dense row-major storage of a whole matrix with its factors.
 #[derive(Debug, Clone)]
@@ -26,32 +27,6 @@ pub(super) struct Factors<'a> {
     pub perm: &'a mut [usize],
     pub inv_diag: &'a mut [f64],
     pub scale: &'a mut [f64],
-}
-
-/// Calls `$f::<N>` for the sizes that have a fixed-size path, `$general`
-/// for the others.
-macro_rules! by_size {
-    ($n:expr, $f:ident, ($($arg:expr),*), $general:expr) => {
-        match $n {
-            1 => $f::<1>($($arg),*),
-            2 => $f::<2>($($arg),*),
-            3 => $f::<3>($($arg),*),
-            4 => $f::<4>($($arg),*),
-            5 => $f::<5>($($arg),*),
-            6 => $f::<6>($($arg),*),
-            7 => $f::<7>($($arg),*),
-            8 => $f::<8>($($arg),*),
-            9 => $f::<9>($($arg),*),
-            10 => $f::<10>($($arg),*),
-            11 => $f::<11>($($arg),*),
-            12 => $f::<12>($($arg),*),
-            13 => $f::<13>($($arg),*),
-            14 => $f::<14>($($arg),*),
-            15 => $f::<15>($($arg),*),
-            16 => $f::<16>($($arg),*),
-            _ => $general,
-        }
-    };
 }
 
 impl Dense {
