@@ -4,7 +4,7 @@
 #   make test   install everything into .venv, then run every test and lint
 #
 # Installation is done once: stamp files in .venv record what was installed, and
-# the package is rebuilt only when a Rust source, a Cargo.toml or pyproject.toml
+# the package is rebuilt only when a Rust source, a Cargo.toml, .cargo/config.toml or pyproject.toml
 # changes. Python sources need no rebuild (maturin develop installs them in place).
 
 SHELL := bash
@@ -15,7 +15,7 @@ PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
 BIN := $(abspath $(VENV))/bin
-RUST_SOURCES := Cargo.toml $(wildcard Cargo.lock) $(shell find crates -name '*.rs' -o -name Cargo.toml)
+RUST_SOURCES := Cargo.toml $(wildcard Cargo.lock) .cargo/config.toml $(shell find crates -name '*.rs' -o -name Cargo.toml)
 
 .PHONY: help install demo test bench browser docs fuzz fuzz-seeds clean
 

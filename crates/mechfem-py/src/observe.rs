@@ -55,10 +55,12 @@ impl Record for Selection {
 
 /// The full layout of a run of deck text, recorded as the motion computes
 /// it ([`TransferRecord`]: the layout's table is made from it when Python
-/// asks for it), and the deck's buffers, made from it at the end of the run
-/// (each read from the layout's column of its quantity where it has one, to
-/// the last bit the same value). It keeps its own record: the
-/// [`Recording`]'s table has no column.
+/// asks for it), and the deck's buffers, made as the run goes: a buffer the
+/// layout has a column for from that column, a block of [`BLOCK`] positions
+/// at a time while they are still in the cache (to the last bit the value
+/// of the column), a co-ordinate and a quantity the layout does not have at
+/// every position. It keeps its own record: the [`Recording`]'s table has
+/// no column.
 pub struct Full {
     /// The core's full layout: the columns of the table made from `record`.
     pub layout: Layout,
@@ -66,9 +68,21 @@ pub struct Full {
     buffers: Vec<Source>,
     /// Every position, as the motion computed it.
     pub record: TransferRecord,
-    /// The buffers the layout does not have, row-major, one row of them per position.
-    own: Vec<f64>,
+    /// Each buffer's values so far, column after column, room for `total` positions in each.
+    made: Vec<f64>,
+    /// The positions a column has room for.
+    total: usize,
+    /// One block of a column, on its way from the record into `made`.
+    block: Vec<f64>,
+    /// The buffers made at every position (a co-ordinate, a quantity the layout does not have).
+    every_position: Vec<(usize, Source)>,
+    /// The positions whose values of the layout's columns are in `made`.
+    made_to: usize,
 }
+
+/// How many positions a buffer's column is made for at a time from the
+/// record: some 70 kB of it for a four-bar, which the cache still holds.
+const BLOCK: usize = 256;
 
 impl Full {
     /// The full layout of `mech` (with inverse dynamics when `dynamic`) and
@@ -76,9 +90,13 @@ impl Full {
     pub fn new(mech: &Mechanism, dynamic: bool, buffers: &[Quantity], total: usize) -> Full {
         let layout = Layout::full(mech, dynamic);
         let buffers: Vec<Source> = buffers.iter().map(|&q| Source::of(q, &layout)).collect();
-        let n_own = buffers.iter().filter(|b| matches!(b, Source::Own(_))).count();
         let record = TransferRecord::new(&layout, mech, total);
-        Full { own: Vec::with_capacity(total.saturating_mul(n_own)), buffers, record, layout }
+        // Zeros, for which the allocator asks the system, or fills memory it has.
+        let made = vec![0.0; total.saturating_mul(buffers.len())];
+        let every_position =
+            buffers.iter().copied().enumerate().filter(|(_, b)| !matches!(b, Source::Column(_))).collect();
+        let block = Vec::with_capacity(BLOCK);
+        Full { made, total, block, every_position, made_to: 0, buffers, record, layout }
     }
 
     /// Columns of the layout and the buffers together.
@@ -86,24 +104,47 @@ impl Full {
         self.layout.width() + self.buffers.len()
     }
 
-    /// The deck's buffers at every position recorded, column after column;
-    /// `coords` holds the co-ordinates (row-major, `n_coords` a position).
-    pub fn buffer_table(&self, coords: &[f64], n_coords: usize) -> Vec<f64> {
-        let positions = self.record.positions();
-        let n_own = self.own.len().checked_div(positions).unwrap_or(0);
-        let mut out = Vec::with_capacity(positions * self.buffers.len());
-        let mut own = 0;
-        for b in &self.buffers {
-            match *b {
-                Source::Column(c) => self.layout.column_values(&self.record, c, &mut out),
-                Source::Coord(i) => out.extend(coords.chunks_exact(n_coords.max(1)).map(|x| x[i])),
-                Source::Own(_) => {
-                    out.extend(self.own.chunks_exact(n_own.max(1)).map(|x| x[own]));
-                    own += 1;
-                }
+    /// Room for position `k` (0-based) in every column: a run that goes on
+    /// past the positions its motion counts makes more.
+    fn room_for(&mut self, k: usize) {
+        if k < self.total {
+            return;
+        }
+        let total = (k + 1).max(2 * self.total);
+        let mut made = vec![0.0; total * self.buffers.len()];
+        for (b, column) in self.made.chunks_exact(self.total.max(1)).enumerate() {
+            made[b * total..b * total + self.total].copy_from_slice(column);
+        }
+        (self.made, self.total) = (made, total);
+    }
+
+    /// Makes the buffers read from the layout's columns up to the last position recorded.
+    fn make_columns(&mut self) {
+        let positions = self.made_to..self.record.positions();
+        for (b, source) in self.buffers.iter().enumerate() {
+            if let Source::Column(c) = *source {
+                self.block.clear();
+                self.layout.column_values_at(&self.record, c, positions.clone(), &mut self.block);
+                let at = b * self.total + positions.start;
+                self.made[at..at + self.block.len()].copy_from_slice(&self.block);
             }
         }
-        out
+        self.made_to = positions.end;
+    }
+
+    /// The deck's buffers at every position recorded, column after column.
+    pub fn buffer_table(&mut self) -> Vec<f64> {
+        self.make_columns();
+        let mut made = std::mem::take(&mut self.made);
+        let positions = self.record.positions();
+        if positions < self.total {
+            // A run that stopped early: each column moves up to the end of the one before it.
+            for b in 1..self.buffers.len() {
+                made.copy_within(b * self.total..b * self.total + positions, b * positions);
+            }
+            made.truncate(positions * self.buffers.len());
+        }
+        made
     }
 }
 
@@ -144,10 +185,22 @@ impl Record for Full {
     ) {
         let dynamics = dynamics.map(|d| &*d);
         self.record.push(&self.layout, v, dynamics);
-        for b in &self.buffers {
-            if let Source::Own(q) = *b {
-                record_evaluated(&[q], v, dynamics, &mut self.own);
-            }
+        let k = self.record.positions() - 1;
+        self.room_for(k);
+        for &(b, source) in &self.every_position {
+            let value = match source {
+                Source::Coord(i) => v.state.x[i],
+                Source::Own(q) => {
+                    self.block.clear();
+                    record_evaluated(&[q], v, dynamics, &mut self.block);
+                    self.block[0]
+                }
+                Source::Column(_) => continue,
+            };
+            self.made[b * self.total + k] = value;
+        }
+        if self.record.positions() - self.made_to >= BLOCK {
+            self.make_columns();
         }
     }
 }

@@ -65,11 +65,11 @@ pub fn execute(
     let raised = rec.raised();
     let outcome = match result {
         Ok((report, sim)) => {
-            let full = rec.columns;
+            let mut full = rec.columns;
             let positions = full.record.positions();
             let n_rows = c.mechanism.n_prescribed() + c.mechanism.n_dependent();
             let rows_at_1 = if positions > 0 { full.record.row_values(0).to_vec() } else { vec![f64::NAN; n_rows] };
-            let mut buffers = full.buffer_table(&rec.coords, n);
+            let mut buffers = full.buffer_table();
             if let Some(Err(e)) = bands_start.map(|s| c.fill_bands(s, &mut buffers, positions)) {
                 return (Outcome::Failed(Box::new(state), e), raised);
             }

@@ -93,6 +93,10 @@ class Kept:
 def kept(mech: Mechanism) -> Kept:
     """The compiled models ``mech`` keeps (none yet for a mechanism never run)."""
     attributes = vars(mech)
+    # Reading one attribute needs no lock (nor does a run of a mechanism that has its models); making them does.
+    out = attributes.get("_kept")
+    if type(out) is Kept:
+        return out
     with _LOCK:
         out = attributes.get("_kept")
         if not isinstance(out, Kept):
@@ -111,8 +115,7 @@ def kept_model(
     it)."""
     shape = _shape(mech, motion, storage)
     models = kept(mech)
-    with _LOCK:
-        last = models.last
+    last = models.last
     if last is not None and last.shape == shape:
         changes = _changes(last.numbering)
         if changes is None:
@@ -169,7 +172,9 @@ def _shape(mech: Mechanism, motion: Motion | None, storage: Storage | None) -> t
         [(c, c.fixed, c.number) for c in mech.coordinates],
         [(p, p.x, p.y) for p in mech.points],
         [(e, e.type, e.slots) for e in mech.elements],
-        [(r, r.kind, r.name, r.value is None, r.terms, [(p.element, p.form) for _, p in r.terms]) for r in rows],
+        [(r, r.kind, r.name, r.value is None, r.terms) for r in rows],
+        # One comprehension over every term (a comprehension a row would cost a call each).
+        [(p, p.element, p.form) for r in rows for _, p in r.terms],
         [r.value for r in rows if r.kind == "input"],
         None if loads is None else (loads, list(loads.items)),
         None if motion is None else (motion, list(motion.inputs.items())),

@@ -16,6 +16,7 @@ for:
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -143,7 +144,13 @@ def model_result(
     mech: Mechanism, numbering: Numbering, d: Any, path: str, parameters: dict[str, Any] | None = None
 ) -> RunResult:
     """The result of a run of the named model ``mech`` (``d``: the compiled module's run)."""
-    return RunResult(Path(path), d, Namespace(mech, numbering), parameters)
+    return RunResult(_deck_path(path), d, Namespace(mech, numbering), parameters)
+
+
+@functools.lru_cache(maxsize=256)
+def _deck_path(path: str) -> Path:
+    # Making a Path costs about a microsecond of every run; a path is immutable, so one serves every run of a name.
+    return Path(path)
 
 
 def deck_namespace(result: RunResult) -> Namespace:

@@ -29,6 +29,7 @@ use super::layout::{acceleration, velocity, Layout};
 use super::observe::PositionView;
 use crate::dynamics::Component;
 use crate::model::{Mechanism, FIXED};
+use std::ops::Range;
 
 /// Where each part of a position starts in a [`TransferRecord`]'s row.
 #[derive(Debug, Clone, Default)]
@@ -124,53 +125,54 @@ impl TransferRecord {
     /// was made for); the values of inverse dynamics from `dynamics`,
     /// evaluated at this position ([`InverseDynamics::evaluate`]; NaN without it).
     pub fn push(&mut self, layout: &Layout, v: &PositionView<'_>, dynamics: Option<&InverseDynamics>) {
-        let (kin, nd, nm, at) = (v.kin, self.n_dof, self.n_moving, &self.at);
-        let (np, ndep) = (layout.n_prescribed, layout.n_dependent);
-        let start = self.data.len();
-        // The whole row at once, NaN where nothing is written (the transfer
-        // functions at a limit position, where D^c has no inverse, and inverse
-        // dynamics without a model of it), then written part by part.
-        self.data.resize(start + at.stride, f64::NAN);
-        let row = &mut self.data[start..];
-        for j in 0..nd {
-            row[at.inputs + j] = v.input(j);
-        }
-        row[at.qd..][..nd].copy_from_slice(&v.input_vel[..nd]);
-        row[at.qdd..][..nd].copy_from_slice(&v.input_acc[..nd]);
-        row[at.time] = v.time;
-        row[at.det] = kin.det();
-        for r in 0..np {
-            row[at.rows + r] = kin.row_value(r);
-        }
-        for d in 0..ndep {
-            row[at.rows + np + d] = kin.dep(d);
-        }
+        let (kin, nd, at) = (v.kin, self.n_dof, &self.at);
+        let data = &mut self.data;
+        let start = data.len();
+        // Appended part after part in the row's order, each as one slice
+        // where the motion holds it as one: a position is recorded at every
+        // step, so it is written once, with no NaN written first.
+        data.reserve(at.stride);
+        data.extend((0..nd).map(|j| v.input(j)));
+        data.extend_from_slice(&v.input_vel[..nd]);
+        data.extend_from_slice(&v.input_acc[..nd]);
+        data.extend_from_slice(&[v.time, kin.det()]);
+        data.extend_from_slice(kin.row_values());
+        data.extend_from_slice(kin.dependent_values());
         let transfer = kin.order().is_some();
-        if transfer {
+        if !transfer {
+            // A limit position (D^c has no inverse): no transfer functions.
+            data.resize(start + at.dynamic, f64::NAN);
+        } else if nd == 1 {
+            // One input, the common case: every block is one slice as the motion holds it.
+            data.extend_from_slice(kin.first_order());
+            data.extend_from_slice(kin.x2(0, 0));
+            data.extend_from_slice(kin.dependent_first());
+            data.extend_from_slice(kin.dependent_second());
+        } else {
+            // The second-order blocks hold every pair (j, m), both orders of it.
+            data.extend_from_slice(kin.first_order());
             for j in 0..nd {
-                row[at.x1 + j * nm..][..nm].copy_from_slice(kin.x1(j));
                 for m in 0..nd {
-                    row[at.x2 + (j * nd + m) * nm..][..nm].copy_from_slice(kin.x2(j, m));
+                    data.extend_from_slice(kin.x2(j, m));
                 }
             }
-            for d in 0..ndep {
-                for j in 0..nd {
-                    row[at.dep1 + d * nd + j] = kin.dep1(d, j);
-                    for m in 0..nd {
-                        row[at.dep2 + (d * nd + j) * nd + m] = kin.dep2(d, j, m);
-                    }
-                }
-            }
+            data.extend_from_slice(kin.dependent_first());
+            let ndep = layout.n_dependent;
+            data.extend((0..ndep).flat_map(|d| (0..nd).flat_map(move |j| (0..nd).map(move |m| kin.dep2(d, j, m)))));
         }
+        debug_assert_eq!(data.len() - start, at.dynamic, "the kinematic part of a recorded position");
+        data.resize(start + at.stride, f64::NAN);
         if let (true, Some(d)) = (layout.dynamic, dynamics) {
-            dynamic_values(layout, v.mech, d, &mut row[at.dynamic..]);
+            dynamic_values(layout, v.mech, d, &mut data[start + at.dynamic..]);
         }
         self.transfer.push(transfer);
     }
 
-    /// The rows of the positions with whether each has transfer functions.
-    fn rows(&self) -> impl Iterator<Item = (&[f64], bool)> {
-        self.data.chunks_exact(self.at.stride.max(1)).zip(self.transfer.iter().copied())
+    /// The rows of the positions `positions` with whether each has transfer functions.
+    fn rows(&self, positions: Range<usize>) -> impl Iterator<Item = (&[f64], bool)> {
+        let stride = self.at.stride.max(1);
+        let data = &self.data[positions.start * stride..positions.end * stride];
+        data.chunks_exact(stride).zip(self.transfer[positions].iter().copied())
     }
 }
 
@@ -215,6 +217,13 @@ impl Layout {
     /// Appends the values of column `c` at every position of `record`
     /// (made for this layout), as [`Self::table`] holds them.
     pub fn column_values(&self, record: &TransferRecord, c: usize, out: &mut Vec<f64>) {
+        self.column_values_at(record, c, 0..record.positions(), out);
+    }
+
+    /// As [`Self::column_values`], at the positions `positions` (0-based,
+    /// recorded ones) only: a column made a block of positions at a time,
+    /// while they are still in the cache, as a run records them.
+    pub fn column_values_at(&self, record: &TransferRecord, c: usize, positions: Range<usize>, out: &mut Vec<f64>) {
         let Some(block) = self.blocks.iter().find(|b| b.columns().contains(&c)) else {
             return;
         };
@@ -223,7 +232,7 @@ impl Layout {
         let sq = nd * nd;
         let t = c - block.start;
         let nan = f64::NAN;
-        let rows = record.rows();
+        let rows = record.rows(positions);
         // The transfer functions of the co-ordinate in column `col` of D^c
         // (0 for a fixed one), as the layout holds them.
         let (mut d1, mut d2) = (vec![0.0; nd], vec![0.0; sq]);

@@ -429,6 +429,33 @@ impl Kinematics {
         self.row_values[r]
     }
 
+    /// The values of every prescribed row at the last transfer.
+    pub fn row_values(&self) -> &[f64] {
+        &self.row_values
+    }
+
+    /// The values of every dependent form parameter.
+    pub fn dependent_values(&self) -> &[f64] {
+        &self.dep
+    }
+
+    /// The first-order transfer functions of every input over the moving
+    /// co-ordinates, input after input ([`Self::x1`] of each).
+    pub fn first_order(&self) -> &[f64] {
+        &self.x1
+    }
+
+    /// d eps_d / d input_j of every dependent row, at `d * n_dof + j`.
+    pub fn dependent_first(&self) -> &[f64] {
+        &self.dep1
+    }
+
+    /// d2 eps_d / d input_j d input_m of every dependent row, the pairs
+    /// j <= m of each row after one another (with one input, one a row).
+    pub fn dependent_second(&self) -> &[f64] {
+        &self.dep2
+    }
+
     /// Velocity of co-ordinate `coord` for input velocities `qd` (eq. 5.29).
     pub fn velocity(&self, mech: &Mechanism, coord: usize, qd: &[f64]) -> f64 {
         (0..self.n_dof).map(|j| self.dx(mech, coord, j) * qd[j]).sum()
