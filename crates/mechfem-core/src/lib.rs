@@ -53,7 +53,7 @@ pub use motion::{InputMotion, LimitKind, LimitPosition, Motion};
 pub use names::Names;
 pub use run::dynamic_design;
 pub use run::{design, run, simulate, InverseDynamics, Observer, PositionView, RunReport, SimReport, Stop};
-pub use run::{record, record_evaluated, Layout, Quantity, Recorder};
+pub use run::{record, record_evaluated, recorded_value, Layout, Quantity, Recorder};
 pub use solver::Params;
 pub use solver::{
     adjust, diagnose, AdjustInfo, DesignError, DesignVar, Kinematics, Mobility, NewtonInfo, Sensitivity, TransferOrder,

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use mechfem_core::dynamics::Dynamics;
 use mechfem_core::run::{Columns, InverseDynamics, Layout, Selection, TransferRecord};
-use mechfem_core::{record_evaluated, Mechanism, Observer, PositionView, Quantity, SolveError, TransferOrder};
+use mechfem_core::{recorded_value, Mechanism, Observer, PositionView, Quantity, SolveError, TransferOrder};
 use pyo3::prelude::*;
 
 /// What a [`Recording`] keeps of each position, in its table's columns.
@@ -74,8 +74,6 @@ pub struct Full {
     total: usize,
     /// One block of a column, on its way from the record into `made`.
     block: Vec<f64>,
-    /// The buffers made at every position (a co-ordinate, a quantity the layout does not have).
-    every_position: Vec<(usize, Source)>,
     /// The positions whose values of the layout's columns are in `made`.
     made_to: usize,
 }
@@ -93,10 +91,8 @@ impl Full {
         let record = TransferRecord::new(&layout, mech, total);
         // Zeros, for which the allocator asks the system, or fills memory it has.
         let made = vec![0.0; total.saturating_mul(buffers.len())];
-        let every_position =
-            buffers.iter().copied().enumerate().filter(|(_, b)| !matches!(b, Source::Column(_))).collect();
         let block = Vec::with_capacity(BLOCK);
-        Full { made, total, block, every_position, made_to: 0, buffers, record, layout }
+        Full { made, total, block, made_to: 0, buffers, record, layout }
     }
 
     /// Columns of the layout and the buffers together.
@@ -187,17 +183,13 @@ impl Record for Full {
         self.record.push(&self.layout, v, dynamics);
         let k = self.record.positions() - 1;
         self.room_for(k);
-        for &(b, source) in &self.every_position {
-            let value = match source {
+        for (b, source) in self.buffers.iter().enumerate() {
+            self.made[b * self.total + k] = match *source {
                 Source::Coord(i) => v.state.x[i],
-                Source::Own(q) => {
-                    self.block.clear();
-                    record_evaluated(&[q], v, dynamics, &mut self.block);
-                    self.block[0]
-                }
+                Source::Own(q) => recorded_value(q, v, dynamics),
+                // Made from the record, a block at a time.
                 Source::Column(_) => continue,
             };
-            self.made[b * self.total + k] = value;
         }
         if self.record.positions() - self.made_to >= BLOCK {
             self.make_columns();

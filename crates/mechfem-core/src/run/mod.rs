@@ -44,7 +44,7 @@ pub use inverse::{DynamicSensitivity, InverseDynamics};
 pub use kinematic::run;
 pub use layout::{Block, Columns, Layout};
 pub use observe::{Observer, PositionView, RunReport, Stop};
-pub use record::{record, record_evaluated, Quantity, Recorder};
+pub use record::{record, record_evaluated, recorded_value, Quantity, Recorder};
 pub use selection::Selection;
 pub use simulate::{simulate, simulate_within, Event, Segment, SimReport};
 pub use transfer_record::TransferRecord;

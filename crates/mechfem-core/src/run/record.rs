@@ -322,7 +322,7 @@ pub fn record_evaluated(
 /// The value [`record_evaluated`] records of quantity `q` at the position
 /// `view`.
 #[inline]
-pub(super) fn recorded_value(q: Quantity, view: &PositionView<'_>, dynamics: Option<&InverseDynamics>) -> f64 {
+pub fn recorded_value(q: Quantity, view: &PositionView<'_>, dynamics: Option<&InverseDynamics>) -> f64 {
     let (mech, kin) = (view.mech, view.kin);
     let transfer = kin.order().is_some();
     // The quantities most recorded are read here without the generic path
