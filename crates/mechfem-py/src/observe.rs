@@ -74,6 +74,9 @@ pub struct Full {
     total: usize,
     /// One block of a column, on its way from the record into `made`.
     block: Vec<f64>,
+    /// The buffers made at every position (a co-ordinate, a quantity the
+    /// layout has no column for) with their place among the buffers.
+    every_position: Vec<(usize, Source)>,
     /// The positions whose values of the layout's columns are in `made`.
     made_to: usize,
 }
@@ -91,8 +94,10 @@ impl Full {
         let record = TransferRecord::new(&layout, mech, total);
         // Zeros, for which the allocator asks the system, or fills memory it has.
         let made = vec![0.0; total.saturating_mul(buffers.len())];
+        let every_position =
+            buffers.iter().copied().enumerate().filter(|(_, b)| !matches!(b, Source::Column(_))).collect();
         let block = Vec::with_capacity(BLOCK);
-        Full { made, total, block, made_to: 0, buffers, record, layout }
+        Full { made, total, block, every_position, made_to: 0, buffers, record, layout }
     }
 
     /// Columns of the layout and the buffers together.
@@ -183,11 +188,11 @@ impl Record for Full {
         self.record.push(&self.layout, v, dynamics);
         let k = self.record.positions() - 1;
         self.room_for(k);
-        for (b, source) in self.buffers.iter().enumerate() {
-            self.made[b * self.total + k] = match *source {
+        for &(b, source) in &self.every_position {
+            self.made[b * self.total + k] = match source {
                 Source::Coord(i) => v.state.x[i],
                 Source::Own(q) => recorded_value(q, v, dynamics),
-                // Made from the record, a block at a time.
+                // Not in `every_position`: made from the record, a block at a time.
                 Source::Column(_) => continue,
             };
         }

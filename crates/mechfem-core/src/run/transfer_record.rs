@@ -139,10 +139,17 @@ impl TransferRecord {
         data.extend_from_slice(kin.row_values());
         data.extend_from_slice(kin.dependent_values());
         let transfer = kin.order().is_some();
-        if transfer {
-            // The second-order blocks hold every pair (j, m), both orders of
-            // it, where the motion keeps each pair once: with one input, the
-            // common case, every block is one slice as the motion holds it.
+        if !transfer {
+            // A limit position (D^c has no inverse): no transfer functions.
+            data.resize(start + at.dynamic, f64::NAN);
+        } else if nd == 1 {
+            // One input, the common case: every block is one slice as the motion holds it.
+            data.extend_from_slice(kin.first_order());
+            data.extend_from_slice(kin.x2(0, 0));
+            data.extend_from_slice(kin.dependent_first());
+            data.extend_from_slice(kin.dependent_second());
+        } else {
+            // The second-order blocks hold every pair (j, m), both orders of it.
             data.extend_from_slice(kin.first_order());
             for j in 0..nd {
                 for m in 0..nd {
@@ -150,15 +157,8 @@ impl TransferRecord {
                 }
             }
             data.extend_from_slice(kin.dependent_first());
-            if nd == 1 {
-                data.extend_from_slice(kin.dependent_second());
-            } else {
-                let ndep = layout.n_dependent;
-                data.extend((0..ndep).flat_map(|d| (0..nd).flat_map(move |j| (0..nd).map(move |m| kin.dep2(d, j, m)))));
-            }
-        } else {
-            // A limit position (D^c has no inverse): no transfer functions.
-            data.resize(start + at.dynamic, f64::NAN);
+            let ndep = layout.n_dependent;
+            data.extend((0..ndep).flat_map(|d| (0..nd).flat_map(move |j| (0..nd).map(move |m| kin.dep2(d, j, m)))));
         }
         debug_assert_eq!(data.len() - start, at.dynamic, "the kinematic part of a recorded position");
         data.resize(start + at.stride, f64::NAN);
